@@ -1,0 +1,21 @@
+# Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
+# Every target installs what is missing first; a second run is quick.
+.PHONY: setup build test demo bench clean
+
+setup:
+	@bash scripts/setup.sh
+
+build: setup
+	@bash scripts/build.sh
+
+test: build
+	@bash scripts/run_tests.sh
+
+demo: build
+	@bash scripts/demo.sh
+
+bench: build
+	@bash scripts/bench.sh
+
+clean:
+	rm -rf build/ws

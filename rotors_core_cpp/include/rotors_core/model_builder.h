@@ -1,0 +1,29 @@
+// Builds a Model in a World from URDF (with <gazebo> extensions) or SDF text, through libsdformat,
+// and loads its plugins. Either the whole model comes up or nothing is left in the world.
+#pragma once
+
+#include <string>
+
+#include <sdf/Model.hh>
+
+#include "rotors_core/physics/physics_types.h"
+
+
+namespace rotors_sim {
+
+struct SpawnRequest {
+  std::string xml;         ///< URDF or SDF text
+  std::string model_name;  ///< empty: the name in the description
+  physics::Pose3d X_WM;    ///< spawn pose of the model frame in the world
+};
+
+class ModelBuilder {
+ public:
+  /// Throws SimError with one line naming the model and the problem.
+  static physics::ModelPtr Spawn(const physics::WorldPtr& world, const SpawnRequest& request);
+  /// Builds an already parsed SDF model (used for the models of a world file).
+  static physics::ModelPtr Build(const physics::WorldPtr& world, const sdf::Model& sdf_model,
+                                 const std::string& name, const physics::Pose3d& X_WM);
+};
+
+}  // namespace rotors_sim

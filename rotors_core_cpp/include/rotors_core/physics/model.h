@@ -1,0 +1,79 @@
+// A model: links, joints and its plugins (gazebo::physics::Model).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ode/ode.h>
+#include <sdf/Element.hh>
+
+#include "rotors_core/physics/physics_types.h"
+
+namespace rotors_sim {
+class ModelPlugin;
+namespace physics {
+
+class Model {
+ public:
+  Model(std::string name, World* world, bool is_static);
+  ~Model();
+
+  const std::string& GetName() const { return name_; }
+  WorldPtr GetWorld() const;
+  World* GetWorldRaw() const { return world_; }
+  bool IsStatic() const { return static_; }
+  sdf::ElementPtr GetSDF() const { return sdf_; }
+
+  LinkPtr GetLink(const std::string& name) const;  ///< nullptr if absent (Gazebo semantics)
+  JointPtr GetJoint(const std::string& name) const;
+  const Link_V& GetLinks() const { return links_; }
+  const Joint_V& GetJoints() const { return joints_; }
+  /// The canonical (root) link, whose pose is the model pose.
+  LinkPtr GetCanonicalLink() const { return links_.empty() ? nullptr : links_.front(); }
+
+  Pose3d WorldPose() const;
+  Vector3d WorldLinearVel() const;
+  Vector3d WorldAngularVel() const;
+  /// Moves the model rigidly to X_WM and zeroes every velocity (reset and teleport).
+  void SetWorldPose(const Pose3d& X_WM);
+  const Pose3d& InitialPose() const { return X_WM_initial_; }
+
+  // --- Engine side ---
+  void SetSDF(sdf::ElementPtr sdf) { sdf_ = std::move(sdf); }
+  void AddLink(const LinkPtr& link) { links_.push_back(link); }
+  void AddJoint(const JointPtr& joint) { joints_.push_back(joint); }
+  void AddBody(dBodyID body, const Pose3d& X_MB) { bodies_.push_back({body, X_MB}); }
+  /// Registers a collision geom; its dGeomGetData() is the returned GeomInfo.
+  struct GeomInfo {
+    Link* link;
+    std::string scoped_name;  ///< "model::link::collision"
+  };
+  void AddGeom(dGeomID geom, Link* link, const std::string& scoped_name);
+  void SetInitialPose(const Pose3d& X_WM) { X_WM_initial_ = X_WM; }
+  void AddPlugin(std::unique_ptr<ModelPlugin> plugin);
+  const std::vector<std::unique_ptr<ModelPlugin>>& Plugins() const { return plugins_; }
+  void ResetPlugins();
+  /// Unloads plugins (breaking their ModelPtr cycles) and frees the ODE bodies, joints and geoms.
+  void Fini();
+
+ private:
+  struct BodyRecord {
+    dBodyID body;
+    Pose3d X_MB;  ///< body frame in the model frame at spawn
+  };
+  std::string name_;
+  World* world_;
+  bool static_;
+  sdf::ElementPtr sdf_;
+  Link_V links_;
+  Joint_V joints_;
+  std::vector<BodyRecord> bodies_;
+  std::vector<std::pair<dGeomID, std::unique_ptr<GeomInfo>>> geoms_;
+  Pose3d X_WM_initial_;
+  std::vector<std::unique_ptr<ModelPlugin>> plugins_;
+};
+
+}  // namespace physics
+}  // namespace rotors_sim

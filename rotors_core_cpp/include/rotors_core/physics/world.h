@@ -1,0 +1,114 @@
+// The world: ODE dynamics and contacts, models, world plugins, sim time and the update events
+// (gazebo::physics::World). It knows nothing about ROS or multirotors.
+#pragma once
+
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ode/ode.h>
+
+#include "rotors_core/common.h"
+#include "rotors_core/event.h"
+#include "rotors_core/physics/physics_types.h"
+
+namespace rotors_sim {
+class WorldPlugin;
+namespace physics {
+
+/// Physics settings of a world (SDF <physics>, ODE solver block).
+struct PhysicsParams {
+  double max_step_size_s = 0.001;        ///< [s] fixed physics step
+  double real_time_factor = 1.0;         ///< pacing target; 0 = as fast as possible
+  double real_time_update_rate_hz = 1000.0;
+  Vector3d gravity_W{0.0, 0.0, -9.8};    ///< [m/s^2]
+  bool quick_solver = true;              ///< ODE "quick" (iterative) vs "world" (direct) stepper
+  int quick_iterations = 50;
+  double sor = 1.3;
+  double cfm = 0.0;
+  double erp = 0.2;
+  double contact_max_correcting_vel_m_s = 100.0;
+  double contact_surface_layer_m = 0.001;
+  double friction_mu = 1.0;
+  std::string Validate() const;  ///< empty when valid, else a one-line reason
+};
+
+/// One contact point found in the last step (between two links, or a link and static geometry).
+struct Contact {
+  std::string collision1, collision2;  ///< "model::link::collision"
+  Link* link1 = nullptr;               ///< nullptr for static geometry
+  Link* link2 = nullptr;
+  Vector3d position_W, normal_W;
+  double depth_m = 0.0;
+  Vector3d force1_W, torque1_W;        ///< wrench on link1 from the contact, world frame
+  Vector3d force2_W, torque2_W;
+};
+
+class World : public std::enable_shared_from_this<World> {
+ public:
+  static WorldPtr Create(const std::string& name, const PhysicsParams& params);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const std::string& Name() const { return name_; }
+  const PhysicsParams& Physics() const { return params_; }
+  void SetRealTimeFactor(double rtf) { params_.real_time_factor = rtf; }
+  Vector3d Gravity() const { return params_.gravity_W; }
+  common::Time SimTime() const { return sim_time_; }
+  uint64_t Iterations() const { return iterations_; }
+
+  ModelPtr ModelByName(const std::string& name) const;
+  const std::vector<ModelPtr>& Models() const { return models_; }
+  size_t ModelCount() const { return models_.size(); }
+  /// Removes a model and its plugins; false if there is none of that name.
+  bool RemoveModel(const std::string& name);
+
+  /// Advances the world by `steps` physics steps (update-begin event, collide, integrate,
+  /// update-end event each).
+  void Step(unsigned int steps = 1);
+  /// reset_world: models back to their spawn poses, velocities zero, plugins Reset(); time kept.
+  void ResetWorld();
+  /// reset_simulation: as ResetWorld and the sim time back to zero.
+  void ResetSimulation();
+
+  const std::vector<Contact>& Contacts() const { return contacts_; }
+  /// Unloads world plugins and removes every model (plugins hold shared pointers to their
+  /// world and model; call this before dropping the last WorldPtr).
+  void Fini();
+  event::WorldEvents& Events() { return events_; }
+
+  // --- Engine side (used by builders) ---
+  dWorldID OdeWorld() const { return ode_world_; }
+  dSpaceID OdeSpace() const { return ode_space_; }
+  void AddModel(const ModelPtr& model);
+  void AddPlugin(std::unique_ptr<WorldPlugin> plugin);
+
+ private:
+  World(std::string name, const PhysicsParams& params);
+  static void NearCallback(void* data, dGeomID g1, dGeomID g2);
+  void Collide();
+  void CollectContacts();
+
+  std::string name_;
+  PhysicsParams params_;
+  dWorldID ode_world_ = nullptr;
+  dSpaceID ode_space_ = nullptr;
+  dJointGroupID contact_group_ = nullptr;
+  std::vector<ModelPtr> models_;
+  std::vector<std::unique_ptr<WorldPlugin>> plugins_;
+  common::Time sim_time_;
+  uint64_t iterations_ = 0;
+  event::WorldEvents events_;
+  std::vector<Contact> contacts_;
+  struct PendingContact {
+    Contact contact;
+    dJointFeedback feedback;
+  };
+  std::deque<PendingContact> pending_contacts_;
+  common::Time wall_start_;
+};
+
+}  // namespace physics
+}  // namespace rotors_sim

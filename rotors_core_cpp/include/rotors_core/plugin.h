@@ -1,0 +1,54 @@
+// Plugin base classes and registration, mirroring Gazebo classic's ModelPlugin / WorldPlugin /
+// SensorPlugin and GZ_REGISTER_*_PLUGIN, so the physics part of a Gazebo plugin ports with few edits.
+#pragma once
+
+#include <string>
+
+#include <sdf/Element.hh>
+
+#include "rotors_core/physics/physics_types.h"
+
+namespace rotors_sim {
+
+class PluginBase {
+ public:
+  virtual ~PluginBase() = default;
+  /// Called on reset_world / reset_simulation.
+  virtual void Reset() {}
+  const std::string& GetHandle() const { return handle_; }
+  const std::string& GetFilename() const { return filename_; }
+  void SetIdentity(const std::string& handle, const std::string& filename) {
+    handle_ = handle;
+    filename_ = filename;
+  }
+
+ private:
+  std::string handle_, filename_;
+};
+
+class ModelPlugin : public PluginBase {
+ public:
+  /// Parses parameters and connects to events; throws SimError (or std::exception) on bad input.
+  virtual void Load(physics::ModelPtr model, sdf::ElementPtr sdf) = 0;
+};
+
+class WorldPlugin : public PluginBase {
+ public:
+  virtual void Load(physics::WorldPtr world, sdf::ElementPtr sdf) = 0;
+};
+
+}  // namespace rotors_sim
+
+#define RSIM_REGISTER_MODEL_PLUGIN(classname)                                        \
+  extern "C" __attribute__((visibility("default"))) rotors_sim::ModelPlugin*       \
+  RotorsSimCreateModelPlugin() {                                                    \
+    return new classname();                                                         \
+  }
+#define RSIM_REGISTER_WORLD_PLUGIN(classname)                                        \
+  extern "C" __attribute__((visibility("default"))) rotors_sim::WorldPlugin*       \
+  RotorsSimCreateWorldPlugin() {                                                    \
+    return new classname();                                                         \
+  }
+/// Gazebo spellings, for ported plugins.
+#define GZ_REGISTER_MODEL_PLUGIN(classname) RSIM_REGISTER_MODEL_PLUGIN(classname)
+#define GZ_REGISTER_WORLD_PLUGIN(classname) RSIM_REGISTER_WORLD_PLUGIN(classname)

@@ -1,0 +1,56 @@
+// ROS face of the engine (what gazebo_ros is for Gazebo): /clock, the /gazebo/* services,
+// TF, joint_states and model_states, and real-time pacing. Runs the world in this thread and
+// serves ROS callbacks between steps, so plugin callbacks never race the physics.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <gazebo_msgs/DeleteModel.h>
+#include <gazebo_msgs/SpawnModel.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+
+#include "rotors_core/physics/physics_types.h"
+#include "rotors_core/ros/real_time_pacer.h"
+#include "rotors_core/ros/state_publisher.h"
+
+namespace rotors_sim {
+
+struct SimServerOptions {
+  std::string world_file;
+  bool paused = false;
+  double real_time_factor = -1.0;  ///< < 0: the world's own; 0: as fast as possible
+  double state_publish_rate_hz = 100.0;  ///< [Hz sim time] TF, joint_states, model_states
+};
+
+class SimServer {
+ public:
+  /// Loads the world; throws SimError.
+  SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimServerOptions& options);
+  ~SimServer();
+
+  /// Steps and serves callbacks until ROS shuts down.
+  void Run();
+  physics::WorldPtr World() const { return world_; }
+
+ private:
+  void StepOnce();
+  void PublishClock();
+  bool OnPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool OnUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnModel::Response& res);
+  bool OnDelete(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::DeleteModel::Response& res);
+
+  ros::NodeHandle nh_, private_nh_;
+  physics::WorldPtr world_;
+  bool paused_;
+  RealTimePacer pacer_;
+  std::unique_ptr<StatePublisher> state_publisher_;
+  ros::Publisher clock_pub_;
+  std::vector<ros::ServiceServer> services_;
+};
+
+}  // namespace rotors_sim

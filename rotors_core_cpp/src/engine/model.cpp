@@ -1,0 +1,82 @@
+#include "rotors_core/physics/model.h"
+
+#include "rotors_core/event.h"
+#include "rotors_core/physics/joint.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin.h"
+#include "ode_convert.h"
+#include "pose_math.h"
+
+namespace rotors_sim {
+namespace physics {
+
+Model::Model(std::string name, World* world, bool is_static)
+    : name_(std::move(name)), world_(world), static_(is_static) {}
+
+Model::~Model() { Fini(); }
+
+void Model::Fini() {
+  plugins_.clear();
+  for (auto& link : links_) link->ClearJoints();
+  joints_.clear();
+  for (auto& g : geoms_) dGeomDestroy(g.first);
+  geoms_.clear();
+  for (auto& b : bodies_) dBodyDestroy(b.body);
+  bodies_.clear();
+  links_.clear();
+}
+
+WorldPtr Model::GetWorld() const { return world_ ? world_->shared_from_this() : nullptr; }
+
+LinkPtr Model::GetLink(const std::string& name) const {
+  for (const auto& link : links_)
+    if (link->GetName() == name) return link;
+  return nullptr;
+}
+
+JointPtr Model::GetJoint(const std::string& name) const {
+  for (const auto& joint : joints_)
+    if (joint->GetName() == name) return joint;
+  return nullptr;
+}
+
+Pose3d Model::WorldPose() const {
+  auto link = GetCanonicalLink();
+  return link ? link->WorldPose() : X_WM_initial_;
+}
+
+Vector3d Model::WorldLinearVel() const {
+  auto link = GetCanonicalLink();
+  return link ? link->WorldLinearVel() : Vector3d::Zero;
+}
+
+Vector3d Model::WorldAngularVel() const {
+  auto link = GetCanonicalLink();
+  return link ? link->WorldAngularVel() : Vector3d::Zero;
+}
+
+void Model::SetWorldPose(const Pose3d& X_WM) {
+  for (const auto& b : bodies_) {
+    ode_convert::SetBodyPose(b.body, Compose(X_WM, b.X_MB));
+    dBodySetLinearVel(b.body, 0, 0, 0);
+    dBodySetAngularVel(b.body, 0, 0, 0);
+    dBodyEnable(b.body);
+  }
+  for (const auto& link : links_) link->ClearAcceleration();
+}
+
+void Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name) {
+  auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name});
+  dGeomSetData(geom, info.get());
+  geoms_.emplace_back(geom, std::move(info));
+}
+
+void Model::AddPlugin(std::unique_ptr<ModelPlugin> plugin) { plugins_.push_back(std::move(plugin)); }
+
+void Model::ResetPlugins() {
+  for (auto& plugin : plugins_) plugin->Reset();
+}
+
+}  // namespace physics
+}  // namespace rotors_sim

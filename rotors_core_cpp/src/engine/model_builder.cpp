@@ -1,0 +1,297 @@
+#include "rotors_core/model_builder.h"
+
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include <sdf/Collision.hh>
+#include <sdf/Joint.hh>
+#include <sdf/JointAxis.hh>
+#include <sdf/Link.hh>
+#include <sdf/Plane.hh>
+#include <sdf/Root.hh>
+#include <urdf_parser/urdf_parser.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/event.h"
+#include "rotors_core/physics/joint.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin_loader.h"
+#include "collision_geometry.h"
+#include "sdf_console.h"
+#include "ode_convert.h"
+#include "pose_math.h"
+
+namespace rotors_sim {
+namespace {
+
+using physics::Pose3d;
+using physics::Vector3d;
+
+/// Gazebo silently drops a URDF link without <inertial> that hangs on a non-fixed joint
+/// (book note 3); we refuse such a description instead.
+void CheckNoDroppedLinks(const std::string& urdf_xml, const sdf::Model& sdf_model, const std::string& model_name) {
+  urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDF(urdf_xml);
+  if (!urdf_model) throw SimError("model '" + model_name + "': the URDF does not parse (urdfdom)");
+  for (const auto& kv : urdf_model->links_) {
+    const auto& link = kv.second;
+    if (sdf_model.LinkNameExists(link->name)) continue;
+    const auto& joint = link->parent_joint;
+    if (joint && joint->type == urdf::Joint::FIXED) continue;  // lumped into its parent
+    throw SimError("model '" + model_name + "': link '" + link->name + "' has no <inertial> (or a mass below 1e-5 kg)" +
+                   (joint ? ", so it and its joint '" + joint->name + "' would be dropped" : std::string()) +
+                   "; give it an <inertial> block with a mass of at least 1e-5 kg");
+  }
+}
+
+physics::Inertial InertialOf(const sdf::Link& link) {
+  const ignition::math::Inertiald& in = link.Inertial();
+  const ignition::math::Matrix3d moi = in.Moi();  // about the CoG, link axes
+  Eigen::Matrix3d J;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) J(i, j) = moi(i, j);
+  return physics::Inertial(in.MassMatrix().Mass(), ode_convert::ToEigen(in.Pose().Pos()), J);
+}
+
+Pose3d ResolveInModel(const sdf::SemanticPose& pose, const std::string& what) {
+  Pose3d X;
+  sdf::Errors errors = pose.Resolve(X, "__model__");
+  if (!errors.empty()) throw SimError(what + ": cannot resolve its pose: " + errors.front().Message());
+  return X;
+}
+
+struct JointSpec {
+  const sdf::Joint* sdf;
+  physics::Joint::Type type;
+  double lower = -1e16, upper = 1e16;
+};
+
+JointSpec ClassifyJoint(const sdf::Joint& joint, const std::string& where) {
+  JointSpec spec{&joint, physics::Joint::Type::kWelded};
+  const sdf::JointAxis* axis = joint.Axis(0);
+  switch (joint.Type()) {
+    case sdf::JointType::FIXED:
+      return spec;
+    case sdf::JointType::CONTINUOUS:
+      spec.type = physics::Joint::Type::kRevolute;
+      return spec;
+    case sdf::JointType::REVOLUTE:
+    case sdf::JointType::PRISMATIC:
+      spec.type = joint.Type() == sdf::JointType::REVOLUTE ? physics::Joint::Type::kRevolute
+                                                            : physics::Joint::Type::kPrismatic;
+      if (axis) {
+        spec.lower = axis->Lower();
+        spec.upper = axis->Upper();
+      }
+      // A zero-range joint (RotorS mounts sensors this way) is rigid: weld it.
+      if (spec.upper - spec.lower <= 1e-12) spec.type = physics::Joint::Type::kWelded;
+      return spec;
+    default:
+      throw SimError(where + ": joint type is not supported (use fixed, continuous, revolute or prismatic)");
+  }
+}
+
+void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& model, const sdf::Link& sdf_link,
+                   const physics::LinkPtr& link, const Pose3d& X_WL) {
+  for (uint64_t c = 0; c < sdf_link.CollisionCount(); ++c) {
+    const sdf::Collision* collision = sdf_link.CollisionByIndex(c);
+    const std::string scoped = model->GetName() + "::" + sdf_link.Name() + "::" + collision->Name();
+    dGeomID geom = CreateGeom(world->OdeSpace(), *collision->Geom(), "collision '" + scoped + "'");
+    if (!geom) continue;
+    Pose3d X_LC;
+    sdf::Errors errors = collision->SemanticPose().Resolve(X_LC, sdf_link.Name());
+    if (!errors.empty()) throw SimError("collision '" + scoped + "': " + errors.front().Message());
+    if (dGeomGetClass(geom) == dPlaneClass) {
+      if (link->Body()) throw SimError("collision '" + scoped + "': a plane can only belong to a static model");
+      const Pose3d X_WC = Compose(X_WL, X_LC);
+      const Vector3d n_W = X_WC.Rot().RotateVector(collision->Geom()->PlaneShape()->Normal()).Normalized();
+      dGeomPlaneSetParams(geom, n_W.X(), n_W.Y(), n_W.Z(), n_W.Dot(X_WC.Pos()));
+    } else if (link->Body()) {
+      dGeomSetBody(geom, link->Body());
+      const Pose3d X_BC = Compose(link->PoseInBody(), X_LC);
+      dGeomSetOffsetPosition(geom, X_BC.Pos().X(), X_BC.Pos().Y(), X_BC.Pos().Z());
+      dQuaternion q;
+      ode_convert::ToOde(X_BC.Rot(), q);
+      dGeomSetOffsetQuaternion(geom, q);
+    } else {
+      const Pose3d X_WC = Compose(X_WL, X_LC);
+      dGeomSetPosition(geom, X_WC.Pos().X(), X_WC.Pos().Y(), X_WC.Pos().Z());
+      dQuaternion q;
+      ode_convert::ToOde(X_WC.Rot(), q);
+      dGeomSetQuaternion(geom, q);
+    }
+    model->AddGeom(geom, link.get(), scoped);
+  }
+}
+
+void LoadPlugins(const physics::WorldPtr& world, const physics::ModelPtr& model) {
+  sdf::ElementPtr element = model->GetSDF();
+  if (!element || !element->HasElement("plugin")) return;
+  event::ScopedCurrentEvents scope(&world->Events());
+  for (sdf::ElementPtr p = element->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
+    const std::string name = p->Get<std::string>("name");
+    const std::string filename = p->Get<std::string>("filename");
+    try {
+      std::unique_ptr<ModelPlugin> plugin = PluginLoader::CreateModelPlugin(filename);
+      plugin->SetIdentity(name, filename);
+      plugin->Load(model, p);
+      model->AddPlugin(std::move(plugin));
+    } catch (const std::exception& e) {
+      throw SimError("model '" + model->GetName() + "', plugin '" + name + "' (" + filename + "): " + e.what());
+    }
+  }
+}
+
+}  // namespace
+
+physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const SpawnRequest& request) {
+  SilenceSdformatConsole();
+  const std::string label = request.model_name.empty() ? std::string("<unnamed>") : request.model_name;
+  sdf::Root root;
+  sdf::Errors errors = root.LoadSdfString(request.xml);
+  for (const auto& e : errors) {
+    if (e.Code() == sdf::ErrorCode::LINK_INERTIA_INVALID) {
+      // Gazebo classic accepts inertias that break the triangle inequality (the firefly's does).
+      continue;
+    }
+    throw SimError("model '" + label + "': the description does not parse: " + e.Message());
+  }
+  const sdf::Model* sdf_model = root.Model();
+  if (!sdf_model) throw SimError("model '" + label + "': the description holds no <robot> or <model>");
+  const std::string name = request.model_name.empty() ? sdf_model->Name() : request.model_name;
+  if (request.xml.find("<robot") != std::string::npos) CheckNoDroppedLinks(request.xml, *sdf_model, name);
+  return Build(world, *sdf_model, name, Compose(request.X_WM, sdf_model->RawPose()));
+}
+
+physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf::Model& sdf_model, const std::string& name,
+                                      const Pose3d& X_WM) {
+  if (name.empty()) throw SimError("a model needs a name");
+  if (world->ModelByName(name)) throw SimError("model '" + name + "': a model of that name already exists");
+  if (sdf_model.LinkCount() == 0) throw SimError("model '" + name + "': it has no links");
+  auto model = std::make_shared<physics::Model>(name, world.get(), sdf_model.Static());
+  model->SetSDF(sdf_model.Element());
+  model->SetInitialPose(X_WM);
+  try {
+    // --- joints, and which links are welded onto which body owner ---
+    std::map<std::string, std::string> owner;  // link -> link that owns its ODE body
+    std::vector<JointSpec> joints;
+    std::map<std::string, std::string> parent_of;
+    for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i) owner[sdf_model.LinkByIndex(i)->Name()] = sdf_model.LinkByIndex(i)->Name();
+    for (uint64_t i = 0; i < sdf_model.JointCount(); ++i) {
+      const sdf::Joint* j = sdf_model.JointByIndex(i);
+      const std::string where = "model '" + name + "', joint '" + j->Name() + "'";
+      if (j->ParentLinkName() == "world") throw SimError(where + ": joints to 'world' are not supported; make the model static");
+      if (!owner.count(j->ParentLinkName()) || !owner.count(j->ChildLinkName()))
+        throw SimError(where + ": parent or child link is missing");
+      joints.push_back(ClassifyJoint(*j, where));
+      parent_of[j->ChildLinkName()] = j->ParentLinkName();
+    }
+    for (size_t pass = 0; pass < owner.size(); ++pass)
+      for (const auto& spec : joints)
+        if (spec.type == physics::Joint::Type::kWelded) owner[spec.sdf->ChildLinkName()] = owner[spec.sdf->ParentLinkName()];
+
+    // --- link poses and inertials ---
+    std::map<std::string, Pose3d> X_ML;
+    std::map<std::string, const sdf::Link*> sdf_links;
+    for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i) {
+      const sdf::Link* l = sdf_model.LinkByIndex(i);
+      X_ML[l->Name()] = ResolveInModel(l->SemanticPose(), "model '" + name + "', link '" + l->Name() + "'");
+      sdf_links[l->Name()] = l;
+    }
+    // canonical link first: the root of the joint tree
+    std::vector<std::string> order;
+    for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i)
+      if (!parent_of.count(sdf_model.LinkByIndex(i)->Name())) order.push_back(sdf_model.LinkByIndex(i)->Name());
+    for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i)
+      if (parent_of.count(sdf_model.LinkByIndex(i)->Name())) order.push_back(sdf_model.LinkByIndex(i)->Name());
+
+    std::map<std::string, physics::LinkPtr> links;
+    for (const auto& link_name : order) {
+      auto link = std::make_shared<physics::Link>(link_name, model.get(), InertialOf(*sdf_links[link_name]));
+      links[link_name] = link;
+      model->AddLink(link);
+    }
+
+    // --- one ODE body per owner, carrying its welded links' mass ---
+    std::map<std::string, std::pair<dBodyID, Pose3d>> bodies;  // owner -> body, X_MB
+    for (const auto& link_name : order) {
+      const std::string& o = owner[link_name];
+      if (o != link_name || sdf_model.Static()) continue;
+      const Pose3d X_MO = X_ML[o];
+      physics::Inertial total;
+      std::string members;
+      for (const auto& other : order) {
+        if (owner[other] != o) continue;
+        const Pose3d X_OL = Compose(Inverse(X_MO), X_ML[other]);
+        total = total + links[other]->GetInertial().Transformed(ode_convert::ToEigen(X_OL.Rot()), ode_convert::ToEigen(X_OL.Pos()));
+        members += (members.empty() ? "" : ", ") + other;
+      }
+      const std::string where = "model '" + name + "', link '" + o + "'";
+      if (!(total.Mass() > 0.0))
+        throw SimError(where + " (with welded links " + members + ") has no mass; give it an <inertial> block");
+      const Eigen::Matrix3d& J = total.MOI();
+      dMass mass;
+      dMassSetParameters(&mass, total.Mass(), 0, 0, 0, J(0, 0), J(1, 1), J(2, 2), J(0, 1), J(0, 2), J(1, 2));
+      if (!dMassCheck(&mass)) {
+        std::ostringstream why;
+        why << where << ": inertia [" << J(0, 0) << ", " << J(1, 1) << ", " << J(2, 2) << ", " << J(0, 1) << ", " << J(0, 2)
+            << ", " << J(1, 2) << "] kg m^2 with mass " << total.Mass() << " kg is not positive definite; fix its <inertia>";
+        throw SimError(why.str());
+      }
+      const Pose3d X_MB = Compose(X_MO, Pose3d(ode_convert::FromEigen(total.CoG()), ignition::math::Quaterniond::Identity));
+      dBodyID body = dBodyCreate(world->OdeWorld());
+      dBodySetMass(body, &mass);
+      ode_convert::SetBodyPose(body, Compose(X_WM, X_MB));
+      model->AddBody(body, X_MB);
+      bodies[o] = {body, X_MB};
+    }
+    for (const auto& link_name : order) {
+      if (sdf_model.Static()) {
+        links[link_name]->SetStaticPose(Compose(X_WM, X_ML[link_name]));
+        continue;
+      }
+      const auto& b = bodies[owner[link_name]];
+      links[link_name]->AttachToBody(b.first, Compose(Inverse(b.second), X_ML[link_name]), owner[link_name] != link_name);
+    }
+
+    // --- joints ---
+    for (const auto& spec : joints) {
+      const sdf::Joint& j = *spec.sdf;
+      auto parent = links[j.ParentLinkName()];
+      auto child = links[j.ChildLinkName()];
+      auto joint = std::make_shared<physics::Joint>(j.Name(), spec.type, parent, child);
+      const std::string where = "model '" + name + "', joint '" + j.Name() + "'";
+      const Pose3d X_WJ = Compose(X_WM, ResolveInModel(j.SemanticPose(), where));
+      Vector3d axis_M(0, 0, 1);
+      if (j.Axis(0)) {
+        sdf::Errors errors = j.Axis(0)->ResolveXyz(axis_M, "__model__");
+        if (!errors.empty()) throw SimError(where + ": cannot resolve its axis: " + errors.front().Message());
+      }
+      if (!sdf_model.Static())
+        joint->CreateOdeJoint(world->OdeWorld(), X_WJ.Pos(), X_WM.Rot().RotateVector(axis_M), spec.lower, spec.upper);
+      parent->AddChildJoint(joint);
+      child->AddParentJoint(joint);
+      model->AddJoint(joint);
+    }
+
+    // --- collisions ---
+    for (const auto& link_name : order)
+      AddCollisions(world, model, *sdf_links[link_name], links[link_name], Compose(X_WM, X_ML[link_name]));
+
+    world->AddModel(model);
+  } catch (...) {
+    model->Fini();
+    throw;
+  }
+  try {
+    LoadPlugins(world, model);
+  } catch (...) {
+    world->RemoveModel(name);
+    throw;
+  }
+  return model;
+}
+
+}  // namespace rotors_sim

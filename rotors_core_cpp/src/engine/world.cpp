@@ -1,0 +1,198 @@
+#include "rotors_core/physics/world.h"
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <sstream>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/plugin.h"
+#include "ode_convert.h"
+
+namespace rotors_sim {
+namespace physics {
+namespace {
+constexpr int kMaxContactsPerPair = 4;
+
+common::Time WallNow() {
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                      std::chrono::steady_clock::now().time_since_epoch())
+                      .count();
+  return common::Time::FromNanoseconds(ns);
+}
+
+void InitOdeOnce() {
+  static std::once_flag once;
+  std::call_once(once, [] { dInitODE2(0); });
+}
+}  // namespace
+
+std::string PhysicsParams::Validate() const {
+  std::ostringstream why;
+  if (!(max_step_size_s > 0.0) || !std::isfinite(max_step_size_s))
+    why << "max_step_size = " << max_step_size_s << " must be > 0 s";
+  else if (!(real_time_factor >= 0.0) || !std::isfinite(real_time_factor))
+    why << "real_time_factor = " << real_time_factor << " must be >= 0 (0: as fast as possible)";
+  else if (quick_solver && quick_iterations < 1)
+    why << "quick solver iters = " << quick_iterations << " must be >= 1";
+  else if (!std::isfinite(gravity_W.X()) || !std::isfinite(gravity_W.Y()) || !std::isfinite(gravity_W.Z()))
+    why << "gravity must be finite";
+  return why.str();
+}
+
+WorldPtr World::Create(const std::string& name, const PhysicsParams& params) {
+  const std::string why = params.Validate();
+  if (!why.empty()) throw SimError("world '" + name + "': " + why);
+  return WorldPtr(new World(name, params));
+}
+
+World::World(std::string name, const PhysicsParams& params) : name_(std::move(name)), params_(params) {
+  InitOdeOnce();
+  ode_world_ = dWorldCreate();
+  dWorldSetGravity(ode_world_, params_.gravity_W.X(), params_.gravity_W.Y(), params_.gravity_W.Z());
+  dWorldSetERP(ode_world_, params_.erp);
+  dWorldSetCFM(ode_world_, params_.cfm);
+  dWorldSetQuickStepNumIterations(ode_world_, params_.quick_iterations);
+  dWorldSetQuickStepW(ode_world_, params_.sor);
+  dWorldSetContactMaxCorrectingVel(ode_world_, params_.contact_max_correcting_vel_m_s);
+  dWorldSetContactSurfaceLayer(ode_world_, params_.contact_surface_layer_m);
+  dWorldSetAutoDisableFlag(ode_world_, 0);
+  ode_space_ = dHashSpaceCreate(nullptr);
+  contact_group_ = dJointGroupCreate(0);
+  wall_start_ = WallNow();
+}
+
+World::~World() {
+  Fini();
+  dJointGroupDestroy(contact_group_);
+  dSpaceDestroy(ode_space_);
+  dWorldDestroy(ode_world_);
+}
+
+void World::Fini() {
+  plugins_.clear();
+  for (auto& model : models_) model->Fini();
+  models_.clear();
+}
+
+ModelPtr World::ModelByName(const std::string& name) const {
+  for (const auto& model : models_)
+    if (model->GetName() == name) return model;
+  return nullptr;
+}
+
+void World::AddModel(const ModelPtr& model) { models_.push_back(model); }
+
+bool World::RemoveModel(const std::string& name) {
+  for (auto it = models_.begin(); it != models_.end(); ++it) {
+    if ((*it)->GetName() == name) {
+      (*it)->Fini();
+      models_.erase(it);
+      return true;
+    }
+  }
+  return false;
+}
+
+void World::AddPlugin(std::unique_ptr<WorldPlugin> plugin) { plugins_.push_back(std::move(plugin)); }
+
+void World::Step(unsigned int steps) {
+  const double dt = params_.max_step_size_s;
+  const common::Time dt_time = common::Time::FromSeconds(dt);
+  event::ScopedCurrentEvents scope(&events_);
+  for (unsigned int i = 0; i < steps; ++i) {
+    common::UpdateInfo info{name_, sim_time_, WallNow() - wall_start_};
+    events_.world_update_begin(info);
+    for (const auto& model : models_)
+      for (const auto& link : model->GetLinks()) link->RecordVelocityBeforeStep();
+    Collide();
+    if (params_.quick_solver) {
+      dWorldQuickStep(ode_world_, dt);
+    } else {
+      dWorldStep(ode_world_, dt);
+    }
+    CollectContacts();
+    dJointGroupEmpty(contact_group_);
+    for (const auto& model : models_)
+      for (const auto& link : model->GetLinks()) link->UpdateAccelerationAfterStep(dt);
+    sim_time_ = sim_time_ + dt_time;
+    ++iterations_;
+    events_.world_update_end();
+  }
+}
+
+void World::ResetWorld() {
+  event::ScopedCurrentEvents scope(&events_);
+  for (const auto& model : models_) {
+    model->SetWorldPose(model->InitialPose());
+    model->ResetPlugins();
+  }
+  for (auto& plugin : plugins_) plugin->Reset();
+  contacts_.clear();
+  events_.world_reset();
+}
+
+void World::ResetSimulation() {
+  sim_time_ = common::Time();
+  iterations_ = 0;
+  wall_start_ = WallNow();
+  ResetWorld();
+}
+
+void World::NearCallback(void* data, dGeomID g1, dGeomID g2) {
+  auto* world = static_cast<World*>(data);
+  auto* info1 = static_cast<Model::GeomInfo*>(dGeomGetData(g1));
+  auto* info2 = static_cast<Model::GeomInfo*>(dGeomGetData(g2));
+  if (!info1 || !info2) return;
+  dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+  if (!b1 && !b2) return;  // static against static
+  if (b1 == b2) return;
+  // Links of one model do not collide with each other (Gazebo's default self_collide = false).
+  if (info1->link->GetModel() == info2->link->GetModel()) return;
+  if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
+
+  dContact contacts[kMaxContactsPerPair];
+  const int n = dCollide(g1, g2, kMaxContactsPerPair, &contacts[0].geom, sizeof(dContact));
+  for (int i = 0; i < n; ++i) {
+    dContact& c = contacts[i];
+    c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+    c.surface.mu = world->params_.friction_mu;
+    c.surface.soft_erp = world->params_.erp;
+    c.surface.soft_cfm = world->params_.cfm;
+    dJointID joint = dJointCreateContact(world->ode_world_, world->contact_group_, &c);
+    dJointAttach(joint, b1, b2);
+    world->pending_contacts_.emplace_back();
+    PendingContact& pending = world->pending_contacts_.back();
+    pending.contact.collision1 = info1->scoped_name;
+    pending.contact.collision2 = info2->scoped_name;
+    pending.contact.link1 = info1->link;
+    pending.contact.link2 = info2->link;
+    pending.contact.position_W = ode_convert::Vec(c.geom.pos);
+    pending.contact.normal_W = ode_convert::Vec(c.geom.normal);
+    pending.contact.depth_m = c.geom.depth;
+    dJointSetFeedback(joint, &pending.feedback);
+  }
+}
+
+void World::Collide() {
+  pending_contacts_.clear();
+  dSpaceCollide(ode_space_, this, &World::NearCallback);
+}
+
+void World::CollectContacts() {
+  contacts_.clear();
+  contacts_.reserve(pending_contacts_.size());
+  for (auto& pending : pending_contacts_) {
+    Contact c = pending.contact;
+    c.force1_W = ode_convert::Vec(pending.feedback.f1);
+    c.torque1_W = ode_convert::Vec(pending.feedback.t1);
+    c.force2_W = ode_convert::Vec(pending.feedback.f2);
+    c.torque2_W = ode_convert::Vec(pending.feedback.t2);
+    contacts_.push_back(std::move(c));
+  }
+}
+
+}  // namespace physics
+}  // namespace rotors_sim

@@ -1,0 +1,121 @@
+#include "rotors_core/world_loader.h"
+
+#include "sdf_console.h"
+
+#include <cstdlib>
+#include <iostream>
+
+#include <sdf/Model.hh>
+#include <sdf/ParserConfig.hh>
+#include <sdf/Physics.hh>
+#include <sdf/Root.hh>
+#include <sdf/World.hh>
+
+#include "rotors_core/error.h"
+#include "rotors_core/event.h"
+#include "rotors_core/model_builder.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin_loader.h"
+
+namespace rotors_sim {
+namespace {
+
+// RotorS' worlds load its ROS bridge; here every plugin talks ROS itself, so it has no job.
+const char* kRosInterfacePlugin = "librotors_gazebo_ros_interface_plugin.so";
+
+template <typename T>
+T Child(const sdf::ElementPtr& element, const std::vector<std::string>& path, T fallback) {
+  sdf::ElementPtr e = element;
+  for (const auto& name : path) {
+    if (!e || !e->HasElement(name)) return fallback;
+    e = e->GetElement(name);
+  }
+  return e->Get<T>();
+}
+
+physics::PhysicsParams ReadPhysics(const sdf::World& world) {
+  physics::PhysicsParams p;
+  const sdf::Physics* physics = world.PhysicsDefault();
+  if (physics) {
+    p.max_step_size_s = physics->MaxStepSize();
+    p.real_time_factor = physics->RealTimeFactor();
+    sdf::ElementPtr e = physics->Element();
+    p.real_time_update_rate_hz = Child<double>(e, {"real_time_update_rate"}, p.real_time_update_rate_hz);
+    p.quick_solver = Child<std::string>(e, {"ode", "solver", "type"}, "quick") == "quick";
+    p.quick_iterations = Child<int>(e, {"ode", "solver", "iters"}, p.quick_iterations);
+    p.sor = Child<double>(e, {"ode", "solver", "sor"}, p.sor);
+    p.cfm = Child<double>(e, {"ode", "constraints", "cfm"}, p.cfm);
+    p.erp = Child<double>(e, {"ode", "constraints", "erp"}, p.erp);
+    p.contact_max_correcting_vel_m_s =
+        Child<double>(e, {"ode", "constraints", "contact_max_correcting_vel"}, p.contact_max_correcting_vel_m_s);
+    p.contact_surface_layer_m = Child<double>(e, {"ode", "constraints", "contact_surface_layer"}, p.contact_surface_layer_m);
+  }
+  p.gravity_W = world.Gravity();
+  return p;
+}
+
+physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const std::string& source) {
+  for (const auto& e : errors) {
+    if (e.Code() == sdf::ErrorCode::LINK_INERTIA_INVALID) continue;
+    throw SimError("world '" + source + "' does not parse: " + e.Message());
+  }
+  if (root.WorldCount() == 0) throw SimError("world '" + source + "' holds no <world> element");
+  const sdf::World& sdf_world = *root.WorldByIndex(0);
+  physics::WorldPtr world = physics::World::Create(sdf_world.Name(), ReadPhysics(sdf_world));
+  try {
+    for (uint64_t i = 0; i < sdf_world.ModelCount(); ++i) {
+      const sdf::Model& m = *sdf_world.ModelByIndex(i);
+      ModelBuilder::Build(world, m, m.Name(), m.RawPose());
+    }
+    sdf::ElementPtr element = sdf_world.Element();
+    if (element->HasElement("plugin")) {
+      event::ScopedCurrentEvents scope(&world->Events());
+      for (sdf::ElementPtr p = element->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
+        const std::string filename = p->Get<std::string>("filename");
+        if (filename == kRosInterfacePlugin) {
+          std::cerr << "[rotors_sim] world '" << source << "': " << filename
+                    << " is not needed (plugins publish on ROS directly); skipped\n";
+          continue;
+        }
+        try {
+          auto plugin = PluginLoader::CreateWorldPlugin(filename);
+          plugin->SetIdentity(p->Get<std::string>("name"), filename);
+          plugin->Load(world, p);
+          world->AddPlugin(std::move(plugin));
+        } catch (const std::exception& e) {
+          throw SimError("world '" + source + "', plugin '" + p->Get<std::string>("name") + "' (" + filename + "): " + e.what());
+        }
+      }
+    }
+  } catch (...) {
+    world->Fini();
+    throw;
+  }
+  return world;
+}
+
+sdf::ParserConfig Config() {
+  SilenceSdformatConsole();
+  sdf::ParserConfig config;
+  for (const char* env : {"GAZEBO_MODEL_PATH", "ROTORS_MODEL_PATH"}) {
+    const char* value = std::getenv(env);
+    if (value && *value) config.AddURIPath("model://", value);
+  }
+  return config;
+}
+
+}  // namespace
+
+physics::WorldPtr WorldLoader::LoadFile(const std::string& path) {
+  sdf::Root root;
+  sdf::Errors errors = root.Load(path, Config());
+  return Build(root, errors, path);
+}
+
+physics::WorldPtr WorldLoader::LoadString(const std::string& sdf_text, const std::string& source_name) {
+  sdf::Root root;
+  sdf::Errors errors = root.LoadSdfString(sdf_text, Config());
+  return Build(root, errors, source_name);
+}
+
+}  // namespace rotors_sim

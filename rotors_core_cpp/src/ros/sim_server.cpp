@@ -1,0 +1,130 @@
+#include "rotors_core/ros/sim_server.h"
+
+#include <ros/callback_queue.h>
+#include <rosgraph_msgs/Clock.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/model_builder.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/world_loader.h"
+
+namespace rotors_sim {
+
+SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimServerOptions& options)
+    : nh_(nh), private_nh_(private_nh), paused_(options.paused) {
+  world_ = WorldLoader::LoadFile(options.world_file);
+  if (options.real_time_factor >= 0.0) world_->SetRealTimeFactor(options.real_time_factor);
+  pacer_.SetRealTimeFactor(world_->Physics().real_time_factor);
+  pacer_.Restart(world_->SimTime());
+  state_publisher_ = std::make_unique<StatePublisher>(nh_, options.state_publish_rate_hz);
+  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  services_.push_back(private_nh_.advertiseService("pause_physics", &SimServer::OnPause, this));
+  services_.push_back(private_nh_.advertiseService("unpause_physics", &SimServer::OnUnpause, this));
+  services_.push_back(private_nh_.advertiseService("reset_world", &SimServer::OnResetWorld, this));
+  services_.push_back(private_nh_.advertiseService("reset_simulation", &SimServer::OnResetSimulation, this));
+  services_.push_back(private_nh_.advertiseService("spawn_urdf_model", &SimServer::OnSpawn, this));
+  services_.push_back(private_nh_.advertiseService("spawn_sdf_model", &SimServer::OnSpawn, this));
+  services_.push_back(private_nh_.advertiseService("delete_model", &SimServer::OnDelete, this));
+  ROS_INFO("[rotors_sim] world '%s' loaded from %s: step %.4f s, real-time factor %g%s, %s", world_->Name().c_str(),
+           options.world_file.c_str(), world_->Physics().max_step_size_s, world_->Physics().real_time_factor,
+           world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "", paused_ ? "paused" : "running");
+  PublishClock();
+}
+
+SimServer::~SimServer() {
+  services_.clear();
+  if (world_) world_->Fini();
+}
+
+void SimServer::PublishClock() {
+  rosgraph_msgs::Clock clock;
+  clock.clock.fromNSec(world_->SimTime().Nanoseconds());
+  if (ros::Time::isSimTime()) ros::Time::setNow(clock.clock);
+  clock_pub_.publish(clock);
+}
+
+void SimServer::StepOnce() {
+  world_->Step();
+  PublishClock();
+  state_publisher_->Update(*world_);
+  pacer_.WaitUntilDue(world_->SimTime());
+}
+
+void SimServer::Run() {
+  ros::CallbackQueue* queue = ros::getGlobalCallbackQueue();
+  while (ros::ok()) {
+    if (paused_) {
+      queue->callAvailable(ros::WallDuration(0.01));
+      continue;
+    }
+    queue->callAvailable();
+    if (!paused_) StepOnce();
+  }
+}
+
+bool SimServer::OnPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  paused_ = true;
+  ROS_INFO("[rotors_sim] physics paused at t = %.3f s", world_->SimTime().Double());
+  return true;
+}
+
+bool SimServer::OnUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  if (paused_) pacer_.Restart(world_->SimTime());
+  paused_ = false;
+  ROS_INFO("[rotors_sim] physics running from t = %.3f s", world_->SimTime().Double());
+  return true;
+}
+
+bool SimServer::OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  world_->ResetWorld();
+  state_publisher_->Update(*world_, true);
+  return true;
+}
+
+bool SimServer::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  world_->ResetSimulation();
+  pacer_.Restart(world_->SimTime());
+  PublishClock();
+  state_publisher_->Update(*world_, true);
+  return true;
+}
+
+bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnModel::Response& res) {
+  if (!req.reference_frame.empty() && req.reference_frame != "world" && req.reference_frame != "map") {
+    res.success = false;
+    res.status_message = "reference_frame '" + req.reference_frame + "' is not supported; use 'world'";
+    ROS_ERROR("[rotors_sim] spawn '%s': %s", req.model_name.c_str(), res.status_message.c_str());
+    return true;
+  }
+  SpawnRequest spawn;
+  spawn.xml = req.model_xml;
+  spawn.model_name = req.model_name;
+  const auto& p = req.initial_pose;
+  spawn.X_WM = physics::Pose3d(p.position.x, p.position.y, p.position.z, p.orientation.w, p.orientation.x,
+                               p.orientation.y, p.orientation.z);
+  if (p.orientation.w == 0 && p.orientation.x == 0 && p.orientation.y == 0 && p.orientation.z == 0)
+    spawn.X_WM.Rot() = ignition::math::Quaterniond::Identity;
+  try {
+    physics::ModelPtr model = ModelBuilder::Spawn(world_, spawn);
+    res.success = true;
+    res.status_message = "SpawnModel: Successfully spawned entity '" + model->GetName() + "'";
+    ROS_INFO("[rotors_sim] %s (%zu links, %zu joints, %zu plugins)", res.status_message.c_str(),
+             model->GetLinks().size(), model->GetJoints().size(), model->Plugins().size());
+    state_publisher_->Update(*world_, true);
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.status_message = e.what();
+    ROS_ERROR("[rotors_sim] spawn failed: %s", e.what());
+  }
+  return true;
+}
+
+bool SimServer::OnDelete(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::DeleteModel::Response& res) {
+  res.success = world_->RemoveModel(req.model_name);
+  res.status_message = res.success ? "DeleteModel: successfully deleted model '" + req.model_name + "'"
+                                   : "DeleteModel: there is no model named '" + req.model_name + "'";
+  return true;
+}
+
+}  // namespace rotors_sim

@@ -1,0 +1,98 @@
+#include "rotors_core/ros/state_publisher.h"
+
+#include <gazebo_msgs/LinkStates.h>
+#include <gazebo_msgs/ModelStates.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <sensor_msgs/JointState.h>
+
+#include "rotors_core/physics/joint.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+
+namespace rotors_sim {
+namespace {
+
+geometry_msgs::Pose ToMsg(const physics::Pose3d& X) {
+  geometry_msgs::Pose p;
+  p.position.x = X.Pos().X();
+  p.position.y = X.Pos().Y();
+  p.position.z = X.Pos().Z();
+  p.orientation.w = X.Rot().W();
+  p.orientation.x = X.Rot().X();
+  p.orientation.y = X.Rot().Y();
+  p.orientation.z = X.Rot().Z();
+  return p;
+}
+
+geometry_msgs::Twist ToMsg(const physics::Vector3d& v, const physics::Vector3d& w) {
+  geometry_msgs::Twist t;
+  t.linear.x = v.X();
+  t.linear.y = v.Y();
+  t.linear.z = v.Z();
+  t.angular.x = w.X();
+  t.angular.y = w.Y();
+  t.angular.z = w.Z();
+  return t;
+}
+
+}  // namespace
+
+StatePublisher::StatePublisher(ros::NodeHandle nh, double rate_hz)
+    : nh_(nh), period_s_(rate_hz > 0 ? 1.0 / rate_hz : 0.0) {
+  model_states_pub_ = nh_.advertise<gazebo_msgs::ModelStates>("/gazebo/model_states", 1);
+  link_states_pub_ = nh_.advertise<gazebo_msgs::LinkStates>("/gazebo/link_states", 1);
+}
+
+void StatePublisher::Update(const physics::World& world, bool force) {
+  const double t = world.SimTime().Double();
+  if (!force && t - last_publish_s_ < period_s_ - 1e-9) return;
+  last_publish_s_ = t;
+  ros::Time stamp;
+  stamp.fromNSec(world.SimTime().Nanoseconds());
+
+  gazebo_msgs::ModelStates models;
+  gazebo_msgs::LinkStates links;
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  for (const auto& model : world.Models()) {
+    models.name.push_back(model->GetName());
+    models.pose.push_back(ToMsg(model->WorldPose()));
+    models.twist.push_back(ToMsg(model->WorldLinearVel(), model->WorldAngularVel()));
+    for (const auto& link : model->GetLinks()) {
+      links.name.push_back(model->GetName() + "::" + link->GetName());
+      links.pose.push_back(ToMsg(link->WorldPose()));
+      links.twist.push_back(ToMsg(link->WorldLinearVel(), link->WorldAngularVel()));
+    }
+    if (model->IsStatic()) continue;
+
+    geometry_msgs::TransformStamped tf;
+    tf.header.stamp = stamp;
+    tf.header.frame_id = "world";
+    tf.child_frame_id = model->GetCanonicalLink()->GetName();
+    const geometry_msgs::Pose p = ToMsg(model->WorldPose());
+    tf.transform.translation.x = p.position.x;
+    tf.transform.translation.y = p.position.y;
+    tf.transform.translation.z = p.position.z;
+    tf.transform.rotation = p.orientation;
+    transforms.push_back(tf);
+
+    sensor_msgs::JointState js;
+    js.header.stamp = stamp;
+    for (const auto& joint : model->GetJoints()) {
+      if (joint->GetType() == physics::Joint::Type::kWelded) continue;
+      js.name.push_back(joint->GetName());
+      js.position.push_back(joint->Position(0));
+      js.velocity.push_back(joint->GetVelocity(0));
+    }
+    if (js.name.empty()) continue;
+    auto it = joint_state_pubs_.find(model->GetName());
+    if (it == joint_state_pubs_.end())
+      it = joint_state_pubs_.emplace(model->GetName(), nh_.advertise<sensor_msgs::JointState>("/" + model->GetName() + "/joint_states", 10)).first;
+    it->second.publish(js);
+  }
+  if (!transforms.empty()) tf_broadcaster_.sendTransform(transforms);
+  model_states_pub_.publish(models);
+  link_states_pub_.publish(links);
+}
+
+}  // namespace rotors_sim

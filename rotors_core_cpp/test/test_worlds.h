@@ -1,0 +1,34 @@
+// Worlds and models for the engine tests, as SDF/URDF text.
+#pragma once
+
+#include <sstream>
+#include <string>
+
+inline std::string WorldSdf(double step_s, double gravity_z, bool ground, const std::string& solver = "quick",
+                            int iters = 1000) {
+  std::ostringstream s;
+  s << "<?xml version='1.0'?><sdf version='1.6'><world name='test'>"
+    << "<gravity>0 0 " << gravity_z << "</gravity>"
+    << "<physics type='ode'><max_step_size>" << step_s << "</max_step_size><real_time_factor>1</real_time_factor>"
+    << "<real_time_update_rate>" << 1.0 / step_s << "</real_time_update_rate>"
+    << "<ode><solver><type>" << solver << "</type><iters>" << iters << "</iters><sor>1.3</sor></solver>"
+    << "<constraints><cfm>0</cfm><erp>0.2</erp><contact_max_correcting_vel>100</contact_max_correcting_vel>"
+    << "<contact_surface_layer>0.001</contact_surface_layer></constraints></ode></physics>";
+  if (ground) {
+    s << "<model name='ground_plane'><static>true</static><link name='link'><collision name='collision'>"
+      << "<geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></collision></link></model>";
+  }
+  s << "</world></sdf>";
+  return s.str();
+}
+
+/// A single box link: mass [kg], inertia diag [kg m^2], box size [m].
+inline std::string BoxUrdf(const std::string& name, double mass, double ixx, double iyy, double izz, double sx,
+                           double sy, double sz, const std::string& extra = "") {
+  std::ostringstream s;
+  s << "<robot name='" << name << "'><link name='" << name << "/base_link'><inertial><mass value='" << mass
+    << "'/><origin xyz='0 0 0'/><inertia ixx='" << ixx << "' ixy='0' ixz='0' iyy='" << iyy << "' iyz='0' izz='" << izz
+    << "'/></inertial><collision><geometry><box size='" << sx << " " << sy << " " << sz
+    << "'/></geometry></collision></link>" << extra << "</robot>";
+  return s.str();
+}

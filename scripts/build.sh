@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Assembles the catkin workspace build/ws (links to every package folder of this repository)
+# and builds it with catkin_make. The root package.xml is the rotors_simulator metapackage, which
+# stops catkin from crawling sub-folders, hence the link farm.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+ws="$root/build/ws"
+export PATH="$root/build/venv/bin:$PATH"
+mkdir -p "$ws/src"
+# Every folder holding a package.xml (except build/) becomes a link in build/ws/src.
+find "$ws/src" -maxdepth 1 -type l -delete
+while IFS= read -r manifest; do
+  dir="$(dirname "$manifest")"
+  name="$(sed -n 's:.*<name>\(.*\)</name>.*:\1:p' "$manifest" | head -n1)"
+  ln -sfn "$dir" "$ws/src/$name"
+done < <(find "$root" -path "$root/build" -prune -o -name package.xml -print | sort)
+cd "$ws"
+args=(-DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON -DPYTHON_EXECUTABLE="$root/build/venv/bin/python3")
+jobs="-j$(nproc)"
+if [ ! -f "$ws/build/CMakeCache.txt" ]; then
+  # On a fresh workspace CMake must run twice, or Python tests miss generated messages.
+  catkin_make "${args[@]}" "$jobs" >/dev/null 2>&1 || true
+fi
+catkin_make "${args[@]}" "$jobs" "$@"

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs what is missing on a Debian bookworm machine: apt packages, the Python venv and its
+# PyPI packages. Idempotent: a second run only checks and returns.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+venv="$root/build/venv"
+
+apt_packages=(
+  ros-core-dev ros-core-python-dev rosbash python3-rostest python3-rosunit python3-rosbag
+  libtf2-ros-dev python3-tf2-ros ros-robot-state-publisher joint-state-publisher liburdf-dev rviz
+  catkin-tools liboctomap-dev libode-dev libeigen3-dev googletest libgtest-dev python3-venv xvfb
+  libsdformat-dev libignition-utils-dev libignition-math-dev libyaml-cpp-dev liburdfdom-dev
+  liburdfdom-tools librosbag-dev libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
+  libtrajectory-msgs-dev libstd-srvs-dev python3-nav-msgs python3-trajectory-msgs
+  python3-std-srvs imagemagick
+)
+missing=()
+for p in "${apt_packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "[setup] installing ${#missing[@]} Debian packages: ${missing[*]}"
+  sudo_cmd=""; [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+if [ ! -x "$venv/bin/python" ]; then
+  echo "[setup] creating venv $venv (system site packages, for Debian's rospy)"
+  mkdir -p "$root/build"
+  /usr/bin/python3 -m venv --system-site-packages "$venv"
+fi
+stamp="$venv/.requirements.sha256"
+want="$(sha256sum "$root/requirements.txt" | cut -d' ' -f1)"
+if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
+  echo "[setup] installing PyPI requirements into the venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check -r "$root/requirements.txt"
+  echo "$want" > "$stamp"
+fi
+echo "[setup] ok"
