@@ -55,7 +55,10 @@ void SimServer::Run() {
   ros::CallbackQueue* queue = ros::getGlobalCallbackQueue();
   while (ros::ok()) {
     if (paused_) {
-      queue->callAvailable(ros::WallDuration(0.01));
+      queue->callAvailable(ros::WallDuration(0.05));
+      // late subscribers (rostopic, rviz) still learn the frozen time and poses while paused
+      PublishClock();
+      state_publisher_->Update(*world_, true);
       continue;
     }
     queue->callAvailable();

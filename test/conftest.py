@@ -1,0 +1,99 @@
+"""Shared fixtures: an isolated ROS master per test and a way to run rospy code in a child process
+(rospy can be initialised once per process, so the test process itself never calls init_node)."""
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+from typing import Dict, Iterator, List, Optional
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+WS = REPO / "build" / "ws"
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class RosGraph:
+    """A private ROS master plus the processes a test starts against it."""
+
+    def __init__(self, tmp_path: Path):
+        self.port = free_port()
+        self.env = dict(os.environ)
+        self.env["ROS_MASTER_URI"] = f"http://127.0.0.1:{self.port}"
+        self.env["ROS_HOME"] = str(tmp_path / "ros_home")
+        self.env["ROS_LOG_DIR"] = str(tmp_path / "ros_log")
+        self.tmp_path = tmp_path
+        self.procs: List[subprocess.Popen] = []
+        self.start(["rosmaster", "--core", "-p", str(self.port)], "master")
+        self.wait_for(lambda: self.run(["rosparam", "set", "/use_sim_time", "true"], check=False).returncode == 0, 20)
+
+    def start(self, cmd: List[str], name: str) -> subprocess.Popen:
+        log = open(self.tmp_path / f"{name}.log", "w")
+        p = subprocess.Popen(cmd, env=self.env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        p.log_path = self.tmp_path / f"{name}.log"  # type: ignore[attr-defined]
+        self.procs.append(p)
+        return p
+
+    def run(self, cmd: List[str], check: bool = True, timeout: float = 60) -> subprocess.CompletedProcess:
+        res = subprocess.run(cmd, env=self.env, capture_output=True, text=True, timeout=timeout)
+        if check and res.returncode != 0:
+            raise AssertionError(f"{cmd} failed ({res.returncode}): {res.stdout}{res.stderr}")
+        return res
+
+    def rospy(self, code: str, timeout: float = 120) -> Dict:
+        """Runs `code` after rospy.init_node in a child process; it fills the dict `result`."""
+        script = "import json, sys, time, rospy\nrospy.init_node('pytest_client', anonymous=True)\nresult = {}\n"
+        script += textwrap.dedent(code) + "\nprint('RESULT=' + json.dumps(result))\n"
+        res = subprocess.run([sys.executable, "-c", script], env=self.env, capture_output=True, text=True,
+                             timeout=timeout)
+        for line in res.stdout.splitlines():
+            if line.startswith("RESULT="):
+                return json.loads(line[len("RESULT="):])
+        raise AssertionError(f"rospy client failed ({res.returncode}):\n{res.stdout}\n{res.stderr}")
+
+    @staticmethod
+    def wait_for(predicate, timeout: float, period: float = 0.2) -> bool:
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if predicate():
+                return True
+            time.sleep(period)
+        return False
+
+    def stop(self) -> None:
+        for p in reversed(self.procs):
+            if p.poll() is None:
+                try:
+                    os.killpg(p.pid, signal.SIGINT)
+                except ProcessLookupError:
+                    pass
+        for p in reversed(self.procs):
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+
+
+@pytest.fixture
+def ros(tmp_path: Path) -> Iterator[RosGraph]:
+    graph = RosGraph(tmp_path)
+    try:
+        yield graph
+    finally:
+        graph.stop()
+
+
+def package_path(name: str) -> Path:
+    res = subprocess.run(["rospack", "find", name], capture_output=True, text=True, check=True)
+    return Path(res.stdout.strip())

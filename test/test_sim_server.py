@@ -1,0 +1,118 @@
+"""The simulator's ROS face: /clock, pause/unpause/reset services, spawn/delete, model states,
+and one-line errors for bad input."""
+import subprocess
+import time
+from pathlib import Path
+
+from conftest import RosGraph, package_path
+
+BOX_URDF = """<robot name="box"><link name="box/base_link"><inertial><mass value="1"/>
+<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>"""
+
+
+def start_server(ros: RosGraph, *args: str):
+    world = package_path("rotors_gazebo") / "worlds" / "basic.world"
+    proc = ros.start(["rosrun", "rotors_core", "rotors_sim_server", str(world), *args], "server")
+    ok = ros.wait_for(lambda: "/gazebo/unpause_physics" in ros.run(["rosservice", "list"], check=False).stdout, 30)
+    assert ok, Path(proc.log_path).read_text()
+    return proc
+
+
+def test_pause_unpause_reset_and_spawn(ros: RosGraph, tmp_path: Path):
+    start_server(ros, "-u", "--rtf", "0")
+    urdf = tmp_path / "box.urdf"
+    urdf.write_text(BOX_URDF)
+    ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(urdf), "-model", "box", "-z", "5"])
+    result = ros.rospy("""
+        from rosgraph_msgs.msg import Clock
+        from gazebo_msgs.msg import ModelStates
+        from std_srvs.srv import Empty
+        clock = lambda: rospy.wait_for_message('/clock', Clock, timeout=10).clock.to_sec()
+        def box_z():
+            m = rospy.wait_for_message('/gazebo/model_states', ModelStates, timeout=10)
+            return m.pose[m.name.index('box')].position.z
+        result['paused_t0'] = clock(); time.sleep(0.5); result['paused_t1'] = clock()
+        rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
+        time.sleep(1.0)
+        result['running_t'] = clock()
+        rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
+        time.sleep(0.3)
+        result['z_fallen'] = box_z()
+        result['pause_t0'] = clock(); time.sleep(0.5); result['pause_t1'] = clock()
+        rospy.ServiceProxy('/gazebo/reset_world', Empty)()
+        result['z_reset'] = box_z()
+        result['t_after_reset_world'] = clock()
+        rospy.ServiceProxy('/gazebo/reset_simulation', Empty)()
+        time.sleep(0.3)
+        result['t_after_reset_sim'] = clock()
+    """)
+    assert result["paused_t0"] == result["paused_t1"] == 0.0  # started paused (-u)
+    assert result["running_t"] > 1.0  # --rtf 0 runs faster than real time
+    assert result["pause_t0"] == result["pause_t1"]  # paused again
+    assert result["z_fallen"] < 0.2  # fell onto the ground
+    assert abs(result["z_reset"] - 5.0) < 1e-9  # back at its spawn pose
+    assert result["t_after_reset_world"] == result["pause_t1"]  # reset_world keeps time
+    assert result["t_after_reset_sim"] == 0.0  # reset_simulation rewinds it
+
+
+def test_runtime_spawn_delete_and_tf(ros: RosGraph, tmp_path: Path):
+    start_server(ros, "--rtf", "1")
+    urdf = tmp_path / "box.urdf"
+    urdf.write_text(BOX_URDF)
+    ros.run(["rosparam", "set", "/box_description", BOX_URDF])
+    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-param", "/box_description", "-model", "box",
+                   "-x", "1", "-y", "2", "-z", "0.1"])
+    assert "Successfully spawned entity 'box'" in res.stdout
+    result = ros.rospy("""
+        import tf2_ros
+        buf = tf2_ros.Buffer(); listener = tf2_ros.TransformListener(buf)
+        t = buf.lookup_transform('world', 'box/base_link', rospy.Time(0), rospy.Duration(10))
+        result['x'] = t.transform.translation.x; result['y'] = t.transform.translation.y
+        from gazebo_msgs.srv import DeleteModel
+        r = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)('box')
+        result['deleted'] = r.success
+        r = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)('box')
+        result['deleted_again'] = r.success; result['msg'] = r.status_message
+    """)
+    assert abs(result["x"] - 1.0) < 2e-3 and abs(result["y"] - 2.0) < 2e-3  # resting on the ground
+    assert result["deleted"] and not result["deleted_again"]
+    assert "no model named 'box'" in result["msg"]
+
+
+def test_bad_model_is_one_line_error_and_server_keeps_running(ros: RosGraph, tmp_path: Path):
+    server = start_server(ros, "--rtf", "0")
+    bad = tmp_path / "bad.urdf"
+    bad.write_text("""<robot name="bad"><link name="bad/base_link"><inertial><mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+      <link name="bad/arm"/><joint name="bad/arm_joint" type="continuous"><parent link="bad/base_link"/>
+      <child link="bad/arm"/></joint>
+      <gazebo><plugin name="p" filename="librotors_gazebo_motor_model.so"/></gazebo></robot>""")
+    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(bad), "-model", "bad"], check=False)
+    assert res.returncode == 1
+    lines = [l for l in res.stderr.splitlines() if l.strip()]
+    assert len(lines) == 1, res.stderr
+    assert "link 'bad/arm' has no <inertial>" in lines[0]
+    plugin = tmp_path / "plugin.urdf"
+    plugin.write_text(BOX_URDF.replace("</robot>", '<gazebo><plugin name="ghost" filename="librotors_gazebo_ghost.so">'
+                                                   "</plugin></gazebo></robot>"))
+    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(plugin), "-model", "ghost"],
+                  check=False)
+    assert res.returncode == 1
+    assert "plugin 'ghost' (librotors_gazebo_ghost.so)" in res.stderr and "not found" in res.stderr
+    assert server.poll() is None  # the simulator carries on
+    clock = ros.run(["rostopic", "echo", "-n", "1", "/clock"]).stdout
+    assert "secs" in clock
+    models = ros.run(["rostopic", "echo", "-n", "1", "/gazebo/model_states/name"]).stdout
+    assert "ground_plane" in models and "bad" not in models and "ghost" not in models
+
+
+def test_unparsable_world_exits_with_one_line(ros: RosGraph, tmp_path: Path):
+    world = tmp_path / "broken.world"
+    world.write_text("<sdf version='1.6'><world name='w'><physics type='ode'><max_step_size>x</max_step_size>")
+    res = ros.run(["rosrun", "rotors_core", "rotors_sim_server", str(world)], check=False, timeout=30)
+    assert res.returncode == 1
+    errors = [l for l in (res.stdout + res.stderr).splitlines() if "error" in l.lower()]
+    assert len(errors) == 1 and "broken.world" in errors[0], res.stdout + res.stderr
+    res = ros.run(["rosrun", "rotors_core", "rotors_sim_server", str(tmp_path / "missing.world")], check=False)
+    assert res.returncode == 1 and "missing.world" in res.stderr
