@@ -1,0 +1,197 @@
+// librotors_gazebo_bag_plugin.so (reference section 4.7): writes a bag from inside the simulator,
+// stamped with sim time. Every step: <ns>/ground_truth/pose (PoseStamped), <ns>/ground_truth/twist
+// (TwistStamped, world frame), <ns>/motor_speed (Actuators, signed real speeds), <ns>/wrench (one
+// WrenchStamped per contact of the model). Re-recorded from ROS: imu, odometry, commands, wind.
+// File: <ROS_HOME or ~/.ros>/<bagFileName>_YYYY-MM-DD-HH-MM-SS.bag; service record_rosbag.
+#include <ctime>
+
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TwistStamped.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <mav_msgs/Actuators.h>
+#include <mav_msgs/AttitudeThrust.h>
+#include <mav_msgs/RateThrust.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rotors_comm/RecordRosbag.h>
+#include <rotors_comm/WindSpeed.h>
+#include <sensor_msgs/Imu.h>
+#include <trajectory_msgs/MultiDOFJointTrajectory.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/event.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboBagPlugin : public rotors_sim::ModelPlugin {
+ public:
+  ~GazeboBagPlugin() override { Close(); }
+
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+    CheckKnownParams(sdf, {"robotNamespace", "bagFileName", "linkName", "frameId", "imuTopic", "odometryTopic",
+                           "commandAttitudeThrustTopic", "commandMotorSpeedTopic", "commandRateThrustTopic",
+                           "windSpeedTopic", "motorTopic", "poseTopic", "twistTopic", "wrenchesTopic",
+                           "externalForceTopic", "waypointTopic", "commandPoseTopic", "recordingServiceName",
+                           "rotorVelocitySlowdownSim", "waitToRecordBag"});
+    ns_ = ReadRobotNamespace(sdf);
+    std::string link_name = "base_link", service = "record_rosbag";
+    bool wait_to_record = false;
+    ReadParam(sdf, "bagFileName", &bag_name_);
+    ReadParam(sdf, "linkName", &link_name);
+    ReadParam(sdf, "frameId", &frame_id_);
+    ReadParam(sdf, "poseTopic", &pose_topic_);
+    ReadParam(sdf, "twistTopic", &twist_topic_);
+    ReadParam(sdf, "motorTopic", &motor_topic_);
+    ReadParam(sdf, "wrenchesTopic", &wrench_topic_);
+    ReadParam(sdf, "recordingServiceName", &service);
+    ReadParam(sdf, "waitToRecordBag", &wait_to_record);
+    double slowdown = 10;
+    ReadParam(sdf, "rotorVelocitySlowdownSim", &slowdown);  // accepted for compatibility: speeds come unslowed
+    link_ = model->GetLink(link_name);
+    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    model_ = model.get();
+    world_ = model->GetWorldRaw();
+    bus_ = &VehicleBus::For(ns_);
+    node_ = MakeNode(ns_);
+    if (!node_) return;  // no ROS, no bag
+    std::string t;
+    auto topic = [&](const char* param, const char* fallback) {
+      t = fallback;
+      ReadParam(sdf, param, &t);
+      return t;
+    };
+    Record<sensor_msgs::Imu>(topic("imuTopic", "imu"));
+    Record<nav_msgs::Odometry>(topic("odometryTopic", "odometry_sensor1/odometry"));
+    Record<mav_msgs::AttitudeThrust>(topic("commandAttitudeThrustTopic", "command/attitude_thrust"));
+    Record<mav_msgs::Actuators>(topic("commandMotorSpeedTopic", "command/motor_speed"));
+    Record<mav_msgs::RateThrust>(topic("commandRateThrustTopic", "command/rate_thrust"));
+    Record<rotors_comm::WindSpeed>(topic("windSpeedTopic", "wind_speed"));
+    Record<geometry_msgs::WrenchStamped>(topic("externalForceTopic", "external_force"));
+    Record<trajectory_msgs::MultiDOFJointTrajectory>(topic("waypointTopic", "command/trajectory"));
+    Record<geometry_msgs::PoseStamped>(topic("commandPoseTopic", "command/pose"));
+    service_ = node_->advertiseService(service, &GazeboBagPlugin::OnRecord, this);
+    if (!wait_to_record) Open();
+    connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
+  }
+
+ private:
+  template <typename MsgT>
+  void Record(const std::string& topic) {
+    const std::string bag_topic = ns_ + "/" + topic;
+    subs_.push_back(node_->subscribe<MsgT>(topic, 100, [this, bag_topic](const boost::shared_ptr<const MsgT>& msg) {
+      if (recording_) bag_.write(bag_topic, ToRos(world_->SimTime()), *msg);
+    }));
+  }
+
+  void Open() {
+    if (recording_) return;
+    const char* ros_home = std::getenv("ROS_HOME");
+    const char* home = std::getenv("HOME");
+    const std::string dir = ros_home ? ros_home : std::string(home ? home : ".") + "/.ros";
+    std::string base = bag_name_;
+    if (base.size() > 4 && base.compare(base.size() - 4, 4, ".bag") == 0) base.resize(base.size() - 4);
+    char stamp[32];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(stamp, sizeof(stamp), "%Y-%m-%d-%H-%M-%S", std::localtime(&now));
+    path_ = base.find('/') == 0 ? base + "_" + stamp + ".bag" : dir + "/" + base + "_" + stamp + ".bag";
+    try {
+      bag_.open(path_, rosbag::bagmode::Write);
+    } catch (const rosbag::BagException& e) {
+      throw rotors_sim::SimError("cannot open bag '" + path_ + "': " + e.what());
+    }
+    recording_ = true;
+    ROS_INFO("[bag_plugin] recording %s", path_.c_str());
+  }
+
+  void Close() {
+    if (!recording_) return;
+    recording_ = false;
+    bag_.close();
+    ROS_INFO("[bag_plugin] closed %s", path_.c_str());
+  }
+
+  bool OnRecord(rotors_comm::RecordRosbag::Request& req, rotors_comm::RecordRosbag::Response& res) {
+    try {
+      req.record ? Open() : Close();
+      res.success = true;
+    } catch (const std::exception& e) {
+      ROS_ERROR("[bag_plugin] %s", e.what());
+      res.success = false;
+    }
+    return true;
+  }
+
+  void OnUpdate() {
+    if (!recording_) return;
+    const ros::Time stamp = ToRos(world_->SimTime());
+    const auto X = link_->WorldPose();
+    geometry_msgs::PoseStamped pose;
+    pose.header.stamp = stamp;
+    pose.header.frame_id = frame_id_;
+    pose.pose.position.x = X.Pos().X();
+    pose.pose.position.y = X.Pos().Y();
+    pose.pose.position.z = X.Pos().Z();
+    pose.pose.orientation.w = X.Rot().W();
+    pose.pose.orientation.x = X.Rot().X();
+    pose.pose.orientation.y = X.Rot().Y();
+    pose.pose.orientation.z = X.Rot().Z();
+    bag_.write(ns_ + "/" + pose_topic_, stamp, pose);
+    geometry_msgs::TwistStamped twist;
+    twist.header = pose.header;
+    const auto v = link_->WorldLinearVel(), w = link_->WorldAngularVel();
+    twist.twist.linear.x = v.X();
+    twist.twist.linear.y = v.Y();
+    twist.twist.linear.z = v.Z();
+    twist.twist.angular.x = w.X();
+    twist.twist.angular.y = w.Y();
+    twist.twist.angular.z = w.Z();
+    bag_.write(ns_ + "/" + twist_topic_, stamp, twist);
+    mav_msgs::Actuators motors;
+    motors.header = pose.header;
+    motors.angular_velocities = bus_->rotor_speed_rad_s;
+    bag_.write(ns_ + "/" + motor_topic_, stamp, motors);
+    for (const auto& c : world_->Contacts()) {
+      const bool first = c.link1 && c.link1->GetModel() == model_;
+      const bool second = c.link2 && c.link2->GetModel() == model_;
+      if (!first && !second) continue;
+      const auto& f = first ? c.force1_W : c.force2_W;
+      const auto& tau = first ? c.torque1_W : c.torque2_W;
+      if (f.Length() <= 1e-10) continue;
+      geometry_msgs::WrenchStamped wrench;
+      wrench.header.stamp = stamp;
+      wrench.header.frame_id = c.collision1 + "--" + c.collision2;
+      wrench.wrench.force.x = f.X();
+      wrench.wrench.force.y = f.Y();
+      wrench.wrench.force.z = f.Z();
+      wrench.wrench.torque.x = tau.X();
+      wrench.wrench.torque.y = tau.Y();
+      wrench.wrench.torque.z = tau.Z();
+      bag_.write(ns_ + "/" + wrench_topic_, stamp, wrench);
+    }
+  }
+
+  std::string ns_, bag_name_ = "simulator.bag", frame_id_ = "ground_truth_pose", path_;
+  std::string pose_topic_ = "ground_truth/pose", twist_topic_ = "ground_truth/twist", motor_topic_ = "motor_speed",
+              wrench_topic_ = "wrench";
+  bool recording_ = false;
+  rosbag::Bag bag_;
+  rotors_sim::physics::Model* model_ = nullptr;
+  rotors_sim::physics::LinkPtr link_;
+  rotors_sim::physics::World* world_ = nullptr;
+  VehicleBus* bus_ = nullptr;
+  std::shared_ptr<ros::NodeHandle> node_;
+  std::vector<ros::Subscriber> subs_;
+  ros::ServiceServer service_;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+GZ_REGISTER_MODEL_PLUGIN(rotors_gazebo_plugins::GazeboBagPlugin)

@@ -1,0 +1,105 @@
+// librotors_gazebo_imu_plugin.so: sensor_msgs/Imu on <ns>/<imuTopic> every physics step with the
+// noise model of book eqs. 12-15 (reference section 4.4). Every parameter the RotorS xacro
+// writes is read: <gyroscopeRandomWalk> (xacro spelling) and <gyroscopeBiasRandomWalk> (plugin
+// spelling) are the same parameter (RotorS issue #336 does not recur).
+#include <sensor_msgs/Imu.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/event.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin.h"
+#include "rotors_gazebo_plugins/models/imu_noise_model.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboImuPlugin : public rotors_sim::ModelPlugin {
+ public:
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+    CheckKnownParams(sdf, {"robotNamespace", "linkName", "imuTopic", "gyroscopeNoiseDensity", "gyroscopeRandomWalk",
+                           "gyroscopeBiasRandomWalk", "gyroscopeBiasCorrelationTime", "gyroscopeTurnOnBiasSigma",
+                           "accelerometerNoiseDensity", "accelerometerRandomWalk", "accelerometerBiasCorrelationTime",
+                           "accelerometerTurnOnBiasSigma", "randomEngineSeed"});
+    const std::string ns = ReadRobotNamespace(sdf);
+    std::string link_name, topic = "imu";
+    RequireParam(sdf, "linkName", &link_name);
+    ReadParam(sdf, "imuTopic", &topic);
+    ImuNoiseParams p;
+    ReadParam(sdf, "gyroscopeNoiseDensity", &p.gyroscope_noise_density);
+    const bool xacro_name = ReadParam(sdf, "gyroscopeRandomWalk", &p.gyroscope_random_walk);
+    double plugin_name_value = p.gyroscope_random_walk;
+    if (ReadParam(sdf, "gyroscopeBiasRandomWalk", &plugin_name_value)) {
+      if (xacro_name && plugin_name_value != p.gyroscope_random_walk)
+        throw rotors_sim::SimError("<gyroscopeRandomWalk> and <gyroscopeBiasRandomWalk> disagree; give one of them");
+      p.gyroscope_random_walk = plugin_name_value;
+    }
+    ReadParam(sdf, "gyroscopeBiasCorrelationTime", &p.gyroscope_bias_correlation_time_s);
+    ReadParam(sdf, "gyroscopeTurnOnBiasSigma", &p.gyroscope_turn_on_bias_sigma);
+    ReadParam(sdf, "accelerometerNoiseDensity", &p.accelerometer_noise_density);
+    ReadParam(sdf, "accelerometerRandomWalk", &p.accelerometer_random_walk);
+    ReadParam(sdf, "accelerometerBiasCorrelationTime", &p.accelerometer_bias_correlation_time_s);
+    ReadParam(sdf, "accelerometerTurnOnBiasSigma", &p.accelerometer_turn_on_bias_sigma);
+    ThrowIfInvalid(p.Validate());
+    params_ = p;
+    seed_ = ReadSeed(sdf);
+    noise_ = std::make_unique<ImuNoiseModel>(p, seed_);
+
+    link_ = model->GetLink(link_name);
+    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    world_ = model->GetWorldRaw();
+    msg_.header.frame_id = link_name;
+    msg_.orientation_covariance.fill(-1.0);  // orientation is ground truth (as RotorS), not a measurement
+    for (int i = 0; i < 3; ++i) {
+      msg_.angular_velocity_covariance[i * 4] = p.gyroscope_noise_density * p.gyroscope_noise_density;
+      msg_.linear_acceleration_covariance[i * 4] = p.accelerometer_noise_density * p.accelerometer_noise_density;
+    }
+    node_ = MakeNode(ns);
+    if (node_) {
+      pub_ = node_->advertise<sensor_msgs::Imu>(topic, 10);
+      ROS_DEBUG("[imu] %s/%s seed %lu", ns.c_str(), topic.c_str(), static_cast<unsigned long>(seed_));
+    }
+    connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
+  }
+
+  void Reset() override { noise_ = std::make_unique<ImuNoiseModel>(params_, seed_); }
+
+ private:
+  void OnUpdate() {
+    const double dt = world_->Physics().max_step_size_s;
+    const auto X_WI = link_->WorldPose();
+    // specific force: f_I = R_WI^T (a_W - g_W)
+    const auto f_I = X_WI.Rot().RotateVectorReverse(link_->WorldLinearAccel() - world_->Gravity());
+    const auto w_I = link_->RelativeAngularVel();
+    const ImuSample m = noise_->Corrupt({{w_I.X(), w_I.Y(), w_I.Z()}, {f_I.X(), f_I.Y(), f_I.Z()}}, dt);
+    if (!node_) return;
+    msg_.header.stamp = ToRos(world_->SimTime());
+    msg_.orientation.w = X_WI.Rot().W();
+    msg_.orientation.x = X_WI.Rot().X();
+    msg_.orientation.y = X_WI.Rot().Y();
+    msg_.orientation.z = X_WI.Rot().Z();
+    msg_.angular_velocity.x = m.angular_velocity_I.x();
+    msg_.angular_velocity.y = m.angular_velocity_I.y();
+    msg_.angular_velocity.z = m.angular_velocity_I.z();
+    msg_.linear_acceleration.x = m.linear_acceleration_I.x();
+    msg_.linear_acceleration.y = m.linear_acceleration_I.y();
+    msg_.linear_acceleration.z = m.linear_acceleration_I.z();
+    pub_.publish(msg_);
+  }
+
+  ImuNoiseParams params_;
+  uint64_t seed_ = 0;
+  std::unique_ptr<ImuNoiseModel> noise_;
+  rotors_sim::physics::LinkPtr link_;
+  rotors_sim::physics::World* world_ = nullptr;
+  sensor_msgs::Imu msg_;
+  std::shared_ptr<ros::NodeHandle> node_;
+  ros::Publisher pub_;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+GZ_REGISTER_MODEL_PLUGIN(rotors_gazebo_plugins::GazeboImuPlugin)

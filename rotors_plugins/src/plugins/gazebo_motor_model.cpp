@@ -1,0 +1,125 @@
+// librotors_gazebo_motor_model.so: one rotor (reference section 4.1). Reads its command from the
+// vehicle bus, applies eqs. 1-4 through RotorModel, spins the rotor joint for rviz and publishes
+// the real signed rotor speed [rad/s] on motor_speed/<N>.
+#include <std_msgs/Float32.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/event.h"
+#include "rotors_core/physics/joint.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin.h"
+#include "rotors_gazebo_plugins/models/rotor_model.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
+
+namespace rotors_gazebo_plugins {
+
+using rotors_sim::physics::Vector3d;
+
+namespace {
+Eigen::Vector3d ToEigen(const Vector3d& v) { return {v.X(), v.Y(), v.Z()}; }
+Vector3d FromEigen(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+}  // namespace
+
+class GazeboMotorModel : public rotors_sim::ModelPlugin {
+ public:
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+    CheckKnownParams(sdf, {"robotNamespace", "jointName", "linkName", "motorNumber", "turningDirection", "motorType",
+                           "commandSubTopic", "windSpeedSubTopic", "motorSpeedPubTopic", "rotorDragCoefficient",
+                           "rollingMomentCoefficient", "maxRotVelocity", "motorConstant", "momentConstant",
+                           "timeConstantUp", "timeConstantDown", "rotorVelocitySlowdownSim"});
+    namespace_ = ReadRobotNamespace(sdf);
+    std::string joint_name, link_name, direction = "cw", motor_type = "velocity", speed_topic = "motor_speed";
+    RequireParam(sdf, "jointName", &joint_name);
+    RequireParam(sdf, "linkName", &link_name);
+    ReadParam(sdf, "motorNumber", &motor_number_);
+    ReadParam(sdf, "turningDirection", &direction);
+    ReadParam(sdf, "motorType", &motor_type);
+    ReadParam(sdf, "motorSpeedPubTopic", &speed_topic);
+    RotorParams p;
+    ReadParam(sdf, "rotorDragCoefficient", &p.rotor_drag_coefficient);
+    ReadParam(sdf, "rollingMomentCoefficient", &p.rolling_moment_coefficient);
+    ReadParam(sdf, "maxRotVelocity", &p.max_rot_velocity);
+    ReadParam(sdf, "motorConstant", &p.motor_constant);
+    ReadParam(sdf, "momentConstant", &p.moment_constant);
+    ReadParam(sdf, "timeConstantUp", &p.time_constant_up_s);
+    ReadParam(sdf, "timeConstantDown", &p.time_constant_down_s);
+    ReadParam(sdf, "rotorVelocitySlowdownSim", &slowdown_);
+    if (direction == "ccw") {
+      p.turning_direction = 1;
+    } else if (direction == "cw") {
+      p.turning_direction = -1;
+    } else {
+      throw rotors_sim::SimError("turningDirection = '" + direction + "' must be 'cw' or 'ccw'");
+    }
+    if (motor_type != "velocity")
+      throw rotors_sim::SimError("motorType = '" + motor_type + "' is not supported yet; use 'velocity'");
+    if (motor_number_ < 0) throw rotors_sim::SimError("motorNumber = " + std::to_string(motor_number_) + " must be >= 0");
+    if (!(slowdown_ >= 1.0)) throw rotors_sim::SimError("rotorVelocitySlowdownSim must be >= 1");
+    ThrowIfInvalid(p.Validate());
+    rotor_ = std::make_unique<RotorModel>(p);
+
+    joint_ = model->GetJoint(joint_name);
+    if (!joint_) throw rotors_sim::SimError("jointName '" + joint_name + "' is not a joint of model '" + model->GetName() + "'");
+    link_ = model->GetLink(link_name);
+    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    parent_link_ = joint_->GetParent();
+    dt_s_ = model->GetWorldRaw()->Physics().max_step_size_s;
+    bus_ = &VehicleBus::For(namespace_);
+    bus_->RegisterRotor(motor_number_);
+
+    node_ = MakeNode(namespace_);
+    if (node_) speed_pub_ = node_->advertise<std_msgs::Float32>(speed_topic, 1);
+    connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
+        [this](const rotors_sim::common::UpdateInfo&) { OnUpdate(); });
+  }
+
+  void Reset() override {
+    rotor_->Reset();
+    joint_->SetVelocity(0, 0.0);
+  }
+
+ private:
+  void OnUpdate() {
+    // Forces from the speed reached in the last step (the one-step lag of RotorS, ref. 4.1).
+    const auto X_WR = link_->WorldPose();
+    const Eigen::Vector3d airspeed_W = ToEigen(link_->WorldLinearVel()) - bus_->wind_velocity_W;
+    const Eigen::Vector3d airspeed_R = ToEigen(X_WR.Rot().RotateVectorReverse(FromEigen(airspeed_W)));
+    const RotorWrench w = rotor_->ComputeWrench(airspeed_R);
+    link_->AddRelativeForce(FromEigen(w.thrust_R + w.drag_R));
+    parent_link_->AddTorque(X_WR.Rot().RotateVector(FromEigen(w.reaction_moment_R + w.rolling_moment_R)));
+
+    const auto& cmd = bus_->motor_command_rad_s;
+    const double omega_cmd = motor_number_ < static_cast<int>(cmd.size()) ? cmd[motor_number_] : 0.0;
+    rotor_->UpdateSpeed(omega_cmd, dt_s_);
+    bus_->rotor_speed_rad_s[motor_number_] = rotor_->SignedOmega();
+    // The joint spins slowed down only so that rviz shows it without aliasing; the physics and
+    // every published value use the real speed.
+    joint_->SetVelocity(0, rotor_->SignedOmega() / slowdown_);
+
+    if (node_ && speed_pub_.getNumSubscribers() > 0) {
+      std_msgs::Float32 msg;
+      msg.data = static_cast<float>(rotor_->SignedOmega());
+      speed_pub_.publish(msg);
+    }
+  }
+
+  std::string namespace_;
+  int motor_number_ = 0;
+  double slowdown_ = 10.0;
+  double dt_s_ = 0.001;
+  std::unique_ptr<RotorModel> rotor_;
+  rotors_sim::physics::JointPtr joint_;
+  rotors_sim::physics::LinkPtr link_, parent_link_;
+  VehicleBus* bus_ = nullptr;
+  std::shared_ptr<ros::NodeHandle> node_;
+  ros::Publisher speed_pub_;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+GZ_REGISTER_MODEL_PLUGIN(rotors_gazebo_plugins::GazeboMotorModel)

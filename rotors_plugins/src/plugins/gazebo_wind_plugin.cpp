@@ -1,0 +1,103 @@
+// librotors_gazebo_wind_plugin.so (reference section 4.6): wind speed that acts through the rotor
+// model (airspeed, eqs. 2-3) and RotorS' force-on-link mode with a timed gust. The variance
+// parameters are used (seeded); RotorS ignored them. Publishes wind_speed and external_force.
+#include <geometry_msgs/WrenchStamped.h>
+#include <rotors_comm/WindSpeed.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/event.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin.h"
+#include "rotors_gazebo_plugins/models/wind_model.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboWindPlugin : public rotors_sim::ModelPlugin {
+ public:
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+    CheckKnownParams(sdf, {"robotNamespace", "xyzOffset", "windForcePubTopic", "windSpeedPubTopic", "frameId",
+                           "linkName", "windSpeedMean", "windSpeedVariance", "windDirection", "windForceMean",
+                           "windForceVariance", "windGustStart", "windGustDuration", "windGustForceMean",
+                           "windGustForceVariance", "windGustDirection", "useCustomStaticWindField",
+                           "customWindFieldPath", "randomEngineSeed"});
+    namespace_ = ReadRobotNamespace(sdf);
+    std::string link_name = "base_link", force_topic = "external_force", speed_topic = "wind_speed";
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    bool custom_field = false;
+    ReadParam(sdf, "linkName", &link_name);
+    ReadParam(sdf, "frameId", &frame_id_);
+    ReadParam(sdf, "windForcePubTopic", &force_topic);
+    ReadParam(sdf, "windSpeedPubTopic", &speed_topic);
+    if (!ReadVector(sdf, "xyzOffset", &offset)) throw rotors_sim::SimError("missing required parameter <xyzOffset>");
+    ReadParam(sdf, "useCustomStaticWindField", &custom_field);
+    if (custom_field)
+      throw rotors_sim::SimError("useCustomStaticWindField = true: custom wind fields are not supported yet");
+    WindParams p;
+    ReadParam(sdf, "windSpeedMean", &p.wind_speed_mean_m_s);
+    ReadParam(sdf, "windSpeedVariance", &p.wind_speed_variance);
+    ReadVector(sdf, "windDirection", &p.wind_direction);
+    ReadParam(sdf, "windForceMean", &p.wind_force_mean_n);
+    ReadParam(sdf, "windForceVariance", &p.wind_force_variance);
+    ReadParam(sdf, "windGustStart", &p.wind_gust_start_s);
+    ReadParam(sdf, "windGustDuration", &p.wind_gust_duration_s);
+    ReadParam(sdf, "windGustForceMean", &p.wind_gust_force_mean_n);
+    ReadParam(sdf, "windGustForceVariance", &p.wind_gust_force_variance);
+    ReadVector(sdf, "windGustDirection", &p.wind_gust_direction);
+    ThrowIfInvalid(p.Validate());
+    wind_ = std::make_unique<WindModel>(p, ReadSeed(sdf));
+    link_ = model->GetLink(link_name);
+    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    offset_L_ = {offset.x(), offset.y(), offset.z()};
+    world_ = model->GetWorldRaw();
+    bus_ = &VehicleBus::For(namespace_);
+    node_ = MakeNode(namespace_);
+    if (node_) {
+      force_pub_ = node_->advertise<geometry_msgs::WrenchStamped>(force_topic, 10);
+      speed_pub_ = node_->advertise<rotors_comm::WindSpeed>(speed_topic, 10);
+    }
+    connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
+        [this](const rotors_sim::common::UpdateInfo& info) { OnUpdate(info); });
+  }
+
+ private:
+  void OnUpdate(const rotors_sim::common::UpdateInfo& info) {
+    const WindSample s = wind_->Sample(info.simTime.Double());
+    bus_->wind_velocity_W = s.velocity_W;
+    const rotors_sim::physics::Vector3d force_W(s.force_W.x(), s.force_W.y(), s.force_W.z());
+    if (force_W != rotors_sim::physics::Vector3d::Zero) link_->AddForceAtRelativePosition(force_W, offset_L_);
+    if (!node_) return;
+    const ros::Time stamp = ToRos(info.simTime);
+    geometry_msgs::WrenchStamped wrench;
+    wrench.header.stamp = stamp;
+    wrench.header.frame_id = frame_id_;
+    wrench.wrench.force.x = s.force_W.x();
+    wrench.wrench.force.y = s.force_W.y();
+    wrench.wrench.force.z = s.force_W.z();
+    force_pub_.publish(wrench);
+    rotors_comm::WindSpeed speed;
+    speed.header = wrench.header;
+    speed.velocity.x = s.velocity_W.x();
+    speed.velocity.y = s.velocity_W.y();
+    speed.velocity.z = s.velocity_W.z();
+    speed_pub_.publish(speed);
+  }
+
+  std::string namespace_, frame_id_ = "world";
+  rotors_sim::physics::Vector3d offset_L_;
+  std::unique_ptr<WindModel> wind_;
+  rotors_sim::physics::LinkPtr link_;
+  rotors_sim::physics::World* world_ = nullptr;
+  VehicleBus* bus_ = nullptr;
+  std::shared_ptr<ros::NodeHandle> node_;
+  ros::Publisher force_pub_, speed_pub_;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+GZ_REGISTER_MODEL_PLUGIN(rotors_gazebo_plugins::GazeboWindPlugin)
