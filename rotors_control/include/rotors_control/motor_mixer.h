@@ -1,0 +1,30 @@
+// Allocation (book eq. 10; reference section 7.1) and its inverse: rotor speeds from a desired
+// angular acceleration and thrust.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "rotors_control/vehicle_parameters.h"
+
+namespace rotors_control {
+
+/// A (4 x N): [tau_x; tau_y; tau_z; T] = A * omega^2, with columns
+/// (sin(theta) l k_F, -cos(theta) l k_F, -d k_F k_M, k_F).
+Eigen::Matrix4Xd AllocationMatrix(const VehicleParameters& vehicle);
+
+class MotorMixer {
+ public:
+  /// Throws std::invalid_argument if A does not have rank 4 (the vehicle is not controllable).
+  explicit MotorMixer(const VehicleParameters& vehicle);
+  /// omega = sqrt(max(0, A^T (A A^T)^-1 [J alpha; T])): alpha [rad/s^2] body frame, thrust [N].
+  Eigen::VectorXd RotorSpeeds(const Eigen::Vector3d& alpha_B, double thrust_N) const;
+  const Eigen::Matrix4Xd& Allocation() const { return A_; }
+
+ private:
+  Eigen::Matrix4Xd A_;
+  Eigen::MatrixX4d A_pinv_J_;  ///< A^T (A A^T)^-1 blockdiag(J, 1)
+};
+
+}  // namespace rotors_control

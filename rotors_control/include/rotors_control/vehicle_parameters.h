@@ -1,0 +1,28 @@
+// Vehicle parameters the controllers use (<mav>.yaml: mass, inertia, rotor_configuration).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace rotors_control {
+
+struct Rotor {
+  double angle_rad = 0.0;             ///< from body +x about +z
+  double arm_length_m = 0.215;
+  double rotor_force_constant = 8.54858e-6;  ///< k_F [N/(rad/s)^2]
+  double rotor_moment_constant = 1.6e-2;     ///< k_M [m]
+  int direction = 1;                         ///< +1 ccw, -1 cw
+};
+
+struct VehicleParameters {
+  double mass_kg = 0.0;
+  double gravity_m_s2 = 9.81;  ///< RotorS' controllers assume 9.81 (book section 3.6, reference section 9)
+  Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();
+  std::vector<Rotor> rotors;
+  /// Empty when valid, else one line naming the bad value.
+  std::string Validate() const;
+};
+
+}  // namespace rotors_control

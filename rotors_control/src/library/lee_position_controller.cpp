@@ -1,0 +1,76 @@
+#include "rotors_control/lee_position_controller.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace rotors_control {
+
+std::string LeePositionControllerParameters::Validate() const {
+  const std::string vehicle_why = vehicle.Validate();
+  if (!vehicle_why.empty()) return vehicle_why;
+  std::ostringstream why;
+  if (!(position_gain.minCoeff() >= 0.0)) why << "position_gain must be >= 0";
+  else if (!(velocity_gain.minCoeff() >= 0.0)) why << "velocity_gain must be >= 0";
+  else if (!(attitude.attitude_gain.minCoeff() >= 0.0)) why << "attitude_gain must be >= 0";
+  else if (!(attitude.angular_rate_gain.minCoeff() >= 0.0)) why << "angular_rate_gain must be >= 0";
+  return why.str();
+}
+
+bool TrajectoryPoint::IsFinite() const {
+  return position_W.allFinite() && velocity_W.allFinite() && acceleration_W.allFinite() && std::isfinite(yaw_rad) &&
+         std::isfinite(yaw_rate_rad_s);
+}
+
+namespace {
+const LeePositionControllerParameters& Checked(const LeePositionControllerParameters& p) {
+  const std::string why = p.Validate();
+  if (!why.empty()) throw std::invalid_argument(why);
+  return p;
+}
+}  // namespace
+
+LeePositionController::LeePositionController(const LeePositionControllerParameters& params)
+    : params_(Checked(params)),
+      attitude_law_(params.attitude, params.vehicle.inertia_kg_m2),
+      mixer_(params.vehicle) {}
+
+void LeePositionController::SetTrajectoryPoint(const TrajectoryPoint& point) {
+  reference_ = point;
+  has_reference_ = true;
+}
+
+void LeePositionController::ComputeThrustAndAttitude(const VehicleState& s, double* thrust_N,
+                                                     Eigen::Matrix3d* R_WD) const {
+  const double m = params_.vehicle.mass_kg, g = params_.vehicle.gravity_m_s2;
+  const Eigen::Vector3d e3 = Eigen::Vector3d::UnitZ();
+  const Eigen::Matrix3d R = s.orientation_W_B.toRotationMatrix();
+  // Lee2010 eq. (6)-(7): e_p = p - p_d,  e_v = v - v_d  (odometry velocity is body frame: v_W = R v_B)
+  const Eigen::Vector3d e_p = s.position_W - reference_.position_W;
+  const Eigen::Vector3d e_v = R * s.velocity_B - reference_.velocity_W;
+  // a = (K_p e_p + K_v e_v) / m - g e3 - a_d : the negative of the desired acceleration
+  const Eigen::Vector3d a = (params_.position_gain.cwiseProduct(e_p) + params_.velocity_gain.cwiseProduct(e_v)) / m -
+                            g * e3 - reference_.acceleration_W;
+  // Lee2010 eq. (15): f = -m a . R e3
+  *thrust_N = -m * a.dot(R * e3);
+  // Desired attitude: b3_d = -a / |a|, b1_d from the yaw, b2_d = b3_d x b1_d normalised
+  const Eigen::Vector3d b1_d(std::cos(reference_.yaw_rad), std::sin(reference_.yaw_rad), 0.0);
+  const Eigen::Vector3d b3_d = -a / a.norm();
+  const Eigen::Vector3d b2_d = b3_d.cross(b1_d).normalized();
+  R_WD->col(0) = b2_d.cross(b3_d);
+  R_WD->col(1) = b2_d;
+  R_WD->col(2) = b3_d;
+}
+
+Eigen::VectorXd LeePositionController::RotorSpeeds(const VehicleState& s) const {
+  if (!has_reference_) return Eigen::VectorXd::Zero(params_.vehicle.rotors.size());
+  double thrust_N = 0.0;
+  Eigen::Matrix3d R_WD;
+  ComputeThrustAndAttitude(s, &thrust_N, &R_WD);
+  const Eigen::Vector3d omega_d(0.0, 0.0, reference_.yaw_rate_rad_s);
+  const Eigen::Vector3d alpha =
+      attitude_law_.AngularAcceleration(s.orientation_W_B.toRotationMatrix(), s.angular_velocity_B, R_WD, omega_d);
+  return mixer_.RotorSpeeds(alpha, thrust_N);
+}
+
+}  // namespace rotors_control

@@ -1,0 +1,130 @@
+// lee_position_controller_node: odometry + command/trajectory | command/pose -> command/motor_speed.
+// Parameters from the private namespace (lee_controller_<mav>.yaml and <mav>.yaml). Trajectory
+// points are released at their time_from_start (sim time). The motor command is stamped with the
+// odometry stamp it answers (lockstep keys on this).
+#include <deque>
+
+#include <geometry_msgs/PoseStamped.h>
+#include <mav_msgs/Actuators.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <trajectory_msgs/MultiDOFJointTrajectory.h>
+
+#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/parameters_ros.h"
+#include "ros_conversions.h"
+
+namespace rotors_control {
+
+class LeePositionControllerNode {
+ public:
+  LeePositionControllerNode(ros::NodeHandle nh, const LeePositionControllerParameters& params)
+      : nh_(nh), controller_(params) {
+    motor_pub_ = nh_.advertise<mav_msgs::Actuators>("command/motor_speed", 1);
+    trajectory_sub_ = nh_.subscribe("command/trajectory", 1, &LeePositionControllerNode::OnTrajectory, this);
+    pose_sub_ = nh_.subscribe("command/pose", 1, &LeePositionControllerNode::OnPose, this);
+    odometry_sub_ = nh_.subscribe("odometry", 1, &LeePositionControllerNode::OnOdometry, this,
+                                  ros::TransportHints().tcpNoDelay());
+  }
+
+ private:
+  void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
+    const std::string why = CheckUnitQuaternion(msg->pose.orientation);
+    const auto& p = msg->pose.position;
+    if (!why.empty() || !std::isfinite(p.x + p.y + p.z)) {
+      ROS_WARN("[lee_position_controller] ignoring command/pose: %s", why.empty() ? "position has NaN or inf" : why.c_str());
+      return;
+    }
+    pending_.clear();
+    timer_.stop();
+    TrajectoryPoint point;
+    point.position_W = {p.x, p.y, p.z};
+    point.yaw_rad = YawOf(msg->pose.orientation);
+    controller_.SetTrajectoryPoint(point);
+  }
+
+  void OnTrajectory(const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& msg) {
+    if (msg->points.empty()) {
+      ROS_WARN("[lee_position_controller] Got MultiDOFJointTrajectory message, but message has no points; ignored");
+      return;
+    }
+    std::deque<std::pair<double, TrajectoryPoint>> points;
+    for (size_t i = 0; i < msg->points.size(); ++i) {
+      const auto& pt = msg->points[i];
+      if (pt.transforms.empty()) {
+        ROS_WARN("[lee_position_controller] ignoring trajectory: point %zu has no transform", i);
+        return;
+      }
+      const std::string why = CheckUnitQuaternion(pt.transforms[0].rotation);
+      if (!why.empty()) {
+        ROS_WARN("[lee_position_controller] ignoring trajectory: point %zu: %s", i, why.c_str());
+        return;
+      }
+      TrajectoryPoint p;
+      const auto& t = pt.transforms[0].translation;
+      p.position_W = {t.x, t.y, t.z};
+      p.yaw_rad = YawOf(pt.transforms[0].rotation);
+      if (!pt.velocities.empty()) {
+        const auto& v = pt.velocities[0];
+        p.velocity_W = {v.linear.x, v.linear.y, v.linear.z};
+        p.yaw_rate_rad_s = v.angular.z;
+      }
+      if (!pt.accelerations.empty()) {
+        const auto& a = pt.accelerations[0];
+        p.acceleration_W = {a.linear.x, a.linear.y, a.linear.z};
+      }
+      if (!p.IsFinite()) {
+        ROS_WARN("[lee_position_controller] ignoring trajectory: point %zu has NaN or inf", i);
+        return;
+      }
+      points.emplace_back(pt.time_from_start.toSec(), p);
+    }
+    pending_ = std::move(points);
+    timer_.stop();
+    ReleaseNext();
+  }
+
+  /// Applies the front point and schedules the next one after the time_from_start difference.
+  void ReleaseNext() {
+    if (pending_.empty()) return;
+    const double t_now = pending_.front().first;
+    controller_.SetTrajectoryPoint(pending_.front().second);
+    pending_.pop_front();
+    if (pending_.empty()) return;
+    const double wait_s = std::max(pending_.front().first - t_now, 0.0);
+    timer_ = nh_.createTimer(ros::Duration(std::max(wait_s, 1e-6)), [this](const ros::TimerEvent&) { ReleaseNext(); },
+                             true);
+  }
+
+  void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
+    motor_pub_.publish(ActuatorsMsg(controller_.RotorSpeeds(StateFromOdometry(*msg)), msg->header.stamp));
+  }
+
+  ros::NodeHandle nh_;
+  LeePositionController controller_;
+  std::deque<std::pair<double, TrajectoryPoint>> pending_;
+  ros::Timer timer_;
+  ros::Publisher motor_pub_;
+  ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_;
+};
+
+}  // namespace rotors_control
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "lee_position_controller_node");
+  ros::NodeHandle nh, private_nh("~");
+  rotors_control::LeePositionControllerParameters params;
+  const std::string why = rotors_control::LoadLeeParameters(private_nh, &params);
+  if (!why.empty()) {
+    ROS_FATAL("[lee_position_controller] %s", why.c_str());
+    return 1;
+  }
+  try {
+    rotors_control::LeePositionControllerNode node(nh, params);
+    ros::spin();
+  } catch (const std::invalid_argument& e) {
+    ROS_FATAL("[lee_position_controller] %s", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,126 @@
+// Controller laws: attitude error on SO(3), the gyroscopic term, hover thrust and the Lee
+// controller's response to position errors.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "rotors_control/attitude_control_law.h"
+#include "rotors_control/attitude_controllers.h"
+#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/motor_mixer.h"
+#include "test_fixtures.h"
+
+using namespace rotors_control;
+
+namespace {
+Eigen::Matrix3d Rot(double angle, const Eigen::Vector3d& axis) {
+  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+}
+LeePositionControllerParameters FireflyLee() {
+  LeePositionControllerParameters p;
+  p.position_gain = {6, 6, 6};
+  p.velocity_gain = {4.7, 4.7, 4.7};
+  p.attitude.attitude_gain = {3, 3, 0.15};
+  p.attitude.angular_rate_gain = {0.52, 0.52, 0.18};
+  p.vehicle = FireflyYaml();
+  return p;
+}
+}  // namespace
+
+// e_R = 1/2 vee(R_d^T R - R^T R_d) equals sin(theta) * axis for a rotation by theta about an axis.
+TEST(AttitudeControlLaw, AttitudeErrorOnSO3) {
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, -2, 0.5).normalized();
+  for (double theta : {0.0, 0.1, 1.0, 2.5}) {
+    const Eigen::Matrix3d R_d = Rot(0.7, {0, 0, 1});
+    const Eigen::Matrix3d R = R_d * Rot(theta, axis);
+    const Eigen::Vector3d e_R = 0.5 * Vee(R_d.transpose() * R - R.transpose() * R_d);
+    EXPECT_TRUE(e_R.isApprox(std::sin(theta) * axis, 1e-12) || theta == 0.0);
+    // the law pushes back: alpha points against the error, scaled by the normalised gain
+    AttitudeGains gains;
+    gains.attitude_gain = {2, 2, 2};
+    gains.angular_rate_gain = {0, 0, 0};
+    const Eigen::Matrix3d J = Eigen::Matrix3d::Identity() * 0.1;
+    const Eigen::Vector3d alpha = AttitudeControlLaw(gains, J).AngularAcceleration(R, Eigen::Vector3d::Zero(), R_d,
+                                                                                   Eigen::Vector3d::Zero());
+    EXPECT_TRUE(alpha.isApprox(-20.0 * std::sin(theta) * axis, 1e-9) || theta == 0.0);
+  }
+  EXPECT_TRUE(Vee(Hat(Eigen::Vector3d(1, 2, 3))).isApprox(Eigen::Vector3d(1, 2, 3)));
+}
+
+// With no attitude or rate error the law returns exactly J^-1 (w x J w): it cancels the
+// gyroscopic torque (RotorS wrote w x w, which is zero).
+TEST(AttitudeControlLaw, CompensatesGyroscopicTorque) {
+  AttitudeGains gains;
+  const Eigen::Matrix3d J = Eigen::Vector3d(0.0347563, 0.0458929, 0.0977).asDiagonal();
+  const AttitudeControlLaw law(gains, J);
+  const Eigen::Vector3d w(1.0, 2.0, 0.0);
+  const Eigen::Matrix3d R = Rot(0.3, {1, 1, 0});
+  // track the current rotation and rate exactly: R_d = R, w_d = R_d^T R w = w
+  const Eigen::Vector3d alpha = law.AngularAcceleration(R, w, R, w);
+  const Eigen::Vector3d expected = J.inverse() * w.cross(J * w) - Hat(w) * w;
+  EXPECT_TRUE(alpha.isApprox(expected, 1e-12));
+  EXPECT_GT((J.inverse() * w.cross(J * w)).norm(), 0.1);
+}
+
+TEST(LeePositionController, HoverThrustEqualsWeightAndRotorsStopWithoutReference) {
+  LeePositionController lee(FireflyLee());
+  VehicleState s;
+  s.position_W = {0, 0, 1};
+  EXPECT_TRUE(lee.RotorSpeeds(s).isZero());  // no reference yet
+  TrajectoryPoint ref;
+  ref.position_W = {0, 0, 1};
+  lee.SetTrajectoryPoint(ref);
+  double thrust = 0;
+  Eigen::Matrix3d R_d;
+  lee.ComputeThrustAndAttitude(s, &thrust, &R_d);
+  EXPECT_NEAR(thrust, 1.56779 * 9.81, 1e-9);
+  EXPECT_TRUE(R_d.isApprox(Eigen::Matrix3d::Identity(), 1e-12));
+  const Eigen::VectorXd omega = lee.RotorSpeeds(s);
+  EXPECT_NEAR(omega.mean(), 547.6, 0.1);
+}
+
+TEST(LeePositionController, PositionErrorTiltsTowardsTheReferenceAndYawFollows) {
+  LeePositionController lee(FireflyLee());
+  TrajectoryPoint ref;
+  ref.position_W = {1, 0, 1};
+  ref.yaw_rad = 0.5;
+  lee.SetTrajectoryPoint(ref);
+  VehicleState s;
+  s.position_W = {0, 0, 1};
+  double thrust = 0;
+  Eigen::Matrix3d R_d;
+  lee.ComputeThrustAndAttitude(s, &thrust, &R_d);
+  // b3_d = -a/|a| with a = (K_p e_p)/m - g e3: tilted towards +x by atan(6 / (m g))
+  EXPECT_NEAR(std::atan2(R_d(0, 2), R_d(2, 2)), std::atan(6.0 / (1.56779 * 9.81)), 1e-9);
+  EXPECT_NEAR(R_d(1, 2), 0.0, 1e-12);
+  // b2_d = b3_d x b1_d / |.| is orthogonal to the yaw direction b1_d = (cos psi, sin psi, 0)
+  EXPECT_NEAR(R_d.col(1).dot(Eigen::Vector3d(std::cos(0.5), std::sin(0.5), 0.0)), 0.0, 1e-12);
+  EXPECT_NEAR((R_d.transpose() * R_d - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
+}
+
+TEST(LeePositionController, InvalidParametersAreRejected) {
+  LeePositionControllerParameters p = FireflyLee();
+  p.vehicle.mass_kg = -1.0;
+  try {
+    LeePositionController lee(p);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("mass = -1"), std::string::npos);
+  }
+}
+
+TEST(AttitudeLevelController, RollPitchYawrateUsesZYXConvention) {
+  AttitudeControllerParameters p;
+  p.vehicle = FireflyYaml();
+  AttitudeLevelController c(p);
+  VehicleState s;
+  EXPECT_TRUE(c.RotorSpeeds(s).isZero());
+  c.SetRollPitchYawrateThrust(0.0, 0.0, 0.0, 1.56779 * 9.81);
+  EXPECT_NEAR(c.RotorSpeeds(s).mean(), 547.6, 0.1);  // level: all rotors equal
+  // commanding a pitch forward on a level vehicle produces a positive pitch acceleration
+  c.SetRollPitchYawrateThrust(0.0, 0.2, 0.0, 1.56779 * 9.81);
+  const Eigen::VectorXd omega = c.RotorSpeeds(s);
+  const Eigen::Vector4d wrench = MotorMixer(p.vehicle).Allocation() * omega.cwiseAbs2();
+  EXPECT_GT(wrench[1], 0.0);
+  EXPECT_NEAR(wrench[0], 0.0, 1e-9);
+}
