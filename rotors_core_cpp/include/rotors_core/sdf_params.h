@@ -1,6 +1,7 @@
 // One helper to read typed plugin parameters from <plugin> child elements.
 #pragma once
 
+#include <cctype>
 #include <sstream>
 #include <string>
 
@@ -31,6 +32,7 @@ inline bool ParseText(const std::string& text, std::string* out) {
 inline bool ParseText(const std::string& text, bool* out) {
   std::string word;
   ParseText(text, &word);
+  for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // xacro writes True/False
   if (word == "true" || word == "1") { *out = true; return true; }
   if (word == "false" || word == "0") { *out = false; return true; }
   return false;

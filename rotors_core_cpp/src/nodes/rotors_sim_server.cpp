@@ -1,9 +1,11 @@
 // The simulator process (gzserver's role): rotors_sim_server <world file> [-u] [--rtf X]
 //   -u         start paused (as gzserver -u)
 //   --rtf X    real-time factor, 0 = as fast as possible (default: the world's)
+//   --lockstep T1,T2   wait each step for a header-stamped answer on these topics
 // Private parameters ~world_name, ~paused and ~real_time_factor do the same.
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include <ros/ros.h>
@@ -30,15 +32,19 @@ int main(int argc, char** argv) {
         std::cerr << "[rotors_sim] error: --rtf '" << argv[i] << "' is not a number\n";
         return 2;
       }
+    } else if (arg == "--lockstep" && i + 1 < argc) {
+      std::stringstream topics(argv[++i]);
+      std::string topic;
+      while (std::getline(topics, topic, ',')) if (!topic.empty()) options.lockstep_topics.push_back(topic);
     } else if (!arg.empty() && arg[0] != '-') {
       options.world_file = arg;
     } else {
-      std::cerr << "[rotors_sim] error: unknown option '" << arg << "' (usage: rotors_sim_server <world> [-u] [--rtf X])\n";
+      std::cerr << "[rotors_sim] error: unknown option '" << arg << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep T1,T2])\n";
       return 2;
     }
   }
   if (options.world_file.empty()) {
-    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X])\n";
+    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep T1,T2])\n";
     return 2;
   }
   try {

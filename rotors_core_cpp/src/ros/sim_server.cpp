@@ -19,6 +19,7 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   pacer_.Restart(world_->SimTime());
   state_publisher_ = std::make_unique<StatePublisher>(nh_, options.state_publish_rate_hz);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  lockstep_ = std::make_unique<Lockstep>(nh_, options.lockstep_topics, options.lockstep_timeout_s);
   services_.push_back(private_nh_.advertiseService("pause_physics", &SimServer::OnPause, this));
   services_.push_back(private_nh_.advertiseService("unpause_physics", &SimServer::OnUnpause, this));
   services_.push_back(private_nh_.advertiseService("reset_world", &SimServer::OnResetWorld, this));
@@ -48,6 +49,11 @@ void SimServer::StepOnce() {
   world_->Step();
   PublishClock();
   state_publisher_->Update(*world_);
+  if (lockstep_->Enabled()) {
+    ros::Time now;
+    now.fromNSec(world_->SimTime().Nanoseconds());
+    lockstep_->WaitForAnswers(now, ros::getGlobalCallbackQueue());
+  }
   pacer_.WaitUntilDue(world_->SimTime());
 }
 

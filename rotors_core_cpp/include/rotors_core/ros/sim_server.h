@@ -12,6 +12,7 @@
 #include <std_srvs/Empty.h>
 
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/ros/lockstep.h"
 #include "rotors_core/ros/real_time_pacer.h"
 #include "rotors_core/ros/state_publisher.h"
 
@@ -22,6 +23,8 @@ struct SimServerOptions {
   bool paused = false;
   double real_time_factor = -1.0;  ///< < 0: the world's own; 0: as fast as possible
   double state_publish_rate_hz = 100.0;  ///< [Hz sim time] TF, joint_states, model_states
+  std::vector<std::string> lockstep_topics;  ///< see Lockstep; empty: free running
+  double lockstep_timeout_s = 2.0;           ///< [s wall]
 };
 
 class SimServer {
@@ -49,6 +52,7 @@ class SimServer {
   bool paused_;
   RealTimePacer pacer_;
   std::unique_ptr<StatePublisher> state_publisher_;
+  std::unique_ptr<Lockstep> lockstep_;
   ros::Publisher clock_pub_;
   std::vector<ros::ServiceServer> services_;
 };

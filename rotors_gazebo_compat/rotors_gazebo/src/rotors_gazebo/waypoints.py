@@ -1,0 +1,74 @@
+"""Waypoints as MultiDOFJointTrajectory messages, the waypoint file format, and the small ROS
+helpers the example nodes share (unpausing the simulator, waiting for a subscriber)."""
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import List, Sequence
+
+import rospy
+from geometry_msgs.msg import Transform, Twist
+from std_srvs.srv import Empty
+from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
+
+
+@dataclass(frozen=True)
+class Waypoint:
+    x: float  # [m]
+    y: float  # [m]
+    z: float  # [m]
+    yaw_rad: float
+    wait_time_s: float = 0.0  # how long this point is held (file format)
+
+
+def trajectory_point(wp: Waypoint, time_from_start_s: float) -> MultiDOFJointTrajectoryPoint:
+    t = Transform()
+    t.translation.x, t.translation.y, t.translation.z = wp.x, wp.y, wp.z
+    t.rotation.z, t.rotation.w = math.sin(wp.yaw_rad / 2.0), math.cos(wp.yaw_rad / 2.0)
+    return MultiDOFJointTrajectoryPoint(transforms=[t], velocities=[Twist()], accelerations=[Twist()],
+                                        time_from_start=rospy.Duration(time_from_start_s))
+
+
+def trajectory(waypoints: Sequence[Waypoint]) -> MultiDOFJointTrajectory:
+    """Point i is released sum_{j<i} wait_time_j after the first (RotorS' waypoint file semantics)."""
+    msg = MultiDOFJointTrajectory()
+    msg.header.stamp = rospy.Time.now()
+    msg.joint_names = ["base_link"]
+    t = 0.0
+    for wp in waypoints:
+        msg.points.append(trajectory_point(wp, t))
+        t += wp.wait_time_s
+    return msg
+
+
+def read_waypoint_file(path: Path) -> List[Waypoint]:
+    """Whitespace-separated 5-tuples: wait_time[s] x[m] y[m] z[m] yaw[deg]; stops at the first
+    incomplete tuple, as RotorS."""
+    values = Path(path).read_text().split()
+    out = []
+    for i in range(0, len(values) - 4, 5):
+        wait, x, y, z, yaw_deg = (float(v) for v in values[i:i + 5])
+        out.append(Waypoint(x, y, z, math.radians(yaw_deg), wait))
+    return out
+
+
+def unpause_simulation(attempts: int = 12) -> bool:
+    """Calls /gazebo/unpause_physics, retrying once a second (wall clock)."""
+    for i in range(attempts):
+        try:
+            rospy.wait_for_service("/gazebo/unpause_physics", timeout=1.0)
+            rospy.ServiceProxy("/gazebo/unpause_physics", Empty)()
+            return True
+        except (rospy.ROSException, rospy.ServiceException):
+            rospy.loginfo("Wait for 1 second before trying to unpause Gazebo again.")
+            time.sleep(1.0) if i + 1 < attempts else None
+    return False
+
+
+def wait_for_subscriber(pub: rospy.Publisher, announce: bool = True) -> bool:
+    """Blocks (wall clock) until someone subscribes, so the one message is not lost (RotorS #358)."""
+    while pub.get_num_connections() == 0 and not rospy.is_shutdown():
+        if announce:
+            rospy.loginfo("There is no subscriber available, trying again in 1 second.")
+        time.sleep(1.0)
+    return not rospy.is_shutdown()
