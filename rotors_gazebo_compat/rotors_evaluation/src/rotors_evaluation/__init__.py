@@ -1,0 +1,1 @@
+"""Evaluation of RotorS flights from bags (Python 3, rosbags; works with or without ROS)."""

@@ -1,0 +1,183 @@
+"""Reads the series the evaluation needs from a ROS 1 bag with rosbags (pure Python).
+
+Understands bags written by the simulator's bag plugin, bags from `rosbag record` (topics with a
+leading slash), compressed bags, and bags of the original RotorS (topics without the MAV prefix,
+mav_msgs/MotorSpeed). Message types are taken from the definitions stored in the bag.
+"""
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+from rosbags.rosbag1 import Reader, ReaderError
+from rosbags.typesys import Stores, get_typestore, get_types_from_msg
+
+
+class BagError(Exception):
+    """A problem with the bag, worded for the user (one line)."""
+
+
+@dataclass
+class Series:
+    """Samples of a vector quantity: t [s] (N,), values (N, k)."""
+    t: np.ndarray
+    values: np.ndarray
+
+    def window(self, begin: float, end: float) -> "Series":
+        mask = (self.t > begin) & (self.t <= end)
+        return Series(self.t[mask], self.values[mask])
+
+
+@dataclass
+class WaypointSample:
+    t: float  # [s]
+    position: np.ndarray  # (3,)
+    yaw: float  # [rad]
+
+
+@dataclass
+class FlightData:
+    path: Path
+    position: Series                      # (N, 3) [m]
+    angular_velocity: Series              # (N, 3) [rad/s]
+    waypoints: List[WaypointSample]
+    collision_times: np.ndarray           # [s]
+    motor_speeds: Optional[Series] = None  # (N, rotors) [rad/s]
+    topics: Dict[str, str] = field(default_factory=dict)
+
+
+POSE_TYPES = ("geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/TransformStamped",
+              "geometry_msgs/msg/PointStamped", "nav_msgs/msg/Odometry", "geometry_msgs/msg/Pose")
+
+
+def _yaw(q) -> float:
+    return float(np.arctan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z)))
+
+
+def _stamp(msg, bag_time_ns: int) -> float:
+    header = getattr(msg, "header", None)
+    if header is not None and (header.stamp.sec or header.stamp.nanosec):
+        return header.stamp.sec + header.stamp.nanosec * 1e-9
+    return bag_time_ns * 1e-9
+
+
+def _position(msg, msgtype: str) -> np.ndarray:
+    if msgtype.endswith("PoseStamped"):
+        p = msg.pose.position
+    elif msgtype.endswith("TransformStamped"):
+        p = msg.transform.translation
+    elif msgtype.endswith("PointStamped"):
+        p = msg.point
+    elif msgtype.endswith("Odometry"):
+        p = msg.pose.pose.position
+    else:  # geometry_msgs/Pose
+        p = msg.position
+    return np.array([p.x, p.y, p.z])
+
+
+class FlightBag:
+    """An open bag: topic lookup with RotorS' naming rules and typed message iteration."""
+
+    def __init__(self, path: Path):
+        self.path = Path(path)
+        if not self.path.is_file():
+            raise BagError(f"bag '{self.path}' does not exist")
+        try:
+            self.reader = Reader(self.path)
+            self.reader.open()
+        except ReaderError as e:
+            raise BagError(f"cannot read bag '{self.path}': {e} (if it is unindexed or truncated, run: "
+                           f"rosbag reindex {self.path})") from e
+        self.typestore = get_typestore(Stores.ROS1_NOETIC)
+        types = {}
+        for conn in self.reader.connections:
+            try:
+                types.update(get_types_from_msg(conn.msgdef.data, conn.msgtype))
+            except Exception:  # noqa: BLE001 - a definition rosbags cannot parse; the store may know it
+                pass
+        self.typestore.register(types)
+        self.topics = {c.topic.lstrip("/"): c.msgtype for c in self.reader.connections}
+        if not self.topics:
+            raise BagError(f"bag '{self.path}' is empty (no topics)")
+
+    def close(self) -> None:
+        self.reader.close()
+
+    def resolve(self, mav_name: str, topic: str) -> Optional[str]:
+        """'<mav>/<topic>' as the bag plugin writes it, else the bare topic of old RotorS bags."""
+        topic = topic.lstrip("/")
+        for candidate in ([f"{mav_name.strip('/')}/{topic}"] if mav_name else []) + [topic]:
+            if candidate in self.topics:
+                return candidate
+        return None
+
+    def require(self, mav_name: str, topic: str, what: str) -> str:
+        found = self.resolve(mav_name, topic)
+        if found is None:
+            wanted = f"{mav_name.strip('/')}/{topic.lstrip('/')}" if mav_name else topic.lstrip("/")
+            raise BagError(f"{what} topic '{wanted}' is not in bag '{self.path.name}' (check --mav_name and the "
+                           f"topic options); the bag has: {', '.join(sorted(self.topics))}")
+        return found
+
+    def messages(self, topic: str):
+        conns = [c for c in self.reader.connections if c.topic.lstrip("/") == topic]
+        for conn, t_ns, raw in self.reader.messages(connections=conns):
+            yield self.typestore.deserialize_ros1(raw, conn.msgtype), conn.msgtype, t_ns
+
+
+def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, waypoint_topic: str,
+                wrench_topic: str, motor_topic: Optional[str] = None) -> FlightData:
+    bag = FlightBag(path)
+    try:
+        used = {}
+        pose = used["pose"] = bag.require(mav_name, pose_topic, "pose")
+        if bag.topics[pose] not in POSE_TYPES:
+            raise BagError(f"pose topic '{pose}' has type {bag.topics[pose]}; expected one of {', '.join(POSE_TYPES)}")
+        t, p = [], []
+        for msg, msgtype, t_ns in bag.messages(pose):
+            t.append(_stamp(msg, t_ns))
+            p.append(_position(msg, msgtype))
+        if not t:
+            raise BagError(f"pose topic '{pose}' has no messages in bag '{bag.path.name}'")
+        twist = used["twist"] = bag.require(mav_name, twist_topic, "twist")
+        tw, w = [], []
+        for msg, msgtype, t_ns in bag.messages(twist):
+            ang = msg.twist.twist.angular if msgtype.endswith("Odometry") else msg.twist.angular
+            tw.append(_stamp(msg, t_ns))
+            w.append([ang.x, ang.y, ang.z])
+        waypoints = []
+        wp_topic = bag.resolve(mav_name, waypoint_topic)
+        if wp_topic:
+            used["waypoints"] = wp_topic
+            last = None
+            for msg, _, t_ns in bag.messages(wp_topic):
+                if not msg.points or not msg.points[0].transforms:
+                    continue
+                tr = msg.points[0].transforms[0]
+                sample = WaypointSample(_stamp(msg, t_ns), np.array([tr.translation.x, tr.translation.y,
+                                                                    tr.translation.z]), _yaw(tr.rotation))
+                key = (tuple(sample.position), sample.yaw)
+                if key != last:  # consecutive duplicates are dropped, as RotorS
+                    waypoints.append(sample)
+                last = key
+        collisions = []
+        wrench = bag.resolve(mav_name, wrench_topic)
+        if wrench:
+            used["wrench"] = wrench
+            collisions = [_stamp(msg, t_ns) for msg, _, t_ns in bag.messages(wrench)]
+        motors = None
+        if motor_topic:
+            motor = bag.resolve(mav_name, motor_topic)
+            if motor:
+                used["motors"] = motor
+                tm, om = [], []
+                for msg, msgtype, t_ns in bag.messages(motor):
+                    speeds = msg.motor_speed if msgtype.endswith("MotorSpeed") else msg.angular_velocities
+                    tm.append(_stamp(msg, t_ns))
+                    om.append(list(speeds))
+                if tm and len({len(o) for o in om}) == 1:
+                    motors = Series(np.array(tm), np.array(om))
+        return FlightData(bag.path, Series(np.array(t), np.array(p)), Series(np.array(tw), np.array(w).reshape(-1, 3)),
+                          waypoints, np.array(sorted(collisions)), motors, used)
+    finally:
+        bag.close()
