@@ -97,3 +97,36 @@ def ros(tmp_path: Path) -> Iterator[RosGraph]:
 def package_path(name: str) -> Path:
     res = subprocess.run(["rospack", "find", name], capture_output=True, text=True, check=True)
     return Path(res.stdout.strip())
+
+
+def launch(ros: RosGraph, package: str, launch_file: str, *args: str, name: str = "launch") -> subprocess.Popen:
+    """roslaunch against this graph's master (headless)."""
+    return ros.start(["roslaunch", "-p", str(ros.port), package, launch_file, "gui:=false", *args], name)
+
+
+def wait_sim_time(ros: RosGraph, t_s: float, timeout_s: float = 300.0) -> float:
+    """Blocks until /clock reaches t_s; returns the sim time seen."""
+    return ros.rospy(f"""
+        from rosgraph_msgs.msg import Clock
+        deadline = time.monotonic() + {timeout_s}
+        t = 0.0
+        while t < {t_s}:
+            if time.monotonic() > deadline:
+                raise SystemExit('sim time stuck at %.2f s' % t)
+            try:
+                t = rospy.wait_for_message('/clock', Clock, timeout=5).clock.to_sec()
+            except rospy.ROSException:
+                pass
+        result['t'] = t
+    """, timeout=timeout_s + 60)["t"]
+
+
+def stop_launch(proc: subprocess.Popen, timeout: float = 30.0) -> None:
+    """SIGINT as Ctrl-C does, so that bags are closed and indexed."""
+    if proc.poll() is None:
+        os.killpg(proc.pid, signal.SIGINT)
+        try:
+            proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()

@@ -56,8 +56,14 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
   void OnCommand(const mav_msgs::ActuatorsConstPtr& msg) {
     const std::string why = CheckMotorCommand(msg->angular_velocities, bus_->rotor_count);
     if (!why.empty()) {
-      ROS_ERROR_THROTTLE(1.0, "[controller_interface] model '%s': rejected motor command: %s; keeping the last valid one",
-                         model_name_.c_str(), why.c_str());
+      // throttled per reason: a new kind of bad command is always reported
+      const ros::WallTime now = ros::WallTime::now();
+      if (why != last_reason_ || (now - last_report_).toSec() > 1.0) {
+        ROS_ERROR("[controller_interface] model '%s': rejected motor command: %s; keeping the last valid one",
+                  model_name_.c_str(), why.c_str());
+        last_reason_ = why;
+        last_report_ = now;
+      }
       return;
     }
     bus_->motor_command_rad_s = msg->angular_velocities;
@@ -67,6 +73,8 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
   VehicleBus* bus_ = nullptr;
   std::shared_ptr<ros::NodeHandle> node_;
   std::vector<ros::Subscriber> subs_;
+  std::string last_reason_;
+  ros::WallTime last_report_;
 };
 
 }  // namespace rotors_gazebo_plugins
