@@ -12,4 +12,5 @@ source "$root/scripts/env.bash"
 set -u
 unset DISPLAY
 cd "$root"
-exec python -m pytest -q -p no:cacheprovider "$@" test
+if [ $# -eq 0 ]; then set -- test rotors_gazebo_compat/rotors_evaluation/test; fi
+exec python -m pytest -q -p no:cacheprovider "$@"

@@ -14,8 +14,10 @@ TEST(OutageMap, ShippedMapHasBlackAndWhiteRegionsAndIsCentredOnTheOrigin) {
   int blocked = 0, total = 0;
   for (double x = -31.95; x < 32.0; x += 0.1)
     for (double y = -19.95; y < 20.0; y += 0.1, ++total) blocked += map.Available(x, y) ? 0 : 1;
-  EXPECT_GT(blocked, 0);
-  EXPECT_LT(blocked, total);
+  // the black blobs cover about 40 % of the shipped map
+  EXPECT_NEAR(static_cast<double>(blocked) / total, 0.40, 0.03) << blocked << " of " << total;
+  EXPECT_FALSE(map.Available(16.05, -4.95));  // inside the black blob right of the centre
+  EXPECT_TRUE(map.Available(0.05, 0.05));     // the white middle
   EXPECT_TRUE(map.Available(1000.0, 0.0));   // outside the image: always available
   EXPECT_TRUE(map.Available(0.0, -1000.0));
 }

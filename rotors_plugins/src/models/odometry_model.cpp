@@ -80,7 +80,7 @@ bool OutageMap::Available(double x_m, double y_m) const {
   const long col = static_cast<long>(std::floor(x_m / scale_m_)) + width_ / 2;
   const long row = static_cast<long>(std::floor(y_m / scale_m_)) + height_ / 2;
   if (col < 0 || row < 0 || col >= width_ || row >= height_) return true;
-  return pixels_[static_cast<size_t>(row) * width_ + col] != 0;
+  return pixels_[static_cast<size_t>(row) * width_ + col] >= kDarkThreshold;
 }
 
 }  // namespace rotors_gazebo_plugins

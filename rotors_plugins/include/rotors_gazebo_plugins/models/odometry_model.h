@@ -47,10 +47,12 @@ class OdometryNoise {
 };
 
 /// Where the sensor works: a grayscale image centred on the world origin, `scale_m` metres per
-/// pixel; pixel (col, row) = floor((x, y) / scale) + (width, height) / 2. Black (0) = no
-/// measurement; outside the image the sensor always works.
+/// pixel; pixel (col, row) = floor((x, y) / scale) + (width, height) / 2. Dark (gray < 128,
+/// so palette images and anti-aliased edges work) = no measurement; outside the image the sensor
+/// always works.
 class OutageMap {
  public:
+  static constexpr unsigned char kDarkThreshold = 128;
   /// Throws std::runtime_error naming the file if it cannot be read.
   OutageMap(const std::string& image_path, double scale_m);
   bool Available(double x_m, double y_m) const;

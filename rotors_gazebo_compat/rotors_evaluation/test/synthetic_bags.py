@@ -1,0 +1,81 @@
+"""Writes small bags with rosbags whose metrics are known in closed form."""
+from pathlib import Path
+
+import numpy as np
+from typing import Callable, Iterable, Optional, Sequence, Tuple
+
+from rosbags.rosbag1 import Writer
+from rosbags.typesys import Stores, get_typestore, get_types_from_msg
+
+TS = get_typestore(Stores.ROS1_NOETIC)
+TS.register(get_types_from_msg("Header header\nfloat64[] motor_speed\n", "mav_msgs/msg/MotorSpeed"))
+T = TS.types
+
+
+def header(t: float, frame: str = "world"):
+    sec = int(t)
+    return T["std_msgs/msg/Header"](seq=0, stamp=T["builtin_interfaces/msg/Time"](sec=sec, nanosec=int(round((t - sec) * 1e9))),
+                                    frame_id=frame)
+
+
+def vec(x, y, z):
+    return T["geometry_msgs/msg/Vector3"](x=x, y=y, z=z)
+
+
+def pose_stamped(t, p):
+    P = T["geometry_msgs/msg/Pose"](position=T["geometry_msgs/msg/Point"](x=p[0], y=p[1], z=p[2]),
+                                    orientation=T["geometry_msgs/msg/Quaternion"](x=0, y=0, z=0, w=1))
+    return T["geometry_msgs/msg/PoseStamped"](header=header(t), pose=P)
+
+
+def twist_stamped(t, w):
+    return T["geometry_msgs/msg/TwistStamped"](header=header(t), twist=T["geometry_msgs/msg/Twist"](
+        linear=vec(0, 0, 0), angular=vec(*w)))
+
+
+def trajectory(t, points: Sequence[Tuple[float, float, float]]):
+    pts = []
+    for x, y, z in points:
+        tr = T["geometry_msgs/msg/Transform"](translation=vec(x, y, z),
+                                              rotation=T["geometry_msgs/msg/Quaternion"](x=0, y=0, z=0, w=1))
+        pts.append(T["trajectory_msgs/msg/MultiDOFJointTrajectoryPoint"](
+            transforms=[tr], velocities=[], accelerations=[],
+            time_from_start=T["builtin_interfaces/msg/Duration"](sec=0, nanosec=0)))
+    return T["trajectory_msgs/msg/MultiDOFJointTrajectory"](header=header(t), joint_names=["base_link"], points=pts)
+
+
+def wrench(t):
+    return T["geometry_msgs/msg/WrenchStamped"](header=header(t, "a--b"), wrench=T["geometry_msgs/msg/Wrench"](
+        force=vec(0, 0, 10), torque=vec(0, 0, 0)))
+
+
+def write_flight(path: Path, position: Callable[[float], Tuple[float, float, float]],
+                 angular: Callable[[float], Tuple[float, float, float]], waypoints: Iterable[Tuple[float, tuple]],
+                 collisions: Iterable[float] = (), prefix: str = "firefly/", duration: float = 40.0,
+                 compression: Optional[str] = None, old_motor_topic: bool = False) -> Path:
+    writer = Writer(path)
+    if compression:
+        writer.set_compression(getattr(Writer.CompressionFormat, compression.upper()))
+    with writer as w:
+        c_pose = w.add_connection(f"{prefix}ground_truth/pose", "geometry_msgs/msg/PoseStamped", typestore=TS)
+        c_twist = w.add_connection(f"{prefix}ground_truth/twist", "geometry_msgs/msg/TwistStamped", typestore=TS)
+        c_wp = w.add_connection(f"{prefix}command/trajectory", "trajectory_msgs/msg/MultiDOFJointTrajectory",
+                                typestore=TS)
+        c_wr = w.add_connection(f"{prefix}wrench", "geometry_msgs/msg/WrenchStamped", typestore=TS)
+        c_m = (w.add_connection("/motors", "mav_msgs/msg/MotorSpeed", typestore=TS) if old_motor_topic else None)
+        events = []
+        n = int(round(duration * 100))
+        for k in range(1, n + 1):
+            t = k * 0.01
+            events.append((t, c_pose, "geometry_msgs/msg/PoseStamped", pose_stamped(t, position(t))))
+            events.append((t, c_twist, "geometry_msgs/msg/TwistStamped", twist_stamped(t, angular(t))))
+            if c_m is not None:
+                events.append((t, c_m, "mav_msgs/msg/MotorSpeed",
+                               T["mav_msgs/msg/MotorSpeed"](header=header(t), motor_speed=np.full(6, 543.0))))
+        for t, point in waypoints:
+            events.append((t, c_wp, "trajectory_msgs/msg/MultiDOFJointTrajectory", trajectory(t, [point])))
+        for t in collisions:
+            events.append((t, c_wr, "geometry_msgs/msg/WrenchStamped", wrench(t)))
+        for t, conn, msgtype, msg in sorted(events, key=lambda e: e[0]):
+            w.write(conn, int(round(t * 1e9)), TS.serialize_ros1(msg, msgtype))
+    return path
