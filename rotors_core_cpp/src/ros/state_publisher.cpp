@@ -79,7 +79,7 @@ void StatePublisher::Update(const physics::World& world, bool force) {
     sensor_msgs::JointState js;
     js.header.stamp = stamp;
     for (const auto& joint : model->GetJoints()) {
-      if (joint->GetType() == physics::Joint::Type::kWelded) continue;
+      // welded joints (zero-range revolute in the URDF) report 0, so robot_state_publisher has them
       js.name.push_back(joint->GetName());
       js.position.push_back(joint->Position(0));
       js.velocity.push_back(joint->GetVelocity(0));
