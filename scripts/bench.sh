@@ -1,4 +1,9 @@
 #!/usr/bin/env bash
-# Placeholder replaced below in this session.
-echo "bench: see README Performance" >&2
-exit 1
+# make bench: engine and closed-loop figures on this machine (see README, Performance).
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+set +u
+# shellcheck disable=SC1091
+source "$root/scripts/env.bash"
+set -u
+exec python3 "$root/scripts/bench.py"

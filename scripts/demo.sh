@@ -14,9 +14,9 @@ export ROS_MASTER_URI="http://127.0.0.1:$port" ROS_HOME="$out"
 unset DISPLAY
 sim_seconds=${DEMO_SIM_SECONDS:-25}
 
-echo "[demo] roslaunch rotors_gazebo mav_hovering_example.launch enable_logging:=true gui:=false lockstep:=true real_time_factor:=0"
+echo "[demo] roslaunch rotors_gazebo mav_hovering_example.launch enable_logging:=true gui:=false lockstep:=true real_time_factor:=10"
 roslaunch -p "$port" rotors_gazebo mav_hovering_example.launch enable_logging:=true gui:=false \
-  lockstep:=true real_time_factor:=0 > "$out/roslaunch.log" 2>&1 &
+  lockstep:=true real_time_factor:=10 > "$out/roslaunch.log" 2>&1 &
 launch_pid=$!
 cleanup() { kill -INT "$launch_pid" 2>/dev/null || true; wait "$launch_pid" 2>/dev/null || true; }
 trap cleanup EXIT

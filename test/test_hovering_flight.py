@@ -26,7 +26,7 @@ ROTORS_TOPICS = [
 
 def fly(ros: RosGraph, *args: str, until_s: float = 21.0):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true",
-                  "real_time_factor:=0", *args)
+                  "real_time_factor:=10", *args)
     try:
         wait_sim_time(ros, until_s)
         topics = ros.run(["rostopic", "list"]).stdout.split()

@@ -35,7 +35,7 @@ def test_vehicle_hovers_at_the_offset_its_parameters_predict(ros: RosGraph, mav:
     # reference section 9: dz = (m_ctrl 9.81 - m_sim g) / K_p,z (no integral action in the controller)
     dz = (m_ctrl * 9.81 - m_sim * 9.8) / LEE_KP_Z[mav]
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", f"mav_name:={mav}", "lockstep:=true",
-                  "real_time_factor:=0")
+                  "real_time_factor:=10")
     try:
         wait_sim_time(ros, 40.0)
         s = ground_truth(ros, mav)
@@ -53,7 +53,7 @@ def test_vehicle_hovers_at_the_offset_its_parameters_predict(ros: RosGraph, mav:
 
 
 def test_waypoint_publisher_moves_the_mav_and_bad_commands_are_rejected(ros: RosGraph):
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=0")
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=10")
     try:
         wait_sim_time(ros, 10.0)
         res = ros.run(["rosrun", "rotors_gazebo", "waypoint_publisher", "1", "0", "1", "90", "__ns:=firefly"])
@@ -101,7 +101,7 @@ def test_controller_interface_rejects_bad_commands_and_keeps_the_last_valid_one(
 def test_swarm_launch_flies_all_nine_fireflies(ros: RosGraph):
     targets = [(0, -1), (1, -1), (1, 0), (1, -2), (-1, 0), (-2, 0), (-3, 0), (-4, 0), (0, 0)]
     proc = launch(ros, "rotors_gazebo", "firefly_swarm_hovering_example.launch", "lockstep:=true",
-                  "real_time_factor:=0", name="swarm")
+                  "real_time_factor:=10", name="swarm")
     try:
         wait_sim_time(ros, 10.0)
         # the last waypoints go out 10 s after each publisher starts; give them time to arrive

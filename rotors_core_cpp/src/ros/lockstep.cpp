@@ -19,14 +19,25 @@ bool HeaderStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp) {
 }
 
 Lockstep::Lockstep(ros::NodeHandle nh, const std::vector<std::string>& topics, double timeout_s)
-    : timeout_s_(timeout_s) {
+    : nh_(nh), timeout_s_(timeout_s) {
   for (const auto& topic : topics) {
     if (topic.empty()) continue;
-    Responder& r = responders_[topic];
-    r.sub = nh.subscribe<topic_tools::ShapeShifter>(
-        topic, 10, [this, topic](const topic_tools::ShapeShifter::ConstPtr& msg) { OnMessage(topic, msg); },
-        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+    responders_[topic].sub = Subscribe(topic);
     ROS_INFO("[rotors_sim] lockstep: each step waits for an answer on %s", topic.c_str());
+  }
+}
+
+ros::Subscriber Lockstep::Subscribe(const std::string& topic) {
+  return nh_.subscribe<topic_tools::ShapeShifter>(
+      topic, 10, [this, topic](const topic_tools::ShapeShifter::ConstPtr& msg) { OnMessage(topic, msg); },
+      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+}
+
+void Lockstep::Resubscribe() {
+  for (auto& kv : responders_) {
+    ros::Subscriber fresh = Subscribe(kv.first);  // appended behind the plugins' subscriptions
+    kv.second.sub.shutdown();
+    kv.second.sub = fresh;
   }
 }
 
@@ -34,14 +45,14 @@ void Lockstep::OnMessage(const std::string& topic, const topic_tools::ShapeShift
   Responder& r = responders_[topic];
   ros::Time stamp;
   if (!HeaderStamp(*msg, &stamp)) return;
-  if (!r.active) ROS_INFO("[rotors_sim] lockstep: %s is answering", topic.c_str());
-  r.active = true;
+  if (r.muted) ROS_INFO("[rotors_sim] lockstep: %s is answering again", topic.c_str());
+  r.muted = false;
   if (stamp > r.last_stamp) r.last_stamp = stamp;
 }
 
 bool Lockstep::AllAnswered(const ros::Time& stamp) const {
   for (const auto& kv : responders_)
-    if (kv.second.active && kv.second.last_stamp < stamp) return false;
+    if (Awaited(kv.second) && kv.second.last_stamp < stamp) return false;
   return true;
 }
 
@@ -51,11 +62,11 @@ void Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue)
     queue->callAvailable(ros::WallDuration(0.0005));
     if (ros::WallTime::now() > deadline) {
       for (auto& kv : responders_) {
-        if (kv.second.active && kv.second.last_stamp < stamp) {
+        if (Awaited(kv.second) && kv.second.last_stamp < stamp) {
           ROS_WARN("[rotors_sim] lockstep: no answer on %s for t = %.3f s within %.1f s; not waiting for it until it "
                    "answers again",
                    kv.first.c_str(), stamp.toSec(), timeout_s_);
-          kv.second.active = false;
+          kv.second.muted = true;
         }
       }
     }

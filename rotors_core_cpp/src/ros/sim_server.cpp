@@ -121,6 +121,7 @@ bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::Spaw
     ROS_INFO("[rotors_sim] %s (%zu links, %zu joints, %zu plugins)", res.status_message.c_str(),
              model->GetLinks().size(), model->GetJoints().size(), model->Plugins().size());
     state_publisher_->Update(*world_, true);
+    lockstep_->Resubscribe();
   } catch (const std::exception& e) {
     res.success = false;
     res.status_message = e.what();

@@ -86,8 +86,19 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
   void Record(const std::string& topic) {
     const std::string bag_topic = ns_ + "/" + topic;
     subs_.push_back(node_->subscribe<MsgT>(topic, 100, [this, bag_topic](const boost::shared_ptr<const MsgT>& msg) {
-      if (recording_) bag_.write(bag_topic, ToRos(world_->SimTime()), *msg);
+      if (recording_) Write(bag_topic, ToRos(world_->SimTime()), *msg);
     }));
+  }
+
+  /// Writes one message; rosbag refuses time 0 (messages received while paused at the start), so
+  /// those get the earliest valid time. A failing write is reported and never stops the simulator.
+  template <typename MsgT>
+  void Write(const std::string& topic, const ros::Time& t, const MsgT& msg) {
+    try {
+      bag_.write(topic, std::max(t, ros::TIME_MIN), msg);
+    } catch (const rosbag::BagException& e) {
+      ROS_ERROR_THROTTLE(1.0, "[bag_plugin] cannot write %s to %s: %s", topic.c_str(), path_.c_str(), e.what());
+    }
   }
 
   void Open() {
@@ -142,7 +153,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     pose.pose.orientation.x = X.Rot().X();
     pose.pose.orientation.y = X.Rot().Y();
     pose.pose.orientation.z = X.Rot().Z();
-    bag_.write(ns_ + "/" + pose_topic_, stamp, pose);
+    Write(ns_ + "/" + pose_topic_, stamp, pose);
     geometry_msgs::TwistStamped twist;
     twist.header = pose.header;
     const auto v = link_->WorldLinearVel(), w = link_->WorldAngularVel();
@@ -152,11 +163,11 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     twist.twist.angular.x = w.X();
     twist.twist.angular.y = w.Y();
     twist.twist.angular.z = w.Z();
-    bag_.write(ns_ + "/" + twist_topic_, stamp, twist);
+    Write(ns_ + "/" + twist_topic_, stamp, twist);
     mav_msgs::Actuators motors;
     motors.header = pose.header;
     motors.angular_velocities = bus_->rotor_speed_rad_s;
-    bag_.write(ns_ + "/" + motor_topic_, stamp, motors);
+    Write(ns_ + "/" + motor_topic_, stamp, motors);
     for (const auto& c : world_->Contacts()) {
       const bool first = c.link1 && c.link1->GetModel() == model_;
       const bool second = c.link2 && c.link2->GetModel() == model_;
@@ -173,7 +184,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
       wrench.wrench.torque.x = tau.X();
       wrench.wrench.torque.y = tau.Y();
       wrench.wrench.torque.z = tau.Z();
-      bag_.write(ns_ + "/" + wrench_topic_, stamp, wrench);
+      Write(ns_ + "/" + wrench_topic_, stamp, wrench);
     }
   }
 

@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""make bench: measures the engine and the closed loop on this machine and prints a table and a
+JSON line. Medians of several runs. What issue 6 asks for beyond this (scaling to 20 MAVs with
+their controllers, RotorPy comparison) is listed as not measured."""
+import json
+import os
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Dict, List
+
+ROOT = Path(__file__).resolve().parents[1]
+OUT = ROOT / "build" / "bench"
+
+
+def sh(cmd: List[str], **kw) -> str:
+    return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw).stdout
+
+
+def engine_only(urdf: Path, runs: int = 3) -> Dict:
+    world = sh(["rospack", "find", "rotors_gazebo"]).strip() + "/worlds/basic.world"
+    bench = ROOT / "build/ws/devel/lib/rotors_gazebo_plugins/rotors_engine_bench"
+    results = [json.loads(sh([str(bench), world, str(urdf), "firefly", "0.001", "20", "543.3"])) for _ in range(runs)]
+    return {"steps_per_s": statistics.median(r["steps_per_s"] for r in results), "plugins": results[0]["plugins"],
+            "hover_final_z_m": results[0]["final_z_m"]}
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+CLOCK_WATCH = """
+import sys, time, rospy
+from rosgraph_msgs.msg import Clock
+rospy.init_node('bench_clock', anonymous=True, disable_signals=True)
+t = lambda: rospy.wait_for_message('/clock', Clock, timeout=30).clock.to_sec()
+while t() < 5.0: pass
+w0, s0 = time.monotonic(), t()
+while t() < 25.0: pass
+print((t() - s0) / (time.monotonic() - w0))
+"""
+
+
+def closed_loop(lockstep: bool) -> Dict:
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(OUT / "ros"))
+    env.pop("DISPLAY", None)
+    launch = subprocess.Popen(["roslaunch", "-p", str(port), "rotors_gazebo", "mav_hovering_example.launch", "gui:=false",
+                               "real_time_factor:=0", f"lockstep:={'true' if lockstep else 'false'}"],
+                              env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        rtf = float(subprocess.run([sys.executable, "-c", CLOCK_WATCH], env=env, capture_output=True, text=True,
+                                   timeout=300, check=True).stdout.strip())
+        pid = sh(["pgrep", "-f", f"rotors_sim_server.*__master:=http://127.0.0.1:{port}"]).split()[0]
+        rss_kb = int(next(l for l in Path(f"/proc/{pid}/status").read_text().splitlines()
+                          if l.startswith("VmHWM")).split()[1])
+        return {"real_time_factor": rtf, "sim_peak_rss_mb": rss_kb / 1024}
+    finally:
+        os.killpg(launch.pid, signal.SIGINT)
+        launch.wait(timeout=30)
+
+
+def main() -> int:
+    OUT.mkdir(parents=True, exist_ok=True)
+    urdf = OUT / "firefly.urdf"
+    urdf.write_text(sh(["xacro", sh(["rospack", "find", "rotors_description"]).strip() +
+                        "/urdf/mav_generic_odometry_sensor.gazebo", "mav_name:=firefly", "namespace:=firefly"]))
+    eng = engine_only(urdf)
+    lock = [closed_loop(True) for _ in range(3)]
+    free = [closed_loop(False) for _ in range(3)]
+    res = {
+        "engine_steps_per_s_1ms_no_ros": eng["steps_per_s"],
+        "engine_plugins": eng["plugins"],
+        "closed_loop_rtf_lockstep": statistics.median(r["real_time_factor"] for r in lock),
+        "closed_loop_rtf_as_fast_as_possible": statistics.median(r["real_time_factor"] for r in free),
+        "sim_peak_rss_mb": max(r["sim_peak_rss_mb"] for r in lock + free),
+        "not_measured": ["engine steps/s with ROS publishing", "scaling 1/5/10/20 fireflies", "RotorPy ratio"],
+    }
+    rows = [("engine, firefly with all plugins, 1 ms step, no ROS", f"{res['engine_steps_per_s_1ms_no_ros']:,.0f} steps/s",
+             ">= 100,000"),
+            ("closed loop (sim + Lee node + examples), lockstep, 10 ms", f"{res['closed_loop_rtf_lockstep']:.1f} x real time",
+             ">= 10"),
+            ("closed loop, as fast as possible (no lockstep)", f"{res['closed_loop_rtf_as_fast_as_possible']:.1f} x real time",
+             ">= 20"),
+            ("simulator peak RSS, one firefly", f"{res['sim_peak_rss_mb']:.0f} MB", "<= 150 MB")]
+    w = [max(len(r[i]) for r in rows) for i in range(3)]
+    print(f"{'measurement'.ljust(w[0])}  {'median'.ljust(w[1])}  target")
+    for r in rows:
+        print(f"{r[0].ljust(w[0])}  {r[1].ljust(w[1])}  {r[2]}")
+    print(json.dumps(res))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
