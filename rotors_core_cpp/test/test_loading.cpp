@@ -14,10 +14,6 @@
 using namespace rotors_sim;
 
 namespace {
-struct WorldGuard {
-  physics::WorldPtr world;
-  ~WorldGuard() { if (world) world->Fini(); }
-};
 
 // RotorS-shaped: base_link (no inertia) + fixed base_link_inertia, a continuous rotor, and an IMU
 // on a zero-range revolute joint.

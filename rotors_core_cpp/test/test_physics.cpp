@@ -13,10 +13,6 @@
 using namespace rotors_sim;
 
 namespace {
-struct WorldGuard {
-  physics::WorldPtr world;
-  ~WorldGuard() { if (world) world->Fini(); }
-};
 
 physics::ModelPtr SpawnBox(const physics::WorldPtr& w, const std::string& name, double z, double mass = 1.5,
                            const Eigen::Vector3d& J = {0.0347563, 0.0458929, 0.0977}) {

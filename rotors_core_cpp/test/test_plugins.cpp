@@ -18,10 +18,6 @@
 using namespace rotors_sim;
 
 namespace {
-struct WorldGuard {
-  physics::WorldPtr world;
-  ~WorldGuard() { if (world) world->Fini(); }
-};
 
 ProbeRecord* Record(const std::string& model) {
   void* handle = dlopen(PROBE_PLUGIN_DIR "/librotors_test_probe_plugin.so", RTLD_NOW | RTLD_NOLOAD);

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <string>
 
+#include "rotors_core/physics/world.h"
+
 inline std::string WorldSdf(double step_s, double gravity_z, bool ground, const std::string& solver = "quick",
                             int iters = 1000) {
   std::ostringstream s;
@@ -32,3 +34,11 @@ inline std::string BoxUrdf(const std::string& name, double mass, double ixx, dou
     << "'/></geometry></collision></link>" << extra << "</robot>";
   return s.str();
 }
+
+/// Unloads the world's plugins and models when a test ends (they hold pointers to the world).
+struct WorldGuard {
+  rotors_sim::physics::WorldPtr world;
+  ~WorldGuard() {
+    if (world) world->Fini();
+  }
+};

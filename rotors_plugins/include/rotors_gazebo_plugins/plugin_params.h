@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <ignition/math/Vector3.hh>
 
+#include "rotors_core/physics/physics_types.h"
 #include "rotors_core/sdf_params.h"
 
 namespace rotors_gazebo_plugins {
@@ -28,6 +29,12 @@ void ThrowIfInvalid(const std::string& why);
 
 /// The <robotNamespace> (required), without leading or trailing '/'.
 std::string ReadRobotNamespace(const sdf::ElementPtr& sdf);
+
+/// The link / joint of that name, or SimError("<param> 'name' is not a link of model 'm'").
+rotors_sim::physics::LinkPtr RequireLink(const rotors_sim::physics::ModelPtr& model, const std::string& name,
+                                         const char* param = "linkName");
+rotors_sim::physics::JointPtr RequireJoint(const rotors_sim::physics::ModelPtr& model, const std::string& name,
+                                           const char* param = "jointName");
 
 /// Seed from <randomEngineSeed> if given, else from the clock; returns the seed used.
 uint64_t ReadSeed(const sdf::ElementPtr& sdf);

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "rotors_core/error.h"
+#include "rotors_core/physics/model.h"
 
 namespace rotors_gazebo_plugins {
 
@@ -34,6 +35,20 @@ std::string ReadRobotNamespace(const sdf::ElementPtr& sdf) {
   while (!ns.empty() && ns.front() == '/') ns.erase(ns.begin());
   while (!ns.empty() && ns.back() == '/') ns.pop_back();
   return ns;
+}
+
+rotors_sim::physics::LinkPtr RequireLink(const rotors_sim::physics::ModelPtr& model, const std::string& name,
+                                         const char* param) {
+  auto link = model->GetLink(name);
+  if (!link) throw rotors_sim::SimError(std::string(param) + " '" + name + "' is not a link of model '" + model->GetName() + "'");
+  return link;
+}
+
+rotors_sim::physics::JointPtr RequireJoint(const rotors_sim::physics::ModelPtr& model, const std::string& name,
+                                           const char* param) {
+  auto joint = model->GetJoint(name);
+  if (!joint) throw rotors_sim::SimError(std::string(param) + " '" + name + "' is not a joint of model '" + model->GetName() + "'");
+  return joint;
 }
 
 uint64_t ReadSeed(const sdf::ElementPtr& sdf) {

@@ -54,8 +54,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     ReadParam(sdf, "waitToRecordBag", &wait_to_record);
     double slowdown = 10;
     ReadParam(sdf, "rotorVelocitySlowdownSim", &slowdown);  // accepted for compatibility: speeds come unslowed
-    link_ = model->GetLink(link_name);
-    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    link_ = RequireLink(model, link_name);
     model_ = model.get();
     world_ = model->GetWorldRaw();
     bus_ = &VehicleBus::For(ns_);

@@ -47,8 +47,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     seed_ = ReadSeed(sdf);
     noise_ = std::make_unique<ImuNoiseModel>(p, seed_);
 
-    link_ = model->GetLink(link_name);
-    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     msg_.header.frame_id = link_name;
     msg_.orientation_covariance.fill(-1.0);  // orientation is ground truth (as RotorS), not a measurement

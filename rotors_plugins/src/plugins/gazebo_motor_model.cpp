@@ -62,10 +62,8 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     ThrowIfInvalid(p.Validate());
     rotor_ = std::make_unique<RotorModel>(p);
 
-    joint_ = model->GetJoint(joint_name);
-    if (!joint_) throw rotors_sim::SimError("jointName '" + joint_name + "' is not a joint of model '" + model->GetName() + "'");
-    link_ = model->GetLink(link_name);
-    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    joint_ = RequireJoint(model, joint_name);
+    link_ = RequireLink(model, link_name);
     parent_link_ = joint_->GetParent();
     dt_s_ = model->GetWorldRaw()->Physics().max_step_size_s;
     bus_ = &VehicleBus::For(namespace_);

@@ -21,8 +21,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
     std::string topic = "motor_speed";
     ReadParam(sdf, "linkName", &frame_id_);
     ReadParam(sdf, "motorPubTopic", &topic);
-    if (!model->GetLink(frame_id_))
-      throw rotors_sim::SimError("linkName '" + frame_id_ + "' is not a link of model '" + model->GetName() + "'");
+    RequireLink(model, frame_id_);
     world_ = model->GetWorldRaw();
     bus_ = &VehicleBus::For(namespace_);
     node_ = MakeNode(namespace_);

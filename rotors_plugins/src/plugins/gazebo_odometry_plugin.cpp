@@ -84,8 +84,7 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
         throw rotors_sim::SimError(std::string("covarianceImage: ") + e.what());
       }
     }
-    link_ = model->GetLink(link_name);
-    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     // the simulator already broadcasts world -> canonical link; do not send the same transform twice
     broadcast_tf_ = child_frame_ != model->GetCanonicalLink()->GetName();

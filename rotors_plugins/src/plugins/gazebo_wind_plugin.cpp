@@ -50,8 +50,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     ReadVector(sdf, "windGustDirection", &p.wind_gust_direction);
     ThrowIfInvalid(p.Validate());
     wind_ = std::make_unique<WindModel>(p, ReadSeed(sdf));
-    link_ = model->GetLink(link_name);
-    if (!link_) throw rotors_sim::SimError("linkName '" + link_name + "' is not a link of model '" + model->GetName() + "'");
+    link_ = RequireLink(model, link_name);
     offset_L_ = {offset.x(), offset.y(), offset.z()};
     world_ = model->GetWorldRaw();
     bus_ = &VehicleBus::For(namespace_);
