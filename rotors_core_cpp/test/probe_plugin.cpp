@@ -6,6 +6,7 @@
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
 #include "rotors_core/sdf_params.h"
 #include "probe_record.h"
@@ -47,4 +48,43 @@ class ProbePlugin : public rotors_sim::ModelPlugin {
   rotors_sim::event::ConnectionPtr connection_;
 };
 
+/// Counts its sensor's updates under "sensor:<sensor name>".
+class ProbeSensorPlugin : public rotors_sim::SensorPlugin {
+ public:
+  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) override {
+    record_ = &g_records["sensor:" + sensor->Name()];
+    *record_ = ProbeRecord();
+    rotors_sim::ReadParam(sdf, "gain", &record_->gain);
+    record_->loaded = true;
+    connection_ = sensor->ConnectUpdated([this, sensor] {
+      ++record_->updates;
+      record_->last_sim_time_s = sensor->LastUpdateTime().Double();
+    });
+  }
+
+ private:
+  ProbeRecord* record_ = nullptr;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+/// Counts world updates under "world:<world name>".
+class ProbeWorldPlugin : public rotors_sim::WorldPlugin {
+ public:
+  void Load(rotors_sim::physics::WorldPtr world, sdf::ElementPtr sdf) override {
+    record_ = &g_records["world:" + world->Name()];
+    *record_ = ProbeRecord();
+    rotors_sim::ReadParam(sdf, "gain", &record_->gain);
+    record_->loaded = true;
+    connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
+        [this](const rotors_sim::common::UpdateInfo&) { ++record_->updates; });
+  }
+  void Reset() override { ++record_->resets; }
+
+ private:
+  ProbeRecord* record_ = nullptr;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
 GZ_REGISTER_MODEL_PLUGIN(ProbePlugin)
+GZ_REGISTER_SENSOR_PLUGIN(ProbeSensorPlugin)
+GZ_REGISTER_WORLD_PLUGIN(ProbeWorldPlugin)

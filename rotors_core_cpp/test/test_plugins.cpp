@@ -133,3 +133,41 @@ TEST_F(PluginTest, DeletingAModelUnloadsItsPlugin) {
   EXPECT_EQ(Record("mav")->updates, 5);
   EXPECT_EQ(g.world->Events().world_update_begin.ConnectionCount(), 0u);
 }
+
+TEST_F(PluginTest, SensorPluginRunsAtTheSensorsUpdateRate) {
+  const std::string sensor = R"(<gazebo reference="mav/base_link"><sensor name="probe_sensor" type="altimeter">
+      <update_rate>25</update_rate><pose>0.1 0 0 0 0 0</pose>
+      <plugin name="counter" filename="librotors_test_probe_plugin.so"><gain>4</gain></plugin></sensor></gazebo>)";
+  auto model = Spawn(g.world, "mav", sensor, 5.0);
+  ASSERT_EQ(model->Sensors().size(), 1u);
+  const auto& s = model->Sensors()[0];
+  EXPECT_EQ(s->Name(), "probe_sensor");
+  EXPECT_EQ(s->ParentName(), "mav/base_link");
+  EXPECT_DOUBLE_EQ(s->UpdateRate(), 25.0);
+  EXPECT_NEAR(s->WorldPose().Pos().X(), 0.1, 1e-12);
+  ProbeRecord* rec = Record("sensor:probe_sensor");
+  ASSERT_NE(rec, nullptr);
+  EXPECT_DOUBLE_EQ(rec->gain, 4.0);
+  g.world->Step(100);  // 1 s at 100 Hz: 25 updates at 25 Hz
+  EXPECT_EQ(rec->updates, 25);
+  EXPECT_NEAR(rec->last_sim_time_s, 0.97, 1e-9);
+}
+
+TEST_F(PluginTest, MissingWorldPluginFailsTheWorldLoad) {
+  EXPECT_THROW(WorldLoader::LoadString(
+                   "<sdf version='1.6'><world name='w'><plugin name='p' filename='libm.so'/></world></sdf>", "w.world"),
+               SimError);
+}
+
+TEST_F(PluginTest, WorldPluginFromTheWorldFileUpdatesAndResets) {
+  WorldGuard w{WorldLoader::LoadString(
+      "<sdf version='1.6'><world name='probe_world'><plugin name='p' filename='librotors_test_probe_plugin.so'>"
+      "<gain>3</gain></plugin></world></sdf>", "probe.world")};
+  ProbeRecord* rec = Record("world:probe_world");
+  ASSERT_NE(rec, nullptr);
+  EXPECT_DOUBLE_EQ(rec->gain, 3.0);
+  w.world->Step(12);
+  EXPECT_EQ(rec->updates, 12);
+  w.world->ResetWorld();
+  EXPECT_EQ(rec->resets, 1);
+}

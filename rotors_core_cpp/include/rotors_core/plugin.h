@@ -7,6 +7,7 @@
 #include <sdf/Element.hh>
 
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/sensors/sensor.h"
 
 namespace rotors_sim {
 
@@ -37,8 +38,19 @@ class WorldPlugin : public PluginBase {
   virtual void Load(physics::WorldPtr world, sdf::ElementPtr sdf) = 0;
 };
 
+class SensorPlugin : public PluginBase {
+ public:
+  virtual void Load(sensors::SensorPtr sensor, sdf::ElementPtr sdf) = 0;
+};
+
 }  // namespace rotors_sim
 
+#define RSIM_REGISTER_SENSOR_PLUGIN(classname)                                       \
+  extern "C" __attribute__((visibility("default"))) rotors_sim::SensorPlugin*      \
+  RotorsSimCreateSensorPlugin() {                                                   \
+    return new classname();                                                         \
+  }
+#define GZ_REGISTER_SENSOR_PLUGIN(classname) RSIM_REGISTER_SENSOR_PLUGIN(classname)
 #define RSIM_REGISTER_MODEL_PLUGIN(classname)                                        \
   extern "C" __attribute__((visibility("default"))) rotors_sim::ModelPlugin*       \
   RotorsSimCreateModelPlugin() {                                                    \

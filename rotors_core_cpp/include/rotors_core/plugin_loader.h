@@ -19,6 +19,7 @@ class PluginLoader {
 
   static std::unique_ptr<ModelPlugin> CreateModelPlugin(const std::string& filename);
   static std::unique_ptr<WorldPlugin> CreateWorldPlugin(const std::string& filename);
+  static std::unique_ptr<SensorPlugin> CreateSensorPlugin(const std::string& filename);
 };
 
 }  // namespace rotors_sim

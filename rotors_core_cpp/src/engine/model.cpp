@@ -18,6 +18,8 @@ Model::~Model() { Fini(); }
 
 void Model::Fini() {
   plugins_.clear();
+  sensor_plugins_.clear();
+  sensors_.clear();
   for (auto& link : links_) link->ClearJoints();
   joints_.clear();
   for (auto& g : geoms_) dGeomDestroy(g.first);
@@ -74,8 +76,12 @@ void Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name) {
 
 void Model::AddPlugin(std::unique_ptr<ModelPlugin> plugin) { plugins_.push_back(std::move(plugin)); }
 
+void Model::AddSensorPlugin(std::unique_ptr<SensorPlugin> plugin) { sensor_plugins_.push_back(std::move(plugin)); }
+
 void Model::ResetPlugins() {
   for (auto& plugin : plugins_) plugin->Reset();
+  for (auto& plugin : sensor_plugins_) plugin->Reset();
+  for (auto& sensor : sensors_) sensor->Reset();
 }
 
 }  // namespace physics

@@ -10,6 +10,7 @@
 #include <sdf/Link.hh>
 #include <sdf/Plane.hh>
 #include <sdf/Root.hh>
+#include <sdf/Sensor.hh>
 #include <urdf_parser/urdf_parser.h>
 
 #include "rotors_core/error.h"
@@ -140,6 +141,35 @@ void LoadPlugins(const physics::WorldPtr& world, const physics::ModelPtr& model)
       model->AddPlugin(std::move(plugin));
     } catch (const std::exception& e) {
       throw SimError("model '" + model->GetName() + "', plugin '" + name + "' (" + filename + "): " + e.what());
+    }
+  }
+}
+
+void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model, const sdf::Model& sdf_model) {
+  event::ScopedCurrentEvents scope(&world->Events());
+  for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i) {
+    const sdf::Link& sdf_link = *sdf_model.LinkByIndex(i);
+    for (uint64_t k = 0; k < sdf_link.SensorCount(); ++k) {
+      const sdf::Sensor& s = *sdf_link.SensorByIndex(k);
+      Pose3d X_LS;
+      s.SemanticPose().Resolve(X_LS, sdf_link.Name());
+      auto sensor = std::make_shared<sensors::Sensor>(s.Name(), s.TypeStr(), model->GetLink(sdf_link.Name()), X_LS,
+                                                      s.UpdateRate());
+      model->AddSensor(sensor);
+      sdf::ElementPtr element = s.Element();
+      if (!element || !element->HasElement("plugin")) continue;
+      for (sdf::ElementPtr p = element->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
+        const std::string name = p->Get<std::string>("name"), filename = p->Get<std::string>("filename");
+        try {
+          auto plugin = PluginLoader::CreateSensorPlugin(filename);
+          plugin->SetIdentity(name, filename);
+          plugin->Load(sensor, p);
+          model->AddSensorPlugin(std::move(plugin));
+        } catch (const std::exception& e) {
+          throw SimError("model '" + model->GetName() + "', sensor '" + s.Name() + "', plugin '" + name + "' (" +
+                         filename + "): " + e.what());
+        }
+      }
     }
   }
 }
@@ -287,6 +317,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
   }
   try {
     LoadPlugins(world, model);
+    LoadSensors(world, model, sdf_model);
   } catch (...) {
     world->RemoveModel(name);
     throw;

@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <sys/stat.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <sstream>
 
@@ -38,15 +39,15 @@ std::unique_ptr<PluginT> Create(const std::string& filename, const char* symbol,
   using Factory = PluginT* (*)();
   auto factory = reinterpret_cast<Factory>(dlsym(handle, symbol));
   if (!factory) {
-    const bool model = dlsym(handle, "RotorsSimCreateModelPlugin") != nullptr;
-    const bool world = dlsym(handle, "RotorsSimCreateWorldPlugin") != nullptr;
-    if (model || world) {
-      throw SimError("plugin '" + filename + "' is a " + (model ? "model" : "world") + " plugin and cannot be used as a " +
-                     kind + " plugin");
+    for (const char* other : {"model", "world", "sensor"}) {
+      const std::string other_symbol = std::string("RotorsSimCreate") + char(std::toupper(other[0])) + (other + 1) + "Plugin";
+      if (dlsym(handle, other_symbol.c_str()))
+        throw SimError("plugin '" + filename + "' is a " + other + " plugin and cannot be used as a " + kind + " plugin");
     }
+    std::string macro = kind;
+    for (char& c : macro) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     throw SimError("'" + filename + "' is not a rotors_sim plugin (it exports no " + symbol +
-                   "; register the class with GZ_REGISTER_" + (std::string(kind) == "model" ? "MODEL" : "WORLD") +
-                   "_PLUGIN)");
+                   "; register the class with GZ_REGISTER_" + macro + "_PLUGIN)");
   }
   return std::unique_ptr<PluginT>(factory());
 }
@@ -84,6 +85,10 @@ std::unique_ptr<ModelPlugin> PluginLoader::CreateModelPlugin(const std::string& 
 
 std::unique_ptr<WorldPlugin> PluginLoader::CreateWorldPlugin(const std::string& filename) {
   return Create<WorldPlugin>(filename, "RotorsSimCreateWorldPlugin", "world");
+}
+
+std::unique_ptr<SensorPlugin> PluginLoader::CreateSensorPlugin(const std::string& filename) {
+  return Create<SensorPlugin>(filename, "RotorsSimCreateSensorPlugin", "sensor");
 }
 
 }  // namespace rotors_sim

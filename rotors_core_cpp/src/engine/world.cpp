@@ -120,6 +120,8 @@ void World::Step(unsigned int steps) {
     sim_time_ = sim_time_ + dt_time;
     ++iterations_;
     events_.world_update_end();
+    for (const auto& model : models_)
+      for (const auto& sensor : model->Sensors()) sensor->Update(sim_time_);
   }
 }
 

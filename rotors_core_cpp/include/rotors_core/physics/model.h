@@ -10,9 +10,11 @@
 #include <sdf/Element.hh>
 
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/sensors/sensor.h"
 
 namespace rotors_sim {
 class ModelPlugin;
+class SensorPlugin;
 namespace physics {
 
 class Model {
@@ -54,6 +56,9 @@ class Model {
   void SetInitialPose(const Pose3d& X_WM) { X_WM_initial_ = X_WM; }
   void AddPlugin(std::unique_ptr<ModelPlugin> plugin);
   const std::vector<std::unique_ptr<ModelPlugin>>& Plugins() const { return plugins_; }
+  void AddSensor(const sensors::SensorPtr& sensor) { sensors_.push_back(sensor); }
+  void AddSensorPlugin(std::unique_ptr<SensorPlugin> plugin);
+  const std::vector<sensors::SensorPtr>& Sensors() const { return sensors_; }
   void ResetPlugins();
   /// Unloads plugins (breaking their ModelPtr cycles) and frees the ODE bodies, joints and geoms.
   void Fini();
@@ -73,6 +78,8 @@ class Model {
   std::vector<std::pair<dGeomID, std::unique_ptr<GeomInfo>>> geoms_;
   Pose3d X_WM_initial_;
   std::vector<std::unique_ptr<ModelPlugin>> plugins_;
+  std::vector<sensors::SensorPtr> sensors_;
+  std::vector<std::unique_ptr<SensorPlugin>> sensor_plugins_;
 };
 
 }  // namespace physics

@@ -1,0 +1,47 @@
+// A sensor declared in a link's SDF (<gazebo reference="link"><sensor ...>) (gazebo::sensors::Sensor).
+// The engine drives it at its <update_rate> and fires Updated; what it measures is the job of its
+// plugins (rendering sensors such as cameras are not implemented yet).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "rotors_core/common.h"
+#include "rotors_core/event.h"
+#include "rotors_core/physics/physics_types.h"
+
+namespace rotors_sim {
+namespace sensors {
+
+class Sensor {
+ public:
+  Sensor(std::string name, std::string type, physics::LinkPtr parent, const physics::Pose3d& pose_in_link,
+         double update_rate_hz);
+
+  const std::string& Name() const { return name_; }
+  const std::string& Type() const { return type_; }
+  std::string ParentName() const;
+  physics::LinkPtr ParentLink() const { return parent_; }
+  const physics::Pose3d& Pose() const { return X_LS_; }  ///< in the parent link frame
+  physics::Pose3d WorldPose() const;
+  double UpdateRate() const { return update_rate_hz_; }   ///< [Hz]; 0: every step
+  common::Time LastUpdateTime() const { return last_update_; }
+  event::ConnectionPtr ConnectUpdated(std::function<void()> cb) { return updated_.Connect(std::move(cb)); }
+
+  /// Engine side: fires Updated if 1/rate has passed since the last update.
+  void Update(const common::Time& sim_time);
+  void Reset() { last_update_ = common::Time(); has_updated_ = false; }
+
+ private:
+  std::string name_, type_;
+  physics::LinkPtr parent_;
+  physics::Pose3d X_LS_;
+  double update_rate_hz_;
+  common::Time last_update_;
+  bool has_updated_ = false;
+  event::EventT<> updated_;
+};
+using SensorPtr = std::shared_ptr<Sensor>;
+
+}  // namespace sensors
+}  // namespace rotors_sim
