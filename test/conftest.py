@@ -101,7 +101,8 @@ def package_path(name: str) -> Path:
 
 def launch(ros: RosGraph, package: str, launch_file: str, *args: str, name: str = "launch") -> subprocess.Popen:
     """roslaunch against this graph's master (headless)."""
-    return ros.start(["roslaunch", "-p", str(ros.port), package, launch_file, "gui:=false", *args], name)
+    gui = [] if any(a.startswith("gui:=") for a in args) else ["gui:=false"]
+    return ros.start(["roslaunch", "-p", str(ros.port), package, launch_file, *gui, *args], name)
 
 
 def wait_sim_time(ros: RosGraph, t_s: float, timeout_s: float = 300.0) -> float:

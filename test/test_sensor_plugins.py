@@ -2,6 +2,8 @@
 measurements over black pixels; the IMU at rest reads +g."""
 from pathlib import Path
 
+import pytest
+
 from conftest import RosGraph
 from test_sim_server import start_server
 
@@ -52,3 +54,37 @@ def test_outage_map_suppresses_odometry_over_black_pixels(ros: RosGraph, tmp_pat
     assert result["white"] > 50  # 100 Hz where the map is white
     assert result["black"] == 0  # nothing over the black blob
     assert abs(result["imu_z"] - 9.8) < 0.05  # at rest: +g (gyro/accel noise left at ADIS defaults is small)
+
+
+def test_wind_force_accelerates_a_free_body_as_f_over_m(ros: RosGraph, tmp_path: Path):
+    """Force-on-link mode: 2 N along +y on a 1 kg box in free fall: y(t) = 1/2 (F/m) t^2."""
+    start_server(ros, "-u", "--rtf", "1")
+    urdf = tmp_path / "kite.urdf"
+    urdf.write_text(f"""<robot name="kite"><link name="kite/base_link"><inertial><mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+      <gazebo><plugin name="wind_plugin" filename="librotors_gazebo_wind_plugin.so">
+        <robotNamespace>kite</robotNamespace><linkName>kite/base_link</linkName><xyzOffset>0 0 0</xyzOffset>
+        <windDirection>0 1 0</windDirection><windForceMean>2.0</windForceMean><windSpeedMean>3.0</windSpeedMean>
+      </plugin></gazebo></robot>""")
+    ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(urdf), "-model", "kite", "-z", "100"])
+    result = ros.rospy("""
+        from gazebo_msgs.msg import ModelStates
+        from rotors_comm.msg import WindSpeed
+        from std_srvs.srv import Empty
+        from rosgraph_msgs.msg import Clock
+        rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
+        speed = rospy.wait_for_message('/kite/wind_speed', WindSpeed, timeout=10)
+        result['wind_y'] = speed.velocity.y
+        while rospy.wait_for_message('/clock', Clock).clock.to_sec() < 1.0:
+            pass
+        rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
+        t = rospy.wait_for_message('/clock', Clock).clock.to_sec()
+        m = rospy.wait_for_message('/gazebo/model_states', ModelStates)
+        result['t'] = t
+        result['y'] = m.pose[m.name.index('kite')].position.y
+    """)
+    assert result["wind_y"] == 3.0
+    t = result["t"]
+    # semi-implicit Euler: y_N = a dt^2 N (N+1) / 2 with a = 2 m/s^2
+    n = round(t / 0.01)
+    assert result["y"] == pytest.approx(2.0 * 0.01 ** 2 * n * (n + 1) / 2, rel=1e-6)
