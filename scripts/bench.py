@@ -66,6 +66,79 @@ def closed_loop(lockstep: bool) -> Dict:
         launch.wait(timeout=30)
 
 
+def swarm_launch(n: int) -> Path:
+    """A launch file with n fireflies on a grid, each with its own Lee controller, all in lockstep."""
+    names = [f"firefly{i + 1}" for i in range(n)]
+    blocks = []
+    for i, name in enumerate(names):
+        blocks.append(f"""  <group ns="{name}">
+    <include file="$(find rotors_gazebo)/launch/spawn_mav.launch">
+      <arg name="mav_name" value="firefly"/><arg name="namespace" value="{name}"/>
+      <arg name="model" value="$(find rotors_description)/urdf/mav_generic_odometry_sensor.gazebo"/>
+      <arg name="x" value="{(i % 5) * 2.0}"/><arg name="y" value="{(i // 5) * 2.0}"/>
+    </include>
+    <node name="lee_position_controller_node" pkg="rotors_control" type="lee_position_controller_node">
+      <rosparam command="load" file="$(find rotors_gazebo)/resource/lee_controller_firefly.yaml"/>
+      <rosparam command="load" file="$(find rotors_gazebo)/resource/firefly.yaml"/>
+      <remap from="odometry" to="odometry_sensor1/odometry"/>
+    </node>
+  </group>
+""")
+    lock = ",".join(f"/{n}/command/motor_speed" for n in names)
+    text = f"""<launch>
+  <include file="$(find gazebo_ros)/launch/empty_world.launch">
+    <arg name="world_name" value="$(find rotors_gazebo)/worlds/basic.world"/>
+    <arg name="paused" value="true"/><arg name="gui" value="false"/><arg name="real_time_factor" value="0"/>
+    <arg name="lockstep_topics" value="{lock}"/>
+  </include>
+{''.join(blocks)}</launch>
+"""
+    path = OUT / f"swarm_{n}.launch"
+    path.write_text(text)
+    return path
+
+
+SWARM_WATCH = """
+import sys, time, rospy
+from geometry_msgs.msg import PoseStamped
+from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Empty
+n = int(sys.argv[1])
+rospy.init_node('bench_swarm', anonymous=True, disable_signals=True)
+pubs = [rospy.Publisher(f'/firefly{i + 1}/command/pose', PoseStamped, queue_size=1, latch=True) for i in range(n)]
+deadline = time.monotonic() + 240
+while any(p.get_num_connections() == 0 for p in pubs) or len(rospy.get_published_topics()) < 3 * n:
+    if time.monotonic() > deadline:
+        sys.exit('controllers did not come up')
+    time.sleep(0.2)
+for i, p in enumerate(pubs):
+    m = PoseStamped(); m.pose.position.x = (i % 5) * 2.0; m.pose.position.y = (i // 5) * 2.0
+    m.pose.position.z = 1.0; m.pose.orientation.w = 1.0; p.publish(m)
+time.sleep(2.0)
+rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
+t = lambda: rospy.wait_for_message('/clock', Clock, timeout=30).clock.to_sec()
+while t() < 2.0: pass
+w0, s0 = time.monotonic(), t()
+while t() < 12.0: pass
+print((t() - s0) / (time.monotonic() - w0))
+"""
+
+
+def swarm_rtf(n: int) -> float:
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(OUT / "ros"))
+    env.pop("DISPLAY", None)
+    launch = subprocess.Popen(["roslaunch", "-p", str(port), str(swarm_launch(n))], env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        out = subprocess.run([sys.executable, "-c", SWARM_WATCH, str(n)], env=env, capture_output=True, text=True,
+                             timeout=600, check=True).stdout
+        return float(out.split()[-1])
+    finally:
+        os.killpg(launch.pid, signal.SIGINT)
+        launch.wait(timeout=60)
+
+
 def main() -> int:
     OUT.mkdir(parents=True, exist_ok=True)
     urdf = OUT / "firefly.urdf"
@@ -74,13 +147,15 @@ def main() -> int:
     eng = engine_only(urdf)
     lock = [closed_loop(True) for _ in range(3)]
     free = [closed_loop(False) for _ in range(3)]
+    scaling = {n: swarm_rtf(n) for n in (1, 5, 10, 20)}
     res = {
         "engine_steps_per_s_1ms_no_ros": eng["steps_per_s"],
         "engine_plugins": eng["plugins"],
         "closed_loop_rtf_lockstep": statistics.median(r["real_time_factor"] for r in lock),
         "closed_loop_rtf_as_fast_as_possible": statistics.median(r["real_time_factor"] for r in free),
         "sim_peak_rss_mb": max(r["sim_peak_rss_mb"] for r in lock + free),
-        "not_measured": ["engine steps/s with ROS publishing", "scaling 1/5/10/20 fireflies", "RotorPy ratio"],
+        "lockstep_rtf_by_fireflies": scaling,
+        "not_measured": ["engine steps/s with ROS publishing", "RotorPy ratio"],
     }
     rows = [("engine, firefly with all plugins, 1 ms step, no ROS", f"{res['engine_steps_per_s_1ms_no_ros']:,.0f} steps/s",
              ">= 100,000"),
@@ -89,6 +164,8 @@ def main() -> int:
             ("closed loop, as fast as possible, no lockstep (controller falls behind: not a valid flight)",
              f"{res['closed_loop_rtf_as_fast_as_possible']:.1f} x real time", ">= 20"),
             ("simulator peak RSS, one firefly", f"{res['sim_peak_rss_mb']:.0f} MB", "<= 150 MB")]
+    rows += [(f"{n} firefl{'y' if n == 1 else 'ies'}, each with its Lee controller, lockstep (one run)",
+              f"{rtf:.1f} x real time", ">= 1 (20 fireflies)") for n, rtf in scaling.items()]
     w = [max(len(r[i]) for r in rows) for i in range(3)]
     print(f"{'measurement'.ljust(w[0])}  {'median'.ljust(w[1])}  target")
     for r in rows:
