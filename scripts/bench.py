@@ -46,24 +46,39 @@ print((t() - s0) / (time.monotonic() - w0))
 """
 
 
+class Graph:
+    """A private ROS master running `launch_cmd`; stopped with Ctrl-C semantics on exit."""
+
+    def __init__(self, launch_args: List[str]):
+        self.port = free_port()
+        self.env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{self.port}", ROS_HOME=str(OUT / "ros"))
+        self.env.pop("DISPLAY", None)
+        self.proc = subprocess.Popen(["roslaunch", "-p", str(self.port), *launch_args], env=self.env,
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+
+    def python(self, script: str, *args: str) -> float:
+        """Runs a watcher script against this graph; its last printed word is the result."""
+        out = subprocess.run([sys.executable, "-c", script, *args], env=self.env, capture_output=True, text=True,
+                             timeout=600, check=True).stdout
+        return float(out.split()[-1])
+
+    def __enter__(self) -> "Graph":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        os.killpg(self.proc.pid, signal.SIGINT)
+        self.proc.wait(timeout=60)
+
+
 def closed_loop(lockstep: bool) -> Dict:
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(OUT / "ros"))
-    env.pop("DISPLAY", None)
-    launch = subprocess.Popen(["roslaunch", "-p", str(port), "rotors_gazebo", "mav_hovering_example.launch", "gui:=false",
-                               "real_time_factor:=0", f"lockstep:={'true' if lockstep else 'false'}"],
-                              env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
-    try:
-        rtf = float(subprocess.run([sys.executable, "-c", CLOCK_WATCH], env=env, capture_output=True, text=True,
-                                   timeout=300, check=True).stdout.split()[-1])
-        info = sh(["rosnode", "info", "/gazebo"], env=env)
+    with Graph(["rotors_gazebo", "mav_hovering_example.launch", "gui:=false", "real_time_factor:=0",
+                f"lockstep:={'true' if lockstep else 'false'}"]) as g:
+        rtf = g.python(CLOCK_WATCH)
+        info = sh(["rosnode", "info", "/gazebo"], env=g.env)
         pid = next(l.split()[1] for l in info.splitlines() if l.startswith("Pid:"))
         rss_kb = int(next(l for l in Path(f"/proc/{pid}/status").read_text().splitlines()
                           if l.startswith("VmHWM")).split()[1])
         return {"real_time_factor": rtf, "sim_peak_rss_mb": rss_kb / 1024}
-    finally:
-        os.killpg(launch.pid, signal.SIGINT)
-        launch.wait(timeout=30)
 
 
 def swarm_launch(n: int) -> Path:
@@ -125,18 +140,8 @@ print((t() - s0) / (time.monotonic() - w0))
 
 
 def swarm_rtf(n: int) -> float:
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(OUT / "ros"))
-    env.pop("DISPLAY", None)
-    launch = subprocess.Popen(["roslaunch", "-p", str(port), str(swarm_launch(n))], env=env,
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
-    try:
-        out = subprocess.run([sys.executable, "-c", SWARM_WATCH, str(n)], env=env, capture_output=True, text=True,
-                             timeout=600, check=True).stdout
-        return float(out.split()[-1])
-    finally:
-        os.killpg(launch.pid, signal.SIGINT)
-        launch.wait(timeout=60)
+    with Graph([str(swarm_launch(n))]) as g:
+        return g.python(SWARM_WATCH, str(n))
 
 
 def main() -> int:

@@ -29,6 +29,13 @@
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace rotors_gazebo_plugins {
+namespace {
+void ToMsg(const rotors_sim::physics::Vector3d& v, geometry_msgs::Vector3* out) {
+  out->x = v.X();
+  out->y = v.Y();
+  out->z = v.Z();
+}
+}  // namespace
 
 class GazeboBagPlugin : public rotors_sim::ModelPlugin {
  public:
@@ -155,13 +162,8 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     Write(ns_ + "/" + pose_topic_, stamp, pose);
     geometry_msgs::TwistStamped twist;
     twist.header = pose.header;
-    const auto v = link_->WorldLinearVel(), w = link_->WorldAngularVel();
-    twist.twist.linear.x = v.X();
-    twist.twist.linear.y = v.Y();
-    twist.twist.linear.z = v.Z();
-    twist.twist.angular.x = w.X();
-    twist.twist.angular.y = w.Y();
-    twist.twist.angular.z = w.Z();
+    ToMsg(link_->WorldLinearVel(), &twist.twist.linear);
+    ToMsg(link_->WorldAngularVel(), &twist.twist.angular);
     Write(ns_ + "/" + twist_topic_, stamp, twist);
     mav_msgs::Actuators motors;
     motors.header = pose.header;
@@ -177,12 +179,8 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
       geometry_msgs::WrenchStamped wrench;
       wrench.header.stamp = stamp;
       wrench.header.frame_id = c.collision1 + "--" + c.collision2;
-      wrench.wrench.force.x = f.X();
-      wrench.wrench.force.y = f.Y();
-      wrench.wrench.force.z = f.Z();
-      wrench.wrench.torque.x = tau.X();
-      wrench.wrench.torque.y = tau.Y();
-      wrench.wrench.torque.z = tau.Z();
+      ToMsg(f, &wrench.wrench.force);
+      ToMsg(tau, &wrench.wrench.torque);
       Write(ns_ + "/" + wrench_topic_, stamp, wrench);
     }
   }
