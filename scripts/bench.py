@@ -21,11 +21,51 @@ def sh(cmd: List[str], **kw) -> str:
     return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw).stdout
 
 
-def engine_only(urdf: Path, runs: int = 3) -> Dict:
+def engine_only(urdf: Path, with_ros: bool, runs: int = 3) -> Dict:
+    """In-process engine benchmark; with_ros: plugins publish (a private master runs meanwhile)."""
     world = sh(["rospack", "find", "rotors_gazebo"]).strip() + "/worlds/basic.world"
     bench = ROOT / "build/ws/devel/lib/rotors_gazebo_plugins/rotors_engine_bench"
-    results = [json.loads(sh([str(bench), world, str(urdf), "firefly", "0.001", "20", "543.3"])) for _ in range(runs)]
+    cmd = [str(bench), world, str(urdf), "firefly", "0.001", "20", "543.3"] + (["--ros"] if with_ros else [])
+    env, master = dict(os.environ), None
+    if with_ros:
+        port = free_port()
+        env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
+        master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
+                                  stderr=subprocess.DEVNULL, start_new_session=True)
+        time.sleep(1.5)
+    try:
+        results = [json.loads(sh(cmd, env=env).splitlines()[-1]) for _ in range(runs)]
+    finally:
+        if master:
+            os.killpg(master.pid, signal.SIGINT)
+            master.wait(timeout=30)
     return {"steps_per_s": statistics.median(r["steps_per_s"] for r in results), "plugins": results[0]["plugins"]}
+
+
+ROTORPY_HOVER = """
+import time
+from rotorpy.environments import Environment
+from rotorpy.vehicles.multirotor import Multirotor
+from rotorpy.vehicles.crazyflie_params import quad_params
+from rotorpy.controllers.quadrotor_control import SE3Control
+from rotorpy.trajectories.hover_traj import HoverTraj
+env = Environment(vehicle=Multirotor(quad_params), controller=SE3Control(quad_params), trajectory=HoverTraj(),
+                  sim_rate=1000)
+t0 = time.monotonic()
+env.run(t_final=20, use_mocap=False, terminate=False, plot=False, animate_bool=False, verbose=False)
+print(time.monotonic() - t0)
+"""
+
+
+def rotorpy_hover_wall_s() -> float:
+    """The same 20 s hover simulated by RotorPy (SE3 controller, 1 kHz), in its own venv."""
+    venv = OUT / "rotorpy-venv"
+    if not (venv / "bin" / "python").exists():
+        subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
+        subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "rotorpy==3.0.0"], check=True)
+    out = subprocess.run([str(venv / "bin" / "python"), "-c", ROTORPY_HOVER], capture_output=True, text=True,
+                         check=True, cwd=OUT).stdout
+    return float(out.split()[-1])
 
 
 def free_port() -> int:
@@ -149,21 +189,34 @@ def main() -> int:
     urdf = OUT / "firefly.urdf"
     urdf.write_text(sh(["xacro", sh(["rospack", "find", "rotors_description"]).strip() +
                         "/urdf/mav_generic_odometry_sensor.gazebo", "mav_name:=firefly", "namespace:=firefly"]))
-    eng = engine_only(urdf)
+    eng = engine_only(urdf, with_ros=False)
+    eng_ros = engine_only(urdf, with_ros=True)
+    rotorpy_s = rotorpy_hover_wall_s()
     lock = [closed_loop(True) for _ in range(3)]
     free = [closed_loop(False) for _ in range(3)]
     scaling = {n: swarm_rtf(n) for n in (1, 5, 10, 20)}
     res = {
         "engine_steps_per_s_1ms_no_ros": eng["steps_per_s"],
         "engine_plugins": eng["plugins"],
+        "engine_steps_per_s_1ms_ros_publishing": eng_ros["steps_per_s"],
+        "rotorpy_20s_hover_1khz_wall_s": rotorpy_s,
+        "rotorpy_real_time_factor": 20.0 / rotorpy_s,
         "closed_loop_rtf_lockstep": statistics.median(r["real_time_factor"] for r in lock),
         "closed_loop_rtf_as_fast_as_possible": statistics.median(r["real_time_factor"] for r in free),
         "sim_peak_rss_mb": max(r["sim_peak_rss_mb"] for r in lock + free),
         "lockstep_rtf_by_fireflies": scaling,
-        "not_measured": ["engine steps/s with ROS publishing", "RotorPy ratio"],
+        "not_measured": [],
     }
     rows = [("engine, firefly with all plugins, 1 ms step, no ROS", f"{res['engine_steps_per_s_1ms_no_ros']:,.0f} steps/s",
              ">= 100,000"),
+            ("engine, the same, plugins publishing on ROS", f"{res['engine_steps_per_s_1ms_ros_publishing']:,.0f} steps/s",
+             ""),
+            ("RotorPy, 20 s hover, SE3 controller, 1 kHz (one run)", f"{res['rotorpy_real_time_factor']:.2f} x real time",
+             ""),
+            ("ratio: our engine at 1 ms / RotorPy at 1 kHz",
+             f"{res['engine_steps_per_s_1ms_no_ros'] / 1000.0 / res['rotorpy_real_time_factor']:.0f} x", ""),
+            ("ratio: our closed loop over ROS (lockstep, 10 ms) / RotorPy",
+             f"{res['closed_loop_rtf_lockstep'] / res['rotorpy_real_time_factor']:.0f} x", ""),
             ("closed loop (sim + Lee node + examples), lockstep, 10 ms", f"{res['closed_loop_rtf_lockstep']:.1f} x real time",
              ">= 10"),
             ("closed loop, as fast as possible, no lockstep (controller falls behind: not a valid flight)",

@@ -36,12 +36,21 @@ def fly_once(ros: RosGraph, tag: str) -> Path:
     return next(Path(ros.env["ROS_HOME"]).glob(f"{tag}_*.bag"))
 
 
+INPUT_TOPIC = "firefly/command/pose"  # the test's own input; rospy numbers its header.seq per publisher
+
+
 def messages(bag: Path, until_s: float):
+    """(topic, time, payload) of everything recorded; the input command without its header
+    (seq and stamp are the publishing client's, not the simulation's)."""
     out = []
     with Reader(bag) as r:
         for conn, t, raw in r.messages():
             if t <= until_s * 1e9:
-                out.append((conn.topic, t, bytes(raw)))
+                payload = bytes(raw)
+                if conn.topic == INPUT_TOPIC:  # Header = seq, sec, nsec, frame_id (uint32 length + bytes)
+                    frame_len = int.from_bytes(payload[12:16], "little")
+                    payload = payload[16 + frame_len:]
+                out.append((conn.topic, t, payload))
     return sorted(out)
 
 

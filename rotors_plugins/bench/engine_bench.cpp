@@ -1,9 +1,13 @@
 // Engine-only benchmark: a world with N models loaded from a URDF with all their plugins, no ROS
 // (plugins skip publishing when ROS is not initialised), motors held at the hover command, in
 // free flight (the world file gives the physics settings; no ground, so no contacts).
-//   rotors_engine_bench <world.sdf> <model.urdf> <namespace> <step_s> <sim_seconds> <hover_rad_s>
+//   rotors_engine_bench <world.sdf> <model.urdf> <namespace> <step_s> <sim_seconds> <hover_rad_s> [--ros]
+// --ros: initialise ROS first (needs a master), so the plugins publish as in the simulator.
 // Prints one JSON line: steps, wall seconds, steps per second, real-time factor.
 #include <chrono>
+#include <string>
+
+#include <ros/ros.h>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -16,7 +20,13 @@
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
 int main(int argc, char** argv) {
-  if (argc != 7) {
+  const bool with_ros = argc == 8 && std::string(argv[7]) == "--ros";
+  if (with_ros) {
+    int ros_argc = 1;
+    ros::init(ros_argc, argv, "rotors_engine_bench", ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
+    ros::start();
+  }
+  if (argc != 7 && !with_ros) {
     std::cerr << "usage: rotors_engine_bench <world> <model.urdf> <namespace> <step_s> <sim_seconds> <hover_rad_s>\n";
     return 2;
   }
@@ -39,7 +49,8 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::cout << "{\"steps\": " << steps << ", \"wall_s\": " << wall << ", \"steps_per_s\": " << steps / wall
               << ", \"real_time_factor\": " << steps * world_params.max_step_size_s / wall
-              << ", \"plugins\": " << model->Plugins().size() << "}" << std::endl;
+              << ", \"plugins\": " << model->Plugins().size() << ", \"ros\": " << (with_ros ? "true" : "false") << "}"
+              << std::endl;
     world->Fini();
   } catch (const std::exception& e) {
     std::cerr << "rotors_engine_bench: " << e.what() << std::endl;
