@@ -62,7 +62,8 @@ def rotorpy_hover_wall_s() -> float:
     venv = OUT / "rotorpy-venv"
     if not (venv / "bin" / "python").exists():
         subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
-        subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "rotorpy==3.0.0"], check=True)
+        subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "--disable-pip-version-check", "rotorpy==3.0.0"],
+                       check=True, stderr=subprocess.DEVNULL)
     out = subprocess.run([str(venv / "bin" / "python"), "-c", ROTORPY_HOVER], capture_output=True, text=True,
                          check=True, cwd=OUT).stdout
     return float(out.split()[-1])
