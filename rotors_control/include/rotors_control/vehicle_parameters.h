@@ -1,6 +1,7 @@
 // Vehicle parameters the controllers use (<mav>.yaml: mass, inertia, rotor_configuration).
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,5 +25,14 @@ struct VehicleParameters {
   /// Empty when valid, else one line naming the bad value.
   std::string Validate() const;
 };
+
+/// Returns `params` if params.Validate() is empty, else throws std::invalid_argument with the reason
+/// (for constructor initialiser lists).
+template <typename Params>
+const Params& Validated(const Params& params) {
+  const std::string why = params.Validate();
+  if (!why.empty()) throw std::invalid_argument(why);
+  return params;
+}
 
 }  // namespace rotors_control

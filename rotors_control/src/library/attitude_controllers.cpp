@@ -1,20 +1,11 @@
 #include "rotors_control/attitude_controllers.h"
 
 #include <cmath>
-#include <stdexcept>
 
 namespace rotors_control {
 
-namespace {
-const VehicleParameters& Checked(const VehicleParameters& v) {
-  const std::string why = v.Validate();
-  if (!why.empty()) throw std::invalid_argument(why);
-  return v;
-}
-}  // namespace
-
 AttitudeLevelController::AttitudeLevelController(const AttitudeControllerParameters& params)
-    : law_(params.attitude, Checked(params.vehicle).inertia_kg_m2), mixer_(params.vehicle) {}
+    : law_(params.attitude, Validated(params.vehicle).inertia_kg_m2), mixer_(params.vehicle) {}
 
 void AttitudeLevelController::SetRollPitchYawrateThrust(double roll, double pitch, double yaw_rate, double thrust_N) {
   roll_ = roll;

@@ -22,16 +22,8 @@ bool TrajectoryPoint::IsFinite() const {
          std::isfinite(yaw_rate_rad_s);
 }
 
-namespace {
-const LeePositionControllerParameters& Checked(const LeePositionControllerParameters& p) {
-  const std::string why = p.Validate();
-  if (!why.empty()) throw std::invalid_argument(why);
-  return p;
-}
-}  // namespace
-
 LeePositionController::LeePositionController(const LeePositionControllerParameters& params)
-    : params_(Checked(params)),
+    : params_(Validated(params)),
       attitude_law_(params.attitude, params.vehicle.inertia_kg_m2),
       mixer_(params.vehicle) {}
 
