@@ -51,17 +51,24 @@ void StatePublisher::Update(const physics::World& world, bool force) {
   ros::Time stamp;
   stamp.fromNSec(world.SimTime().Nanoseconds());
 
+  // model and link states are built only for listeners; TF and joint states always (rviz)
+  const bool want_models = model_states_pub_.getNumSubscribers() > 0;
+  const bool want_links = link_states_pub_.getNumSubscribers() > 0;
   gazebo_msgs::ModelStates models;
   gazebo_msgs::LinkStates links;
   std::vector<geometry_msgs::TransformStamped> transforms;
   for (const auto& model : world.Models()) {
-    models.name.push_back(model->GetName());
-    models.pose.push_back(ToMsg(model->WorldPose()));
-    models.twist.push_back(ToMsg(model->WorldLinearVel(), model->WorldAngularVel()));
-    for (const auto& link : model->GetLinks()) {
-      links.name.push_back(model->GetName() + "::" + link->GetName());
-      links.pose.push_back(ToMsg(link->WorldPose()));
-      links.twist.push_back(ToMsg(link->WorldLinearVel(), link->WorldAngularVel()));
+    if (want_models) {
+      models.name.push_back(model->GetName());
+      models.pose.push_back(ToMsg(model->WorldPose()));
+      models.twist.push_back(ToMsg(model->WorldLinearVel(), model->WorldAngularVel()));
+    }
+    if (want_links) {
+      for (const auto& link : model->GetLinks()) {
+        links.name.push_back(model->GetName() + "::" + link->GetName());
+        links.pose.push_back(ToMsg(link->WorldPose()));
+        links.twist.push_back(ToMsg(link->WorldLinearVel(), link->WorldAngularVel()));
+      }
     }
     if (model->IsStatic()) continue;
 
@@ -91,8 +98,8 @@ void StatePublisher::Update(const physics::World& world, bool force) {
     it->second.publish(js);
   }
   if (!transforms.empty()) tf_broadcaster_.sendTransform(transforms);
-  model_states_pub_.publish(models);
-  link_states_pub_.publish(links);
+  if (want_models) model_states_pub_.publish(models);
+  if (want_links) link_states_pub_.publish(links);
 }
 
 }  // namespace rotors_sim
