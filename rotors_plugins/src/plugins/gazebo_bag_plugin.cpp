@@ -1,9 +1,11 @@
 // librotors_gazebo_bag_plugin.so (reference section 4.7): writes a bag from inside the simulator,
 // stamped with sim time. Every step: <ns>/ground_truth/pose (PoseStamped), <ns>/ground_truth/twist
 // (TwistStamped, world frame), <ns>/motor_speed (Actuators, signed real speeds), <ns>/wrench (one
-// WrenchStamped per contact of the model). Re-recorded from ROS: imu, odometry, commands, wind.
+// WrenchStamped per contact of the model). Re-recorded from ROS: imu, odometry, commands, wind,
+// and any topics of any type listed in <extraTopics> (ours; e.g. an estimator's output).
 // File: <ROS_HOME or ~/.ros>/<bagFileName>_YYYY-MM-DD-HH-MM-SS.bag; service record_rosbag.
 #include <ctime>
+#include <sstream>
 
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TwistStamped.h>
@@ -16,6 +18,7 @@
 #include <rotors_comm/RecordRosbag.h>
 #include <rotors_comm/WindSpeed.h>
 #include <sensor_msgs/Imu.h>
+#include <topic_tools/shape_shifter.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
 #include "rotors_core/error.h"
@@ -45,7 +48,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     CheckKnownParams(sdf, {"robotNamespace", "bagFileName", "linkName", "frameId", "imuTopic", "odometryTopic",
                            "commandAttitudeThrustTopic", "commandMotorSpeedTopic", "commandRateThrustTopic",
                            "windSpeedTopic", "motorTopic", "poseTopic", "twistTopic", "wrenchesTopic",
-                           "externalForceTopic", "waypointTopic", "commandPoseTopic", "recordingServiceName",
+                           "externalForceTopic", "waypointTopic", "commandPoseTopic", "extraTopics", "recordingServiceName",
                            "rotorVelocitySlowdownSim", "waitToRecordBag"});
     ns_ = ReadRobotNamespace(sdf);
     std::string link_name = "base_link", service = "record_rosbag";
@@ -82,6 +85,8 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     Record<geometry_msgs::WrenchStamped>(topic("externalForceTopic", "external_force"));
     Record<trajectory_msgs::MultiDOFJointTrajectory>(topic("waypointTopic", "command/trajectory"));
     Record<geometry_msgs::PoseStamped>(topic("commandPoseTopic", "command/pose"));
+    std::istringstream extra(topic("extraTopics", ""));
+    for (std::string name; extra >> name;) Record<topic_tools::ShapeShifter>(name);  // whatever type they carry
     service_ = node_->advertiseService(service, &GazeboBagPlugin::OnRecord, this);
     if (!wait_to_record) Open();
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });

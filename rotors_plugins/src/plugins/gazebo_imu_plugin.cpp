@@ -2,6 +2,9 @@
 // noise model of book eqs. 12-15 (reference section 4.4). Every parameter the RotorS xacro
 // writes is read: <gyroscopeRandomWalk> (xacro spelling) and <gyroscopeBiasRandomWalk> (plugin
 // spelling) are the same parameter (RotorS issue #336 does not recur).
+// Ours: <biasTopic> (optional) publishes the true biases (rotors_comm/ImuBias) while someone
+// listens, so estimators can be judged on their bias estimates.
+#include <rotors_comm/ImuBias.h>
 #include <sensor_msgs/Imu.h>
 
 #include "rotors_core/error.h"
@@ -22,11 +25,12 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     CheckKnownParams(sdf, {"robotNamespace", "linkName", "imuTopic", "gyroscopeNoiseDensity", "gyroscopeRandomWalk",
                            "gyroscopeBiasRandomWalk", "gyroscopeBiasCorrelationTime", "gyroscopeTurnOnBiasSigma",
                            "accelerometerNoiseDensity", "accelerometerRandomWalk", "accelerometerBiasCorrelationTime",
-                           "accelerometerTurnOnBiasSigma", "randomEngineSeed"});
+                           "accelerometerTurnOnBiasSigma", "randomEngineSeed", "biasTopic"});
     const std::string ns = ReadRobotNamespace(sdf);
-    std::string link_name, topic = "imu";
+    std::string link_name, topic = "imu", bias_topic;
     RequireParam(sdf, "linkName", &link_name);
     ReadParam(sdf, "imuTopic", &topic);
+    ReadParam(sdf, "biasTopic", &bias_topic);
     ImuNoiseParams p;
     ReadParam(sdf, "gyroscopeNoiseDensity", &p.gyroscope_noise_density);
     const bool xacro_name = ReadParam(sdf, "gyroscopeRandomWalk", &p.gyroscope_random_walk);
@@ -58,6 +62,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     node_ = MakeNode(ns);
     if (node_) {
       pub_ = node_->advertise<sensor_msgs::Imu>(topic, 10);
+      if (!bias_topic.empty()) bias_pub_ = node_->advertise<rotors_comm::ImuBias>(bias_topic, 10);
       ROS_DEBUG("[imu] %s/%s seed %lu", ns.c_str(), topic.c_str(), static_cast<unsigned long>(seed_));
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
@@ -86,6 +91,18 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     msg_.linear_acceleration.y = m.linear_acceleration_I.y();
     msg_.linear_acceleration.z = m.linear_acceleration_I.z();
     pub_.publish(msg_);
+    if (bias_pub_ && bias_pub_.getNumSubscribers() > 0) {
+      rotors_comm::ImuBias bias;
+      bias.header = msg_.header;
+      const Eigen::Vector3d b_w = noise_->TotalGyroscopeBias(), b_a = noise_->TotalAccelerometerBias();
+      bias.gyroscope_bias.x = b_w.x();
+      bias.gyroscope_bias.y = b_w.y();
+      bias.gyroscope_bias.z = b_w.z();
+      bias.accelerometer_bias.x = b_a.x();
+      bias.accelerometer_bias.y = b_a.y();
+      bias.accelerometer_bias.z = b_a.z();
+      bias_pub_.publish(bias);
+    }
   }
 
   ImuNoiseParams params_;
@@ -95,7 +112,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::World* world_ = nullptr;
   sensor_msgs::Imu msg_;
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher pub_;
+  ros::Publisher pub_, bias_pub_;
   rotors_sim::event::ConnectionPtr connection_;
 };
 

@@ -46,6 +46,7 @@ class FlightData:
     topics: Dict[str, str] = field(default_factory=dict)
 
 
+POSE_COMMAND_TOPIC = "/command/pose"
 POSE_TYPES = ("geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/TransformStamped",
               "geometry_msgs/msg/PointStamped", "nav_msgs/msg/Odometry", "geometry_msgs/msg/Pose")
 
@@ -146,16 +147,19 @@ def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, wa
             tw.append(_stamp(msg, t_ns))
             w.append([ang.x, ang.y, ang.z])
         waypoints = []
-        wp_topic = bag.resolve(mav_name, waypoint_topic)
+        # the waypoint topic, else the pose command (hovering_example_msf sends a PoseStamped there)
+        wp_topic = bag.resolve(mav_name, waypoint_topic) or bag.resolve(mav_name, POSE_COMMAND_TOPIC)
         if wp_topic:
             used["waypoints"] = wp_topic
             last = None
-            for msg, _, t_ns in bag.messages(wp_topic):
-                if not msg.points or not msg.points[0].transforms:
+            for msg, msgtype, t_ns in bag.messages(wp_topic):
+                if msgtype.endswith("PoseStamped"):
+                    pos, rot = msg.pose.position, msg.pose.orientation
+                elif msg.points and msg.points[0].transforms:
+                    pos, rot = msg.points[0].transforms[0].translation, msg.points[0].transforms[0].rotation
+                else:
                     continue
-                tr = msg.points[0].transforms[0]
-                sample = WaypointSample(_stamp(msg, t_ns), np.array([tr.translation.x, tr.translation.y,
-                                                                    tr.translation.z]), _yaw(tr.rotation))
+                sample = WaypointSample(_stamp(msg, t_ns), np.array([pos.x, pos.y, pos.z]), _yaw(rot))
                 key = (tuple(sample.position), sample.yaw)
                 if key != last:  # consecutive duplicates are dropped, as RotorS
                     waypoints.append(sample)
