@@ -52,6 +52,23 @@ class ParamReader {
   std::set<std::string> read_;
 };
 
+/// Throttles a warning on wall time (ROS_WARN_THROTTLE uses ros::Time, which stands still before
+/// the simulator's first /clock, exactly when bad input is most worth reporting).
+class WallThrottle {
+ public:
+  explicit WallThrottle(double period_s) : period_s_(period_s) {}
+  bool Ready() {
+    const ros::WallTime now = ros::WallTime::now();
+    if (!last_.isZero() && (now - last_).toSec() < period_s_) return false;
+    last_ = now;
+    return true;
+  }
+
+ private:
+  double period_s_;
+  ros::WallTime last_;
+};
+
 bool AllFinite(std::initializer_list<double> values) {
   for (double v : values)
     if (!std::isfinite(v)) return false;
@@ -138,7 +155,7 @@ class PoseSensorNode {
     const auto& w = msg->angular_velocity;
     const auto& a = msg->linear_acceleration;
     if (!AllFinite({w.x, w.y, w.z, a.x, a.y, a.z})) {
-      ROS_WARN_THROTTLE(1.0, "[msf] IMU message at t = %.3f s has non-finite values; dropped", msg->header.stamp.toSec());
+      if (bad_imu_warning_.Ready()) ROS_WARN("[msf] IMU message at t = %.3f s has non-finite values; dropped", msg->header.stamp.toSec());
       return;
     }
     ImuReading u;
@@ -147,7 +164,7 @@ class PoseSensorNode {
     u.a_m_I = Eigen::Vector3d(a.x, a.y, a.z);
     if (!ekf_->AddImu(u)) {
       if (!ekf_->Initialized())
-        ROS_WARN_THROTTLE(5.0, "[msf] not initialised: call %s",
+        if (not_initialised_warning_.Ready()) ROS_WARN("[msf] not initialised: call %s",
                           pnh_.resolveName("pose_sensor/initialize_msf_scale").c_str());
       return;
     }
@@ -184,7 +201,7 @@ class PoseSensorNode {
     z.p_m_W = Eigen::Vector3d(p.x, p.y, p.z);
     z.q_m_WC = Eigen::Quaterniond(q.w, q.x, q.y, q.z);
     if (!z.p_m_W.allFinite() || !z.q_m_WC.coeffs().allFinite() || std::abs(z.q_m_WC.norm() - 1.0) > 1e-2) {
-      ROS_WARN_THROTTLE(1.0, "[msf] pose at t = %.3f s has a non-finite position or a non-unit quaternion "
+      if (bad_pose_warning_.Ready()) ROS_WARN("[msf] pose at t = %.3f s has a non-finite position or a non-unit quaternion "
                         "(norm %.3f); dropped", z.t_s, z.q_m_WC.norm());
       return;
     }
@@ -209,8 +226,8 @@ class PoseSensorNode {
         FillPose(ekf_->StateAt(z.t_s - s.pose_delay_s), header.stamp, &out);
         pose_after_update_pub_.publish(out);
       }
-    } else if (status == PoseStatus::kTooOld || status == PoseStatus::kRejectedOutlier) {
-      ROS_WARN_THROTTLE(1.0, "[msf] pose at t = %.3f s %s (Mahalanobis distance %.1f)", z.t_s, ToString(status),
+    } else if ((status == PoseStatus::kTooOld && z.t_s >= init_time_s_) || status == PoseStatus::kRejectedOutlier) {
+      if (refused_pose_warning_.Ready()) ROS_WARN("[msf] pose at t = %.3f s %s (Mahalanobis distance %.1f)", z.t_s, ToString(status),
                         ekf_->LastMahalanobis());
     }
   }
@@ -313,6 +330,7 @@ class PoseSensorNode {
 
   bool OnInitScale(sensor_fusion_comm::InitScale::Request& req, sensor_fusion_comm::InitScale::Response& res) {
     const std::string why = ekf_->InitializeScale(req.scale);
+    if (why.empty()) init_time_s_ = ekf_->State().t_s;
     res.result = why.empty() ? "Initialized scale" : "Not initialized: " + why;
     if (why.empty())
       ROS_INFO("[msf] initialised with scale %.3f", req.scale);
@@ -323,6 +341,7 @@ class PoseSensorNode {
 
   bool OnInitHeight(sensor_fusion_comm::InitHeight::Request& req, sensor_fusion_comm::InitHeight::Response& res) {
     const std::string why = ekf_->InitializeHeight(req.height);
+    if (why.empty()) init_time_s_ = ekf_->State().t_s;
     res.result = why.empty() ? "Initialized by known height" : "Not initialized: " + why;
     if (why.empty())
       ROS_INFO("[msf] initialised at height %.3f m (scale %.3f)", req.height, ekf_->PoseParams().scale);
@@ -337,6 +356,8 @@ class PoseSensorNode {
   std::vector<ros::Subscriber> subs_;
   ros::Publisher odometry_pub_, pose_pub_, pose_after_update_pub_, state_pub_, cov_pub_;
   ros::ServiceServer init_scale_srv_, init_height_srv_;
+  WallThrottle bad_imu_warning_{1.0}, bad_pose_warning_{1.0}, refused_pose_warning_{1.0}, not_initialised_warning_{5.0};
+  double init_time_s_ = 0.0;  ///< poses captured before initialisation are old news, not worth a warning
   tf2_ros::TransformBroadcaster tf_broadcaster_;
 };
 
@@ -345,8 +366,9 @@ class PoseSensorNode {
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "msf_pose_sensor");
+  ros::NodeHandle nh, pnh("~");  // outlive a failing constructor: ROS_FATAL needs ROS up
   try {
-    msf_updates::PoseSensorNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    msf_updates::PoseSensorNode node(nh, pnh);
     ros::spin();
   } catch (const std::exception& e) {
     ROS_FATAL("[msf] %s", e.what());

@@ -138,9 +138,10 @@ def error_state(truth: Track, estimate: Track, idx: np.ndarray) -> np.ndarray:
 
 
 def evaluate_estimator(path: Path, mav_name: str, estimate_topic: str = "/msf_core/odometry",
-                       begin: Optional[float] = None, end: Optional[float] = None) -> EstimatorResult:
-    """begin defaults to 5 s after the first estimate (convergence), end to the last one."""
-    truth, estimate, extras = load_tracks(Path(path), mav_name, estimate_topic)
+                       begin: Optional[float] = None, end: Optional[float] = None, loaded=None) -> EstimatorResult:
+    """begin defaults to 5 s after the first estimate (convergence), end to the last one.
+    `loaded`: the result of load_tracks, if the bag was read already."""
+    truth, estimate, extras = loaded or load_tracks(Path(path), mav_name, estimate_topic)
     t0 = estimate.t[0] + 5.0 if begin is None else begin
     t1 = estimate.t[-1] if end is None else end
     idx = _nearest(truth.t, estimate.t)
@@ -173,30 +174,17 @@ def evaluate_estimator(path: Path, mav_name: str, estimate_topic: str = "/msf_co
                                                              np.linalg.norm(b_true[3:]))
     if "cov" in extras and "state" in extras and "bias" in extras:
         result.nees_mean, result.nees_fraction_inside_95, result.nees_samples = _nees(
-            truth, estimate, idx, window, extras)
+            truth, estimate, t0, t1, extras)
     return result
 
 
-def _nees(truth: Track, estimate: Track, idx: np.ndarray, window: np.ndarray, extras) -> tuple:
-    t_cov, covs = extras["cov"]
-    t_state, states = extras["state"]
-    t_bias, biases = extras["bias"]
-    states, biases = np.array(states), np.array(biases)
-    e9 = error_state(truth, estimate, idx)
-    values = []
-    for i in np.flatnonzero(window):
-        t = estimate.t[i]
-        kc, ks, kb = (_nearest(t_cov, np.array([t]))[0], _nearest(t_state, np.array([t]))[0],
-                      _nearest(t_bias, np.array([t]))[0])
-        if abs(t_cov[kc] - t) > 1e-6 or abs(t_state[ks] - t) > 1e-6 or abs(t_bias[kb] - t) > 1e-6:
-            continue
-        e = np.concatenate([e9[i], biases[kb, :3] - states[ks, 10:13], biases[kb, 3:] - states[ks, 13:16]])
-        values.append(float(e @ np.linalg.solve(covs[kc], e)))
-    if not values:
+def _nees(truth: Track, estimate: Track, window_begin: float, window_end: float, extras) -> tuple:
+    t, v = _nees_series(truth, estimate, extras)
+    v = v[(t >= window_begin) & (t <= window_end)]
+    if not v.size:
         return float("nan"), float("nan"), 0
-    v = np.array(values)
     inside = np.mean((v >= NEES_BOUNDS_95[0]) & (v <= NEES_BOUNDS_95[1]))
-    return float(v.mean()), float(inside), len(v)
+    return float(v.mean()), float(inside), int(v.size)
 
 
 def report(r: EstimatorResult, out=print) -> None:
@@ -215,3 +203,115 @@ def report(r: EstimatorResult, out=print) -> None:
             f"samples inside the 95 % chi-square bounds [{NEES_BOUNDS_95[0]:.2f}, {NEES_BOUNDS_95[1]:.2f}]")
     for begin, end in r.pose_gaps:
         out(f"Pose outage from {begin:.2f} s to {end:.2f} s ({end - begin:.2f} s)")
+
+
+def _nees_series(truth: Track, estimate: Track, extras) -> tuple:
+    """(t, NEES) at every estimate that has covariance, state and bias truth at the same stamp."""
+    t_cov, covs = extras["cov"]
+    t_state, states = extras["state"]
+    t_bias, biases = extras["bias"]
+    states, biases = np.array(states), np.array(biases)
+    idx = _nearest(truth.t, estimate.t)
+    e9 = error_state(truth, estimate, idx)
+    ts, values = [], []
+    kc, ks, kb = _nearest(t_cov, estimate.t), _nearest(t_state, estimate.t), _nearest(t_bias, estimate.t)
+    for i, t in enumerate(estimate.t):
+        if max(abs(t_cov[kc[i]] - t), abs(t_state[ks[i]] - t), abs(t_bias[kb[i]] - t), abs(truth.t[idx[i]] - t)) > 1e-6:
+            continue
+        e = np.concatenate([e9[i], biases[kb[i], :3] - states[ks[i], 10:13], biases[kb[i], 3:] - states[ks[i], 13:16]])
+        ts.append(t)
+        values.append(float(e @ np.linalg.solve(covs[kc[i]], e)))
+    return np.array(ts), np.array(values)
+
+
+def plot_estimator(truth: Track, estimate: Track, extras, out_dir: Path, prefix: str, save: bool) -> List[Path]:
+    from rotors_evaluation.plots import _finish, plt  # matplotlib only when plotting
+    saved: List[Path] = []
+    idx = _nearest(truth.t, estimate.t)
+    e = error_state(truth, estimate, idx)
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for k, label in enumerate("xyz"):
+        ax.plot(estimate.t, e[:, k], label=f"{label} error", color=f"C{k}", linewidth=0.8)
+    if "cov" in extras:
+        t_cov, covs = extras["cov"]
+        sigma = np.sqrt(np.array([np.diag(c)[:3] for c in covs]))
+        for k in range(3):
+            ax.plot(t_cov, 3 * sigma[:, k], ":", color=f"C{k}", linewidth=0.8)
+            ax.plot(t_cov, -3 * sigma[:, k], ":", color=f"C{k}", linewidth=0.8)
+    ax.set_ylim(-0.1, 0.1)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("ground truth - estimate [m]")
+    ax.set_title("Estimator position error (dotted: 3 sigma of the filter)")
+    ax.legend()
+    ax.grid(True)
+    _finish(fig, "estimator_position_error", out_dir, prefix, save, saved)
+    if "state" in extras and "bias" in extras:
+        t_state, states = extras["state"][0], np.array(extras["state"][1])
+        t_bias, biases = extras["bias"][0], np.array(extras["bias"][1])
+        fig, axes = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+        for row, (cols, name, unit) in enumerate(((slice(10, 13), "gyroscope bias", "rad/s"),
+                                                  (slice(13, 16), "accelerometer bias", "m/s^2"))):
+            truth_cols = slice(0, 3) if row == 0 else slice(3, 6)
+            for k, label in enumerate("xyz"):
+                axes[row].plot(t_state, states[:, cols][:, k], color=f"C{k}", label=f"{label} estimate")
+                axes[row].plot(t_bias, biases[:, truth_cols][:, k], "--", color=f"C{k}", label=f"{label} truth")
+            axes[row].set_ylabel(f"{name} [{unit}]")
+            axes[row].grid(True)
+        axes[0].legend(ncol=3, fontsize="small")
+        axes[1].set_xlabel("time [s]")
+        axes[0].set_title("IMU biases: estimate (solid) and simulated truth (dashed)")
+        _finish(fig, "estimator_biases", out_dir, prefix, save, saved)
+        if "cov" in extras:
+            t, nees = _nees_series(truth, estimate, extras)
+            fig, ax = plt.subplots(figsize=(8, 4.5))
+            ax.semilogy(t, nees, linewidth=0.6, label="NEES")
+            for b in NEES_BOUNDS_95:
+                ax.axhline(b, color="r", linestyle="--", linewidth=0.8)
+            ax.set_xlabel("time [s]")
+            ax.set_ylabel("NEES (15 states)")
+            ax.set_title("Filter consistency (dashed: 95 % chi-square bounds)")
+            ax.grid(True)
+            _finish(fig, "estimator_nees", out_dir, prefix, save, saved)
+    return saved
+
+
+def main(argv=None) -> int:
+    """estimator_eval.py: the estimate against ground truth from one bag (see the module doc)."""
+    import argparse
+    import json
+    import sys
+    from dataclasses import asdict
+
+    from rotors_evaluation.options import str2bool
+    p = argparse.ArgumentParser(description="Evaluate a state estimator's output against the simulator's ground "
+                                            "truth (estimator RMS, bias estimates, NEES).")
+    p.add_argument("-b", "--bagfile", required=True, type=Path)
+    p.add_argument("-n", "--mav_name", default="")
+    p.add_argument("--estimate_topic", default="/msf_core/odometry", help="nav_msgs/Odometry of the estimator")
+    p.add_argument("--begin_time", type=float, help="[s] default: 5 s after the first estimate")
+    p.add_argument("-e", "--end_time", type=float, help="[s] default: the last estimate")
+    p.add_argument("-s", "--save_plots", nargs="?", const=True, default=False, type=str2bool)
+    p.add_argument("-d", "--plot", nargs="?", const=True, default=True, type=str2bool)
+    p.add_argument("--prefix", default="")
+    p.add_argument("--plot_dir", type=Path, default=Path("."))
+    p.add_argument("--json", type=Path, help="also write the result as JSON here ('-' = stdout)")
+    a = p.parse_args(argv)
+    try:
+        loaded = load_tracks(a.bagfile, a.mav_name, a.estimate_topic)
+        result = evaluate_estimator(a.bagfile, a.mav_name, a.estimate_topic, a.begin_time, a.end_time, loaded)
+    except BagError as e:
+        print(f"estimator_eval.py: {e}", file=sys.stderr)
+        return 1
+    report(result)
+    if a.save_plots or a.plot:
+        saved = plot_estimator(*loaded, a.plot_dir, a.prefix, a.save_plots)
+        if a.plot and not a.save_plots:
+            from rotors_evaluation.plots import plt
+            if plt.get_backend().lower() != "agg":
+                plt.show()
+        if saved:
+            print("Plots saved: " + ", ".join(str(s) for s in saved))
+    if a.json:
+        text = json.dumps(asdict(result), indent=2, allow_nan=True)
+        print(text) if str(a.json) == "-" else a.json.write_text(text + "\n")
+    return 0
