@@ -33,6 +33,9 @@ REFERENCE_MSGS = {
                        'string GPS_STATUS_LOCK="lock"\nstring GPS_STATUS_NO_LOCK="no_lock"\n',
     "rotors_comm/WindSpeed": "Header header\ngeometry_msgs/Vector3 velocity\n",
     "gazebo_msgs/ModelStates": "string[] name\ngeometry_msgs/Pose[] pose\ngeometry_msgs/Twist[] twist\n",
+    # ethzasl_msf (reference section 8)
+    "sensor_fusion_comm/DoubleArrayStamped": "Header header\nfloat64[] data\n",
+    "sensor_fusion_comm/DoubleMatrixStamped": "Header header\nint32 rows\nint32 cols\nfloat64[] data\n",
 }
 REFERENCE_SRVS = {
     "rotors_comm/RecordRosbag": "bool record\n---\nbool success\n",
@@ -40,6 +43,8 @@ REFERENCE_SRVS = {
                               "geometry_msgs/Pose initial_pose\nstring reference_frame\n---\n"
                               "bool success\nstring status_message\n",
     "gazebo_msgs/DeleteModel": "string model_name\n---\nbool success\nstring status_message\n",
+    "sensor_fusion_comm/InitScale": "float32 scale\n---\nstring result\n",
+    "sensor_fusion_comm/InitHeight": "float32 height\n---\nstring result\n",
 }
 SEARCH_PATH = {pkg: [f"/usr/share/{pkg}/msg"] for pkg in ("std_msgs", "geometry_msgs")}
 

@@ -72,7 +72,7 @@ def evaluate_hovering(data: FlightData, opts: EvalOptions, out=print) -> EvalRes
     pos_rms, ang_rms = _window_rms(data, wp.position, start, end)
     result.segments.append(SegmentResult([*wp.position.tolist(), wp.yaw], wp.t, None, pos_rms, ang_rms))
     result.position_rms, result.angular_velocity_rms = pos_rms, ang_rms
-    _report(result, metrics.collisions_after(data.collision_times, start), out)
+    _report(result, metrics.collisions_after(data.collision_times, start, opts.end_time), out)
     return result
 
 
@@ -110,7 +110,7 @@ def evaluate_waypoints(data: FlightData, opts: EvalOptions, out=print) -> EvalRe
     result.angular_velocity_rms = float(np.nanmean(ang_list))
     result.settling_time = float(np.mean(settle_times)) if settle_times else None
     start = data.waypoints[0].t + opts.delay_first_evaluation
-    _report(result, metrics.collisions_after(data.collision_times, start), out, averages=True)
+    _report(result, metrics.collisions_after(data.collision_times, start, opts.end_time), out, averages=True)
     return result
 
 
@@ -132,7 +132,8 @@ def evaluate_disturbance(data: FlightData, opts: EvalOptions, out=print) -> Eval
         + ("" if settle is not None else " (did not settle)"))
     result.segments.append(SegmentResult([*wp.position.tolist(), wp.yaw], DISTURBANCE_TIME_S, settle, pos, ang))
     result.position_rms, result.angular_velocity_rms = pos, ang
-    _report(result, metrics.collisions_after(data.collision_times, data.waypoints[0].t + opts.delay_first_evaluation),
+    _report(result, metrics.collisions_after(data.collision_times, data.waypoints[0].t + opts.delay_first_evaluation,
+                                                     opts.end_time),
             out)
     return result
 

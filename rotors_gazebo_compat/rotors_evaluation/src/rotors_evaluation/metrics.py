@@ -32,8 +32,9 @@ def settling_time(series: Series, setpoint: np.ndarray, radius: float, min_settl
     return None
 
 
-def collisions_after(collision_times: np.ndarray, start: float) -> np.ndarray:
-    return collision_times[collision_times >= start]
+def collisions_after(collision_times: np.ndarray, start: float, end: float = float("inf")) -> np.ndarray:
+    """Collisions in [start, end] (end: the --end_time of the evaluation)."""
+    return collision_times[(collision_times >= start) & (collision_times <= end)]
 
 
 def get_score(x: float, max_value: float, scores: Sequence[float]) -> float:
