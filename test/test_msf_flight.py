@@ -81,6 +81,21 @@ def test_firefly_hovers_on_the_estimate_and_the_filter_is_consistent(ros: RosGra
     assert "[Waypoint 0]: [0.000, 0.000, 1.000, 0.000]" in out.stdout and "No collisions occurred" in out.stdout, out
     assert "Position RMS error: 0.0" in out.stdout, out.stdout
 
+    # side by side with the ideal odometry sensor: the same ground-truth metrics, plus the estimator's
+    ideal = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true",
+                   "real_time_factor:=10", "random_seed:=3", "log_file:=ideal", name="ideal_launch")
+    try:
+        wait_sim_time(ros, 21.0)
+    finally:
+        stop_launch(ideal)
+    ideal_bag = sorted(Path(ros.env["ROS_HOME"]).glob("ideal_*.bag"))[-1]
+    out = subprocess.run(["rosrun", "rotors_evaluation", "compare_eval.py", "-b", str(ideal_bag), str(bag),
+                          "--mav_name", "firefly", "--end_time", "46"], capture_output=True, text=True, env=ros.env)
+    assert out.returncode == 0, out.stdout + out.stderr
+    rows = [line.split() for line in out.stdout.splitlines()[2:]]
+    assert rows[0][0] == ideal_bag.name and rows[0][1] == "0.040" and rows[0][4] == "-", out.stdout
+    assert rows[1][0] == bag.name and float(rows[1][1]) < 0.1 and float(rows[1][4]) < 0.03, out.stdout
+
 
 def test_estimator_survives_a_pose_outage_and_reconverges(ros: RosGraph, tmp_path: Path):
     # outage map: dark for 0.6 m <= x < 1.4 m (0.1 m per pixel, centred on the origin)

@@ -10,7 +10,7 @@ from typing import List, Optional, Sequence
 import numpy as np
 
 from rotors_evaluation import metrics
-from rotors_evaluation.bag_data import BagError, FlightData, load_flight
+from rotors_evaluation.bag_data import BagError, FlightBag, FlightData, load_flight
 from rotors_evaluation.options import EvalOptions, parse
 from rotors_evaluation.plots import plot_flight
 
@@ -194,20 +194,38 @@ def run(kind: str, description: str, argv: Optional[Sequence[str]] = None) -> in
     return 0
 
 
+def _has_topic(path: Path, mav_name: str, topic: str) -> bool:
+    bag = FlightBag(path)
+    try:
+        return bag.resolve(mav_name, topic) is not None
+    finally:
+        bag.close()
+
+
 def compare(argv: Optional[Sequence[str]] = None) -> int:
-    """Tabulates the hovering metrics of several bags (controllers or estimators side by side)."""
+    """Tabulates the hovering metrics of several bags (controllers or estimators side by side); for
+    bags holding an estimator's output (msf_core/odometry) also its error against ground truth over
+    the same window."""
+    from rotors_evaluation.estimator import evaluate_estimator
     opts = parse("Compare the hovering performance of several flights.", argv, many_bags=True)
     rows = []
     for bag in opts.bagfiles:
         try:
-            r = evaluate_hovering(_load(opts, bag), opts, out=lambda *_: None)
+            data = _load(opts, bag)
+            r = evaluate_hovering(data, opts, out=lambda *_: None)
+            estimator = "-"
+            if _has_topic(bag, opts.mav_name, "/msf_core/odometry"):
+                start = max(data.waypoints[0].t + opts.delay_first_evaluation, opts.begin_time)
+                est = evaluate_estimator(bag, opts.mav_name, begin=start, end=min(start + opts.rms_calc_time,
+                                                                                   opts.end_time))
+                estimator = f"{est.position_rms:.3f}"
             rows.append((bag.name, f"{r.position_rms:.3f}", f"{r.angular_velocity_rms:.3f}",
-                         str(len(r.collision_times))))
+                         str(len(r.collision_times)), estimator))
         except BagError as e:
-            rows.append((bag.name, "error", str(e), ""))
-    header = ("bag", "position RMS [m]", "angular velocity RMS [rad/s]", "collisions")
+            rows.append((bag.name, "error", str(e), "", ""))
+    header = ("bag", "position RMS [m]", "angular velocity RMS [rad/s]", "collisions", "estimator position RMS [m]")
     widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(header)]
-    line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths))
+    line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
     print(line(header))
     print(line(["-" * w for w in widths]))
     for r in rows:
