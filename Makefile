@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test demo bench clean
+.PHONY: setup build test demo demo-msf bench clean
 
 setup:
 	@bash scripts/setup.sh
@@ -13,6 +13,9 @@ test: build
 
 demo: build
 	@bash scripts/demo.sh
+
+demo-msf: build
+	@bash scripts/demo.sh msf
 
 bench: build
 	@bash scripts/bench.sh
