@@ -15,6 +15,7 @@ from typing import Dict, List
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "bench"
+WS = ROOT / "build" / "ws"
 
 
 def sh(cmd: List[str], **kw) -> str:
@@ -80,9 +81,10 @@ import sys, time, rospy
 from rosgraph_msgs.msg import Clock
 rospy.init_node('bench_clock', anonymous=True, disable_signals=True)
 t = lambda: rospy.wait_for_message('/clock', Clock, timeout=30).clock.to_sec()
-while t() < 5.0: pass
+begin, end = (float(a) for a in sys.argv[1:3]) if len(sys.argv) > 2 else (5.0, 25.0)
+while t() < begin: pass
 w0, s0 = time.monotonic(), t()
-while t() < 25.0: pass
+while t() < end: pass
 print((t() - s0) / (time.monotonic() - w0))
 """
 
@@ -120,6 +122,18 @@ def closed_loop(lockstep: bool) -> Dict:
         rss_kb = int(next(l for l in Path(f"/proc/{pid}/status").read_text().splitlines()
                           if l.startswith("VmHWM")).split()[1])
         return {"real_time_factor": rtf, "sim_peak_rss_mb": rss_kb / 1024}
+
+
+def closed_loop_with_estimator() -> float:
+    """The MSF example in lockstep: sim + pose_sensor estimator + Lee node, 15-35 s (after init)."""
+    with Graph(["rotors_gazebo", "mav_hovering_example_msf.launch", "gui:=false", "real_time_factor:=0",
+                "lockstep:=true", "random_seed:=3"]) as g:
+        return g.python(CLOCK_WATCH, "15", "35")
+
+
+def estimator_cost_us() -> Dict:
+    out = sh([str(WS / "devel" / "lib" / "msf_updates" / "msf_ekf_bench")]).split()
+    return {"imu_propagation_us": float(out[0]), "delayed_pose_update_us": float(out[1])}
 
 
 def swarm_launch(n: int) -> Path:
@@ -196,6 +210,8 @@ def main() -> int:
     lock = [closed_loop(True) for _ in range(3)]
     free = [closed_loop(False) for _ in range(3)]
     scaling = {n: swarm_rtf(n) for n in (1, 5, 10, 20)}
+    est_cost = estimator_cost_us()
+    est_rtf = [closed_loop_with_estimator() for _ in range(3)]
     res = {
         "engine_steps_per_s_1ms_no_ros": eng["steps_per_s"],
         "engine_plugins": eng["plugins"],
@@ -206,6 +222,8 @@ def main() -> int:
         "closed_loop_rtf_as_fast_as_possible": statistics.median(r["real_time_factor"] for r in free),
         "sim_peak_rss_mb": max(r["sim_peak_rss_mb"] for r in lock + free),
         "lockstep_rtf_by_fireflies": scaling,
+        "estimator": est_cost,
+        "closed_loop_rtf_lockstep_with_estimator": statistics.median(est_rtf),
         "not_measured": [],
     }
     rows = [("engine, firefly with all plugins, 1 ms step, no ROS", f"{res['engine_steps_per_s_1ms_no_ros']:,.0f} steps/s",
@@ -225,6 +243,11 @@ def main() -> int:
             ("simulator peak RSS, one firefly", f"{res['sim_peak_rss_mb']:.0f} MB", "<= 150 MB")]
     rows += [(f"{n} firefl{'y' if n == 1 else 'ies'}, each with its Lee controller, lockstep (one run)",
               f"{rtf:.1f} x real time", ">= 1 (20 fireflies)") for n, rtf in scaling.items()]
+    rows += [("estimator: IMU propagation (15-state EKF)", f"{est_cost['imu_propagation_us']:.1f} us", ""),
+             ("estimator: pose 100 ms late, update + re-propagation of 10 states",
+              f"{est_cost['delayed_pose_update_us']:.1f} us", ""),
+             ("closed loop with the estimator (sim + MSF node + Lee node), lockstep",
+              f"{res['closed_loop_rtf_lockstep_with_estimator']:.1f} x real time", "")]
     w = [max(len(r[i]) for r in rows) for i in range(3)]
     print(f"{'measurement'.ljust(w[0])}  {'median'.ljust(w[1])}  target")
     for r in rows:
