@@ -69,6 +69,24 @@ class WallThrottle {
   ros::WallTime last_;
 };
 
+template <typename XyzMsg>
+XyzMsg ToXyz(const Eigen::Vector3d& v) {  // geometry_msgs Point / Vector3
+  XyzMsg m;
+  m.x = v.x();
+  m.y = v.y();
+  m.z = v.z();
+  return m;
+}
+
+geometry_msgs::Quaternion ToMsg(const Eigen::Quaterniond& q) {
+  geometry_msgs::Quaternion m;
+  m.w = q.w();
+  m.x = q.x();
+  m.y = q.y();
+  m.z = q.z();
+  return m;
+}
+
 bool AllFinite(std::initializer_list<double> values) {
   for (double v : values)
     if (!std::isfinite(v)) return false;
@@ -172,26 +190,20 @@ class PoseSensorNode {
   }
 
   void OnPoseWithCovariance(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
-    Matrix6d R;
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) R(i, j) = msg->pose.covariance[i * 6 + j];
-    AddPose(msg->header, msg->pose.pose.position, msg->pose.pose.orientation, &R);
+    AddPose(msg->header, msg->pose);
   }
   void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
     AddPose(msg->header, msg->pose.position, msg->pose.orientation, nullptr);
   }
   void OnTransform(const geometry_msgs::TransformStampedConstPtr& msg) {
-    geometry_msgs::Point p;
-    p.x = msg->transform.translation.x;
-    p.y = msg->transform.translation.y;
-    p.z = msg->transform.translation.z;
-    AddPose(msg->header, p, msg->transform.rotation, nullptr);
+    const auto& t = msg->transform.translation;
+    AddPose(msg->header, ToXyz<geometry_msgs::Point>(Eigen::Vector3d(t.x, t.y, t.z)), msg->transform.rotation, nullptr);
   }
-  void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
-    Matrix6d R;
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) R(i, j) = msg->pose.covariance[i * 6 + j];
-    AddPose(msg->header, msg->pose.pose.position, msg->pose.pose.orientation, &R);
+  void OnOdometry(const nav_msgs::OdometryConstPtr& msg) { AddPose(msg->header, msg->pose); }
+
+  void AddPose(const std_msgs::Header& header, const geometry_msgs::PoseWithCovariance& pose) {
+    const Matrix6d R = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(pose.covariance.data());
+    AddPose(header, pose.pose.position, pose.pose.orientation, &R);
   }
 
   void AddPose(const std_msgs::Header& header, const geometry_msgs::Point& p, const geometry_msgs::Quaternion& q,
@@ -239,13 +251,8 @@ class PoseSensorNode {
   }
 
   static void ToPose(const CoreState& x, geometry_msgs::PoseWithCovariance* out) {
-    out->pose.position.x = x.p_W.x();
-    out->pose.position.y = x.p_W.y();
-    out->pose.position.z = x.p_W.z();
-    out->pose.orientation.w = x.q_WI.w();
-    out->pose.orientation.x = x.q_WI.x();
-    out->pose.orientation.y = x.q_WI.y();
-    out->pose.orientation.z = x.q_WI.z();
+    out->pose.position = ToXyz<geometry_msgs::Point>(x.p_W);
+    out->pose.orientation = ToMsg(x.q_WI);
     // [p, theta] blocks of P; theta is the attitude error in the IMU frame
     const int rows[6] = {idx::kP, idx::kP + 1, idx::kP + 2, idx::kTheta, idx::kTheta + 1, idx::kTheta + 2};
     for (int i = 0; i < 6; ++i)
@@ -264,12 +271,8 @@ class PoseSensorNode {
       // twist in the IMU (body) frame, as RotorS' odometry: v_I = C(q)^T v_W, omega = omega_m - b_w
       const Eigen::Matrix3d C_T = x.q_WI.toRotationMatrix().transpose();
       const Eigen::Vector3d v_I = C_T * x.v_W, omega_I = u.omega_m_I - x.b_w;
-      odom.twist.twist.linear.x = v_I.x();
-      odom.twist.twist.linear.y = v_I.y();
-      odom.twist.twist.linear.z = v_I.z();
-      odom.twist.twist.angular.x = omega_I.x();
-      odom.twist.twist.angular.y = omega_I.y();
-      odom.twist.twist.angular.z = omega_I.z();
+      odom.twist.twist.linear = ToXyz<geometry_msgs::Vector3>(v_I);
+      odom.twist.twist.angular = ToXyz<geometry_msgs::Vector3>(omega_I);
       const Eigen::Matrix3d P_v_I = C_T * x.P.block<3, 3>(idx::kV, idx::kV) * C_T.transpose();
       const Eigen::Matrix3d P_w = x.P.block<3, 3>(idx::kBw, idx::kBw);
       for (int i = 0; i < 3; ++i)
@@ -318,13 +321,8 @@ class PoseSensorNode {
     tf.header.stamp = stamp;
     tf.header.frame_id = output_frame_;
     tf.child_frame_id = tf_target_frame_;
-    tf.transform.translation.x = x.p_W.x();
-    tf.transform.translation.y = x.p_W.y();
-    tf.transform.translation.z = x.p_W.z();
-    tf.transform.rotation.w = x.q_WI.w();
-    tf.transform.rotation.x = x.q_WI.x();
-    tf.transform.rotation.y = x.q_WI.y();
-    tf.transform.rotation.z = x.q_WI.z();
+    tf.transform.translation = ToXyz<geometry_msgs::Vector3>(x.p_W);
+    tf.transform.rotation = ToMsg(x.q_WI);
     tf_broadcaster_.sendTransform(tf);
   }
 
