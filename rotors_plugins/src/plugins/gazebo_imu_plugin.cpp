@@ -84,23 +84,14 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     msg_.orientation.x = X_WI.Rot().X();
     msg_.orientation.y = X_WI.Rot().Y();
     msg_.orientation.z = X_WI.Rot().Z();
-    msg_.angular_velocity.x = m.angular_velocity_I.x();
-    msg_.angular_velocity.y = m.angular_velocity_I.y();
-    msg_.angular_velocity.z = m.angular_velocity_I.z();
-    msg_.linear_acceleration.x = m.linear_acceleration_I.x();
-    msg_.linear_acceleration.y = m.linear_acceleration_I.y();
-    msg_.linear_acceleration.z = m.linear_acceleration_I.z();
+    msg_.angular_velocity = ToVector3Msg(m.angular_velocity_I);
+    msg_.linear_acceleration = ToVector3Msg(m.linear_acceleration_I);
     pub_.publish(msg_);
     if (bias_pub_ && bias_pub_.getNumSubscribers() > 0) {
       rotors_comm::ImuBias bias;
       bias.header = msg_.header;
-      const Eigen::Vector3d b_w = noise_->TotalGyroscopeBias(), b_a = noise_->TotalAccelerometerBias();
-      bias.gyroscope_bias.x = b_w.x();
-      bias.gyroscope_bias.y = b_w.y();
-      bias.gyroscope_bias.z = b_w.z();
-      bias.accelerometer_bias.x = b_a.x();
-      bias.accelerometer_bias.y = b_a.y();
-      bias.accelerometer_bias.z = b_a.z();
+      bias.gyroscope_bias = ToVector3Msg(noise_->TotalGyroscopeBias());
+      bias.accelerometer_bias = ToVector3Msg(noise_->TotalAccelerometerBias());
       bias_pub_.publish(bias);
     }
   }

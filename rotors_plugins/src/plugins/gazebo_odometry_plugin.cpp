@@ -179,12 +179,8 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
       msg.pose.pose = pose;
       const auto pose_cov = noise_->PoseCovariance();
       std::copy(pose_cov.begin(), pose_cov.end(), msg.pose.covariance.begin());
-      msg.twist.twist.linear.x = m.v_S.x();  // body (child) frame, as RotorS
-      msg.twist.twist.linear.y = m.v_S.y();
-      msg.twist.twist.linear.z = m.v_S.z();
-      msg.twist.twist.angular.x = m.omega_S.x();
-      msg.twist.twist.angular.y = m.omega_S.y();
-      msg.twist.twist.angular.z = m.omega_S.z();
+      msg.twist.twist.linear = ToVector3Msg(m.v_S);  // body (child) frame, as RotorS
+      msg.twist.twist.angular = ToVector3Msg(m.omega_S);
       const auto twist_cov = noise_->TwistCovariance();
       std::copy(twist_cov.begin(), twist_cov.end(), msg.twist.covariance.begin());
       odometry_pub_.publish(msg);

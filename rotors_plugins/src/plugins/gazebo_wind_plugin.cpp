@@ -74,15 +74,11 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     geometry_msgs::WrenchStamped wrench;
     wrench.header.stamp = stamp;
     wrench.header.frame_id = frame_id_;
-    wrench.wrench.force.x = s.force_W.x();
-    wrench.wrench.force.y = s.force_W.y();
-    wrench.wrench.force.z = s.force_W.z();
+    wrench.wrench.force = ToVector3Msg(s.force_W);
     force_pub_.publish(wrench);
     rotors_comm::WindSpeed speed;
     speed.header = wrench.header;
-    speed.velocity.x = s.velocity_W.x();
-    speed.velocity.y = s.velocity_W.y();
-    speed.velocity.z = s.velocity_W.z();
+    speed.velocity = ToVector3Msg(s.velocity_W);
     speed_pub_.publish(speed);
   }
 

@@ -5,6 +5,8 @@
 #include <memory>
 #include <string>
 
+#include <Eigen/Core>
+#include <geometry_msgs/Vector3.h>
 #include <ros/ros.h>
 
 #include "rotors_core/common.h"
@@ -18,6 +20,14 @@ inline ros::Time ToRos(const rotors_sim::common::Time& t) {
   ros::Time r;
   r.fromNSec(static_cast<uint64_t>(t.Nanoseconds()));
   return r;
+}
+
+inline geometry_msgs::Vector3 ToVector3Msg(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 m;
+  m.x = v.x();
+  m.y = v.y();
+  m.z = v.z();
+  return m;
 }
 
 }  // namespace rotors_gazebo_plugins
