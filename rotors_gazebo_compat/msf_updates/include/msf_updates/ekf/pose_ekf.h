@@ -56,7 +56,7 @@ class PoseEkf {
   const ImuReading& LatestImu() const { return latest_imu_; }
   /// Mahalanobis distance of the last measurement that was tested.
   double LastMahalanobis() const { return last_mahalanobis_; }
-  /// Buffered (time, state) pairs, oldest first, e.g. for the state just after an update.
+  /// The buffered state nearest t_s (e.g. the state an update was applied to).
   const CoreState& StateAt(double t_s) const { return buffer_[Nearest(t_s)].x; }
   const PoseSensorParams& PoseParams() const { return update_.Params(); }
 
