@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
@@ -151,20 +152,51 @@ def test_estimator_refuses_what_it_does_not_do_and_names_typos(ros: RosGraph):
     # RotorS' msf_simulator.yaml typo is reported, not silently ignored; NaN input is dropped, node lives on
     node = ros.start(["rosrun", "msf_updates", "pose_sensor", "__name:=msf", "_core/fixed_bias:=0"], "msf_node")
     out = ros.rospy("""
+        from geometry_msgs.msg import PoseStamped
+        from nav_msgs.msg import Odometry
         from sensor_msgs.msg import Imu
-        from sensor_fusion_comm.srv import InitScale
+        from sensor_fusion_comm.srv import InitHeight, InitScale
         rospy.wait_for_service('/msf/pose_sensor/initialize_msf_scale', timeout=20)
-        pub = rospy.Publisher('/msf_core/imu_state_input', Imu, queue_size=10)
+        imu_pub = rospy.Publisher('/msf_core/imu_state_input', Imu, queue_size=10)
+        pose_pub = rospy.Publisher('/msf_updates/pose_input', PoseStamped, queue_size=10)
         time.sleep(1.0)
-        m = Imu()
-        m.header.stamp = rospy.Time(1.0)
-        m.linear_acceleration.z = float('nan')
-        pub.publish(m)
+        def imu(t, az):
+            m = Imu()
+            m.header.stamp = rospy.Time(t)
+            m.linear_acceleration.z = az
+            imu_pub.publish(m)
+        imu(1.0, float('nan'))
         time.sleep(0.5)
         init = rospy.ServiceProxy('/msf/pose_sensor/initialize_msf_scale', InitScale)
+        height = rospy.ServiceProxy('/msf/pose_sensor/initialize_msf_height', InitHeight)
         result['init'] = init(1.0).result
+        # a PoseStamped on pose_input (no covariance: pose_noise_meas_p/q), then initialise
+        imu(1.0, 9.81)
+        pose = PoseStamped()
+        pose.header.stamp = rospy.Time(1.0)
+        pose.pose.position.x, pose.pose.position.y, pose.pose.position.z = 1.0, 2.0, 0.5
+        pose.pose.orientation.w = 1.0
+        pose_pub.publish(pose)
+        time.sleep(0.5)
+        result['height'] = height(0.001).result
+        result['init_after_pose'] = init(1.0).result
+        sub_msgs = []
+        sub = rospy.Subscriber('/msf_core/odometry', Odometry, sub_msgs.append)
+        time.sleep(0.5)
+        imu(1.01, 9.81)
+        deadline = time.monotonic() + 5
+        while not sub_msgs and time.monotonic() < deadline:
+            time.sleep(0.05)
+        o = sub_msgs[0]
+        result['odom'] = [o.header.frame_id, o.child_frame_id, o.header.stamp.to_sec(), o.pose.pose.position.x,
+                          o.pose.pose.position.y, o.pose.pose.position.z]
     """)
     assert out["init"] == "Not initialized: no pose measurement received yet"
+    assert out["height"] == "Not initialized: height 0.001 m is below the minimum of 0.01 m"
+    assert out["init_after_pose"] == "Initialized scale"
+    frame, child, stamp, *p = out["odom"]
+    assert (frame, child) == ("world", "imu") and stamp == pytest.approx(1.01)
+    assert p == pytest.approx([1.0, 2.0, 0.5], abs=1e-6)  # at rest, the IMU on the sensor (p_ic = 0)
     assert node.poll() is None
     text = Path(node.log_path).read_text()
     assert "/msf/core/fixed_bias is not a parameter of this estimator" in text, text
