@@ -173,18 +173,12 @@ def evaluate_estimator(path: Path, mav_name: str, estimate_topic: str = "/msf_co
             result.accelerometer_bias_relative_error = float(np.linalg.norm(b_a - b_true[3:]) /
                                                              np.linalg.norm(b_true[3:]))
     if "cov" in extras and "state" in extras and "bias" in extras:
-        result.nees_mean, result.nees_fraction_inside_95, result.nees_samples = _nees(
-            truth, estimate, t0, t1, extras)
+        t, nees = _nees_series(truth, estimate, extras, idx, e)
+        nees = nees[(t >= t0) & (t <= t1)]
+        if nees.size:
+            result.nees_mean, result.nees_samples = float(nees.mean()), int(nees.size)
+            result.nees_fraction_inside_95 = float(np.mean((nees >= NEES_BOUNDS_95[0]) & (nees <= NEES_BOUNDS_95[1])))
     return result
-
-
-def _nees(truth: Track, estimate: Track, window_begin: float, window_end: float, extras) -> tuple:
-    t, v = _nees_series(truth, estimate, extras)
-    v = v[(t >= window_begin) & (t <= window_end)]
-    if not v.size:
-        return float("nan"), float("nan"), 0
-    inside = np.mean((v >= NEES_BOUNDS_95[0]) & (v <= NEES_BOUNDS_95[1]))
-    return float(v.mean()), float(inside), int(v.size)
 
 
 def report(r: EstimatorResult, out=print) -> None:
@@ -205,14 +199,13 @@ def report(r: EstimatorResult, out=print) -> None:
         out(f"Pose outage from {begin:.2f} s to {end:.2f} s ({end - begin:.2f} s)")
 
 
-def _nees_series(truth: Track, estimate: Track, extras) -> tuple:
-    """(t, NEES) at every estimate that has covariance, state and bias truth at the same stamp."""
+def _nees_series(truth: Track, estimate: Track, extras, idx: np.ndarray, e9: np.ndarray) -> tuple:
+    """(t, NEES) at every estimate that has covariance, state and bias truth at the same stamp.
+    idx, e9: the matched truth samples and error_state() of the estimate against them."""
     t_cov, covs = extras["cov"]
     t_state, states = extras["state"]
     t_bias, biases = extras["bias"]
     states, biases = np.array(states), np.array(biases)
-    idx = _nearest(truth.t, estimate.t)
-    e9 = error_state(truth, estimate, idx)
     ts, values = [], []
     kc, ks, kb = _nearest(t_cov, estimate.t), _nearest(t_state, estimate.t), _nearest(t_bias, estimate.t)
     for i, t in enumerate(estimate.t):
@@ -262,7 +255,7 @@ def plot_estimator(truth: Track, estimate: Track, extras, out_dir: Path, prefix:
         axes[0].set_title("IMU biases: estimate (solid) and simulated truth (dashed)")
         _finish(fig, "estimator_biases", out_dir, prefix, save, saved)
         if "cov" in extras:
-            t, nees = _nees_series(truth, estimate, extras)
+            t, nees = _nees_series(truth, estimate, extras, idx, e)
             fig, ax = plt.subplots(figsize=(8, 4.5))
             ax.semilogy(t, nees, linewidth=0.6, label="NEES")
             for b in NEES_BOUNDS_95:
