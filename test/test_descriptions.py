@@ -1,5 +1,5 @@
 """Every shipped vehicle's xacro expands and parses with urdfdom (check_urdf), alone and as the
-generic-odometry composite, and a broken xacro is one clear error."""
+generic-odometry and generic-pose-sensor composites, and a broken xacro is one clear error."""
 import subprocess
 
 import pytest
@@ -10,7 +10,7 @@ VEHICLES = ["firefly", "hummingbird", "pelican", "iris", "neo11", "asymmetric_qu
 
 
 @pytest.mark.parametrize("mav", VEHICLES)
-@pytest.mark.parametrize("top", ["{mav}_base.xacro", "mav_generic_odometry_sensor.gazebo"])
+@pytest.mark.parametrize("top", ["{mav}_base.xacro", "mav_generic_odometry_sensor.gazebo", "mav_generic_pose_sensor.gazebo"])
 def test_vehicle_description_parses_with_urdfdom(mav: str, top: str, tmp_path):
     urdf = subprocess.run(["xacro", str(package_path("rotors_description") / "urdf" / top.format(mav=mav)),
                            f"mav_name:={mav}", f"namespace:={mav}", "enable_logging:=true"],
