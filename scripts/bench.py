@@ -22,7 +22,7 @@ def sh(cmd: List[str], **kw) -> str:
     return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw).stdout
 
 
-def engine_only(urdf: Path, with_ros: bool, runs: int = 3) -> Dict:
+def engine_only(urdf: Path, with_ros: bool, runs: int = 5) -> Dict:
     """In-process engine benchmark; with_ros: plugins publish (a private master runs meanwhile)."""
     world = sh(["rospack", "find", "rotors_gazebo"]).strip() + "/worlds/basic.world"
     bench = ROOT / "build/ws/devel/lib/rotors_gazebo_plugins/rotors_engine_bench"

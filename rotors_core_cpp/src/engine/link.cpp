@@ -15,11 +15,16 @@ void Link::AttachToBody(dBodyID body, const Pose3d& X_BL, bool welded) {
   body_ = body;
   X_BL_ = X_BL;
   welded_ = welded;
+  pose_valid_ = false;
 }
 
 Pose3d Link::WorldPose() const {
   if (!body_) return X_WL_static_;
-  return Compose(ode_convert::BodyPose(body_), X_BL_);
+  if (!pose_valid_) {
+    X_WL_cache_ = Compose(ode_convert::BodyPose(body_), X_BL_);
+    pose_valid_ = true;
+  }
+  return X_WL_cache_;
 }
 
 Pose3d Link::WorldCoGPose() const {

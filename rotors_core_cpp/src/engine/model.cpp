@@ -65,7 +65,10 @@ void Model::SetWorldPose(const Pose3d& X_WM) {
     dBodySetAngularVel(b.body, 0, 0, 0);
     dBodyEnable(b.body);
   }
-  for (const auto& link : links_) link->ClearAcceleration();
+  for (const auto& link : links_) {
+    link->InvalidatePose();
+    link->ClearAcceleration();
+  }
 }
 
 void Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name) {

@@ -116,7 +116,10 @@ void World::Step(unsigned int steps) {
     CollectContacts();
     dJointGroupEmpty(contact_group_);
     for (const auto& model : models_)
-      for (const auto& link : model->GetLinks()) link->UpdateAccelerationAfterStep(dt);
+      for (const auto& link : model->GetLinks()) {
+        link->InvalidatePose();
+        link->UpdateAccelerationAfterStep(dt);
+      }
     sim_time_ = sim_time_ + dt_time;
     ++iterations_;
     events_.world_update_end();

@@ -62,6 +62,8 @@ class Link {
   void RecordVelocityBeforeStep();
   void UpdateAccelerationAfterStep(double dt_s);
   void ClearAcceleration();
+  /// The ODE body moved (a step, a reset): the cached world pose is stale.
+  void InvalidatePose() { pose_valid_ = false; }
 
  private:
   std::string name_;
@@ -71,6 +73,10 @@ class Link {
   Pose3d X_BL_;           ///< link frame in the ODE body frame
   Pose3d X_WL_static_;    ///< pose of a static link
   bool welded_ = false;
+  // WorldPose() is asked for several times per step by the engine and the plugins; it is
+  // computed once after each change of the body's pose.
+  mutable Pose3d X_WL_cache_;
+  mutable bool pose_valid_ = false;
   Vector3d v_W_prev_, omega_W_prev_, a_W_, alpha_W_;
   std::vector<JointPtr> parent_joints_, child_joints_;
 };
