@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <sstream>
-#include <stdexcept>
 
 namespace msf_updates {
 
@@ -23,8 +22,7 @@ std::string CoreNoiseParams::Validate() const {
 }
 
 ImuPropagation::ImuPropagation(const CoreNoiseParams& params) : params_(params), g_W_(0.0, 0.0, -params.gravity_m_s2) {
-  const std::string why = params.Validate();
-  if (!why.empty()) throw std::invalid_argument(why);
+  ThrowIfInvalid(params.Validate());
 }
 
 CoreState ImuPropagation::Propagate(const CoreState& x0, const ImuReading& u0, const ImuReading& u1) const {

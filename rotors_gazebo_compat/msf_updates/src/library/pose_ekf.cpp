@@ -34,8 +34,7 @@ const char* ToString(PoseStatus status) {
 PoseEkf::PoseEkf(const CoreNoiseParams& core, const PoseSensorParams& pose, const InitialUncertainty& init,
                  double buffer_length_s)
     : propagation_(core), update_(pose), init_(init), buffer_length_s_(buffer_length_s) {
-  const std::string why = init.Validate();
-  if (!why.empty()) throw std::invalid_argument(why);
+  ThrowIfInvalid(init.Validate());
   if (!(buffer_length_s > 0.0)) throw std::invalid_argument("state buffer length must be > 0 s");
 }
 
@@ -104,11 +103,7 @@ bool PoseEkf::AddImu(const ImuReading& u) {
 
 PoseStatus PoseEkf::AddPose(PoseMeasurement z) {
   z.t_s -= update_.Params().pose_delay_s;
-  if (update_.Params().pose_use_fixed_covariance) {
-    z.R.setZero();
-    z.R.diagonal() << Eigen::Vector3d::Constant(std::pow(update_.Params().pose_noise_meas_p, 2)),
-        Eigen::Vector3d::Constant(std::pow(update_.Params().pose_noise_meas_q, 2));
-  }
+  if (update_.Params().pose_use_fixed_covariance) z.R = update_.Params().FixedCovariance();
   latest_pose_ = z;
   if (!Initialized()) return PoseStatus::kStoredForInit;
   if (z.t_s > buffer_.back().x.t_s + kTimeEpsilon_s) {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <sstream>
-#include <stdexcept>
 
 #include <Eigen/Cholesky>
 
@@ -27,10 +26,16 @@ std::string PoseSensorParams::Validate() const {
   return why.str();
 }
 
+Matrix6d PoseSensorParams::FixedCovariance() const {
+  Matrix6d R = Matrix6d::Zero();
+  R.diagonal() << Eigen::Vector3d::Constant(pose_noise_meas_p * pose_noise_meas_p),
+      Eigen::Vector3d::Constant(pose_noise_meas_q * pose_noise_meas_q);
+  return R;
+}
+
 PoseUpdate::PoseUpdate(const PoseSensorParams& params) : params_(params) {
   params_.q_ic.normalize();
-  const std::string why = params_.Validate();
-  if (!why.empty()) throw std::invalid_argument(why);
+  ThrowIfInvalid(params_.Validate());
 }
 
 void PoseUpdate::Linearize(const CoreState& x, const PoseMeasurement& z, Vector6d* r,

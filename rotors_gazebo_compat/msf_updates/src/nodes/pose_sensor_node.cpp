@@ -227,9 +227,7 @@ class PoseSensorNode {
     } else {
       if (covariance && !s.pose_use_fixed_covariance)
         ROS_WARN_ONCE("[msf] pose covariance has a non-positive diagonal; using pose_noise_meas_p/q instead");
-      z.R.setZero();
-      z.R.diagonal() << Eigen::Vector3d::Constant(s.pose_noise_meas_p * s.pose_noise_meas_p),
-          Eigen::Vector3d::Constant(s.pose_noise_meas_q * s.pose_noise_meas_q);
+      z.R = s.FixedCovariance();
     }
     const PoseStatus status = ekf_->AddPose(z);
     if (status == PoseStatus::kApplied) {

@@ -5,6 +5,9 @@
 //   the attitude error is a small rotation in the IMU (body) frame.
 #pragma once
 
+#include <stdexcept>
+#include <string>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -34,6 +37,11 @@ struct CoreState {
   Eigen::Vector3d b_a = Eigen::Vector3d::Zero();   ///< [m/s^2] accelerometer bias
   Matrix15d P = Matrix15d::Zero();                 ///< error-state covariance
 };
+
+/// Throws std::invalid_argument with `why` (a parameter struct's Validate()) unless it is empty.
+inline void ThrowIfInvalid(const std::string& why) {
+  if (!why.empty()) throw std::invalid_argument(why);
+}
 
 /// Skew-symmetric matrix: Skew(a) b = a x b.
 inline Eigen::Matrix3d Skew(const Eigen::Vector3d& a) {

@@ -26,6 +26,8 @@ struct PoseSensorParams {
   bool enable_mah_outlier_rejection = false;
   double mah_threshold = 5.0;           ///< on the Mahalanobis distance sqrt(r^T S^-1 r)
   std::string Validate() const;
+  /// diag(pose_noise_meas_p^2 x3, pose_noise_meas_q^2 x3)
+  Eigen::Matrix<double, 6, 6> FixedCovariance() const;
 };
 
 /// A pose measurement of the sensor frame in the world. R: 6x6 covariance of [position, rotation
