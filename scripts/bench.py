@@ -154,7 +154,7 @@ def swarm_launch(n: int) -> Path:
     </node>
   </group>
 """)
-    lock = ",".join(f"/{n}/command/motor_speed" for n in names)
+    lock = ",".join(f"/{n}/command/motor_speed:/{n}/odometry_sensor1/odometry" for n in names)
     text = f"""<launch>
   <include file="$(find gazebo_ros)/launch/empty_world.launch">
     <arg name="world_name" value="$(find rotors_gazebo)/worlds/basic.world"/>

@@ -61,6 +61,8 @@ struct WorldEvents {
   EventT<const common::UpdateInfo&> world_update_begin;  ///< before forces are integrated
   EventT<> world_update_end;                             ///< after the physics step
   EventT<> world_reset;
+  EventT<bool> pause;  ///< the simulation was paused (true) or resumed (false); see World::SetPaused
+  EventT<> stop;       ///< the simulation ends (World::Fini), before any plugin is unloaded
 };
 
 /// Gazebo-style static access. It binds to the world whose plugins are loading or stepping in
@@ -69,6 +71,8 @@ class Events {
  public:
   static ConnectionPtr ConnectWorldUpdateBegin(std::function<void(const common::UpdateInfo&)> cb);
   static ConnectionPtr ConnectWorldUpdateEnd(std::function<void()> cb);
+  static ConnectionPtr ConnectPause(std::function<void(bool)> cb);
+  static ConnectionPtr ConnectStop(std::function<void()> cb);
 
   /// Set by the World while it loads plugins or steps; nullptr otherwise.
   static void SetCurrent(WorldEvents* events);

@@ -27,5 +27,13 @@ ConnectionPtr Events::ConnectWorldUpdateEnd(std::function<void()> cb) {
   return RequireCurrent("ConnectWorldUpdateEnd").world_update_end.Connect(std::move(cb));
 }
 
+ConnectionPtr Events::ConnectPause(std::function<void(bool)> cb) {
+  return RequireCurrent("ConnectPause").pause.Connect(std::move(cb));
+}
+
+ConnectionPtr Events::ConnectStop(std::function<void()> cb) {
+  return RequireCurrent("ConnectStop").stop.Connect(std::move(cb));
+}
+
 }  // namespace event
 }  // namespace rotors_sim

@@ -72,6 +72,10 @@ World::~World() {
 }
 
 void World::Fini() {
+  if (!stopped_) {
+    stopped_ = true;
+    events_.stop();
+  }
   plugins_.clear();
   for (auto& model : models_) model->Fini();
   models_.clear();
@@ -81,6 +85,13 @@ ModelPtr World::ModelByName(const std::string& name) const {
   for (const auto& model : models_)
     if (model->GetName() == name) return model;
   return nullptr;
+}
+
+void World::SetPaused(bool paused, const std::string& reason) {
+  pause_reason_ = paused ? reason : "";
+  if (paused == paused_) return;
+  paused_ = paused;
+  events_.pause(paused);
 }
 
 void World::AddModel(const ModelPtr& model) { models_.push_back(model); }

@@ -1,11 +1,13 @@
 // The simulator process (gzserver's role): rotors_sim_server <world file> [-u] [--rtf X]
 //   -u         start paused (as gzserver -u)
 //   --rtf X    real-time factor, 0 = as fast as possible (default: the world's)
-//   --lockstep T1,T2   wait each step for a header-stamped answer on these topics
+//   --lockstep A1[:I1],A2[:I2]   lockstep participants: answer topic A (header-stamped), answering
+//              the simulator's input topic I (see rotors_core/ros/lockstep.h)
+//   --lockstep-lenient   wait only for connected participants, mute silent ones (earlier versions)
 // Private parameters ~world_name, ~paused and ~real_time_factor do the same.
+#include <csignal>
 #include <cstdlib>
 #include <iostream>
-#include <sstream>
 #include <string>
 
 #include <ros/ros.h>
@@ -13,8 +15,15 @@
 #include "rotors_core/error.h"
 #include "rotors_core/ros/sim_server.h"
 
+namespace {
+/// SIGINT/SIGTERM stop the stepping at once; ROS shuts down after the world and its bag closed.
+void OnStopSignal(int) { rotors_sim::SimServer::RequestStop(); }
+}  // namespace
+
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "gazebo");
+  ros::init(argc, argv, "gazebo", ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, OnStopSignal);
+  std::signal(SIGTERM, OnStopSignal);
   rotors_sim::SimServerOptions options;
   ros::NodeHandle nh, private_nh("~");
   private_nh.param("world_name", options.world_file, options.world_file);
@@ -33,18 +42,23 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else if (arg == "--lockstep" && i + 1 < argc) {
-      std::stringstream topics(argv[++i]);
-      std::string topic;
-      while (std::getline(topics, topic, ',')) if (!topic.empty()) options.lockstep_topics.push_back(topic);
+      try {
+        options.lockstep_participants = rotors_sim::ParseLockstepParticipants(argv[++i]);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "[rotors_sim] error: " << e.what() << "\n";
+        return 2;
+      }
+    } else if (arg == "--lockstep-lenient") {
+      options.lockstep.mode = rotors_sim::LockstepOptions::Mode::kLenient;
     } else if (!arg.empty() && arg[0] != '-') {
       options.world_file = arg;
     } else {
-      std::cerr << "[rotors_sim] error: unknown option '" << arg << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep T1,T2])\n";
+      std::cerr << "[rotors_sim] error: unknown option '" << arg << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] [--lockstep-lenient])\n";
       return 2;
     }
   }
   if (options.world_file.empty()) {
-    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep T1,T2])\n";
+    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] [--lockstep-lenient])\n";
     return 2;
   }
   try {
@@ -52,7 +66,9 @@ int main(int argc, char** argv) {
     server.Run();
   } catch (const std::exception& e) {
     std::cerr << "[rotors_sim] error: " << e.what() << std::endl;
+    ros::shutdown();
     return 1;
   }
+  ros::shutdown();
   return 0;
 }

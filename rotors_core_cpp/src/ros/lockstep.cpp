@@ -1,8 +1,14 @@
 #include "rotors_core/ros/lockstep.h"
 
 #include <ros/callback_queue.h>
+#include <ros/publication.h>
+#include <ros/topic_manager.h>
+
+#include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cstring>
+#include <sstream>
+#include <stdexcept>
 
 namespace rotors_sim {
 
@@ -18,60 +24,197 @@ bool HeaderStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp) {
   return true;
 }
 
-Lockstep::Lockstep(ros::NodeHandle nh, const std::vector<std::string>& topics, double timeout_s)
-    : nh_(nh), timeout_s_(timeout_s) {
-  for (const auto& topic : topics) {
-    if (topic.empty()) continue;
-    responders_[topic].sub = Subscribe(topic);
-    ROS_INFO("[rotors_sim] lockstep: each step waits for an answer on %s", topic.c_str());
+std::vector<LockstepParticipant> ParseLockstepParticipants(const std::string& spec) {
+  std::vector<LockstepParticipant> out;
+  std::stringstream entries(spec);
+  for (std::string entry; std::getline(entries, entry, ',');) {
+    if (entry.empty()) continue;
+    LockstepParticipant p;
+    const size_t colon = entry.find(':');
+    p.answer_topic = entry.substr(0, colon);
+    if (colon != std::string::npos) p.input_topic = entry.substr(colon + 1);
+    if (p.answer_topic.empty() || (colon != std::string::npos && p.input_topic.empty()) ||
+        p.input_topic.find(':') != std::string::npos)
+      throw std::invalid_argument("lockstep participant '" + entry +
+                                  "' is not ANSWER_TOPIC or ANSWER_TOPIC:INPUT_TOPIC (e.g. "
+                                  "/firefly/command/motor_speed:/firefly/odometry_sensor1/odometry)");
+    p.answer_topic = ros::names::resolve(p.answer_topic);
+    if (!p.input_topic.empty()) p.input_topic = ros::names::resolve(p.input_topic);
+    out.push_back(p);
+  }
+  return out;
+}
+
+Lockstep::Lockstep(ros::NodeHandle nh, const std::vector<LockstepParticipant>& participants,
+                   const LockstepOptions& options)
+    : nh_(nh), options_(options) {
+  participants_.resize(participants.size());  // fixed from here on: callbacks hold pointers
+  for (size_t i = 0; i < participants.size(); ++i) {
+    Participant& p = participants_[i];
+    p.topics = participants[i];
+    p.sub = Subscribe(&p);
+    ROS_INFO("[rotors_sim] lockstep (%s): each step waits for an answer on %s%s%s",
+             options_.mode == LockstepOptions::Mode::kHold ? "hold" : "lenient", p.topics.answer_topic.c_str(),
+             p.topics.input_topic.empty() ? "" : " to ", p.topics.input_topic.c_str());
   }
 }
 
-ros::Subscriber Lockstep::Subscribe(const std::string& topic) {
+ros::Subscriber Lockstep::Subscribe(Participant* p) {
   return nh_.subscribe<topic_tools::ShapeShifter>(
-      topic, 10, [this, topic](const topic_tools::ShapeShifter::ConstPtr& msg) { OnMessage(topic, msg); },
+      p->topics.answer_topic, 10, [this, p](const topic_tools::ShapeShifter::ConstPtr& msg) { OnMessage(p, msg); },
       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
 }
 
 void Lockstep::Resubscribe() {
-  for (auto& kv : responders_) {
-    ros::Subscriber fresh = Subscribe(kv.first);  // appended behind the plugins' subscriptions
-    kv.second.sub.shutdown();
-    kv.second.sub = fresh;
+  for (auto& p : participants_) {
+    ros::Subscriber fresh = Subscribe(&p);  // appended behind the plugins' subscriptions
+    p.sub.shutdown();
+    p.sub = fresh;
   }
 }
 
-void Lockstep::OnMessage(const std::string& topic, const topic_tools::ShapeShifter::ConstPtr& msg) {
-  Responder& r = responders_[topic];
+void Lockstep::OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstPtr& msg) {
   ros::Time stamp;
   if (!HeaderStamp(*msg, &stamp)) return;
-  if (r.muted) ROS_INFO("[rotors_sim] lockstep: %s is answering again", topic.c_str());
-  r.muted = false;
-  if (stamp > r.last_stamp) r.last_stamp = stamp;
+  if (p->muted) ROS_INFO("[rotors_sim] lockstep: %s is answering again", p->topics.answer_topic.c_str());
+  p->muted = false;
+  p->answered = true;
+  p->warming_up = false;
+  if (stamp > p->last_stamp) p->last_stamp = stamp;
 }
 
-bool Lockstep::AllAnswered(const ros::Time& stamp) const {
-  for (const auto& kv : responders_)
-    if (Awaited(kv.second) && kv.second.last_stamp < stamp) return false;
+/// Subscribers of one of this node's topics in other nodes (the plugins' own subscriptions, e.g.
+/// the bag plugin's, do not make a participant present).
+size_t RemoteSubscribers(const std::string& topic) {
+  ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(topic);
+  if (!pub) return 0;
+  XmlRpc::XmlRpcValue links;
+  links.setSize(0);  // getInfo appends one [id, destination node, ...] per link
+  pub->getInfo(links);
+  size_t n = 0;
+  for (int i = 0; i < links.size(); ++i)
+    if (static_cast<std::string>(links[i][1]) != ros::this_node::getName()) ++n;
+  return n;
+}
+
+bool Lockstep::ConnectedNow(const Participant& p) const {
+  if (p.sub.getNumPublishers() == 0) return false;
+  if (p.topics.input_topic.empty()) return true;
+  // once present, a participant leaves through its answer topic; the input is checked on arrival
+  return p.present || RemoteSubscribers(p.topics.input_topic) > 0;
+}
+
+/// Updates p->present; true when it changed. A participant declared gone comes back only when a
+/// node publishing its answer topic answers pings again (a restarted node).
+bool Lockstep::UpdatePresence(Participant* p, double sim_time_s) {
+  bool now = ConnectedNow(*p);
+  if (now && p->gone) now = AnyPublisherAlive(p->topics.answer_topic);
+  if (now == p->present) return false;
+  p->present = now;
+  if (now) {
+    if (p->ever_present)
+      ROS_INFO("[rotors_sim] lockstep: %s is back; resuming at t = %.3f s", p->topics.answer_topic.c_str(), sim_time_s);
+    p->gone = false;
+    p->ever_present = true;
+    p->answered = false;
+    p->warming_up = false;
+  } else if (p->ever_present) {
+    ROS_WARN("[rotors_sim] lockstep: %s went away at t = %.3f s; the simulation is paused until it is back",
+             p->topics.answer_topic.c_str(), sim_time_s);
+  }
   return true;
 }
 
-void Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue) {
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s_);
-  while (!AllAnswered(stamp) && ros::ok()) {
-    queue->callAvailable(ros::WallDuration(0.0005));
-    if (ros::WallTime::now() > deadline) {
-      for (auto& kv : responders_) {
-        if (Awaited(kv.second) && kv.second.last_stamp < stamp) {
-          ROS_WARN("[rotors_sim] lockstep: no answer on %s for t = %.3f s within %.1f s; not waiting for it until it "
-                   "answers again",
-                   kv.first.c_str(), stamp.toSec(), timeout_s_);
-          kv.second.muted = true;
-        }
-      }
+std::string Lockstep::HoldReason(double sim_time_s) {
+  if (options_.mode != LockstepOptions::Mode::kHold) return "";
+  // gone participants are pinged at most twice a second
+  const bool may_ping = ros::WallTime::now() >= next_ping_;
+  std::string reason;
+  for (auto& p : participants_) {
+    if (!(p.gone && !may_ping)) UpdatePresence(&p, sim_time_s);
+    if (p.present) continue;
+    if (!reason.empty()) reason += "; ";
+    reason += "lockstep: waiting for " + p.topics.answer_topic +
+              (p.sub.getNumPublishers() == 0 || p.gone ? " (no publisher)"
+                                                       : " (nobody subscribes " + p.topics.input_topic + ")");
+  }
+  if (may_ping) next_ping_ = ros::WallTime::now() + ros::WallDuration(0.5);
+  if (!reason.empty() && ros::WallTime::now() >= next_report_) {
+    ROS_INFO("[rotors_sim] holding the clock at t = %.3f s: %s", sim_time_s, reason.c_str());
+    next_report_ = ros::WallTime::now() + ros::WallDuration(options_.report_period_s);
+  }
+  return reason;
+}
+
+void Lockstep::BeforeStep() {
+  for (auto& p : participants_) {
+    if (p.topics.input_topic.empty()) continue;
+    ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(p.topics.input_topic);
+    p.input_seq = pub ? pub->getSequence() : 0;
+  }
+}
+
+bool Lockstep::Required(const Participant& p) const {
+  if (!p.input_published) return false;
+  if (options_.mode == LockstepOptions::Mode::kLenient) return !p.muted && p.sub.getNumPublishers() > 0;
+  return p.present && !p.warming_up;
+}
+
+bool Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop) {
+  for (auto& p : participants_) {
+    if (p.topics.input_topic.empty()) {
+      p.input_published = true;
+    } else {
+      ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(p.topics.input_topic);
+      p.input_published = pub && pub->getSequence() != p.input_seq;
     }
   }
+  const ros::WallTime start = ros::WallTime::now();
+  ros::WallTime next_check = start + ros::WallDuration(options_.silence_timeout_s);
+  ros::WallTime next_report = start + ros::WallDuration(options_.report_period_s);
+  const bool hold = options_.mode == LockstepOptions::Mode::kHold;
+  while (ros::ok() && !stop()) {
+    bool all = true;
+    for (const auto& p : participants_)
+      if (Required(p) && p.last_stamp < stamp) all = false;
+    if (all) break;
+    queue->callAvailable(ros::WallDuration(0.0005));
+    const ros::WallTime now = ros::WallTime::now();
+    for (auto& p : participants_) {
+      if (!Required(p) || p.last_stamp >= stamp) continue;
+      if (!p.answered && now - start > ros::WallDuration(options_.first_answer_timeout_s)) {
+        ROS_INFO("[rotors_sim] lockstep: no first answer on %s to t = %.3f s within %.1f s; not waiting for it until "
+                 "it answers (e.g. an estimator not yet initialised)",
+                 p.topics.answer_topic.c_str(), stamp.toSec(), options_.first_answer_timeout_s);
+        p.warming_up = true;
+      } else if (!hold && now - start > ros::WallDuration(options_.silence_timeout_s)) {
+        ROS_WARN("[rotors_sim] lockstep: no answer on %s for t = %.3f s within %.1f s; not waiting for it until it "
+                 "answers again",
+                 p.topics.answer_topic.c_str(), stamp.toSec(), options_.silence_timeout_s);
+        p.muted = true;
+      }
+    }
+    if (!hold) continue;
+    // a participant that unregistered is gone at once; a silent one is pinged now and then
+    bool lost = false;
+    for (auto& p : participants_) {
+      if (!Required(p) || p.last_stamp >= stamp) continue;
+      if (!ConnectedNow(p)) {
+        lost = UpdatePresence(&p, stamp.toSec()) || lost;
+      } else if (now >= next_check && !AnyPublisherAlive(p.topics.answer_topic)) {
+        p.gone = true;
+        lost = UpdatePresence(&p, stamp.toSec()) || lost;
+      } else if (now >= next_report) {
+        ROS_WARN("[rotors_sim] lockstep: t = %.3f s: still waiting for an answer on %s (%.0f s)", stamp.toSec(),
+                 p.topics.answer_topic.c_str(), (now - start).toSec());
+      }
+    }
+    if (now >= next_check) next_check = now + ros::WallDuration(options_.silence_timeout_s);
+    if (now >= next_report) next_report = now + ros::WallDuration(options_.report_period_s);
+    if (lost) return false;
+  }
   queue->callAvailable();  // deliver the answer to every other subscriber of it too
+  return true;
 }
 
 }  // namespace rotors_sim

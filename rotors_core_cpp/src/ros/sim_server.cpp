@@ -1,6 +1,8 @@
 #include "rotors_core/ros/sim_server.h"
 
 #include <ros/callback_queue.h>
+
+#include <csignal>
 #include <rosgraph_msgs/Clock.h>
 
 #include "rotors_core/error.h"
@@ -10,16 +12,22 @@
 #include "rotors_core/world_loader.h"
 
 namespace rotors_sim {
+namespace {
+volatile std::sig_atomic_t g_stop_requested = 0;
+}  // namespace
+
+void SimServer::RequestStop() { g_stop_requested = 1; }
 
 SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimServerOptions& options)
-    : nh_(nh), private_nh_(private_nh), paused_(options.paused) {
+    : nh_(nh), private_nh_(private_nh), user_paused_(options.paused) {
   world_ = WorldLoader::LoadFile(options.world_file);
   if (options.real_time_factor >= 0.0) world_->SetRealTimeFactor(options.real_time_factor);
   pacer_.SetRealTimeFactor(world_->Physics().real_time_factor);
   pacer_.Restart(world_->SimTime());
   state_publisher_ = std::make_unique<StatePublisher>(nh_, options.state_publish_rate_hz);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  lockstep_ = std::make_unique<Lockstep>(nh_, options.lockstep_topics, options.lockstep_timeout_s);
+  lockstep_ = std::make_unique<Lockstep>(nh_, options.lockstep_participants, options.lockstep);
+  world_->SetPaused(true, user_paused_ ? "started paused" : "starting");
   services_.push_back(private_nh_.advertiseService("pause_physics", &SimServer::OnPause, this));
   services_.push_back(private_nh_.advertiseService("unpause_physics", &SimServer::OnUnpause, this));
   services_.push_back(private_nh_.advertiseService("reset_world", &SimServer::OnResetWorld, this));
@@ -29,13 +37,16 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   services_.push_back(private_nh_.advertiseService("delete_model", &SimServer::OnDelete, this));
   ROS_INFO("[rotors_sim] world '%s' loaded from %s: step %.4f s, real-time factor %g%s, %s", world_->Name().c_str(),
            options.world_file.c_str(), world_->Physics().max_step_size_s, world_->Physics().real_time_factor,
-           world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "", paused_ ? "paused" : "running");
+           world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "", user_paused_ ? "paused" : "running");
   PublishClock();
 }
 
 SimServer::~SimServer() {
   services_.clear();
-  if (world_) world_->Fini();
+  if (world_) {
+    ROS_INFO("[rotors_sim] stopped at t = %.3f s", world_->SimTime().Double());
+    world_->Fini();
+  }
 }
 
 void SimServer::PublishClock() {
@@ -46,41 +57,50 @@ void SimServer::PublishClock() {
 }
 
 void SimServer::StepOnce() {
+  lockstep_->BeforeStep();
   world_->Step();
   PublishClock();
   state_publisher_->Update(*world_);
   if (lockstep_->Enabled()) {
     ros::Time now;
     now.fromNSec(world_->SimTime().Nanoseconds());
-    lockstep_->WaitForAnswers(now, ros::getGlobalCallbackQueue());
+    if (!lockstep_->WaitForAnswers(now, ros::getGlobalCallbackQueue(), [] { return g_stop_requested != 0; }))
+      UpdateRunState();
   }
   pacer_.WaitUntilDue(world_->SimTime());
 }
 
+bool SimServer::UpdateRunState() {
+  const std::string held = user_paused_ ? "" : lockstep_->HoldReason(world_->SimTime().Double());
+  const bool paused = user_paused_ || !held.empty();
+  if (!paused && world_->IsPaused()) pacer_.Restart(world_->SimTime());
+  world_->SetPaused(paused, user_paused_ ? "paused by pause_physics" : held);
+  return !paused;
+}
+
 void SimServer::Run() {
   ros::CallbackQueue* queue = ros::getGlobalCallbackQueue();
-  while (ros::ok()) {
-    if (paused_) {
-      queue->callAvailable(ros::WallDuration(0.05));
-      // late subscribers (rostopic, rviz) still learn the frozen time and poses while paused
-      PublishClock();
-      state_publisher_->Update(*world_, true);
+  while (ros::ok() && !g_stop_requested) {
+    queue->callAvailable();
+    if (UpdateRunState()) {
+      StepOnce();
       continue;
     }
-    queue->callAvailable();
-    if (!paused_) StepOnce();
+    queue->callAvailable(ros::WallDuration(0.05));
+    // late subscribers (rostopic, rviz) still learn the frozen time and poses while paused
+    PublishClock();
+    state_publisher_->Update(*world_, true);
   }
 }
 
 bool SimServer::OnPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  paused_ = true;
+  user_paused_ = true;
   ROS_INFO("[rotors_sim] physics paused at t = %.3f s", world_->SimTime().Double());
   return true;
 }
 
 bool SimServer::OnUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  if (paused_) pacer_.Restart(world_->SimTime());
-  paused_ = false;
+  user_paused_ = false;
   ROS_INFO("[rotors_sim] physics running from t = %.3f s", world_->SimTime().Double());
   return true;
 }

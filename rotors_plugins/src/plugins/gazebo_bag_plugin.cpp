@@ -3,6 +3,8 @@
 // (TwistStamped, world frame), <ns>/motor_speed (Actuators, signed real speeds), <ns>/wrench (one
 // WrenchStamped per contact of the model). Re-recorded from ROS: imu, odometry, commands, wind,
 // and any topics of any type listed in <extraTopics> (ours; e.g. an estimator's output).
+// Ours: <ns>/simulation_status (rotors_comm/SimulationStatus) when the simulation is paused, resumes
+// or stops, so that the evaluation knows where the flight ended.
 // File: <ROS_HOME or ~/.ros>/<bagFileName>_YYYY-MM-DD-HH-MM-SS.bag; service record_rosbag.
 #include <ctime>
 #include <sstream>
@@ -16,6 +18,7 @@
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rotors_comm/RecordRosbag.h>
+#include <rotors_comm/SimulationStatus.h>
 #include <rotors_comm/WindSpeed.h>
 #include <sensor_msgs/Imu.h>
 #include <topic_tools/shape_shifter.h>
@@ -90,6 +93,13 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     service_ = node_->advertiseService(service, &GazeboBagPlugin::OnRecord, this);
     if (!wait_to_record) Open();
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
+    pause_connection_ = rotors_sim::event::Events::ConnectPause([this](bool paused) {
+      WriteStatus(paused ? rotors_comm::SimulationStatus::PAUSED : rotors_comm::SimulationStatus::RUNNING);
+    });
+    stop_connection_ = rotors_sim::event::Events::ConnectStop([this] {
+      WriteStatus(rotors_comm::SimulationStatus::STOPPED);
+      Close();
+    });
   }
 
  private:
@@ -137,6 +147,15 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     recording_ = false;
     bag_.close();
     ROS_INFO("[bag_plugin] closed %s", path_.c_str());
+  }
+
+  void WriteStatus(uint8_t state) {
+    if (!recording_) return;
+    rotors_comm::SimulationStatus status;
+    status.header.stamp = ToRos(world_->SimTime());
+    status.state = state;
+    status.reason = state == rotors_comm::SimulationStatus::STOPPED ? "simulator shut down" : world_->PauseReason();
+    Write(ns_ + "/simulation_status", status.header.stamp, status);
   }
 
   bool OnRecord(rotors_comm::RecordRosbag::Request& req, rotors_comm::RecordRosbag::Response& res) {
@@ -202,7 +221,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
   std::shared_ptr<ros::NodeHandle> node_;
   std::vector<ros::Subscriber> subs_;
   ros::ServiceServer service_;
-  rotors_sim::event::ConnectionPtr connection_;
+  rotors_sim::event::ConnectionPtr connection_, pause_connection_, stop_connection_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -73,9 +73,15 @@ class World : public std::enable_shared_from_this<World> {
   /// reset_simulation: as ResetWorld and the sim time back to zero.
   void ResetSimulation();
 
+  /// Paused or running, with the reason given by whoever paused it (a user, lockstep); fires the
+  /// pause event on every change. The world does not step itself: whoever calls Step() honours it.
+  void SetPaused(bool paused, const std::string& reason = "");
+  bool IsPaused() const { return paused_; }
+  const std::string& PauseReason() const { return pause_reason_; }
+
   const std::vector<Contact>& Contacts() const { return contacts_; }
-  /// Unloads world plugins and removes every model (plugins hold shared pointers to their
-  /// world and model; call this before dropping the last WorldPtr).
+  /// Fires the stop event once, then unloads world plugins and removes every model (plugins hold
+  /// shared pointers to their world and model; call this before dropping the last WorldPtr).
   void Fini();
   event::WorldEvents& Events() { return events_; }
 
@@ -100,6 +106,9 @@ class World : public std::enable_shared_from_this<World> {
   std::vector<std::unique_ptr<WorldPlugin>> plugins_;
   common::Time sim_time_;
   uint64_t iterations_ = 0;
+  bool paused_ = false;
+  bool stopped_ = false;
+  std::string pause_reason_;
   event::WorldEvents events_;
   std::vector<Contact> contacts_;
   struct PendingContact {

@@ -1,11 +1,24 @@
-// Lockstep: after a step to sim time t, the simulator waits until every registered responder
-// topic has delivered a message whose header stamp is >= t (a controller stamps its command with
-// the sensor stamp it answered). Any message type that starts with a std_msgs/Header works; the
-// simulator stays ignorant of what the messages mean. A responder is waited for as soon as a
-// publisher of its topic is connected (so its very first answer is in step too); if it stays
-// silent longer than the timeout it is warned about and waited for no more until it speaks again.
+// Lockstep: the simulator and its declared participants (controllers, estimators) take turns.
+// A participant answers what the simulator publishes on its input topic (e.g. odometry) with a
+// header-stamped message on its answer topic (e.g. command/motor_speed stamped with the odometry
+// stamp it answered). Any message type that starts with a std_msgs/Header works; the simulator
+// stays ignorant of what the messages mean.
+//
+// Semantics (mode kHold, the default):
+// - A participant is present when its answer topic has a publisher and, if an input topic is
+//   declared, the simulator's input topic has a subscriber. A participant that is not present
+//   holds the clock: the simulator does not step (one line every few seconds names it).
+// - After a step that published a participant's input (or every step, when no input topic is
+//   declared), the simulator waits until the participant answered with a stamp >= the step's time.
+// - A participant that goes away (its publisher unregisters, or its node no longer answers pings,
+//   e.g. after kill -9) pauses the simulation with one line; it resumes when the participant is
+//   back. Its first input after (re)connecting is waited for briefly: a participant that cannot
+//   answer yet (an estimator before initialisation) is not waited for until its first answer.
+// Mode kLenient keeps the behaviour of earlier versions: only connected participants are waited
+// for, and one that stays silent past the timeout is not waited for until it answers again.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -15,35 +28,73 @@
 
 namespace rotors_sim {
 
+struct LockstepParticipant {
+  std::string answer_topic;  ///< e.g. /firefly/command/motor_speed
+  std::string input_topic;   ///< published by the simulator, e.g. /firefly/odometry_sensor1/odometry; may be empty
+};
+
+/// Parses "ANSWER[:INPUT],ANSWER[:INPUT],..."; throws std::invalid_argument naming a bad entry.
+std::vector<LockstepParticipant> ParseLockstepParticipants(const std::string& spec);
+
+struct LockstepOptions {
+  enum class Mode { kHold, kLenient };
+  Mode mode = Mode::kHold;
+  double first_answer_timeout_s = 0.5;  ///< [s wall] waiting for the first answer after (re)connecting
+  double silence_timeout_s = 2.0;       ///< [s wall] kLenient: mute; kHold: check whether it is still alive
+  double report_period_s = 5.0;         ///< [s wall] between "still waiting" lines
+};
+
 class Lockstep {
  public:
-  Lockstep(ros::NodeHandle nh, const std::vector<std::string>& topics, double timeout_s);
-  bool Enabled() const { return !responders_.empty(); }
+  Lockstep(ros::NodeHandle nh, const std::vector<LockstepParticipant>& participants, const LockstepOptions& options);
+  bool Enabled() const { return !participants_.empty(); }
   /// Re-subscribes the watchers so that they come after every other subscriber of their topics:
   /// roscpp queues a message's callbacks in subscription order, so once the watcher has seen an
   /// answer, the plugins' callbacks for it are queued too. Call after plugins subscribed (spawn).
   void Resubscribe();
-  /// Serves callbacks until all active responders answered `stamp` (or timed out).
-  void WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue);
+  /// kHold: empty when every participant is present, else why the clock is held (and a line is
+  /// logged now and then). kLenient: always empty. Call before each step.
+  std::string HoldReason(double sim_time_s);
+  /// Call right before the step: notes which inputs the step publishes.
+  void BeforeStep();
+  /// Serves callbacks until every participant whose input the step published answered `stamp`.
+  /// Returns false when a participant went away meanwhile (the caller pauses; HoldReason says why).
+  /// Gives up when `stop` returns true (the simulator is shutting down).
+  bool WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop);
 
  private:
-  struct Responder {
+  struct Participant {
+    LockstepParticipant topics;
     ros::Subscriber sub;
     ros::Time last_stamp;
-    bool muted = false;  ///< timed out; waited for again once it answers
+    bool present = false;          ///< as of the last check
+    bool ever_present = false;
+    bool answered = false;         ///< answered since it (re)connected
+    bool warming_up = false;       ///< missed its first input; not waited for until it answers
+    bool muted = false;            ///< kLenient: silent past the timeout
+    bool gone = false;             ///< declared gone by a failed ping; present again once its node answers pings
+    uint32_t input_seq = 0;        ///< input publication sequence before the step
+    bool input_published = false;  ///< the last step published its input
   };
-  void OnMessage(const std::string& topic, const topic_tools::ShapeShifter::ConstPtr& msg);
-  bool AllAnswered(const ros::Time& stamp) const;
-  static bool Awaited(const Responder& r) { return !r.muted && r.sub.getNumPublishers() > 0; }
+  void OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstPtr& msg);
+  bool ConnectedNow(const Participant& p) const;
+  bool UpdatePresence(Participant* p, double sim_time_s);
+  bool Required(const Participant& p) const;
+  ros::Subscriber Subscribe(Participant* p);
 
-  ros::Subscriber Subscribe(const std::string& topic);
   ros::NodeHandle nh_;
-  std::map<std::string, Responder> responders_;
-  double timeout_s_;
+  std::vector<Participant> participants_;
+  LockstepOptions options_;
+  ros::WallTime next_report_;
+  ros::WallTime next_ping_;
 };
 
 /// Reads the header stamp of a serialized message that starts with std_msgs/Header
 /// (uint32 seq, uint32 sec, uint32 nsec); false if it is too short.
 bool HeaderStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp);
+
+/// True when at least one node that publishes `topic` (per the master) answers an XML-RPC ping.
+/// A node killed with SIGKILL stays registered, and its TCP link in this process retries.
+bool AnyPublisherAlive(const std::string& topic);
 
 }  // namespace rotors_sim

@@ -23,8 +23,8 @@ struct SimServerOptions {
   bool paused = false;
   double real_time_factor = -1.0;  ///< < 0: the world's own; 0: as fast as possible
   double state_publish_rate_hz = 100.0;  ///< [Hz sim time] TF, joint_states, model_states
-  std::vector<std::string> lockstep_topics;  ///< see Lockstep; empty: free running
-  double lockstep_timeout_s = 2.0;           ///< [s wall]
+  std::vector<LockstepParticipant> lockstep_participants;  ///< see Lockstep; empty: free running
+  LockstepOptions lockstep;
 };
 
 class SimServer {
@@ -33,13 +33,19 @@ class SimServer {
   SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimServerOptions& options);
   ~SimServer();
 
-  /// Steps and serves callbacks until ROS shuts down.
+  /// Steps and serves callbacks until ROS shuts down or RequestStop() was called.
   void Run();
+  /// Async-signal-safe: the simulation takes no further step (call from a SIGINT handler, so
+  /// that the world and its bag stop at once instead of stepping on while ROS shuts down).
+  static void RequestStop();
   physics::WorldPtr World() const { return world_; }
 
  private:
   void StepOnce();
   void PublishClock();
+  /// Paused by a user (pause_physics, -u) or held by lockstep; tells the world (and its plugins)
+  /// on every change. True when the world may step.
+  bool UpdateRunState();
   bool OnPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool OnUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -49,7 +55,7 @@ class SimServer {
 
   ros::NodeHandle nh_, private_nh_;
   physics::WorldPtr world_;
-  bool paused_;
+  bool user_paused_;
   RealTimePacer pacer_;
   std::unique_ptr<StatePublisher> state_publisher_;
   std::unique_ptr<Lockstep> lockstep_;
