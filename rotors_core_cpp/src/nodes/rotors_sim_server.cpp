@@ -6,6 +6,7 @@
 //   --lockstep-lenient   wait only for connected participants, mute silent ones (earlier versions)
 // Private parameters ~world_name, ~paused and ~real_time_factor do the same.
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -21,6 +22,7 @@ void OnStopSignal(int) { rotors_sim::SimServer::RequestStop(); }
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // console lines reach a launch's log as they happen
   ros::init(argc, argv, "gazebo", ros::init_options::NoSigintHandler);
   std::signal(SIGINT, OnStopSignal);
   std::signal(SIGTERM, OnStopSignal);

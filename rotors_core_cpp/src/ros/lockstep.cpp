@@ -116,6 +116,7 @@ bool Lockstep::UpdatePresence(Participant* p, double sim_time_s) {
       ROS_INFO("[rotors_sim] lockstep: %s is back; resuming at t = %.3f s", p->topics.answer_topic.c_str(), sim_time_s);
     p->gone = false;
     p->ever_present = true;
+    p->present_since = ros::WallTime::now();
     p->answered = false;
     p->warming_up = false;
   } else if (p->ever_present) {
@@ -132,7 +133,11 @@ std::string Lockstep::HoldReason(double sim_time_s) {
   std::string reason;
   for (auto& p : participants_) {
     if (!(p.gone && !may_ping)) UpdatePresence(&p, sim_time_s);
-    if (p.present) continue;
+    if (p.present && ros::WallTime::now() - p.present_since >= ros::WallDuration(options_.settle_s)) continue;
+    if (p.present) {
+      reason += std::string(reason.empty() ? "" : "; ") + "lockstep: " + p.topics.answer_topic + " connected, settling";
+      continue;
+    }
     if (!reason.empty()) reason += "; ";
     reason += "lockstep: waiting for " + p.topics.answer_topic +
               (p.sub.getNumPublishers() == 0 || p.gone ? " (no publisher)"
@@ -146,12 +151,16 @@ std::string Lockstep::HoldReason(double sim_time_s) {
   return reason;
 }
 
+uint32_t Lockstep::FlushInput(const Participant& p) {
+  if (p.topics.input_topic.empty()) return 0;
+  ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(p.topics.input_topic);
+  if (!pub) return 0;
+  pub->processPublishQueue();  // numbers and sends queued messages now, in this thread
+  return pub->getSequence();
+}
+
 void Lockstep::BeforeStep() {
-  for (auto& p : participants_) {
-    if (p.topics.input_topic.empty()) continue;
-    ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(p.topics.input_topic);
-    p.input_seq = pub ? pub->getSequence() : 0;
-  }
+  for (auto& p : participants_) p.input_seq = FlushInput(p);
 }
 
 bool Lockstep::Required(const Participant& p) const {
@@ -161,14 +170,7 @@ bool Lockstep::Required(const Participant& p) const {
 }
 
 bool Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop) {
-  for (auto& p : participants_) {
-    if (p.topics.input_topic.empty()) {
-      p.input_published = true;
-    } else {
-      ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(p.topics.input_topic);
-      p.input_published = pub && pub->getSequence() != p.input_seq;
-    }
-  }
+  for (auto& p : participants_) p.input_published = p.topics.input_topic.empty() || FlushInput(p) != p.input_seq;
   const ros::WallTime start = ros::WallTime::now();
   ros::WallTime next_check = start + ros::WallDuration(options_.silence_timeout_s);
   ros::WallTime next_report = start + ros::WallDuration(options_.report_period_s);

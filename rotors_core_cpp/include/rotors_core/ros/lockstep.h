@@ -6,10 +6,12 @@
 //
 // Semantics (mode kHold, the default):
 // - A participant is present when its answer topic has a publisher and, if an input topic is
-//   declared, the simulator's input topic has a subscriber. A participant that is not present
-//   holds the clock: the simulator does not step (one line every few seconds names it).
+//   declared, the simulator's input topic has a subscriber, and it has been so for settle_s of wall
+//   time (so that its other subscriptions, e.g. a latched set point, are connected before the first
+//   step: runs do not depend on when it started). A participant that is not present holds the clock: the simulator does not step (one line every few seconds names it).
 // - After a step that published a participant's input (or every step, when no input topic is
-//   declared), the simulator waits until the participant answered with a stamp >= the step's time.
+//   declared), the simulator waits until the participant answered with a stamp >= the step's time
+//   (inputs carry the step's time as their stamp, as the odometry and IMU plugins write it).
 // - A participant that goes away (its publisher unregisters, or its node no longer answers pings,
 //   e.g. after kill -9) pauses the simulation with one line; it resumes when the participant is
 //   back. Its first input after (re)connecting is waited for briefly: a participant that cannot
@@ -39,6 +41,7 @@ std::vector<LockstepParticipant> ParseLockstepParticipants(const std::string& sp
 struct LockstepOptions {
   enum class Mode { kHold, kLenient };
   Mode mode = Mode::kHold;
+  double settle_s = 0.5;                ///< [s wall] a participant that (re)connected is given to connect its other topics
   double first_answer_timeout_s = 0.5;  ///< [s wall] waiting for the first answer after (re)connecting
   double silence_timeout_s = 2.0;       ///< [s wall] kLenient: mute; kHold: check whether it is still alive
   double report_period_s = 5.0;         ///< [s wall] between "still waiting" lines
@@ -55,7 +58,7 @@ class Lockstep {
   /// kHold: empty when every participant is present, else why the clock is held (and a line is
   /// logged now and then). kLenient: always empty. Call before each step.
   std::string HoldReason(double sim_time_s);
-  /// Call right before the step: notes which inputs the step publishes.
+  /// Call right before the step (to tell which inputs the step publishes).
   void BeforeStep();
   /// Serves callbacks until every participant whose input the step published answered `stamp`.
   /// Returns false when a participant went away meanwhile (the caller pauses; HoldReason says why).
@@ -68,14 +71,18 @@ class Lockstep {
     ros::Subscriber sub;
     ros::Time last_stamp;
     bool present = false;          ///< as of the last check
+    ros::WallTime present_since;
     bool ever_present = false;
     bool answered = false;         ///< answered since it (re)connected
     bool warming_up = false;       ///< missed its first input; not waited for until it answers
     bool muted = false;            ///< kLenient: silent past the timeout
     bool gone = false;             ///< declared gone by a failed ping; present again once its node answers pings
-    uint32_t input_seq = 0;        ///< input publication sequence before the step
+    uint32_t input_seq = 0;        ///< input publication's sequence number before the step
     bool input_published = false;  ///< the last step published its input
   };
+  /// Sends what the plugins published in the step (roscpp would do it in its poll thread) and
+  /// returns the input publication's sequence number (0 when it does not exist yet).
+  static uint32_t FlushInput(const Participant& p);
   void OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstPtr& msg);
   bool ConnectedNow(const Participant& p) const;
   bool UpdatePresence(Participant* p, double sim_time_s);

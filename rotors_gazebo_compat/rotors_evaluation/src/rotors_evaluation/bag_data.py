@@ -44,6 +44,20 @@ class FlightData:
     collision_times: np.ndarray           # [s]
     motor_speeds: Optional[Series] = None  # (N, rotors) [rad/s]
     topics: Dict[str, str] = field(default_factory=dict)
+    flight_end: Optional["FlightEnd"] = None  # where the simulation stopped, if the bag says so
+
+
+@dataclass
+class FlightEnd:
+    """The simulation was paused or stopped at t [s] and did not resume: what the bag holds after t
+    is not a controlled flight (a controller that exited first, a simulator that shut down)."""
+    t: float
+    reason: str
+    dropped_s: float = 0.0  # [s] of pose data recorded after t (left out of the evaluation)
+
+
+STATUS_TOPIC = "/simulation_status"  # rotors_comm/SimulationStatus, written by the bag plugin
+STATUS_RUNNING = 0
 
 
 POSE_COMMAND_TOPIC = "/command/pose"
@@ -120,10 +134,40 @@ class FlightBag:
                            f"topic options); the bag has: {', '.join(sorted(self.topics))}")
         return found
 
+    def flight_end(self, mav_name: str) -> Optional[FlightEnd]:
+        """The last pause or stop that was not followed by a resume, from the bag plugin's
+        simulation_status markers; None for bags without them (rosbag record, RotorS)."""
+        topic = self.resolve(mav_name, STATUS_TOPIC)
+        if topic is None:
+            return None
+        end = None
+        for msg, _, t_ns in self.messages(topic):
+            if msg.state == STATUS_RUNNING:
+                end = None
+            elif end is None:
+                state = "stopped" if msg.state == 2 else "paused"
+                end = FlightEnd(_stamp(msg, t_ns), f"the simulation was {state}: {msg.reason}" if msg.reason
+                                else f"the simulation was {state}")
+        return end
+
     def messages(self, topic: str):
         conns = [c for c in self.reader.connections if c.topic.lstrip("/") == topic]
         for conn, t_ns, raw in self.reader.messages(connections=conns):
             yield self.typestore.deserialize_ros1(raw, conn.msgtype), conn.msgtype, t_ns
+
+
+def _until(data: FlightData, end: Optional[FlightEnd]) -> FlightData:
+    """Drops what was recorded after the simulation stopped for good (see FlightEnd)."""
+    if end is None:
+        return data
+    end.dropped_s = max(float(data.position.t[-1]) - end.t, 0.0) if len(data.position.t) else 0.0
+    keep = lambda series: series.window(-np.inf, end.t) if series is not None else None  # noqa: E731
+    data.position, data.angular_velocity = keep(data.position), keep(data.angular_velocity)
+    data.motor_speeds = keep(data.motor_speeds)
+    data.waypoints = [w for w in data.waypoints if w.t <= end.t]
+    data.collision_times = data.collision_times[data.collision_times <= end.t]
+    data.flight_end = end
+    return data
 
 
 def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, waypoint_topic: str,
@@ -181,7 +225,8 @@ def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, wa
                     om.append(list(speeds))
                 if tm and len({len(o) for o in om}) == 1:
                     motors = Series(np.array(tm), np.array(om))
-        return FlightData(bag.path, Series(np.array(t), np.array(p)), Series(np.array(tw), np.array(w).reshape(-1, 3)),
+        data = FlightData(bag.path, Series(np.array(t), np.array(p)), Series(np.array(tw), np.array(w).reshape(-1, 3)),
                           waypoints, np.array(sorted(collisions)), motors, used)
+        return _until(data, bag.flight_end(mav_name))
     finally:
         bag.close()

@@ -23,6 +23,10 @@ class Track:
     q: np.ndarray            # (N, 4) w, x, y, z (world <- body)
     v: Optional[np.ndarray] = None  # (N, 3) world
 
+    def until(self, t_end: float) -> "Track":
+        keep = self.t <= t_end
+        return Track(self.t[keep], self.p[keep], self.q[keep], None if self.v is None else self.v[keep])
+
 
 @dataclass
 class EstimatorResult:
@@ -124,6 +128,11 @@ def load_tracks(path: Path, mav_name: str, estimate_topic: str):
             if found:
                 t, rows = _read(bag, found, fn)
                 extras[name] = (t, rows)
+        end = bag.flight_end(mav_name)  # what was recorded after the simulation stopped for good is left out
+        if end is not None:
+            truth, estimate = truth.until(end.t), estimate.until(end.t)
+            extras = {k: (t[t <= end.t], [r for r, keep in zip(rows, t <= end.t) if keep])
+                      for k, (t, rows) in extras.items()}
         return truth, estimate, extras
     finally:
         bag.close()

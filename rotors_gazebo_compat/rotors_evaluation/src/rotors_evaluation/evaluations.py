@@ -165,6 +165,14 @@ def _report(result: EvalResult, collisions: np.ndarray, out, averages: bool = Fa
 EVALUATORS = {"hovering": evaluate_hovering, "waypoints": evaluate_waypoints, "disturbance": evaluate_disturbance}
 
 
+def report_flight_end(data: FlightData, out=print) -> None:
+    """One line when the bag goes on after the simulation stopped for good (the tail is ignored)."""
+    end = data.flight_end
+    if end is not None and end.dropped_s > 0.0:
+        out(f"Evaluating until {end.t:.3f} s: {end.reason} (simulation_status); the last {end.dropped_s:.3f} s "
+            f"of the bag are left out")
+
+
 def run(kind: str, description: str, argv: Optional[Sequence[str]] = None) -> int:
     """Entry point of hovering_eval.py, waypoint(s)_eval.py and disturbance_eval.py."""
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s: %(message)s")
@@ -172,6 +180,7 @@ def run(kind: str, description: str, argv: Optional[Sequence[str]] = None) -> in
     prog = Path(sys.argv[0]).name if argv is None else f"{kind}_eval.py"
     try:
         data = _load(opts, opts.bagfiles[0])
+        report_flight_end(data)
         result = EVALUATORS[kind](data, opts)
     except BagError as e:
         print(f"{prog}: {e}", file=sys.stderr)
