@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+from conftest import REPO, RosGraph, launch, send_hover_pose, stop_launch, wait_sim_time
 
 sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
 from rotors_evaluation.bag_data import FlightBag  # noqa: E402
@@ -65,8 +65,9 @@ def fly_determinism_launch(ros: RosGraph, tag: str, controller_delay_s: float) -
     try:
         assert ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         # the set point is latched and the simulation unpaused at once: a late controller must hold the clock
-        ros.rospy("""
+        ros.rospy(f"""
             from geometry_msgs.msg import PoseStamped
+            from rosgraph_msgs.msg import Clock
             from std_srvs.srv import Empty
             pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
             cmd = PoseStamped()
@@ -74,14 +75,10 @@ def fly_determinism_launch(ros: RosGraph, tag: str, controller_delay_s: float) -
             cmd.pose.orientation.w = 1.0
             pub.publish(cmd)
             rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-            if %r > 0:
-                time.sleep(2.0)
-                from rosgraph_msgs.msg import Clock
-                result['clock_while_missing'] = rospy.wait_for_message('/clock', Clock, timeout=5).clock.to_sec()
-            # keeps the latched set point alive until the flight is done
-            while rospy.wait_for_message('/clock', __import__('rosgraph_msgs.msg').msg.Clock).clock.to_sec() < 6.0:
+            # the latched set point lives as long as this client: until the flight is done
+            while rospy.wait_for_message('/clock', Clock).clock.to_sec() < 6.0:
                 pass
-        """ % controller_delay_s, timeout=180)
+        """, timeout=180)
         wait_sim_time(ros, 6.0)
         log = Path(proc.log_path).read_text()
         if controller_delay_s > 0:
@@ -128,17 +125,7 @@ def test_a_killed_controller_pauses_lockstep_and_its_restart_resumes_the_flight(
         restarted = ros.start(["rosrun", "rotors_control", "lee_position_controller_node", "__ns:=/firefly",
                                "__name:=lee_position_controller_node", "odometry:=odometry_sensor1/odometry"],
                               "controller_again")
-        ros.rospy("""
-            from geometry_msgs.msg import PoseStamped
-            pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
-            while pub.get_num_connections() == 0:
-                time.sleep(0.05)
-            cmd = PoseStamped()
-            cmd.pose.position.z = 1.0
-            cmd.pose.orientation.w = 1.0
-            pub.publish(cmd)
-            time.sleep(1.0)
-        """)
+        send_hover_pose(ros)
         wait_sim_time(ros, t_paused + 10.0, timeout_s=120)
         assert "/firefly/command/motor_speed is back; resuming at t = " in Path(proc.log_path).read_text()
     finally:

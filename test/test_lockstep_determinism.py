@@ -1,11 +1,10 @@
 """Lockstep makes runs repeatable: two runs with the same seeds write identical bags, message for
 message and bit for bit in the payloads."""
-import time
 from pathlib import Path
 
 from rosbags.rosbag1 import Reader
 
-from conftest import REPO, RosGraph, stop_launch, wait_sim_time
+from conftest import REPO, RosGraph, send_hover_pose, stop_launch, wait_sim_time
 
 
 def fly_once(ros: RosGraph, tag: str) -> Path:
@@ -14,20 +13,9 @@ def fly_once(ros: RosGraph, tag: str) -> Path:
     try:
         ready = ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         assert ready, Path(proc.log_path).read_text()[-2000:]
-        ros.rospy("""
-            from geometry_msgs.msg import PoseStamped
-            from mav_msgs.msg import Actuators
+        send_hover_pose(ros, then="""
             from std_srvs.srv import Empty
-            pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
-            # the controller is up once it publishes motor commands' topic and listens to poses
-            while pub.get_num_connections() == 0:
-                time.sleep(0.05)
-            cmd = PoseStamped()
-            cmd.pose.position.z = 1.0
-            cmd.pose.orientation.w = 1.0
-            pub.publish(cmd)
-            time.sleep(1.0)  # delivered while paused
-            rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
+            rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()  # the set point was delivered while paused
         """)
         wait_sim_time(ros, 6.0)
         ros.run(["rosservice", "call", "/gazebo/pause_physics"])

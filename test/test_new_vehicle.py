@@ -3,7 +3,6 @@ its vehicle yaml and gains from `rosrun rotors_gazebo vehicle_params`, flown by 
 example. It must hover within 0.01 m of its set point first time (the simulated vehicle weighs
 more than its body: rotors and sensors; the computed yaml knows it)."""
 import math
-import subprocess
 import sys
 from pathlib import Path
 

@@ -128,7 +128,7 @@ def world_gravity(world_file: Path) -> float:
     return float(np.linalg.norm([float(v) for v in match.groups()])) if match else 9.8
 
 
-def vehicle_yaml(name: str, body: RigidBody, gravity: float, source: str) -> Dict:
+def vehicle_yaml(body: RigidBody, gravity: float) -> Dict:
     J = body.inertia_kg_m2
     rotors = {}
     for r in body.rotors:
