@@ -125,7 +125,7 @@ def wait_sim_time(ros: RosGraph, t_s: float, timeout_s: float = 300.0) -> float:
 def send_hover_pose(ros: RosGraph, then: str = "") -> None:
     """Sends the set point (0, 0, 1) latched on /firefly/command/pose once the controller listens,
     then runs the rospy code `then` in the same client (the latched message lives as long as it)."""
-    ros.rospy("""
+    ros.rospy(textwrap.dedent("""
         from geometry_msgs.msg import PoseStamped
         pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
         while pub.get_num_connections() == 0:  # the controller is up and listens to poses
@@ -135,7 +135,7 @@ def send_hover_pose(ros: RosGraph, then: str = "") -> None:
         cmd.pose.orientation.w = 1.0
         pub.publish(cmd)
         time.sleep(1.0)
-    """ + textwrap.dedent(then))
+    """) + textwrap.dedent(then))
 
 
 def stop_launch(proc: subprocess.Popen, timeout: float = 30.0) -> None:
