@@ -45,7 +45,8 @@ def test_a_quadrotor_added_by_the_readme_steps_hovers_first_time(ros: RosGraph):
         res = ros.run(["rosrun", "rotors_gazebo", "vehicle_params", "--mav_name", NAME])
         print(res.stdout)
         vehicle = yaml.safe_load((RESOURCE / f"{NAME}.yaml").read_text())
-        assert 1.05 < vehicle["mass"] < 1.06  # body 1.0 kg + 4 rotors + IMU + odometry sensor
+        # body 1.0 kg + 4 rotors of 0.01 kg + ADIS16448 IMU 0.015 kg + 3 sensor links of 1e-5 kg
+        assert math.isclose(vehicle["mass"], 1.0 + 4 * 0.01 + 0.015 + 3 * 1e-5, abs_tol=1e-9)
         assert vehicle["gravity"] == 9.8 and len(vehicle["rotor_configuration"]) == 4
         assert math.isclose(vehicle["rotor_configuration"]["0"]["angle"], math.pi / 4, abs_tol=1e-6)
         assert "scaled to" in res.stdout
