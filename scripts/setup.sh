@@ -12,7 +12,7 @@ apt_packages=(
   libsdformat-dev libignition-utils-dev libignition-math-dev libyaml-cpp-dev liburdfdom-dev
   liburdfdom-tools librosbag-dev libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
   libtrajectory-msgs-dev libstd-srvs-dev python3-nav-msgs python3-trajectory-msgs
-  python3-std-srvs imagemagick libstb-dev
+  python3-std-srvs imagemagick libstb-dev libassimp-dev libvisualization-msgs-dev python3-visualization-msgs
 )
 missing=()
 for p in "${apt_packages[@]}"; do

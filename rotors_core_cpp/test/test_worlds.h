@@ -7,7 +7,7 @@
 #include "rotors_core/physics/world.h"
 
 inline std::string WorldSdf(double step_s, double gravity_z, bool ground, const std::string& solver = "quick",
-                            int iters = 1000) {
+                            int iters = 1000, const std::string& ground_surface = "") {
   std::ostringstream s;
   s << "<?xml version='1.0'?><sdf version='1.6'><world name='test'>"
     << "<gravity>0 0 " << gravity_z << "</gravity>"
@@ -18,7 +18,8 @@ inline std::string WorldSdf(double step_s, double gravity_z, bool ground, const 
     << "<contact_surface_layer>0.001</contact_surface_layer></constraints></ode></physics>";
   if (ground) {
     s << "<model name='ground_plane'><static>true</static><link name='link'><collision name='collision'>"
-      << "<geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></collision></link></model>";
+      << "<geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>" << ground_surface
+      << "</collision></link></model>";
   }
   s << "</world></sdf>";
   return s.str();

@@ -71,8 +71,8 @@ void Model::SetWorldPose(const Pose3d& X_WM) {
   }
 }
 
-void Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name) {
-  auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name});
+void Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface) {
+  auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name, surface});
   dGeomSetData(geom, info.get());
   geoms_.emplace_back(geom, std::move(info));
 }

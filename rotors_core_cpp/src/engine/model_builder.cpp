@@ -94,13 +94,40 @@ JointSpec ClassifyJoint(const sdf::Joint& joint, const std::string& where) {
   }
 }
 
+/// SDF <surface> of a collision: friction (<friction><ode>) and contact stiffness (<contact><ode>).
+physics::SurfaceParams SurfaceOf(const sdf::Collision& collision, const std::string& where) {
+  physics::SurfaceParams s;
+  sdf::ElementPtr e = collision.Element();
+  if (e && e->HasElement("surface")) {
+    sdf::ElementPtr surface = e->GetElement("surface");
+    auto read = [&](const char* a, const char* b, const char* c, double* out) {
+      if (!surface->HasElement(a)) return;
+      sdf::ElementPtr x = surface->GetElement(a);
+      if (!x->HasElement(b)) return;
+      x = x->GetElement(b);
+      if (x->HasElement(c)) *out = x->GetElement(c)->Get<double>();
+    };
+    read("friction", "ode", "mu", &s.mu);
+    read("friction", "ode", "mu2", &s.mu2);
+    read("friction", "ode", "slip1", &s.slip1_m_s_N);
+    read("friction", "ode", "slip2", &s.slip2_m_s_N);
+    read("contact", "ode", "kp", &s.kp_N_m);
+    read("contact", "ode", "kd", &s.kd_N_s_m);
+  }
+  const std::string why = s.Validate();
+  if (!why.empty()) throw SimError(where + ": <surface>: " + why);
+  return s;
+}
+
 void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& model, const sdf::Link& sdf_link,
                    const physics::LinkPtr& link, const Pose3d& X_WL) {
   for (uint64_t c = 0; c < sdf_link.CollisionCount(); ++c) {
     const sdf::Collision* collision = sdf_link.CollisionByIndex(c);
     const std::string scoped = model->GetName() + "::" + sdf_link.Name() + "::" + collision->Name();
+    const physics::SurfaceParams surface = SurfaceOf(*collision, "collision '" + scoped + "'");
     dGeomID geom = CreateGeom(world->OdeSpace(), *collision->Geom(), "collision '" + scoped + "'");
     if (!geom) continue;
+    model->AddGeom(geom, link.get(), scoped, surface);  // owned by the model from here on
     Pose3d X_LC;
     sdf::Errors errors = collision->SemanticPose().Resolve(X_LC, sdf_link.Name());
     if (!errors.empty()) throw SimError("collision '" + scoped + "': " + errors.front().Message());
@@ -123,7 +150,6 @@ void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& mode
       ode_convert::ToOde(X_WC.Rot(), q);
       dGeomSetQuaternion(geom, q);
     }
-    model->AddGeom(geom, link.get(), scoped);
   }
 }
 

@@ -1,6 +1,9 @@
 #include "rotors_core/physics/world.h"
 
+#include <atomic>
 #include <chrono>
+#include <cstdarg>
+#include <cstdio>
 #include <cmath>
 #include <mutex>
 #include <sstream>
@@ -23,11 +26,26 @@ common::Time WallNow() {
   return common::Time::FromNanoseconds(ns);
 }
 
+std::atomic<uint64_t> ode_messages{0};
+
+// ODE reports solver trouble (e.g. "LCP internal error, s <= 0") as messages: printed and counted.
+void OdeMessage(int errnum, const char* msg, va_list ap) {
+  ++ode_messages;
+  char text[512];
+  std::vsnprintf(text, sizeof(text), msg, ap);
+  std::fprintf(stderr, "ODE Message %d: %s\n", errnum, text);
+}
+
 void InitOdeOnce() {
   static std::once_flag once;
-  std::call_once(once, [] { dInitODE2(0); });
+  std::call_once(once, [] {
+    dInitODE2(0);
+    dSetMessageHandler(&OdeMessage);
+  });
 }
 }  // namespace
+
+uint64_t OdeMessageCount() { return ode_messages.load(); }
 
 std::string PhysicsParams::Validate() const {
   std::ostringstream why;
@@ -171,12 +189,17 @@ void World::NearCallback(void* data, dGeomID g1, dGeomID g2) {
 
   dContact contacts[kMaxContactsPerPair];
   const int n = dCollide(g1, g2, kMaxContactsPerPair, &contacts[0].geom, sizeof(dContact));
+  if (n == 0) return;
+  const ContactConstraint constraint = Combine(info1->surface, info2->surface, world->params_.max_step_size_s);
   for (int i = 0; i < n; ++i) {
     dContact& c = contacts[i];
-    c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
-    c.surface.mu = world->params_.friction_mu;
-    c.surface.soft_erp = world->params_.erp;
-    c.surface.soft_cfm = world->params_.cfm;
+    c.surface.mode = dContactApprox1 | dContactMu2 | dContactSoftERP | dContactSoftCFM | dContactSlip1 | dContactSlip2;
+    c.surface.mu = constraint.mu;
+    c.surface.mu2 = constraint.mu2;
+    c.surface.soft_erp = constraint.erp;
+    c.surface.soft_cfm = constraint.cfm;
+    c.surface.slip1 = constraint.slip1;
+    c.surface.slip2 = constraint.slip2;
     dJointID joint = dJointCreateContact(world->ode_world_, world->contact_group_, &c);
     dJointAttach(joint, b1, b2);
     world->pending_contacts_.emplace_back();

@@ -10,6 +10,7 @@
 #include <sdf/Element.hh>
 
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/physics/surface.h"
 #include "rotors_core/sensors/sensor.h"
 
 namespace rotors_sim {
@@ -51,8 +52,9 @@ class Model {
   struct GeomInfo {
     Link* link;
     std::string scoped_name;  ///< "model::link::collision"
+    SurfaceParams surface;
   };
-  void AddGeom(dGeomID geom, Link* link, const std::string& scoped_name);
+  void AddGeom(dGeomID geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface = {});
   void SetInitialPose(const Pose3d& X_WM) { X_WM_initial_ = X_WM; }
   void AddPlugin(std::unique_ptr<ModelPlugin> plugin);
   const std::vector<std::unique_ptr<ModelPlugin>>& Plugins() const { return plugins_; }

@@ -30,7 +30,6 @@ struct PhysicsParams {
   double erp = 0.2;
   double contact_max_correcting_vel_m_s = 100.0;
   double contact_surface_layer_m = 0.001;
-  double friction_mu = 1.0;
   std::string Validate() const;  ///< empty when valid, else a one-line reason
 };
 
@@ -44,6 +43,9 @@ struct Contact {
   Vector3d force1_W, torque1_W;        ///< wrench on link1 from the contact, world frame
   Vector3d force2_W, torque2_W;
 };
+
+/// How many messages (solver warnings such as "LCP internal error") ODE has reported in this process.
+uint64_t OdeMessageCount();
 
 class World : public std::enable_shared_from_this<World> {
  public:
