@@ -23,7 +23,8 @@ void Model::Fini() {
   for (auto& link : links_) link->ClearJoints();
   joints_.clear();
   for (auto& g : geoms_) dGeomDestroy(g.first);
-  geoms_.clear();
+  geoms_.clear();  // after the geoms: the mesh data they point into
+  visuals_.clear();
   for (auto& b : bodies_) dBodyDestroy(b.body);
   bodies_.clear();
   links_.clear();
@@ -71,10 +72,11 @@ void Model::SetWorldPose(const Pose3d& X_WM) {
   }
 }
 
-void Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface) {
-  auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name, surface});
+Model::GeomInfo* Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface) {
+  auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name, surface, nullptr});
   dGeomSetData(geom, info.get());
   geoms_.emplace_back(geom, std::move(info));
+  return geoms_.back().second.get();
 }
 
 void Model::AddPlugin(std::unique_ptr<ModelPlugin> plugin) { plugins_.push_back(std::move(plugin)); }

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include <sdf/Collision.hh>
+#include <sdf/Material.hh>
+#include <sdf/Visual.hh>
 #include <sdf/Joint.hh>
 #include <sdf/JointAxis.hh>
 #include <sdf/Link.hh>
@@ -120,36 +122,63 @@ physics::SurfaceParams SurfaceOf(const sdf::Collision& collision, const std::str
 }
 
 void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& model, const sdf::Link& sdf_link,
-                   const physics::LinkPtr& link, const Pose3d& X_WL) {
+                   const physics::LinkPtr& link, const Pose3d& X_WL, const std::string& sdf_file) {
   for (uint64_t c = 0; c < sdf_link.CollisionCount(); ++c) {
     const sdf::Collision* collision = sdf_link.CollisionByIndex(c);
     const std::string scoped = model->GetName() + "::" + sdf_link.Name() + "::" + collision->Name();
-    const physics::SurfaceParams surface = SurfaceOf(*collision, "collision '" + scoped + "'");
-    dGeomID geom = CreateGeom(world->OdeSpace(), *collision->Geom(), "collision '" + scoped + "'");
-    if (!geom) continue;
-    model->AddGeom(geom, link.get(), scoped, surface);  // owned by the model from here on
+    const std::string where = "collision '" + scoped + "'";
+    const physics::SurfaceParams surface = SurfaceOf(*collision, where);
+    const geometry::Shape shape = ReadShape(*collision->Geom(), where, sdf_file);
     Pose3d X_LC;
     sdf::Errors errors = collision->SemanticPose().Resolve(X_LC, sdf_link.Name());
-    if (!errors.empty()) throw SimError("collision '" + scoped + "': " + errors.front().Message());
+    if (!errors.empty()) throw SimError(where + ": " + errors.front().Message());
+    const Pose3d X_WC = Compose(X_WL, X_LC);
+    CreatedGeom created = CreateGeom(world->OdeSpace(), shape, X_WC, link->Body() != nullptr, where);
+    dGeomID geom = created.geom;
+    if (!geom) continue;
+    model->AddGeom(geom, link.get(), scoped, surface)->keep_alive = created.keep_alive;  // owned by the model
     if (dGeomGetClass(geom) == dPlaneClass) {
-      if (link->Body()) throw SimError("collision '" + scoped + "': a plane can only belong to a static model");
-      const Pose3d X_WC = Compose(X_WL, X_LC);
-      const Vector3d n_W = X_WC.Rot().RotateVector(collision->Geom()->PlaneShape()->Normal()).Normalized();
+      if (link->Body()) throw SimError(where + ": a plane can only belong to a static model");
+      const Vector3d n_W = X_WC.Rot().RotateVector(shape.plane_normal).Normalized();
       dGeomPlaneSetParams(geom, n_W.X(), n_W.Y(), n_W.Z(), n_W.Dot(X_WC.Pos()));
+    } else if (shape.type == geometry::Shape::Type::kOcTree) {
+      // placed at creation
     } else if (link->Body()) {
       dGeomSetBody(geom, link->Body());
-      const Pose3d X_BC = Compose(link->PoseInBody(), X_LC);
-      dGeomSetOffsetPosition(geom, X_BC.Pos().X(), X_BC.Pos().Y(), X_BC.Pos().Z());
+      const Pose3d X_BG = Compose(Compose(link->PoseInBody(), X_LC), created.X_CG);
+      dGeomSetOffsetPosition(geom, X_BG.Pos().X(), X_BG.Pos().Y(), X_BG.Pos().Z());
       dQuaternion q;
-      ode_convert::ToOde(X_BC.Rot(), q);
+      ode_convert::ToOde(X_BG.Rot(), q);
       dGeomSetOffsetQuaternion(geom, q);
     } else {
-      const Pose3d X_WC = Compose(X_WL, X_LC);
-      dGeomSetPosition(geom, X_WC.Pos().X(), X_WC.Pos().Y(), X_WC.Pos().Z());
+      const Pose3d X_WG = Compose(X_WC, created.X_CG);
+      dGeomSetPosition(geom, X_WG.Pos().X(), X_WG.Pos().Y(), X_WG.Pos().Z());
       dQuaternion q;
-      ode_convert::ToOde(X_WC.Rot(), q);
+      ode_convert::ToOde(X_WG.Rot(), q);
       dGeomSetQuaternion(geom, q);
     }
+  }
+}
+
+/// <visual> elements, kept for whoever draws the world. URDF <material> colours come through
+/// sdformat as <material><diffuse>.
+void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const physics::LinkPtr& link,
+                const std::string& sdf_file) {
+  for (uint64_t v = 0; v < sdf_link.VisualCount(); ++v) {
+    const sdf::Visual* visual = sdf_link.VisualByIndex(v);
+    geometry::Visual out;
+    out.scoped_name = model->GetName() + "::" + sdf_link.Name() + "::" + visual->Name();
+    out.link = link.get();
+    sdf::Errors errors = visual->SemanticPose().Resolve(out.X_LV, sdf_link.Name());
+    if (!errors.empty()) throw SimError("visual '" + out.scoped_name + "': " + errors.front().Message());
+    out.shape = ReadShape(*visual->Geom(), "visual '" + out.scoped_name + "'", sdf_file);
+    if (visual->Material()) {
+      const auto c = visual->Material()->Diffuse();
+      out.rgba = {static_cast<float>(c.R()), static_cast<float>(c.G()), static_cast<float>(c.B()), static_cast<float>(c.A())};
+    } else if (out.shape.mesh) {
+      out.rgba = out.shape.mesh->rgba;
+    }
+    model->AddVisual(std::move(out));
   }
 }
 
@@ -227,6 +256,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
   if (world->ModelByName(name)) throw SimError("model '" + name + "': a model of that name already exists");
   if (sdf_model.LinkCount() == 0) throw SimError("model '" + name + "': it has no links");
   auto model = std::make_shared<physics::Model>(name, world.get(), sdf_model.Static());
+  const std::string sdf_file = sdf_model.Element() ? sdf_model.Element()->FilePath() : "";
   model->SetSDF(sdf_model.Element());
   model->SetInitialPose(X_WM);
   try {
@@ -332,9 +362,11 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
       model->AddJoint(joint);
     }
 
-    // --- collisions ---
-    for (const auto& link_name : order)
-      AddCollisions(world, model, *sdf_links[link_name], links[link_name], Compose(X_WM, X_ML[link_name]));
+    // --- collisions and visuals ---
+    for (const auto& link_name : order) {
+      AddCollisions(world, model, *sdf_links[link_name], links[link_name], Compose(X_WM, X_ML[link_name]), sdf_file);
+      AddVisuals(model, *sdf_links[link_name], links[link_name], sdf_file);
+    }
 
     world->AddModel(model);
   } catch (...) {

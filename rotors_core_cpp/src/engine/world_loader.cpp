@@ -13,6 +13,7 @@
 
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
+#include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/model_builder.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin_loader.h"
@@ -97,10 +98,7 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
 sdf::ParserConfig Config() {
   SilenceSdformatConsole();
   sdf::ParserConfig config;
-  for (const char* env : {"GAZEBO_MODEL_PATH", "ROTORS_MODEL_PATH"}) {
-    const char* value = std::getenv(env);
-    if (value && *value) config.AddURIPath("model://", value);
-  }
+  for (const auto& folder : geometry::UriResolver::ModelPaths()) config.AddURIPath("model://", folder);
   return config;
 }
 

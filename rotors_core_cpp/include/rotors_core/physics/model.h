@@ -11,6 +11,7 @@
 
 #include "rotors_core/physics/physics_types.h"
 #include "rotors_core/physics/surface.h"
+#include "rotors_core/geometry/visual.h"
 #include "rotors_core/sensors/sensor.h"
 
 namespace rotors_sim {
@@ -53,8 +54,13 @@ class Model {
     Link* link;
     std::string scoped_name;  ///< "model::link::collision"
     SurfaceParams surface;
+    std::shared_ptr<void> keep_alive;  ///< ODE mesh/heightfield data the geom points into
   };
-  void AddGeom(dGeomID geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface = {});
+  GeomInfo* AddGeom(dGeomID geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface = {});
+  /// Collision geoms with their info (for whoever queries the world's geometry).
+  const std::vector<std::pair<dGeomID, std::unique_ptr<GeomInfo>>>& Geoms() const { return geoms_; }
+  void AddVisual(geometry::Visual visual) { visuals_.push_back(std::move(visual)); }
+  const std::vector<geometry::Visual>& Visuals() const { return visuals_; }
   void SetInitialPose(const Pose3d& X_WM) { X_WM_initial_ = X_WM; }
   void AddPlugin(std::unique_ptr<ModelPlugin> plugin);
   const std::vector<std::unique_ptr<ModelPlugin>>& Plugins() const { return plugins_; }
@@ -78,6 +84,7 @@ class Model {
   Joint_V joints_;
   std::vector<BodyRecord> bodies_;
   std::vector<std::pair<dGeomID, std::unique_ptr<GeomInfo>>> geoms_;
+  std::vector<geometry::Visual> visuals_;
   Pose3d X_WM_initial_;
   std::vector<std::unique_ptr<ModelPlugin>> plugins_;
   std::vector<sensors::SensorPtr> sensors_;

@@ -1,0 +1,44 @@
+// What a collision or visual element looks like, kept by the engine for whoever draws the world
+// (rviz markers now, the camera renderer later). Engine-free data.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include <ignition/math/Pose3.hh>
+#include <ignition/math/Vector3.hh>
+
+#include "rotors_core/geometry/shapes.h"
+
+namespace rotors_sim {
+namespace physics {
+class Link;
+}
+namespace geometry {
+
+struct Shape {
+  enum class Type { kBox, kSphere, kCylinder, kPlane, kMesh, kHeightmap, kOcTree };
+  Type type = Type::kBox;
+  ignition::math::Vector3d box_size_m;
+  double radius_m = 0.0, length_m = 0.0;        ///< sphere, cylinder
+  ignition::math::Vector3d plane_normal{0, 0, 1};
+  ignition::math::Vector3d plane_size_m{100, 100, 0};
+  std::string mesh_file;                         ///< resolved path (mesh, octomap)
+  std::array<double, 3> mesh_scale{1, 1, 1};
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::shared_ptr<const HeightField> heightfield;  ///< in the element's frame
+  std::shared_ptr<const octomap::OcTree> octree;   ///< in the element's frame
+};
+
+/// A <visual> (or, for a model without visuals, nothing: collisions are not drawn).
+struct Visual {
+  std::string scoped_name;  ///< "model::link::visual"
+  physics::Link* link = nullptr;
+  ignition::math::Pose3d X_LV;  ///< visual frame in the link frame
+  Shape shape;
+  std::array<float, 4> rgba{0.7f, 0.7f, 0.7f, 1.0f};
+};
+
+}  // namespace geometry
+}  // namespace rotors_sim
