@@ -3,6 +3,8 @@ upstream ones, computed here from the field lists in rotors_reference.md section
 and nodes from real RotorS set-ups interoperate)."""
 import importlib
 import subprocess
+from pathlib import Path
+import tempfile
 
 import genmsg
 import genmsg.msg_loader
@@ -36,9 +38,15 @@ REFERENCE_MSGS = {
     # ethzasl_msf (reference section 8)
     "sensor_fusion_comm/DoubleArrayStamped": "Header header\nfloat64[] data\n",
     "sensor_fusion_comm/DoubleMatrixStamped": "Header header\nint32 rows\nint32 cols\nfloat64[] data\n",
+    # octomap_msgs (not in Debian; shipped by us)
+    "octomap_msgs/Octomap": "Header header\nbool binary\nstring id\nfloat64 resolution\nint8[] data\n",
 }
 REFERENCE_SRVS = {
     "rotors_comm/RecordRosbag": "bool record\n---\nbool success\n",
+    "rotors_comm/Octomap": "geometry_msgs/Point bounding_box_origin\ngeometry_msgs/Point bounding_box_lengths\n"
+                           "float64 leaf_size\nbool publish_octomap\nstring filename\n---\n"
+                           "octomap_msgs/Octomap map\nfloat64 origin_latitude\nfloat64 origin_longitude\n"
+                           "float64 origin_altitude\n",
     "gazebo_msgs/SpawnModel": "string model_name\nstring model_xml\nstring robot_namespace\n"
                               "geometry_msgs/Pose initial_pose\nstring reference_frame\n---\n"
                               "bool success\nstring status_message\n",
@@ -47,6 +55,13 @@ REFERENCE_SRVS = {
     "sensor_fusion_comm/InitHeight": "float32 height\n---\nstring result\n",
 }
 SEARCH_PATH = {pkg: [f"/usr/share/{pkg}/msg"] for pkg in ("std_msgs", "geometry_msgs")}
+# dependencies that are not in Debian resolve to the reference texts above
+_REFERENCE_DIR = Path(tempfile.mkdtemp(prefix="md5_reference_"))
+for _name, _text in REFERENCE_MSGS.items():
+    _pkg, _msg = _name.split("/")
+    (_REFERENCE_DIR / _pkg).mkdir(exist_ok=True)
+    (_REFERENCE_DIR / _pkg / f"{_msg}.msg").write_text(_text)
+    SEARCH_PATH.setdefault(_pkg, [str(_REFERENCE_DIR / _pkg)])
 
 
 def reference_md5(full_name: str, text: str) -> str:
@@ -76,6 +91,11 @@ def test_message_md5_matches_reference(full_name: str):
 @pytest.mark.parametrize("full_name", sorted(REFERENCE_SRVS))
 def test_service_md5_matches_reference(full_name: str):
     assert generated_class(full_name, "srv")._md5sum == reference_srv_md5(full_name, REFERENCE_SRVS[full_name])
+
+
+def test_octomap_md5_is_upstreams():
+    # octomap_msgs/Octomap as published by ROS' octomap_msgs package
+    assert generated_class("octomap_msgs/Octomap", "msg")._md5sum == "9a45536b45c5e409cd49f04bb2d9999f"
 
 
 def test_rosmsg_prints_upstream_actuators_md5():

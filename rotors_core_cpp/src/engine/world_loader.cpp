@@ -10,6 +10,7 @@
 #include <sdf/Physics.hh>
 #include <sdf/Root.hh>
 #include <sdf/World.hh>
+#include <ignition/math/SphericalCoordinates.hh>
 
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
@@ -63,6 +64,14 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
   if (root.WorldCount() == 0) throw SimError("world '" + source + "' holds no <world> element");
   const sdf::World& sdf_world = *root.WorldByIndex(0);
   physics::WorldPtr world = physics::World::Create(sdf_world.Name(), ReadPhysics(sdf_world));
+  if (const auto* sc = sdf_world.SphericalCoordinates()) {
+    physics::SphericalCoordinates origin;
+    origin.latitude_deg = sc->LatitudeReference().Degree();
+    origin.longitude_deg = sc->LongitudeReference().Degree();
+    origin.elevation_m = sc->ElevationReference();
+    origin.heading_deg = sc->HeadingOffset().Degree();
+    world->SetOrigin(origin);
+  }
   try {
     for (uint64_t i = 0; i < sdf_world.ModelCount(); ++i) {
       const sdf::Model& m = *sdf_world.ModelByIndex(i);

@@ -11,9 +11,11 @@
 #include <iostream>
 #include <string>
 
+#include <ros/package.h>
 #include <ros/ros.h>
 
 #include "rotors_core/error.h"
+#include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/ros/sim_server.h"
 
 namespace {
@@ -26,6 +28,10 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "gazebo", ros::init_options::NoSigintHandler);
   std::signal(SIGINT, OnStopSignal);
   std::signal(SIGTERM, OnStopSignal);
+  // model:// folders exported by packages (<gazebo_ros gazebo_model_path="${prefix}/models"/>), as gazebo_ros does
+  std::vector<std::pair<std::string, std::string>> exports;
+  ros::package::getPlugins("gazebo_ros", "gazebo_model_path", exports);
+  for (const auto& e : exports) rotors_sim::geometry::UriResolver::AddModelPath(e.second);
   rotors_sim::SimServerOptions options;
   ros::NodeHandle nh, private_nh("~");
   private_nh.param("world_name", options.world_file, options.world_file);

@@ -33,6 +33,11 @@ struct PhysicsParams {
   std::string Validate() const;  ///< empty when valid, else a one-line reason
 };
 
+/// Where the world origin is on the Earth (SDF <spherical_coordinates>).
+struct SphericalCoordinates {
+  double latitude_deg = 0.0, longitude_deg = 0.0, elevation_m = 0.0, heading_deg = 0.0;
+};
+
 /// One contact point found in the last step (between two links, or a link and static geometry).
 struct Contact {
   std::string collision1, collision2;  ///< "model::link::collision"
@@ -58,6 +63,8 @@ class World : public std::enable_shared_from_this<World> {
   const PhysicsParams& Physics() const { return params_; }
   void SetRealTimeFactor(double rtf) { params_.real_time_factor = rtf; }
   Vector3d Gravity() const { return params_.gravity_W; }
+  const SphericalCoordinates& Origin() const { return origin_; }
+  void SetOrigin(const SphericalCoordinates& origin) { origin_ = origin; }
   common::Time SimTime() const { return sim_time_; }
   uint64_t Iterations() const { return iterations_; }
 
@@ -101,6 +108,7 @@ class World : public std::enable_shared_from_this<World> {
 
   std::string name_;
   PhysicsParams params_;
+  SphericalCoordinates origin_;
   dWorldID ode_world_ = nullptr;
   dSpaceID ode_space_ = nullptr;
   dJointGroupID contact_group_ = nullptr;
