@@ -103,6 +103,7 @@ CreatedGeom CreateGeom(dSpaceID space, const geometry::Shape& s, const ignition:
       out.geom = dCreateSphere(space, s.radius_m);
       break;
     case Shape::Type::kPlane:
+      if (on_body) throw SimError(where + ": a plane can only belong to a static model");
       out.geom = dCreatePlane(space, 0, 0, 1, 0);  // placed by the caller (dGeomPlaneSetParams)
       break;
     case Shape::Type::kMesh: {

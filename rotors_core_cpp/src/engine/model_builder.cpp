@@ -138,7 +138,6 @@ void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& mode
     if (!geom) continue;
     model->AddGeom(geom, link.get(), scoped, surface)->keep_alive = created.keep_alive;  // owned by the model
     if (dGeomGetClass(geom) == dPlaneClass) {
-      if (link->Body()) throw SimError(where + ": a plane can only belong to a static model");
       const Vector3d n_W = X_WC.Rot().RotateVector(shape.plane_normal).Normalized();
       dGeomPlaneSetParams(geom, n_W.X(), n_W.Y(), n_W.Z(), n_W.Dot(X_WC.Pos()));
     } else if (shape.type == geometry::Shape::Type::kOcTree) {

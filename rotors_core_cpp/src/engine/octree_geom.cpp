@@ -131,8 +131,7 @@ int ClassNumber() {
 
 dGeomID CreateOcTreeGeom(dSpaceID space, std::shared_ptr<const octomap::OcTree> tree, const double p_W[3]) {
   dGeomID g = dCreateGeom(ClassNumber());
-  auto* d = new (dGeomGetClassData(g)) OcTreeGeomData{std::move(tree), {p_W[0], p_W[1], p_W[2]}, dCreateBox(nullptr, 1, 1, 1)};
-  (void)d;
+  new (dGeomGetClassData(g)) OcTreeGeomData{std::move(tree), {p_W[0], p_W[1], p_W[2]}, dCreateBox(nullptr, 1, 1, 1)};
   if (space) dSpaceAdd(space, g);
   return g;
 }
