@@ -4,8 +4,9 @@ import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import List, Sequence
+from typing import List, Sequence, Set
 
+import rosgraph
 import rospy
 from geometry_msgs.msg import Transform, Twist
 from std_srvs.srv import Empty
@@ -65,10 +66,32 @@ def unpause_simulation(attempts: int = 12) -> bool:
     return False
 
 
-def wait_for_subscriber(pub: rospy.Publisher, announce: bool = True) -> bool:
-    """Blocks (wall clock) until someone subscribes, so the one message is not lost (RotorS #358)."""
+def registered_subscribers(topic: str) -> Set[str]:
+    """Nodes the master lists as subscribers of `topic` (resolved name)."""
+    try:
+        _, subscribers, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+    except (OSError, rosgraph.MasterException):
+        return set()
+    return next((set(nodes) for name, nodes in subscribers if name == topic), set())
+
+
+def wait_for_subscriber(pub: rospy.Publisher, announce: bool = True, others_timeout_s: float = 5.0) -> bool:
+    """Blocks (wall clock) until someone subscribes, so the one message is not lost (RotorS #358),
+    then until every subscriber the master knows of is connected too (a bag recorder that registered
+    with the controller must not miss the waypoint); a registered node that does not connect within
+    `others_timeout_s` is named and not waited for."""
     while pub.get_num_connections() == 0 and not rospy.is_shutdown():
         if announce:
             rospy.loginfo("There is no subscriber available, trying again in 1 second.")
         time.sleep(1.0)
+    deadline = time.monotonic() + others_timeout_s
+    while not rospy.is_shutdown():
+        connected = {c.endpoint_id for c in pub.impl.connections}
+        missing = registered_subscribers(pub.resolved_name) - connected
+        if not missing:
+            break
+        if time.monotonic() > deadline:
+            rospy.logwarn("%s: not waiting any longer for %s to connect", pub.resolved_name, ", ".join(sorted(missing)))
+            break
+        time.sleep(0.05)
     return not rospy.is_shutdown()
