@@ -46,6 +46,7 @@ def test_ctrl_c_ends_the_bag_with_the_flight_and_the_default_evaluation_sees_no_
     finally:
         os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C: every process of the launch gets SIGINT at once
         proc.wait(timeout=60)
+    assert "LCP internal error" not in Path(proc.log_path).read_text(errors="replace")  # resting on the ground
     bag = next(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
     last = last_times(bag)
     end = max(last.values())

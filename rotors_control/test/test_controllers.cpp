@@ -98,6 +98,53 @@ TEST(LeePositionController, PositionErrorTiltsTowardsTheReferenceAndYawFollows) 
   EXPECT_NEAR((R_d.transpose() * R_d - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
 }
 
+TEST(AccelerationSaturation, VerticalPriorityThenTiltAndThrust) {
+  AccelerationLimits limits;
+  limits.max_tilt_rad = M_PI / 4;
+  limits.max_m_s2 = 23.0;
+  limits.min_up_m_s2 = 2.0;
+  // RotorS issue #456: 27 m away and 15 m below the set point (firefly gains): (0, 104, 67) m/s^2
+  // asked; the upward part is capped at a_max and nothing is left for the horizontal part
+  const Eigen::Vector3d climb = SaturatedAcceleration({0.0, 104.0, 67.0}, limits);
+  EXPECT_TRUE(climb.isApprox(Eigen::Vector3d(0.0, 0.0, 23.0), 1e-12)) << climb.transpose();
+  // level flight: up = g; the tilt cone allows |a_h| = g tan 45 deg = g, the thrust sqrt(23^2 - g^2) > g
+  const Eigen::Vector3d level = SaturatedAcceleration({30.0, -40.0, 9.81}, limits);
+  EXPECT_NEAR(level.head<2>().norm(), 9.81, 1e-12);
+  EXPECT_NEAR(std::atan2(level.y(), level.x()), std::atan2(-40.0, 30.0), 1e-12);  // direction kept
+  EXPECT_NEAR(level.z(), 9.81, 1e-12);
+  // steep tilt allowed but little thrust left: |a_h| = sqrt(a_max^2 - a_up^2)
+  AccelerationLimits steep = limits;
+  steep.max_tilt_rad = 1.5;
+  const Eigen::Vector3d up = SaturatedAcceleration({50.0, 0.0, 20.0}, steep);
+  EXPECT_NEAR(up.x(), std::sqrt(23.0 * 23.0 - 20.0 * 20.0), 1e-12);
+  // a set point far below: the upward part keeps its floor, no flip
+  EXPECT_NEAR(SaturatedAcceleration({0.0, 0.0, -30.0}, limits).z(), 2.0, 1e-12);
+  // inside all limits: unchanged
+  EXPECT_TRUE(SaturatedAcceleration({1.0, 2.0, 10.0}, limits).isApprox(Eigen::Vector3d(1.0, 2.0, 10.0)));
+}
+
+TEST(LeePositionController, FarSetPointClimbsFirstWhenTheThrustSaturates) {
+  LeePositionControllerParameters p = FireflyLee();
+  for (auto& r : p.vehicle.rotors) r.max_rot_velocity_rad_s = 838.0;
+  p.max_tilt_angle_rad = M_PI / 4;
+  LeePositionController lee(p);
+  TrajectoryPoint ref;
+  ref.position_W = {2.0, -27.0, 15.0};  // the powerplant's first waypoint, from the ground
+  lee.SetTrajectoryPoint(ref);
+  double thrust = 0;
+  Eigen::Matrix3d R_d;
+  lee.ComputeThrustAndAttitude(VehicleState(), &thrust, &R_d);
+  EXPECT_NEAR(R_d(2, 2), 1.0, 1e-12);  // b3_d = e3: all thrust goes into the climb
+  EXPECT_NEAR(thrust, 6 * 8.54858e-6 * 838.0 * 838.0, 1e-9);
+  // without the limits (RotorS): tilted 57 deg, and m a . e3 = 6 * 15 + m g = 105 N asked of rotors
+  // that give 36 N
+  LeePositionController rotors(FireflyLee());
+  rotors.SetTrajectoryPoint(ref);
+  rotors.ComputeThrustAndAttitude(VehicleState(), &thrust, &R_d);
+  EXPECT_NEAR(thrust, 6.0 * 15.0 + 1.56779 * 9.81, 1e-9);
+  EXPECT_LT(R_d(2, 2), std::cos(0.9));
+}
+
 TEST(LeePositionController, InvalidParametersAreRejected) {
   LeePositionControllerParameters p = FireflyLee();
   p.vehicle.mass_kg = -1.0;

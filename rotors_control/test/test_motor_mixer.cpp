@@ -55,3 +55,21 @@ TEST(MotorMixer, RankDeficientConfigurationIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("it needs rank 4"), std::string::npos) << e.what();
   }
 }
+
+TEST(MotorMixer, SaturatedThrustKeepsTheTorquesAndTheLimit) {
+  VehicleParameters v = FireflyYaml();
+  for (auto& r : v.rotors) r.max_rot_velocity_rad_s = 838.0;
+  const MotorMixer mixer(v);
+  const Eigen::Vector3d alpha(4.0, -3.0, 0.5);  // [rad/s^2]
+  const double demanded_N = 200.0;              // far beyond 6 k_F 838^2 = 36.0 N
+  const Eigen::VectorXd omega = mixer.RotorSpeeds(alpha, demanded_N);
+  // the fastest rotor sits at the limit, and A omega^2 still gives J alpha
+  EXPECT_NEAR(omega.maxCoeff(), 838.0, 1e-6);
+  const Eigen::Vector4d wrench = mixer.Allocation() * omega.cwiseAbs2();
+  EXPECT_TRUE(wrench.head<3>().isApprox(v.inertia_kg_m2 * alpha, 1e-9)) << wrench.transpose();
+  EXPECT_NEAR(wrench[3], mixer.FeasibleThrust(alpha, demanded_N), 1e-9);
+  EXPECT_LT(wrench[3], 6 * 8.54858e-6 * 838.0 * 838.0);
+  // below the limit nothing changes; without limits (RotorS' yaml) nothing changes either
+  EXPECT_DOUBLE_EQ(mixer.FeasibleThrust(alpha, 15.0), 15.0);
+  EXPECT_DOUBLE_EQ(MotorMixer(FireflyYaml()).FeasibleThrust(alpha, demanded_N), demanded_N);
+}

@@ -19,12 +19,18 @@ class MotorMixer {
   /// Throws std::invalid_argument if A does not have rank 4 (the vehicle is not controllable).
   explicit MotorMixer(const VehicleParameters& vehicle);
   /// omega = sqrt(max(0, A^T (A A^T)^-1 [J alpha; T])): alpha [rad/s^2] body frame, thrust [N].
+  /// When every rotor has a max_rot_velocity and the thrust would push one beyond it, the thrust is
+  /// lowered until none is (the torques keep priority: attitude control survives saturation).
   Eigen::VectorXd RotorSpeeds(const Eigen::Vector3d& alpha_B, double thrust_N) const;
+  /// The largest thrust [N] <= thrust_N that keeps every rotor within its max_rot_velocity while
+  /// producing the angular acceleration alpha_B (thrust_N itself when the rotors have no limit).
+  double FeasibleThrust(const Eigen::Vector3d& alpha_B, double thrust_N) const;
   const Eigen::Matrix4Xd& Allocation() const { return A_; }
 
  private:
   Eigen::Matrix4Xd A_;
   Eigen::MatrixX4d A_pinv_J_;  ///< A^T (A A^T)^-1 blockdiag(J, 1)
+  Eigen::VectorXd omega_max_squared_;  ///< empty when any rotor has no max_rot_velocity
 };
 
 }  // namespace rotors_control

@@ -15,6 +15,8 @@ struct Rotor {
   double rotor_force_constant = 8.54858e-6;  ///< k_F [N/(rad/s)^2]
   double rotor_moment_constant = 1.6e-2;     ///< k_M [m]
   int direction = 1;                         ///< +1 ccw, -1 cw
+  /// Optional (0: unknown). With it the mixer keeps the commanded torques when the thrust saturates.
+  double max_rot_velocity_rad_s = 0.0;
 };
 
 struct VehicleParameters {

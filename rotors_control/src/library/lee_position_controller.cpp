@@ -1,5 +1,6 @@
 #include "rotors_control/lee_position_controller.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -14,6 +15,8 @@ std::string LeePositionControllerParameters::Validate() const {
   else if (!(velocity_gain.minCoeff() >= 0.0)) why << "velocity_gain must be >= 0";
   else if (!(attitude.attitude_gain.minCoeff() >= 0.0)) why << "attitude_gain must be >= 0";
   else if (!(attitude.angular_rate_gain.minCoeff() >= 0.0)) why << "angular_rate_gain must be >= 0";
+  else if (!(max_tilt_angle_rad >= 0.0 && max_tilt_angle_rad < M_PI / 2))
+    why << "max_tilt_angle = " << max_tilt_angle_rad << " rad must be in [0, pi/2) (0: no limit)";
   return why.str();
 }
 
@@ -22,10 +25,39 @@ bool TrajectoryPoint::IsFinite() const {
          std::isfinite(yaw_rate_rad_s);
 }
 
+Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits) {
+  const double a_up = std::clamp(a_des_W.z(), limits.min_up_m_s2, std::max(limits.max_m_s2, limits.min_up_m_s2));
+  double a_h_max = std::numeric_limits<double>::infinity();
+  // tilt: |a_h| <= a_up tan(theta_max);  thrust: |a_h|^2 + a_up^2 <= a_max^2
+  if (limits.max_tilt_rad > 0.0) a_h_max = a_up * std::tan(limits.max_tilt_rad);
+  if (std::isfinite(limits.max_m_s2))
+    a_h_max = std::min(a_h_max, std::sqrt(std::max(limits.max_m_s2 * limits.max_m_s2 - a_up * a_up, 0.0)));
+  const Eigen::Vector2d a_h = a_des_W.head<2>();
+  const double scale = a_h.norm() > a_h_max ? a_h_max / a_h.norm() : 1.0;
+  return Eigen::Vector3d(scale * a_h.x(), scale * a_h.y(), a_up);
+}
+
+namespace {
+AccelerationLimits LimitsOf(const LeePositionControllerParameters& p) {
+  AccelerationLimits limits;
+  limits.max_tilt_rad = p.max_tilt_angle_rad;
+  double max_thrust_N = 0.0;
+  bool all_limited = true;
+  for (const Rotor& r : p.vehicle.rotors) {
+    all_limited = all_limited && r.max_rot_velocity_rad_s > 0.0;
+    max_thrust_N += r.rotor_force_constant * r.max_rot_velocity_rad_s * r.max_rot_velocity_rad_s;  // eq. 1
+  }
+  if (all_limited) limits.max_m_s2 = max_thrust_N / p.vehicle.mass_kg;
+  if (limits.Active()) limits.min_up_m_s2 = kMinUpwardAccelerationFraction * p.vehicle.gravity_m_s2;
+  return limits;
+}
+}  // namespace
+
 LeePositionController::LeePositionController(const LeePositionControllerParameters& params)
     : params_(Validated(params)),
       attitude_law_(params.attitude, params.vehicle.inertia_kg_m2),
-      mixer_(params.vehicle) {}
+      mixer_(params.vehicle),
+      limits_(LimitsOf(params_)) {}
 
 void LeePositionController::SetTrajectoryPoint(const TrajectoryPoint& point) {
   reference_ = point;
@@ -41,8 +73,9 @@ void LeePositionController::ComputeThrustAndAttitude(const VehicleState& s, doub
   const Eigen::Vector3d e_p = s.position_W - reference_.position_W;
   const Eigen::Vector3d e_v = R * s.velocity_B - reference_.velocity_W;
   // a = (K_p e_p + K_v e_v) / m - g e3 - a_d : the negative of the desired acceleration
-  const Eigen::Vector3d a = (params_.position_gain.cwiseProduct(e_p) + params_.velocity_gain.cwiseProduct(e_v)) / m -
-                            g * e3 - reference_.acceleration_W;
+  Eigen::Vector3d a = (params_.position_gain.cwiseProduct(e_p) + params_.velocity_gain.cwiseProduct(e_v)) / m -
+                      g * e3 - reference_.acceleration_W;
+  if (limits_.Active()) a = -SaturatedAcceleration(-a, limits_);
   // Lee2010 eq. (15): f = -m a . R e3
   *thrust_N = -m * a.dot(R * e3);
   // Desired attitude: b3_d = -a / |a|, b1_d from the yaw, b2_d = b3_d x b1_d normalised

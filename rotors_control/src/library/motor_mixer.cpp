@@ -1,5 +1,6 @@
 #include "rotors_control/motor_mixer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -31,11 +32,29 @@ MotorMixer::MotorMixer(const VehicleParameters& vehicle) : A_(AllocationMatrix(v
   Eigen::Matrix4d J_block = Eigen::Matrix4d::Identity();
   J_block.topLeftCorner<3, 3>() = vehicle.inertia_kg_m2;
   A_pinv_J_ = A_.transpose() * (A_ * A_.transpose()).inverse() * J_block;
+  bool all_limited = true;
+  for (const Rotor& r : vehicle.rotors) all_limited = all_limited && r.max_rot_velocity_rad_s > 0.0;
+  if (all_limited) {
+    omega_max_squared_.resize(vehicle.rotors.size());
+    for (size_t i = 0; i < vehicle.rotors.size(); ++i)
+      omega_max_squared_[i] = vehicle.rotors[i].max_rot_velocity_rad_s * vehicle.rotors[i].max_rot_velocity_rad_s;
+  }
+}
+
+double MotorMixer::FeasibleThrust(const Eigen::Vector3d& alpha_B, double thrust_N) const {
+  if (omega_max_squared_.size() == 0) return thrust_N;
+  // omega^2 = M_alpha alpha + c T, with c the thrust column of A^T (A A^T)^-1 blockdiag(J, 1)
+  const Eigen::VectorXd torque_part = A_pinv_J_.leftCols<3>() * alpha_B;
+  const Eigen::VectorXd c = A_pinv_J_.col(3);
+  double feasible = thrust_N;
+  for (Eigen::Index i = 0; i < c.size(); ++i)
+    if (c[i] > 0.0) feasible = std::min(feasible, (omega_max_squared_[i] - torque_part[i]) / c[i]);
+  return std::max(feasible, 0.0);
 }
 
 Eigen::VectorXd MotorMixer::RotorSpeeds(const Eigen::Vector3d& alpha_B, double thrust_N) const {
   Eigen::Vector4d input;
-  input << alpha_B, thrust_N;
+  input << alpha_B, FeasibleThrust(alpha_B, thrust_N);
   const Eigen::VectorXd omega_squared = (A_pinv_J_ * input).cwiseMax(0.0);
   return omega_squared.cwiseSqrt();
 }

@@ -22,6 +22,11 @@ std::string VehicleParameters::Validate() const {
         why << "rotor_configuration/" << i << " needs rotor_force_constant > 0, arm_length >= 0 and direction +1 or -1";
         break;
       }
+      if (!(r.max_rot_velocity_rad_s >= 0.0) || !std::isfinite(r.max_rot_velocity_rad_s)) {
+        why << "rotor_configuration/" << i << "/max_rot_velocity = " << r.max_rot_velocity_rad_s
+            << " must be > 0 rad/s (or absent: no limit known)";
+        break;
+      }
     }
   }
   return why.str();

@@ -41,6 +41,7 @@ std::string LoadVehicleParameters(const ros::NodeHandle& nh, VehicleParameters* 
     why = Require(nh, base + "direction", &direction);
     if (!why.empty()) return why;
     r.direction = static_cast<int>(std::lround(direction));
+    nh.param(base + "max_rot_velocity", r.max_rot_velocity_rad_s, 0.0);  // ours, optional
     v->rotors.push_back(r);
   }
   if (v->rotors.empty()) return "missing parameter " + nh.resolveName("rotor_configuration") + " (load the vehicle yaml)";
@@ -67,6 +68,7 @@ std::string LoadLeeParameters(const ros::NodeHandle& nh, LeePositionControllerPa
        {LoadGain(nh, "position_gain", &p->position_gain), LoadGain(nh, "velocity_gain", &p->velocity_gain),
         LoadAttitudeGains(nh, &p->attitude), LoadVehicleParameters(nh, &p->vehicle)})
     if (!why.empty()) return why;
+  nh.param("max_tilt_angle", p->max_tilt_angle_rad, p->max_tilt_angle_rad);  // ours, optional
   return p->Validate();
 }
 

@@ -6,6 +6,7 @@
 #include <ode/ode.h>
 #include <octomap/OcTree.h>
 
+#include "octree_geom.h"
 #include "rotors_core/error.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
@@ -24,6 +25,14 @@ void ProbeCallback(void* data, dGeomID o1, dGeomID o2) {
   if (probe->hit) return;
   dGeomID other = o1 == probe->cube ? o2 : o1;
   if (dGeomGetBody(other) || !dGeomGetData(other)) return;  // static collision geometry only
+  if (IsOcTreeGeom(other)) {
+    dVector3 lengths;
+    dGeomBoxGetLengths(probe->cube, lengths);
+    const dReal* p = dGeomGetPosition(probe->cube);
+    const double centre[3] = {p[0], p[1], p[2]}, length[3] = {lengths[0], lengths[1], lengths[2]};
+    probe->hit = OcTreeGeomOverlapsBox(other, centre, length);
+    return;
+  }
   dContactGeom contact;
   if (dCollide(probe->cube, other, 1, &contact, sizeof(dContactGeom)) > 0) probe->hit = true;
 }

@@ -136,4 +136,25 @@ dGeomID CreateOcTreeGeom(dSpaceID space, std::shared_ptr<const octomap::OcTree> 
   return g;
 }
 
+bool IsOcTreeGeom(dGeomID g) { return g_class >= 0 && dGeomGetClass(g) == g_class; }
+
+bool OcTreeGeomOverlapsBox(dGeomID g, const double centre_W[3], const double lengths[3]) {
+  const OcTreeGeomData* d = DataOf(g);
+  double lo[3], hi[3];  // the box in the tree's frame
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = centre_W[k] - lengths[k] / 2 - d->p_W[k];
+    hi[k] = centre_W[k] + lengths[k] / 2 - d->p_W[k];
+  }
+  const octomap::point3d min(lo[0], lo[1], lo[2]), max(hi[0], hi[1], hi[2]);
+  for (auto it = d->tree->begin_leafs_bbx(min, max), end = d->tree->end_leafs_bbx(); it != end; ++it) {
+    if (!d->tree->isNodeOccupied(*it)) continue;
+    const octomap::point3d c = it.getCoordinate();
+    const double half = it.getSize() / 2;
+    bool overlap = true;
+    for (int k = 0; k < 3; ++k) overlap = overlap && c(k) - half < hi[k] && c(k) + half > lo[k];
+    if (overlap) return true;
+  }
+  return false;
+}
+
 }  // namespace rotors_sim

@@ -16,4 +16,10 @@ namespace rotors_sim {
 /// A static geom in `space` holding `tree` (kept alive by the geom), its origin at p_W.
 dGeomID CreateOcTreeGeom(dSpaceID space, std::shared_ptr<const octomap::OcTree> tree, const double p_W[3]);
 
+bool IsOcTreeGeom(dGeomID g);
+
+/// Volume test for mapping (not contacts: those leave out faces inside the solid): whether an
+/// occupied leaf overlaps the axis-aligned box of edge `lengths` [m] centred at centre_W.
+bool OcTreeGeomOverlapsBox(dGeomID g, const double centre_W[3], const double lengths[3]);
+
 }  // namespace rotors_sim

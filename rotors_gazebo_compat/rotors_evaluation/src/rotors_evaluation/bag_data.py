@@ -151,7 +151,9 @@ class FlightBag:
         return end
 
     def messages(self, topic: str):
-        conns = [c for c in self.reader.connections if c.topic.lstrip("/") == topic]
+        conns = [c for c in self.reader.connections if c.topic.lstrip("/") == topic.lstrip("/")]
+        if not conns:  # rosbags reads every connection when given none
+            return
         for conn, t_ns, raw in self.reader.messages(connections=conns):
             yield self.typestore.deserialize_ros1(raw, conn.msgtype), conn.msgtype, t_ns
 

@@ -31,6 +31,7 @@ class Rotor:
     direction: int          # 1 ccw, -1 cw (seen from above)
     force_constant: float   # [N/(rad/s)^2]
     moment_constant: float  # [m]
+    max_rot_velocity: float  # [rad/s]
 
 
 @dataclass
@@ -110,12 +111,13 @@ def rigid_body_from_urdf(urdf: str, base_link: str) -> RigidBody:
         link = text.get("linkName", "")
         if link not in poses:
             raise VehicleParamsError(f"motor plugin '{plugin.get('name')}': linkName '{link}' is not a link of the URDF")
-        for key in ("motorNumber", "turningDirection", "motorConstant", "momentConstant"):
+        for key in ("motorNumber", "turningDirection", "motorConstant", "momentConstant", "maxRotVelocity"):
             if key not in text:
                 raise VehicleParamsError(f"motor plugin '{plugin.get('name')}' has no <{key}>")
         body.rotors.append(Rotor(int(text["motorNumber"]), poses[link][0] - com,
                                  1 if text["turningDirection"] == "ccw" else -1,
-                                 float(text["motorConstant"]), float(text["momentConstant"])))
+                                 float(text["motorConstant"]), float(text["momentConstant"]),
+                                 float(text["maxRotVelocity"])))
     body.rotors.sort(key=lambda r: r.number)
     if [r.number for r in body.rotors] != list(range(len(body.rotors))) or not body.rotors:
         raise VehicleParamsError(f"motor numbers {[r.number for r in body.rotors]} are not 0..N-1")
@@ -136,7 +138,7 @@ def vehicle_yaml(body: RigidBody, gravity: float) -> Dict:
             "angle": float(math.atan2(r.position_B[1], r.position_B[0])),
             "arm_length": float(math.hypot(r.position_B[0], r.position_B[1])),
             "rotor_force_constant": r.force_constant, "rotor_moment_constant": r.moment_constant,
-            "direction": r.direction}
+            "direction": r.direction, "max_rot_velocity": r.max_rot_velocity}
     return {"mass": round(float(body.mass_kg), 6),
             "inertia": {k: round(float(v), 8) for k, v in zip(("xx", "xy", "xz", "yy", "yz", "zz"),
                                                              (J[0, 0], J[0, 1], J[0, 2], J[1, 1], J[1, 2], J[2, 2]))},
@@ -153,6 +155,8 @@ def scaled_gains(reference_gains: Dict, reference_vehicle: Dict, body: RigidBody
         out[key] = {a: round(float(v) * float(ratio_m), 4) for a, v in reference_gains[key].items()}
     for key in ("attitude_gain", "angular_rate_gain"):
         out[key] = {a: round(float(v) * float(ratio_J[a]), 4) for a, v in reference_gains[key].items()}
+    if "max_tilt_angle" in reference_gains:  # a limit of the motion, not of the vehicle's size
+        out["max_tilt_angle"] = reference_gains["max_tilt_angle"]
     return out
 
 

@@ -1,0 +1,111 @@
+"""Worlds with structure, flown end to end: a MAV sent through the obstacle course's wall stops at the
+wall, the contact is recorded and hovering_eval.py counts it; the power plant example crashes where
+the book says it must (the straight line between its waypoints is in collision, seed section 3);
+no run prints ODE's 'LCP internal error'."""
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+
+sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
+from rotors_evaluation.bag_data import FlightBag, load_flight  # noqa: E402
+
+EVAL = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts"
+WALL_FACE_X_M = 2.0  # obstacle_course.world: the wall spans x = 2.0 .. 2.2
+
+
+def lcp_errors(log: Path) -> int:
+    return sum("LCP internal error" in line for line in log.read_text(errors="replace").splitlines())
+
+
+def contacts_with(bag: Path, mav: str, other: str, after_s: float) -> list:
+    b = FlightBag(bag)
+    try:
+        return [t_ns * 1e-9 for msg, _, t_ns in b.messages(f"{mav}/wrench")
+                if other in msg.header.frame_id and t_ns * 1e-9 > after_s]
+    finally:
+        b.close()
+
+
+def test_a_mav_sent_through_the_wall_stops_at_it_and_the_evaluation_counts_the_collision(ros: RosGraph):
+    # the hovering example's private parameters: the waypoint (4, 0, 1) lies behind the wall
+    ros.run(["rosparam", "set", "/firefly/hovering_example/x", "4.0"])
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "world_name:=obstacle_course",
+                  "enable_logging:=true", "lockstep:=true", "real_time_factor:=0")
+    try:
+        wait_sim_time(ros, 20.0)
+    finally:
+        stop_launch(proc)
+    assert lcp_errors(Path(proc.log_path)) == 0
+    bag = next(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
+    assert np.allclose(data.waypoints[0].position, [4.0, 0.0, 1.0])
+    x = data.position.values[:, 0]
+    print(f"largest x {x.max():.3f} m; the wall's face at {WALL_FACE_X_M} m")
+    assert x.max() < WALL_FACE_X_M  # the body centre never reaches the wall: it did not pass through
+    hits = contacts_with(bag, "firefly", "wall::link::collision", data.waypoints[0].t)
+    assert hits, "no contact with the wall recorded"
+    res = subprocess.run([sys.executable, str(EVAL / "hovering_eval.py"), "-b", str(bag), "--mav_name", "firefly"],
+                         capture_output=True, text=True)
+    print(res.stdout)
+    assert res.returncode == 0, res.stderr
+    assert "One or more collisions occurred - no points are awarded!" in res.stdout
+    first = float(res.stdout.split("Collision at time ")[1].split(" s!")[0])
+    assert first in [round(t, 3) for t in hits] or any(abs(first - t) < 1e-3 for t in hits)
+
+
+def test_the_power_plant_example_is_in_collision_as_the_book_says_and_is_counted(ros: RosGraph):
+    # seed section 3: "the straight line solution is in collision, and the MAV is going to crash into
+    # the wall without a planner"
+    proc = launch(ros, "rotors_gazebo", "mav_powerplant_with_waypoint_publisher.launch", "enable_logging:=true",
+                  "lockstep:=true", "real_time_factor:=0", "gui:=false")
+    try:
+        wait_sim_time(ros, 45.0)
+    finally:
+        stop_launch(proc)
+    assert lcp_errors(Path(proc.log_path)) == 0
+    bag = next(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
+    wp = data.waypoints[0]
+    assert np.allclose(wp.position, [2.0, -27.0, 15.0]) and 30.0 <= wp.t < 31.0
+    # before the waypoint the MAV rests on the ground: its only contacts are the ground's
+    hits = contacts_with(bag, "firefly", "powerplant::link::collision", wp.t + 0.5)
+    assert hits, "the flight to (2, -27, 15) did not touch the plant"
+    print(f"first contact with the plant at {hits[0]:.3f} s")
+    res = subprocess.run([sys.executable, str(EVAL / "waypoints_eval.py"), "-b", str(bag), "--mav_name", "firefly"],
+                         capture_output=True, text=True)
+    print(res.stdout)
+    assert res.returncode == 0, res.stderr
+    assert "One or more collisions occurred - no points are awarded!" in res.stdout
+
+
+def test_get_octomap_of_the_power_plant_world_agrees_with_rotors_octree(ros: RosGraph, tmp_path: Path):
+    world = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "worlds" / "powerplant.world"
+    reference = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource" / "power_plant.bt"
+    proc = launch(ros, "gazebo_ros", "empty_world.launch", f"world_name:={world}", "paused:=true", "gui:=false",
+                  name="world")
+    out = tmp_path / "powerplant_from_service.bt"
+    try:
+        # power_plant.bt spans x -15..35, y -35..15, z 0..50; the world holds it 0.25 m lower
+        result = ros.rospy(f"""
+            from geometry_msgs.msg import Point
+            from rotors_comm.srv import Octomap
+            rospy.wait_for_service('/world/get_octomap', timeout=60)
+            res = rospy.ServiceProxy('/world/get_octomap', Octomap)(
+                bounding_box_origin=Point(10.0, -10.0, 24.75), bounding_box_lengths=Point(50.0, 50.0, 50.0),
+                leaf_size=0.25, publish_octomap=False, filename='{out}')
+            result['resolution'] = res.map.resolution
+            result['bytes'] = len(res.map.data)
+            result['latitude'] = res.origin_latitude
+        """, timeout=300)
+    finally:
+        stop_launch(proc)
+    assert result["resolution"] == 0.25 and result["bytes"] > 0
+    assert result["latitude"] == 47.3667
+    res = ros.run(["rosrun", "rotors_core", "rotors_octomap_compare", str(out), str(reference), "0", "0", "0.25"])
+    print(res.stdout)
+    iou = float(res.stdout.split("intersection over union ")[1].split()[0])
+    assert iou >= 0.9999, res.stdout  # measured: 1.0000 (2228.828 m^3 occupied in both)
