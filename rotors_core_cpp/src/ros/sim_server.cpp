@@ -10,6 +10,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/world_loader.h"
+#include "rotors_core/ros/world_markers.h"
 
 namespace rotors_sim {
 namespace {
@@ -26,6 +27,7 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   pacer_.Restart(world_->SimTime());
   state_publisher_ = std::make_unique<StatePublisher>(nh_, options.state_publish_rate_hz);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  world_markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("/world/markers", 1, true);
   lockstep_ = std::make_unique<Lockstep>(nh_, options.lockstep_participants, options.lockstep);
   world_->SetPaused(true, user_paused_ ? "started paused" : "starting");
   services_.push_back(private_nh_.advertiseService("pause_physics", &SimServer::OnPause, this));
@@ -39,6 +41,16 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
            options.world_file.c_str(), world_->Physics().max_step_size_s, world_->Physics().real_time_factor,
            world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "", user_paused_ ? "paused" : "running");
   PublishClock();
+  PublishWorldMarkers();
+}
+
+void SimServer::PublishWorldMarkers() {
+  visualization_msgs::MarkerArray markers;
+  visualization_msgs::Marker clear;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  markers.markers.push_back(clear);
+  for (auto& m : WorldMarkers(*world_, "world").markers) markers.markers.push_back(std::move(m));
+  world_markers_pub_.publish(markers);
 }
 
 SimServer::~SimServer() {
@@ -142,6 +154,7 @@ bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::Spaw
              model->GetLinks().size(), model->GetJoints().size(), model->Plugins().size());
     state_publisher_->Update(*world_, true);
     lockstep_->Resubscribe();
+    if (model->IsStatic()) PublishWorldMarkers();
   } catch (const std::exception& e) {
     res.success = false;
     res.status_message = e.what();
@@ -152,6 +165,7 @@ bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::Spaw
 
 bool SimServer::OnDelete(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::DeleteModel::Response& res) {
   res.success = world_->RemoveModel(req.model_name);
+  if (res.success) PublishWorldMarkers();
   res.status_message = res.success ? "DeleteModel: successfully deleted model '" + req.model_name + "'"
                                    : "DeleteModel: there is no model named '" + req.model_name + "'";
   return true;

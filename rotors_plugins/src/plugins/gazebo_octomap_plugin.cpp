@@ -2,7 +2,7 @@
 // world/get_octomap (rotors_comm/Octomap) builds an OcTree of the world's static collision
 // geometry in the requested box, writes it as .bt when a filename is given, replies with it and
 // the world origin's latitude/longitude/altitude, and publishes it latched on world/octomap when
-// asked. SDF: <octomapPubTopic>, <octomapServiceName>.
+// asked (and as rviz cubes on <topic>_markers). SDF: <octomapPubTopic>, <octomapServiceName>.
 #include <sstream>
 
 #include <octomap/OcTree.h>
@@ -14,6 +14,7 @@
 #include "rotors_core/geometry/occupancy_mapper.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
+#include "rotors_core/ros/world_markers.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
@@ -29,6 +30,8 @@ class GazeboOctomapPlugin : public rotors_sim::WorldPlugin {
     node_ = MakeNode("");
     if (!node_) return;  // no ROS in this process (engine tests)
     publisher_ = node_->advertise<octomap_msgs::Octomap>(topic, 1, /*latch=*/true);
+    // rviz has no OctoMap display without octomap_rviz_plugins: the same map as cubes
+    markers_publisher_ = node_->advertise<visualization_msgs::Marker>(topic + "_markers", 1, /*latch=*/true);
     server_ = node_->advertiseService(service, &GazeboOctomapPlugin::OnGetOctomap, this);
   }
 
@@ -64,13 +67,16 @@ class GazeboOctomapPlugin : public rotors_sim::WorldPlugin {
     res.origin_altitude = origin.elevation_m;
     ROS_INFO_STREAM("world/get_octomap: " << tree->getNumLeafNodes() << " leaves at " << tree->getResolution() << " m"
                                           << (req.filename.empty() ? "" : ", written to " + req.filename));
-    if (req.publish_octomap) publisher_.publish(res.map);
+    if (req.publish_octomap) {
+      publisher_.publish(res.map);
+      markers_publisher_.publish(rotors_sim::OcTreeCubes(*tree, "world", "octomap"));
+    }
     return true;
   }
 
   rotors_sim::physics::WorldPtr world_;
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher publisher_;
+  ros::Publisher publisher_, markers_publisher_;
   ros::ServiceServer server_;
 };
 

@@ -60,6 +60,8 @@ class SimServer {
   std::unique_ptr<StatePublisher> state_publisher_;
   std::unique_ptr<Lockstep> lockstep_;
   ros::Publisher clock_pub_;
+  ros::Publisher world_markers_pub_;  ///< latched /world/markers: static models for rviz
+  void PublishWorldMarkers();
   std::vector<ros::ServiceServer> services_;
 };
 
