@@ -1,10 +1,11 @@
 """Waypoints as MultiDOFJointTrajectory messages, the waypoint file format, and the small ROS
 helpers the example nodes share (unpausing the simulator, waiting for a subscriber)."""
 import math
+import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import List, Sequence, Set
+from typing import List, Optional, Sequence, Set
 
 import rosgraph
 import rospy
@@ -75,23 +76,43 @@ def registered_subscribers(topic: str) -> Set[str]:
     return next((set(nodes) for name, nodes in subscribers if name == topic), set())
 
 
-def wait_for_subscriber(pub: rospy.Publisher, announce: bool = True, others_timeout_s: float = 5.0) -> bool:
+class SubscriberWatch:
+    """Keeps the master's list of a topic's subscribers up to date in a background thread (wall
+    clock, every `period_s`), so that waiting for them costs no master call at publishing time:
+    with the simulator running faster than real time that call would cost sim time."""
+
+    def __init__(self, pub: rospy.Publisher, period_s: float = 0.25):
+        self.topic = pub.resolved_name
+        self.registered: Set[str] = registered_subscribers(self.topic)
+        self._period_s = period_s
+        threading.Thread(target=self._poll, daemon=True).start()
+
+    def _poll(self) -> None:
+        while not rospy.is_shutdown():
+            time.sleep(self._period_s)
+            self.registered = registered_subscribers(self.topic)
+
+
+def wait_for_subscriber(pub: rospy.Publisher, announce: bool = True, watch: Optional[SubscriberWatch] = None,
+                        others_timeout_s: float = 5.0) -> bool:
     """Blocks (wall clock) until someone subscribes, so the one message is not lost (RotorS #358),
     then until every subscriber the master knows of is connected too (a bag recorder that registered
-    with the controller must not miss the waypoint); a registered node that does not connect within
-    `others_timeout_s` is named and not waited for."""
+    beside the controller must not miss the waypoint); a registered node that does not connect within
+    `others_timeout_s` is named and not waited for. Pass a SubscriberWatch made when the publisher
+    was to keep the master out of this call."""
     while pub.get_num_connections() == 0 and not rospy.is_shutdown():
         if announce:
             rospy.loginfo("There is no subscriber available, trying again in 1 second.")
         time.sleep(1.0)
+    registered = watch.registered if watch else registered_subscribers(pub.resolved_name)
     deadline = time.monotonic() + others_timeout_s
     while not rospy.is_shutdown():
-        connected = {c.endpoint_id for c in pub.impl.connections}
-        missing = registered_subscribers(pub.resolved_name) - connected
+        missing = registered - {c.endpoint_id for c in pub.impl.connections}
         if not missing:
             break
         if time.monotonic() > deadline:
             rospy.logwarn("%s: not waiting any longer for %s to connect", pub.resolved_name, ", ".join(sorted(missing)))
             break
-        time.sleep(0.05)
+        time.sleep(0.01)
+        registered = watch.registered if watch else registered
     return not rospy.is_shutdown()
