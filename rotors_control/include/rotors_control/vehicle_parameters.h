@@ -24,6 +24,12 @@ struct VehicleParameters {
   double gravity_m_s2 = 9.81;  ///< RotorS' controllers assume 9.81 (book section 3.6, reference section 9)
   Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();
   std::vector<Rotor> rotors;
+  /// Every rotor has a max_rot_velocity (the thrust limit is known).
+  bool AllRotorsLimited() const {
+    for (const Rotor& r : rotors)
+      if (!(r.max_rot_velocity_rad_s > 0.0)) return false;
+    return !rotors.empty();
+  }
   /// Empty when valid, else one line naming the bad value.
   std::string Validate() const;
 };

@@ -41,13 +41,12 @@ namespace {
 AccelerationLimits LimitsOf(const LeePositionControllerParameters& p) {
   AccelerationLimits limits;
   limits.max_tilt_rad = p.max_tilt_angle_rad;
-  double max_thrust_N = 0.0;
-  bool all_limited = true;
-  for (const Rotor& r : p.vehicle.rotors) {
-    all_limited = all_limited && r.max_rot_velocity_rad_s > 0.0;
-    max_thrust_N += r.rotor_force_constant * r.max_rot_velocity_rad_s * r.max_rot_velocity_rad_s;  // eq. 1
+  if (p.vehicle.AllRotorsLimited()) {
+    double max_thrust_N = 0.0;
+    for (const Rotor& r : p.vehicle.rotors)
+      max_thrust_N += r.rotor_force_constant * r.max_rot_velocity_rad_s * r.max_rot_velocity_rad_s;  // eq. 1
+    limits.max_m_s2 = max_thrust_N / p.vehicle.mass_kg;
   }
-  if (all_limited) limits.max_m_s2 = max_thrust_N / p.vehicle.mass_kg;
   if (limits.Active()) limits.min_up_m_s2 = kMinUpwardAccelerationFraction * p.vehicle.gravity_m_s2;
   return limits;
 }

@@ -32,9 +32,7 @@ MotorMixer::MotorMixer(const VehicleParameters& vehicle) : A_(AllocationMatrix(v
   Eigen::Matrix4d J_block = Eigen::Matrix4d::Identity();
   J_block.topLeftCorner<3, 3>() = vehicle.inertia_kg_m2;
   A_pinv_J_ = A_.transpose() * (A_ * A_.transpose()).inverse() * J_block;
-  bool all_limited = true;
-  for (const Rotor& r : vehicle.rotors) all_limited = all_limited && r.max_rot_velocity_rad_s > 0.0;
-  if (all_limited) {
+  if (vehicle.AllRotorsLimited()) {
     omega_max_squared_.resize(vehicle.rotors.size());
     for (size_t i = 0; i < vehicle.rotors.size(); ++i)
       omega_max_squared_[i] = vehicle.rotors[i].max_rot_velocity_rad_s * vehicle.rotors[i].max_rot_velocity_rad_s;

@@ -119,11 +119,10 @@ int main(int argc, char** argv) {
     ROS_FATAL("[lee_position_controller] %s", why.c_str());
     return 1;
   }
-  const bool limited = !params.vehicle.rotors.empty() && params.vehicle.rotors.front().max_rot_velocity_rad_s > 0.0;
-  ROS_INFO("[lee_position_controller] saturation: max_tilt_angle %s, thrust %s", 
+  ROS_INFO("[lee_position_controller] saturation: max_tilt_angle %s, thrust %s",
            params.max_tilt_angle_rad > 0.0 ? (std::to_string(params.max_tilt_angle_rad) + " rad").c_str()
                                            : "not limited (no max_tilt_angle)",
-           limited ? "lowered to keep the torques when a rotor reaches max_rot_velocity"
+           params.vehicle.AllRotorsLimited() ? "lowered to keep the torques when a rotor reaches max_rot_velocity"
                    : "not limited (no rotor_configuration/i/max_rot_velocity)");
   try {
     rotors_control::LeePositionControllerNode node(nh, params);

@@ -10,6 +10,8 @@
 
 #include <octomap/octomap.h>
 
+#include "rotors_core/geometry/octree_cells.h"
+
 namespace {
 
 std::unique_ptr<octomap::OcTree> Read(const char* path) {
@@ -38,24 +40,16 @@ struct Overlap {
   double volume_m3 = 0.0, shared_m3 = 0.0, near_m3 = 0.0;
 };
 
-/// Leaves of `a` (possibly pruned into larger cubes) visited at the resolution, moved by `offset`.
+/// The occupied cells of `a`, moved by `offset`, looked up in `b`.
 Overlap Compare(const octomap::OcTree& a, const octomap::OcTree& b, const octomap::point3d& offset) {
   Overlap o;
   const double res = a.getResolution(), cell = res * res * res;
-  for (auto it = a.begin_leafs(); it != a.end_leafs(); ++it) {
-    if (!a.isNodeOccupied(*it)) continue;
-    const double size = it.getSize();
-    const int n = static_cast<int>(std::lround(size / res));
-    const octomap::point3d corner = it.getCoordinate() - octomap::point3d(size / 2, size / 2, size / 2);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        for (int k = 0; k < n; ++k) {
-          const octomap::point3d p = corner + octomap::point3d((i + 0.5) * res, (j + 0.5) * res, (k + 0.5) * res) + offset;
-          o.volume_m3 += cell;
-          if (Occupied(b, p)) o.shared_m3 += cell;
-          if (OccupiedNear(b, p, res)) o.near_m3 += cell;
-        }
-  }
+  rotors_sim::geometry::ForEachOccupiedCell(a, [&](const octomap::point3d& centre) {
+    const octomap::point3d p = centre + offset;
+    o.volume_m3 += cell;
+    if (Occupied(b, p)) o.shared_m3 += cell;
+    if (OccupiedNear(b, p, res)) o.near_m3 += cell;
+  });
   return o;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rotors_core/geometry/octree_cells.h"
 #include "rotors_core/geometry/visual.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -39,8 +40,9 @@ void SetPose(const ignition::math::Pose3d& X_WV, visualization_msgs::Marker* m) 
   m->pose.orientation.z = X_WV.Rot().Z();
 }
 
-/// Fills type, scale and points of `m` for the shape; false for shapes that cannot be drawn.
-bool DrawShape(const Shape& shape, visualization_msgs::Marker* m) {
+/// Fills pose, type, scale and points of `m` for the shape at X_WV; false for shapes that cannot be drawn.
+bool DrawShape(const Shape& shape, const ignition::math::Pose3d& X_WV, visualization_msgs::Marker* m) {
+  SetPose(X_WV, m);
   switch (shape.type) {
     case Shape::Type::kBox:
       m->type = visualization_msgs::Marker::CUBE;
@@ -61,11 +63,7 @@ bool DrawShape(const Shape& shape, visualization_msgs::Marker* m) {
       // a thin box in the plane, its normal along the marker's z
       ignition::math::Quaterniond R;
       R.From2Axes(ignition::math::Vector3d::UnitZ, shape.plane_normal.Normalized());
-      ignition::math::Pose3d X_VP(ignition::math::Vector3d::Zero, R);
-      ignition::math::Pose3d X_WV(ignition::math::Vector3d(m->pose.position.x, m->pose.position.y, m->pose.position.z),
-                                  ignition::math::Quaterniond(m->pose.orientation.w, m->pose.orientation.x,
-                                                              m->pose.orientation.y, m->pose.orientation.z));
-      SetPose(X_VP + X_WV, m);
+      SetPose(ignition::math::Pose3d(ignition::math::Vector3d::Zero, R) + X_WV, m);
       m->type = visualization_msgs::Marker::CUBE;
       m->scale.x = shape.plane_size_m.X();
       m->scale.y = shape.plane_size_m.Y();
@@ -119,18 +117,10 @@ visualization_msgs::Marker OcTreeCubes(const octomap::OcTree& tree, const std::s
   double x0, y0, z_min, x1, y1, z_max;
   tree.getMetricMin(x0, y0, z_min);
   tree.getMetricMax(x1, y1, z_max);
-  for (auto it = tree.begin_leafs(); it != tree.end_leafs(); ++it) {
-    if (!tree.isNodeOccupied(*it)) continue;
-    const int n = static_cast<int>(std::lround(it.getSize() / res));
-    const octomap::point3d corner = it.getCoordinate() - octomap::point3d(1, 1, 1) * static_cast<float>(it.getSize() / 2);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        for (int k = 0; k < n; ++k) {
-          const octomap::point3d p = corner + octomap::point3d((i + 0.5) * res, (j + 0.5) * res, (k + 0.5) * res);
-          m.points.push_back(Point(p.x() + offset_m.x(), p.y() + offset_m.y(), p.z() + offset_m.z()));
-          m.colors.push_back(HeightColour(p.z(), z_min, z_max));
-        }
-  }
+  geometry::ForEachOccupiedCell(tree, [&](const octomap::point3d& p) {
+    m.points.push_back(Point(p.x() + offset_m.x(), p.y() + offset_m.y(), p.z() + offset_m.z()));
+    m.colors.push_back(HeightColour(p.z(), z_min, z_max));
+  });
   return m;
 }
 
@@ -149,8 +139,7 @@ visualization_msgs::MarkerArray WorldMarkers(const physics::World& world, const 
         m.header.frame_id = frame_id;
         m.ns = v.scoped_name;
         m.action = visualization_msgs::Marker::ADD;
-        SetPose(X_WV, &m);
-        if (!DrawShape(v.shape, &m)) continue;
+        if (!DrawShape(v.shape, X_WV, &m)) continue;
         m.color.r = v.rgba[0];
         m.color.g = v.rgba[1];
         m.color.b = v.rgba[2];
