@@ -1,6 +1,8 @@
 """Every shipped vehicle's xacro expands and parses with urdfdom (check_urdf), alone and as the
-generic-odometry and generic-pose-sensor composites, and a broken xacro is one clear error."""
+generic-odometry and generic-pose-sensor composites, each looks like itself (RotorS' body meshes
+where they exist, propellers scaled by radius_rotor), and a broken xacro is one clear error."""
 import subprocess
+import xml.etree.ElementTree as ET
 
 import pytest
 
@@ -23,6 +25,39 @@ def test_vehicle_description_parses_with_urdfdom(mav: str, top: str, tmp_path):
     rotors = 6 if mav in ("firefly", "neo11") else 4
     assert urdf.count("librotors_gazebo_motor_model.so") == rotors
     assert "librotors_gazebo_bag_plugin.so" in urdf
+
+
+# rotors_reference.md section 3.1: radius_rotor [m]
+RADIUS_ROTOR = {"firefly": 0.1, "hummingbird": 0.1, "pelican": 0.128, "iris": 0.1, "neo11": 0.1397,
+                "asymmetric_quadrotor": 0.128}
+BODY_MESH = {"firefly": "firefly.ply", "pelican": "pelican.dae"}
+
+
+@pytest.mark.parametrize("mav", VEHICLES)
+def test_vehicle_visuals_are_its_body_and_propellers_scaled_by_radius_rotor(mav: str):
+    urdf = ET.fromstring(subprocess.run(
+        ["xacro", str(package_path("rotors_description") / "urdf" / f"{mav}_base.xacro"), f"namespace:={mav}"],
+        capture_output=True, text=True, check=True).stdout)
+    links = {link.get("name"): link for link in urdf.iter("link")}
+    rotors = [name for name in links if name.startswith(f"{mav}/rotor_")]
+    assert len(rotors) == (6 if mav in ("firefly", "neo11") else 4)
+    meshes = package_path("rotors_description") / "meshes"
+    for name in rotors:
+        mesh = links[name].find("visual/geometry/mesh")
+        direction = "cw" if "propeller_cw" in mesh.get("filename") else "ccw"
+        assert mesh.get("filename") == f"package://rotors_description/meshes/propeller_{direction}.stl"
+        assert [float(s) for s in mesh.get("scale").split()] == [RADIUS_ROTOR[mav]] * 3
+        assert links[name].find("visual/material/color") is not None  # red front, blue back in rviz
+    body = links[f"{mav}/base_link_inertia"].find("visual/geometry")
+    if mav in BODY_MESH:
+        assert body.find("mesh").get("filename") == f"package://rotors_description/meshes/{BODY_MESH[mav]}"
+    else:
+        assert body.find("box") is not None
+    for mesh in urdf.iter("mesh"):
+        assert (meshes / mesh.get("filename").rsplit("/", 1)[1]).is_file(), mesh.get("filename")
+    # drawn arms carry no mass: the inertial links are the body and the rotors (and the asymmetric arms)
+    massive = {name for name, link in links.items() if link.find("inertial") is not None}
+    assert all(name.endswith("base_link_inertia") or "/rotor_" in name or name.endswith("_link") for name in massive)
 
 
 def test_mavlink_interface_is_refused_clearly():

@@ -34,6 +34,11 @@ def fly(ros: RosGraph, *args: str, until_s: float = 21.0):
             from sensor_msgs.msg import Imu
             m = rospy.wait_for_message('/firefly/ground_truth/imu', Imu, timeout=10)
             result['gt_acc'] = [m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z]
+            from sensor_msgs.msg import JointState
+            from mav_msgs.msg import Actuators
+            js = rospy.wait_for_message('/firefly/joint_states', JointState, timeout=10)
+            result['joints'] = dict(zip(js.name, js.velocity))
+            result['omega'] = list(rospy.wait_for_message('/firefly/motor_speed', Actuators, timeout=10).angular_velocities)
         """)
     finally:
         stop_launch(proc)
@@ -72,6 +77,9 @@ def test_firefly_hovers_with_the_books_rms_and_logs_a_bag(ros: RosGraph, tmp_pat
         assert f"firefly/{t}" in flight_bag.topics, flight_bag.topics
     assert flight_bag.topics["firefly/ground_truth/pose"] == "geometry_msgs/msg/PoseStamped"
     flight_bag.close()
+    # rviz spins the propellers: each rotor joint turns at the signed rotor speed / rotorVelocitySlowdownSim (10)
+    joint_omega = [imu["joints"][f"firefly/rotor_{i}_joint"] * 10 for i in range(6)]
+    assert np.allclose(joint_omega, imu["omega"], rtol=0.01), (joint_omega, imu["omega"])
     # noise-free IMU in hover reads +g on z
     assert imu["gt_acc"][2] == pytest.approx(9.8, abs=1e-3) and abs(imu["gt_acc"][0]) < 1e-3
 

@@ -98,6 +98,11 @@ def test_octomap_md5_is_upstreams():
     assert generated_class("octomap_msgs/Octomap", "msg")._md5sum == "9a45536b45c5e409cd49f04bb2d9999f"
 
 
+def test_get_model_state_md5_is_upstreams():
+    # gazebo_msgs/GetModelState of gazebo_ros_pkgs (noetic, with the response header)
+    assert generated_class("gazebo_msgs/GetModelState", "srv")._md5sum == "4c515e936d3319c9610c559c60bfc3d4"
+
+
 def test_rosmsg_prints_upstream_actuators_md5():
     out = subprocess.run(["rosmsg", "md5", "mav_msgs/Actuators"], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "25741daf38ed25442e3a66a855ee8d9c"

@@ -1,4 +1,5 @@
-"""The simulator's ROS face: /clock, pause/unpause/reset services, spawn/delete, model states,
+"""The simulator's ROS face: /clock, pause/unpause/reset services, spawn/delete, model states
+(topic and get_model_state),
 and one-line errors for bad input."""
 import subprocess
 import time
@@ -33,6 +34,12 @@ def test_pause_unpause_reset_and_spawn(ros: RosGraph, tmp_path: Path):
             m = rospy.wait_for_message('/gazebo/model_states', ModelStates, timeout=10)
             return m.pose[m.name.index('box')].position.z
         result['paused_t0'] = clock(); time.sleep(0.5); result['paused_t1'] = clock()
+        from gazebo_msgs.srv import GetModelState
+        get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
+        s = get_state('box', ''); result['state_z'] = (s.success, s.pose.position.z, s.header.frame_id)
+        s = get_state('box', 'box'); result['state_self'] = (s.success, s.pose.position.z, s.pose.orientation.w)
+        s = get_state('nope', ''); result['state_nope'] = (s.success, s.status_message)
+        s = get_state('box', 'nope'); result['state_rel_nope'] = (s.success, s.status_message)
         rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
         time.sleep(1.0)
         result['running_t'] = clock()
@@ -48,6 +55,11 @@ def test_pause_unpause_reset_and_spawn(ros: RosGraph, tmp_path: Path):
         result['t_after_reset_sim'] = clock()
     """)
     assert result["paused_t0"] == result["paused_t1"] == 0.0  # started paused (-u)
+    # gazebo_msgs/GetModelState: world pose, pose relative to a model, unknown names
+    assert result["state_z"] == [True, 5.0, "world"]
+    assert result["state_self"] == [True, 0.0, 1.0]
+    assert result["state_nope"] == [False, "GetModelState: model 'nope' does not exist"]
+    assert not result["state_rel_nope"][0] and "relative entity 'nope'" in result["state_rel_nope"][1]
     assert result["running_t"] > 1.0  # --rtf 0 runs faster than real time
     assert result["pause_t0"] == result["pause_t1"]  # paused again
     assert result["z_fallen"] < 0.2  # fell onto the ground

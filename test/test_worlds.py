@@ -109,3 +109,34 @@ def test_get_octomap_of_the_power_plant_world_agrees_with_rotors_octree(ros: Ros
     print(res.stdout)
     iou = float(res.stdout.split("intersection over union ")[1].split()[0])
     assert iou >= 0.9999, res.stdout  # measured: 1.0000 (2228.828 m^3 occupied in both)
+
+
+def test_a_mav_sent_into_a_hillside_of_the_heightmap_world_stops_on_its_surface(ros: RosGraph):
+    sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "models" / "hills"))
+    from make_hills import height_m  # the terrain the heightmap image was made from
+
+    # (20, 0, 3): 3 m above the valley floor but 2.1 m under the hillside at x = 20 (h = 5.15 m)
+    for axis, value in (("x", 20.0), ("y", 0.0), ("z", 3.0)):
+        ros.run(["rosparam", "set", f"/firefly/hovering_example/{axis}", str(value)])
+    bag, data = fly_logged(ros, "mav_hovering_example.launch", 16.0, "world_name:=hills")
+    p = data.position.values
+    clearance = p[:, 2] - height_m(p[:, 0], p[:, 1])
+    print(f"farthest x {p[:, 0].max():.2f} m; least height of the body centre over the terrain {clearance.min():.3f} m")
+    assert clearance.min() > 0.03  # never inside the hill (the body's half height is 0.08 m)
+    # it ends pressed against the hillside, short of the set point: on the surface, where the
+    # terrain is higher than the set point
+    end = p[-1]
+    print(f"end at {end.round(2)}, terrain there {height_m(end[0], end[1]):.2f} m")
+    assert end[0] < 19.0 and clearance[-1] < 0.3 and height_m(end[0], end[1]) > 3.0
+    assert contacts_with(bag, "firefly", "hills::link::collision", data.waypoints[0].t + 1.0)
+
+
+def test_the_waypoint_world_floor_carries_the_hovering_example(ros: RosGraph):
+    # RotorS' waypoint world: the occupancy grid at (5, 0, 0) with its own floor, no ground plane
+    bag, data = fly_logged(ros, "mav_hovering_example.launch", 21.0, "world_name:=waypoint")
+    wp = data.waypoints[0]
+    z = data.position.values[:, 2]
+    assert 0.0 < z[data.position.t < wp.t].min() < 0.2  # resting on the floor (top at z = 0) before take-off
+    window = data.position.window(wp.t + 5, wp.t + 15)
+    rms = float(np.sqrt(np.mean(np.sum((window.values - wp.position) ** 2, axis=1))))
+    assert abs(rms - 0.040) <= 0.005, rms  # as in the basic world (book section 3.6)

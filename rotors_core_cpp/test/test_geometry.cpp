@@ -108,7 +108,7 @@ TEST(Geometry, HeightfieldGivesContactHeightOfTheTerrain) {
             "'><inertial><mass value='0.1'/><inertia ixx='1e-4' ixy='0' ixz='0' iyy='1e-4' iyz='0' izz='1e-4'/></inertial>"
             "<collision><geometry><sphere radius='0.1'/></geometry></collision></link></robot>";
     r.model_name = "ball" + std::to_string(i);
-    r.X_WM = physics::Pose3d(points[i][0], points[i][1], field.HeightAt(points[i][0], points[i][1]) + 0.105, 0, 0, 0);
+    r.X_WM = physics::Pose3d(points[i][0], points[i][1], field->HeightAt(points[i][0], points[i][1]) + 0.105, 0, 0, 0);
     balls.push_back(ModelBuilder::Spawn(g.world, r));
   }
   g.world->Step(100);  // 1 s: landed and rolling down the 11 deg slope, in contact
@@ -116,12 +116,12 @@ TEST(Geometry, HeightfieldGivesContactHeightOfTheTerrain) {
     const auto p = balls[i]->GetLinks().front()->WorldPose().Pos();
     // on a slope of angle a the centre of a resting ball is r / cos(a) above the terrain
     const double slope = 4.0 / 20.0, r_over_cos = 0.1 * std::sqrt(1 + slope * slope);
-    EXPECT_NEAR(p.Z(), field.HeightAt(p.X(), p.Y()) + r_over_cos, 3e-3) << "ball " << i;
+    EXPECT_NEAR(p.Z(), field->HeightAt(p.X(), p.Y()) + r_over_cos, 3e-3) << "ball " << i;
   }
   // the field itself: 0.5 m at the west edge, 4.5 m at the east edge, linear between
-  EXPECT_NEAR(field.HeightAt(1 - 10, 2), 0.5, 1e-9);
-  EXPECT_NEAR(field.HeightAt(1 + 10, 2), 4.5, 1e-9);
-  EXPECT_NEAR(field.HeightAt(1 + 2.5, 2), 0.5 + 4 * 12.5 / 20, 4.0 / 255 + 1e-9);
+  EXPECT_NEAR(field->HeightAt(1 - 10, 2), 0.5, 1e-9);
+  EXPECT_NEAR(field->HeightAt(1 + 10, 2), 4.5, 1e-9);
+  EXPECT_NEAR(field->HeightAt(1 + 2.5, 2), 0.5 + 4 * 12.5 / 20, 4.0 / 255 + 1e-9);
 }
 
 // Boxes of known size give exactly the cells they cover: a 1 x 0.5 x 0.75 m box aligned with the

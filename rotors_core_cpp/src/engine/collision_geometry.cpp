@@ -69,8 +69,8 @@ geometry::Shape ReadShape(const sdf::Geometry& g, const std::string& where, cons
         const std::string base = h.FilePath().empty() ? sdf_file : h.FilePath();
         s.type = Shape::Type::kHeightmap;
         s.mesh_file = geometry::UriResolver::Resolve(h.Uri(), base);
-        s.heightfield = std::make_shared<geometry::HeightField>(geometry::LoadHeightmap(
-            s.mesh_file, {h.Size().X(), h.Size().Y(), h.Size().Z()}, {h.Position().X(), h.Position().Y(), h.Position().Z()}));
+        s.heightfield = geometry::LoadHeightmap(s.mesh_file, {h.Size().X(), h.Size().Y(), h.Size().Z()},
+                                                {h.Position().X(), h.Position().Y(), h.Position().Z()});
         break;
       }
       case sdf::GeometryType::EMPTY:

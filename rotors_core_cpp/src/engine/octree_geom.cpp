@@ -15,6 +15,7 @@ struct OcTreeGeomData {
   std::shared_ptr<const octomap::OcTree> tree;
   double p_W[3];
   dGeomID leaf_box;  ///< scratch cube, in no space, moved onto each leaf under test
+  std::vector<dContactGeom> found, chosen;  ///< scratch of Collide, kept to reuse their memory
 };
 
 int g_class = -1;
@@ -61,7 +62,8 @@ int Collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contacts, int skip)
   dGeomGetAABB(o2, box);
   const octomap::point3d min(box[0] - d->p_W[0], box[2] - d->p_W[1], box[4] - d->p_W[2]);
   const octomap::point3d max_corner(box[1] - d->p_W[0], box[3] - d->p_W[1], box[5] - d->p_W[2]);
-  std::vector<dContactGeom> found;
+  std::vector<dContactGeom>& found = d->found;
+  found.clear();
   dContactGeom leaf_contacts[8];
   for (auto it = d->tree->begin_leafs_bbx(min, max_corner), end = d->tree->end_leafs_bbx(); it != end; ++it) {
     if (!d->tree->isNodeOccupied(*it)) continue;
@@ -79,7 +81,8 @@ int Collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contacts, int skip)
     }
   }
   if (static_cast<int>(found.size()) > max) {
-    std::vector<dContactGeom> chosen;
+    std::vector<dContactGeom>& chosen = d->chosen;
+    chosen.clear();
     auto deepest = std::max_element(found.begin(), found.end(),
                                     [](const dContactGeom& a, const dContactGeom& b) { return a.depth < b.depth; });
     chosen.push_back(*deepest);
@@ -131,7 +134,7 @@ int ClassNumber() {
 
 dGeomID CreateOcTreeGeom(dSpaceID space, std::shared_ptr<const octomap::OcTree> tree, const double p_W[3]) {
   dGeomID g = dCreateGeom(ClassNumber());
-  new (dGeomGetClassData(g)) OcTreeGeomData{std::move(tree), {p_W[0], p_W[1], p_W[2]}, dCreateBox(nullptr, 1, 1, 1)};
+  new (dGeomGetClassData(g)) OcTreeGeomData{std::move(tree), {p_W[0], p_W[1], p_W[2]}, dCreateBox(nullptr, 1, 1, 1), {}, {}};
   if (space) dSpaceAdd(space, g);
   return g;
 }

@@ -82,8 +82,14 @@ double HeightField::HeightAt(double x_m, double y_m) const {
   return (1 - fv) * ((1 - fu) * h(r, c) + fu * h(r, c + 1)) + fv * ((1 - fu) * h(r + 1, c) + fu * h(r + 1, c + 1));
 }
 
-HeightField LoadHeightmap(const std::string& path, const std::array<double, 3>& size_m,
-                          const std::array<double, 3>& pos_m) {
+std::shared_ptr<const HeightField> LoadHeightmap(const std::string& path, const std::array<double, 3>& size_m,
+                                                const std::array<double, 3>& pos_m) {
+  static Cache<HeightField> cache;
+  std::ostringstream key;
+  key << path << '|' << size_m[0] << ',' << size_m[1] << ',' << size_m[2] << '|' << pos_m[0] << ',' << pos_m[1]
+      << ',' << pos_m[2];
+  std::lock_guard<std::mutex> lock(cache.mutex);
+  if (auto hit = cache.entries[key.str()].lock()) return hit;
   if (!std::filesystem::exists(path)) throw SimError("heightmap image '" + path + "' does not exist");
   if (!(size_m[0] > 0) || !(size_m[1] > 0) || !(size_m[2] >= 0))
     throw SimError("heightmap '" + path + "': <size> must be positive");
@@ -98,21 +104,22 @@ HeightField LoadHeightmap(const std::string& path, const std::array<double, 3>& 
     throw SimError("heightmap image '" + path + "' is " + std::to_string(w) + " x " + std::to_string(h) +
                    " pixels; it must be square with 2^k + 1 pixels per side (e.g. 129, 257, 513)");
   }
-  HeightField field;
-  field.n = w;
-  field.size_x_m = size_m[0];
-  field.size_y_m = size_m[1];
-  field.size_z_m = size_m[2];
-  field.pos_x_m = pos_m[0];
-  field.pos_y_m = pos_m[1];
-  field.pos_z_m = pos_m[2];
-  field.heights_m.resize(static_cast<size_t>(w) * h);
+  auto field = std::make_shared<HeightField>();
+  field->n = w;
+  field->size_x_m = size_m[0];
+  field->size_y_m = size_m[1];
+  field->size_z_m = size_m[2];
+  field->pos_x_m = pos_m[0];
+  field->pos_y_m = pos_m[1];
+  field->pos_z_m = pos_m[2];
+  field->heights_m.resize(static_cast<size_t>(w) * h);
   const double full_scale = sixteen ? 65535.0 : 255.0;
-  for (size_t i = 0; i < field.heights_m.size(); ++i) {
+  for (size_t i = 0; i < field->heights_m.size(); ++i) {
     const double value = sixteen ? static_cast<uint16_t*>(pixels)[i] : static_cast<uint8_t*>(pixels)[i];
-    field.heights_m[i] = pos_m[2] + value / full_scale * size_m[2];
+    field->heights_m[i] = pos_m[2] + value / full_scale * size_m[2];
   }
   stbi_image_free(pixels);
+  cache.entries[key.str()] = field;
   return field;
 }
 

@@ -81,7 +81,17 @@ std::string UriResolver::Resolve(const std::string& uri, const std::string& base
       const fs::path p = fs::path(folder) / rest;
       if (fs::exists(p)) return p.string();
     }
+    // sdformat turns a URDF's package://NAME/... into model://NAME/...: NAME may be a ROS package.
+    const std::string package = rest.substr(0, rest.find('/'));
+    std::vector<std::string> package_paths;
+    const std::string dir = FindPackage(package, &package_paths);
+    if (!dir.empty()) {
+      const fs::path p = fs::path(dir) / rest.substr(std::min(rest.size(), package.size() + 1));
+      if (fs::exists(p)) return p.string();
+    }
     throw SimError("'" + uri + "' cannot be resolved: no such file under the model paths " + Join(searched) +
+                   (dir.empty() ? std::string(" nor a ROS package '") + package + "'"
+                                : std::string(" nor in package '") + package + "' at " + dir) +
                    " (set GAZEBO_MODEL_PATH or export gazebo_model_path from a package)");
   }
   if (StartsWith(uri, "package://")) {

@@ -37,6 +37,7 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   services_.push_back(private_nh_.advertiseService("spawn_urdf_model", &SimServer::OnSpawn, this));
   services_.push_back(private_nh_.advertiseService("spawn_sdf_model", &SimServer::OnSpawn, this));
   services_.push_back(private_nh_.advertiseService("delete_model", &SimServer::OnDelete, this));
+  services_.push_back(private_nh_.advertiseService("get_model_state", &SimServer::OnGetModelState, this));
   ROS_INFO("[rotors_sim] world '%s' loaded from %s: step %.4f s, real-time factor %g%s, %s", world_->Name().c_str(),
            options.world_file.c_str(), world_->Physics().max_step_size_s, world_->Physics().real_time_factor,
            world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "", user_paused_ ? "paused" : "running");
@@ -168,6 +169,61 @@ bool SimServer::OnDelete(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::De
   if (res.success) PublishWorldMarkers();
   res.status_message = res.success ? "DeleteModel: successfully deleted model '" + req.model_name + "'"
                                    : "DeleteModel: there is no model named '" + req.model_name + "'";
+  return true;
+}
+
+/// Gazebo's semantics: pose and twist of the model's frame in the relative model's frame (the world
+/// frame when relative_entity_name is empty or "world"); the twist is expressed in that frame.
+bool SimServer::OnGetModelState(gazebo_msgs::GetModelState::Request& req,
+                                gazebo_msgs::GetModelState::Response& res) {
+  auto find = [this](const std::string& name) -> physics::ModelPtr {
+    for (const auto& model : world_->Models())
+      if (model->GetName() == name) return model;
+    return nullptr;
+  };
+  res.header.stamp.fromNSec(world_->SimTime().Nanoseconds());
+  const physics::ModelPtr model = find(req.model_name);
+  if (!model) {
+    res.success = false;
+    res.status_message = "GetModelState: model '" + req.model_name + "' does not exist";
+    return true;
+  }
+  physics::Pose3d X_WR;  // the relative entity's frame R in the world
+  physics::Vector3d v_WR, w_WR;
+  const bool in_world = req.relative_entity_name.empty() || req.relative_entity_name == "world";
+  if (!in_world) {
+    const physics::ModelPtr relative = find(req.relative_entity_name);
+    if (!relative) {
+      res.success = false;
+      res.status_message = "GetModelState: relative entity '" + req.relative_entity_name +
+                           "' is not a model (give a model name, \"world\" or nothing)";
+      return true;
+    }
+    X_WR = relative->WorldPose();
+    v_WR = relative->WorldLinearVel();
+    w_WR = relative->WorldAngularVel();
+  }
+  const physics::Pose3d X_WM = model->WorldPose();
+  // X_RM = X_WR^-1 X_WM; velocities as differences, rotated into R (as gazebo_ros does)
+  const physics::Pose3d X_RM = X_WM - X_WR;
+  const physics::Vector3d v_R = X_WR.Rot().RotateVectorReverse(model->WorldLinearVel() - v_WR);
+  const physics::Vector3d w_R = X_WR.Rot().RotateVectorReverse(model->WorldAngularVel() - w_WR);
+  res.header.frame_id = in_world ? "world" : req.relative_entity_name;
+  res.pose.position.x = X_RM.Pos().X();
+  res.pose.position.y = X_RM.Pos().Y();
+  res.pose.position.z = X_RM.Pos().Z();
+  res.pose.orientation.w = X_RM.Rot().W();
+  res.pose.orientation.x = X_RM.Rot().X();
+  res.pose.orientation.y = X_RM.Rot().Y();
+  res.pose.orientation.z = X_RM.Rot().Z();
+  res.twist.linear.x = v_R.X();
+  res.twist.linear.y = v_R.Y();
+  res.twist.linear.z = v_R.Z();
+  res.twist.angular.x = w_R.X();
+  res.twist.angular.y = w_R.Y();
+  res.twist.angular.z = w_R.Z();
+  res.success = true;
+  res.status_message = "GetModelState: got properties";
   return true;
 }
 

@@ -40,9 +40,9 @@ struct HeightField {
 };
 
 /// Reads a grey (8- or 16-bit) image as SDF <heightmap>: value / max * size_z above pos_z. The
-/// image must be square with 2^k + 1 pixels per side, as in Gazebo.
-HeightField LoadHeightmap(const std::string& path, const std::array<double, 3>& size_m,
-                          const std::array<double, 3>& pos_m);
+/// image must be square with 2^k + 1 pixels per side, as in Gazebo. Cached by file, size and pos.
+std::shared_ptr<const HeightField> LoadHeightmap(const std::string& path, const std::array<double, 3>& size_m,
+                                                const std::array<double, 3>& pos_m);
 
 /// Reads an OctoMap (.bt binary or .ot full). Cached by file. Throws SimError when the file is
 /// missing or does not parse.

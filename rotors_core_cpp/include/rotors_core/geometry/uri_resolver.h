@@ -16,6 +16,8 @@ class UriResolver {
   /// Every model folder searched, in order (environment first).
   static std::vector<std::string> ModelPaths();
   /// The file a URI names, or throws SimError naming the URI and where it was looked for.
+  /// model://NAME/... not found on the model paths is looked up in ROS package NAME (sdformat
+  /// writes a URDF's package:// as model://).
   /// `base_file`: the SDF/URDF file the URI appears in ("" if it came from a string).
   static std::string Resolve(const std::string& uri, const std::string& base_file = "");
 };

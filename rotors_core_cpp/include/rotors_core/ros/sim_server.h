@@ -7,6 +7,7 @@
 #include <string>
 
 #include <gazebo_msgs/DeleteModel.h>
+#include <gazebo_msgs/GetModelState.h>
 #include <gazebo_msgs/SpawnModel.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
@@ -52,6 +53,7 @@ class SimServer {
   bool OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnModel::Response& res);
   bool OnDelete(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::DeleteModel::Response& res);
+  bool OnGetModelState(gazebo_msgs::GetModelState::Request& req, gazebo_msgs::GetModelState::Response& res);
 
   ros::NodeHandle nh_, private_nh_;
   physics::WorldPtr world_;

@@ -9,6 +9,7 @@ from typing import List, Optional, Sequence, Set
 
 import rosgraph
 import rospy
+from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import Transform, Twist
 from std_srvs.srv import Empty
 from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
@@ -54,8 +55,29 @@ def read_waypoint_file(path: Path) -> List[Waypoint]:
     return out
 
 
+def wait_for_model(name: str, timeout_s: float = 10.0) -> bool:
+    """Waits (wall clock) until /gazebo/get_model_state knows model `name`. False, with a warning
+    naming the model, after `timeout_s`."""
+    deadline = time.monotonic() + timeout_s
+    while not rospy.is_shutdown() and time.monotonic() < deadline:
+        try:
+            rospy.wait_for_service("/gazebo/get_model_state", timeout=max(deadline - time.monotonic(), 0.1))
+            if rospy.ServiceProxy("/gazebo/get_model_state", GetModelState)(model_name=name).success:
+                return True
+        except (rospy.ROSException, rospy.ServiceException):
+            pass
+        time.sleep(0.1)
+    rospy.logwarn("Model '%s' is not in the simulation after %.0f s; going on without it.", name, timeout_s)
+    return False
+
+
 def unpause_simulation(attempts: int = 12) -> bool:
-    """Calls /gazebo/unpause_physics, retrying once a second (wall clock)."""
+    """Calls /gazebo/unpause_physics, retrying once a second (wall clock). In a namespace, first
+    waits for the model of that name (RotorS spawns the MAV as its namespace), so that sim time does
+    not run before the vehicle and its plugins (the bag recorder among them) exist."""
+    model = rospy.get_namespace().strip("/")
+    if model and "/" not in model:
+        wait_for_model(model)
     for i in range(attempts):
         try:
             rospy.wait_for_service("/gazebo/unpause_physics", timeout=1.0)
@@ -116,3 +138,18 @@ def wait_for_subscriber(pub: rospy.Publisher, announce: bool = True, watch: Opti
         time.sleep(0.01)
         registered = watch.registered if watch else registered
     return not rospy.is_shutdown()
+
+
+def publish_to_all(pub: rospy.Publisher, msg, linger_s: float = 3.0) -> None:
+    """Publishes `msg` on a latched publisher and stays (wall clock, up to `linger_s`) until every
+    subscriber the master lists now has connected and so has the message: a controller that
+    registered after the last SubscriberWatch poll still gets it when it connects."""
+    pub.publish(msg)
+    deadline = time.monotonic() + linger_s
+    while not rospy.is_shutdown() and time.monotonic() < deadline:
+        missing = registered_subscribers(pub.resolved_name) - {c.endpoint_id for c in pub.impl.connections}
+        if not missing:
+            return
+        time.sleep(0.05)
+    rospy.logwarn("%s: %s did not connect within %.0f s and may not have the message", pub.resolved_name,
+                  ", ".join(sorted(missing)), linger_s)
