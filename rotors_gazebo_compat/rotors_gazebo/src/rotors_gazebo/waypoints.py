@@ -146,10 +146,12 @@ def publish_to_all(pub: rospy.Publisher, msg, linger_s: float = 3.0) -> None:
     registered after the last SubscriberWatch poll still gets it when it connects."""
     pub.publish(msg)
     deadline = time.monotonic() + linger_s
+    missing: Set[str] = set()
     while not rospy.is_shutdown() and time.monotonic() < deadline:
         missing = registered_subscribers(pub.resolved_name) - {c.endpoint_id for c in pub.impl.connections}
         if not missing:
             return
         time.sleep(0.05)
-    rospy.logwarn("%s: %s did not connect within %.0f s and may not have the message", pub.resolved_name,
-                  ", ".join(sorted(missing)), linger_s)
+    if missing:
+        rospy.logwarn("%s: %s did not connect within %.0f s and may not have the message", pub.resolved_name,
+                      ", ".join(sorted(missing)), linger_s)
