@@ -12,6 +12,7 @@ from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
 from rotors_evaluation.bag_data import FlightBag, load_flight  # noqa: E402
+from rotors_evaluation.metrics import rms_error  # noqa: E402
 
 EVAL = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts"
 WALL_FACE_X_M = 2.0  # obstacle_course.world: the wall spans x = 2.0 .. 2.2
@@ -137,6 +138,5 @@ def test_the_waypoint_world_floor_carries_the_hovering_example(ros: RosGraph):
     wp = data.waypoints[0]
     z = data.position.values[:, 2]
     assert 0.0 < z[data.position.t < wp.t].min() < 0.2  # resting on the floor (top at z = 0) before take-off
-    window = data.position.window(wp.t + 5, wp.t + 15)
-    rms = float(np.sqrt(np.mean(np.sum((window.values - wp.position) ** 2, axis=1))))
+    rms = rms_error(data.position.window(wp.t + 5, wp.t + 15), wp.position)
     assert abs(rms - 0.040) <= 0.005, rms  # as in the basic world (book section 3.6)

@@ -10,6 +10,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/world_loader.h"
+#include "rotors_core/ros/msg_conversions.h"
 #include "rotors_core/ros/world_markers.h"
 
 namespace rotors_sim {
@@ -176,13 +177,8 @@ bool SimServer::OnDelete(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::De
 /// frame when relative_entity_name is empty or "world"); the twist is expressed in that frame.
 bool SimServer::OnGetModelState(gazebo_msgs::GetModelState::Request& req,
                                 gazebo_msgs::GetModelState::Response& res) {
-  auto find = [this](const std::string& name) -> physics::ModelPtr {
-    for (const auto& model : world_->Models())
-      if (model->GetName() == name) return model;
-    return nullptr;
-  };
   res.header.stamp.fromNSec(world_->SimTime().Nanoseconds());
-  const physics::ModelPtr model = find(req.model_name);
+  const physics::ModelPtr model = world_->ModelByName(req.model_name);
   if (!model) {
     res.success = false;
     res.status_message = "GetModelState: model '" + req.model_name + "' does not exist";
@@ -192,7 +188,7 @@ bool SimServer::OnGetModelState(gazebo_msgs::GetModelState::Request& req,
   physics::Vector3d v_WR, w_WR;
   const bool in_world = req.relative_entity_name.empty() || req.relative_entity_name == "world";
   if (!in_world) {
-    const physics::ModelPtr relative = find(req.relative_entity_name);
+    const physics::ModelPtr relative = world_->ModelByName(req.relative_entity_name);
     if (!relative) {
       res.success = false;
       res.status_message = "GetModelState: relative entity '" + req.relative_entity_name +
@@ -209,19 +205,8 @@ bool SimServer::OnGetModelState(gazebo_msgs::GetModelState::Request& req,
   const physics::Vector3d v_R = X_WR.Rot().RotateVectorReverse(model->WorldLinearVel() - v_WR);
   const physics::Vector3d w_R = X_WR.Rot().RotateVectorReverse(model->WorldAngularVel() - w_WR);
   res.header.frame_id = in_world ? "world" : req.relative_entity_name;
-  res.pose.position.x = X_RM.Pos().X();
-  res.pose.position.y = X_RM.Pos().Y();
-  res.pose.position.z = X_RM.Pos().Z();
-  res.pose.orientation.w = X_RM.Rot().W();
-  res.pose.orientation.x = X_RM.Rot().X();
-  res.pose.orientation.y = X_RM.Rot().Y();
-  res.pose.orientation.z = X_RM.Rot().Z();
-  res.twist.linear.x = v_R.X();
-  res.twist.linear.y = v_R.Y();
-  res.twist.linear.z = v_R.Z();
-  res.twist.angular.x = w_R.X();
-  res.twist.angular.y = w_R.Y();
-  res.twist.angular.z = w_R.Z();
+  res.pose = PoseMsg(X_RM);
+  res.twist = TwistMsg(v_R, w_R);
   res.success = true;
   res.status_message = "GetModelState: got properties";
   return true;

@@ -9,34 +9,9 @@
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
+#include "rotors_core/ros/msg_conversions.h"
 
 namespace rotors_sim {
-namespace {
-
-geometry_msgs::Pose ToMsg(const physics::Pose3d& X) {
-  geometry_msgs::Pose p;
-  p.position.x = X.Pos().X();
-  p.position.y = X.Pos().Y();
-  p.position.z = X.Pos().Z();
-  p.orientation.w = X.Rot().W();
-  p.orientation.x = X.Rot().X();
-  p.orientation.y = X.Rot().Y();
-  p.orientation.z = X.Rot().Z();
-  return p;
-}
-
-geometry_msgs::Twist ToMsg(const physics::Vector3d& v, const physics::Vector3d& w) {
-  geometry_msgs::Twist t;
-  t.linear.x = v.X();
-  t.linear.y = v.Y();
-  t.linear.z = v.Z();
-  t.angular.x = w.X();
-  t.angular.y = w.Y();
-  t.angular.z = w.Z();
-  return t;
-}
-
-}  // namespace
 
 StatePublisher::StatePublisher(ros::NodeHandle nh, double rate_hz)
     : nh_(nh), period_s_(rate_hz > 0 ? 1.0 / rate_hz : 0.0) {
@@ -60,14 +35,14 @@ void StatePublisher::Update(const physics::World& world, bool force) {
   for (const auto& model : world.Models()) {
     if (want_models) {
       models.name.push_back(model->GetName());
-      models.pose.push_back(ToMsg(model->WorldPose()));
-      models.twist.push_back(ToMsg(model->WorldLinearVel(), model->WorldAngularVel()));
+      models.pose.push_back(PoseMsg(model->WorldPose()));
+      models.twist.push_back(TwistMsg(model->WorldLinearVel(), model->WorldAngularVel()));
     }
     if (want_links) {
       for (const auto& link : model->GetLinks()) {
         links.name.push_back(model->GetName() + "::" + link->GetName());
-        links.pose.push_back(ToMsg(link->WorldPose()));
-        links.twist.push_back(ToMsg(link->WorldLinearVel(), link->WorldAngularVel()));
+        links.pose.push_back(PoseMsg(link->WorldPose()));
+        links.twist.push_back(TwistMsg(link->WorldLinearVel(), link->WorldAngularVel()));
       }
     }
     if (model->IsStatic()) continue;
@@ -76,7 +51,7 @@ void StatePublisher::Update(const physics::World& world, bool force) {
     tf.header.stamp = stamp;
     tf.header.frame_id = "world";
     tf.child_frame_id = model->GetCanonicalLink()->GetName();
-    const geometry_msgs::Pose p = ToMsg(model->WorldPose());
+    const geometry_msgs::Pose p = PoseMsg(model->WorldPose());
     tf.transform.translation.x = p.position.x;
     tf.transform.translation.y = p.position.y;
     tf.transform.translation.z = p.position.z;

@@ -7,6 +7,7 @@
 #include "rotors_core/geometry/visual.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
+#include "rotors_core/ros/msg_conversions.h"
 
 namespace rotors_sim {
 namespace {
@@ -33,11 +34,7 @@ std_msgs::ColorRGBA HeightColour(double z, double z_min, double z_max) {
 }
 
 void SetPose(const ignition::math::Pose3d& X_WV, visualization_msgs::Marker* m) {
-  m->pose.position = Point(X_WV.Pos().X(), X_WV.Pos().Y(), X_WV.Pos().Z());
-  m->pose.orientation.w = X_WV.Rot().W();
-  m->pose.orientation.x = X_WV.Rot().X();
-  m->pose.orientation.y = X_WV.Rot().Y();
-  m->pose.orientation.z = X_WV.Rot().Z();
+  m->pose = PoseMsg(X_WV);
 }
 
 /// Fills pose, type, scale and points of `m` for the shape at X_WV; false for shapes that cannot be drawn.

@@ -30,18 +30,12 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
+#include "rotors_core/ros/msg_conversions.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace rotors_gazebo_plugins {
-namespace {
-void ToMsg(const rotors_sim::physics::Vector3d& v, geometry_msgs::Vector3* out) {
-  out->x = v.X();
-  out->y = v.Y();
-  out->z = v.Z();
-}
-}  // namespace
 
 class GazeboBagPlugin : public rotors_sim::ModelPlugin {
  public:
@@ -176,18 +170,11 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     geometry_msgs::PoseStamped pose;
     pose.header.stamp = stamp;
     pose.header.frame_id = frame_id_;
-    pose.pose.position.x = X.Pos().X();
-    pose.pose.position.y = X.Pos().Y();
-    pose.pose.position.z = X.Pos().Z();
-    pose.pose.orientation.w = X.Rot().W();
-    pose.pose.orientation.x = X.Rot().X();
-    pose.pose.orientation.y = X.Rot().Y();
-    pose.pose.orientation.z = X.Rot().Z();
+    pose.pose = rotors_sim::PoseMsg(X);
     Write(ns_ + "/" + pose_topic_, stamp, pose);
     geometry_msgs::TwistStamped twist;
     twist.header = pose.header;
-    ToMsg(link_->WorldLinearVel(), &twist.twist.linear);
-    ToMsg(link_->WorldAngularVel(), &twist.twist.angular);
+    twist.twist = rotors_sim::TwistMsg(link_->WorldLinearVel(), link_->WorldAngularVel());
     Write(ns_ + "/" + twist_topic_, stamp, twist);
     mav_msgs::Actuators motors;
     motors.header = pose.header;
@@ -203,8 +190,8 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
       geometry_msgs::WrenchStamped wrench;
       wrench.header.stamp = stamp;
       wrench.header.frame_id = c.collision1 + "--" + c.collision2;
-      ToMsg(f, &wrench.wrench.force);
-      ToMsg(tau, &wrench.wrench.torque);
+      wrench.wrench.force = rotors_sim::Vector3Msg(f);
+      wrench.wrench.torque = rotors_sim::Vector3Msg(tau);
       Write(ns_ + "/" + wrench_topic_, stamp, wrench);
     }
   }

@@ -13,6 +13,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
+#include "rotors_core/ros/msg_conversions.h"
 #include "rotors_gazebo_plugins/models/imu_noise_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
@@ -80,10 +81,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     const ImuSample m = noise_->Corrupt({{w_I.X(), w_I.Y(), w_I.Z()}, {f_I.X(), f_I.Y(), f_I.Z()}}, dt);
     if (!node_) return;
     msg_.header.stamp = ToRos(world_->SimTime());
-    msg_.orientation.w = X_WI.Rot().W();
-    msg_.orientation.x = X_WI.Rot().X();
-    msg_.orientation.y = X_WI.Rot().Y();
-    msg_.orientation.z = X_WI.Rot().Z();
+    msg_.orientation = rotors_sim::QuaternionMsg(X_WI.Rot());
     msg_.angular_velocity = ToVector3Msg(m.angular_velocity_I);
     msg_.linear_acceleration = ToVector3Msg(m.linear_acceleration_I);
     pub_.publish(msg_);

@@ -98,6 +98,11 @@ def registered_subscribers(topic: str) -> Set[str]:
     return next((set(nodes) for name, nodes in subscribers if name == topic), set())
 
 
+def unconnected(pub: rospy.Publisher, registered: Set[str]) -> Set[str]:
+    """The nodes of `registered` that have no connection to `pub` yet."""
+    return registered - {c.endpoint_id for c in pub.impl.connections}
+
+
 class SubscriberWatch:
     """Keeps the master's list of a topic's subscribers up to date in a background thread (wall
     clock, every `period_s`), so that waiting for them costs no master call at publishing time:
@@ -129,7 +134,7 @@ def wait_for_subscriber(pub: rospy.Publisher, announce: bool = True, watch: Opti
     registered = watch.registered if watch else registered_subscribers(pub.resolved_name)
     deadline = time.monotonic() + others_timeout_s
     while not rospy.is_shutdown():
-        missing = registered - {c.endpoint_id for c in pub.impl.connections}
+        missing = unconnected(pub, registered)
         if not missing:
             break
         if time.monotonic() > deadline:
@@ -148,7 +153,7 @@ def publish_to_all(pub: rospy.Publisher, msg, linger_s: float = 3.0) -> None:
     deadline = time.monotonic() + linger_s
     missing: Set[str] = set()
     while not rospy.is_shutdown() and time.monotonic() < deadline:
-        missing = registered_subscribers(pub.resolved_name) - {c.endpoint_id for c in pub.impl.connections}
+        missing = unconnected(pub, registered_subscribers(pub.resolved_name))
         if not missing:
             return
         time.sleep(0.05)
