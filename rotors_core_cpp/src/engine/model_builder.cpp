@@ -7,6 +7,8 @@
 #include <sdf/Collision.hh>
 #include <sdf/Material.hh>
 #include <sdf/Visual.hh>
+
+#include "rotors_core/sensors/camera_sensor.h"
 #include <sdf/Joint.hh>
 #include <sdf/JointAxis.hh>
 #include <sdf/Link.hh>
@@ -207,8 +209,15 @@ void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model,
       const sdf::Sensor& s = *sdf_link.SensorByIndex(k);
       Pose3d X_LS;
       s.SemanticPose().Resolve(X_LS, sdf_link.Name());
-      auto sensor = std::make_shared<sensors::Sensor>(s.Name(), s.TypeStr(), model->GetLink(sdf_link.Name()), X_LS,
-                                                      s.UpdateRate());
+      sensors::SensorPtr sensor;
+      // the type as written (sdformat renames "depth" to "depth_camera")
+      const std::string type = s.Element() ? s.Element()->Get<std::string>("type") : s.TypeStr();
+      if (sensors::CameraSensor::IsCameraType(type))
+        sensor = std::make_shared<sensors::CameraSensor>(s.Name(), type, model->GetLink(sdf_link.Name()), X_LS,
+                                                         s.UpdateRate(), s.Element());
+      else
+        sensor = std::make_shared<sensors::Sensor>(s.Name(), s.TypeStr(), model->GetLink(sdf_link.Name()), X_LS,
+                                                   s.UpdateRate());
       model->AddSensor(sensor);
       sdf::ElementPtr element = s.Element();
       if (!element || !element->HasElement("plugin")) continue;
@@ -236,11 +245,9 @@ physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const Spaw
   sdf::Root root;
   sdf::Errors errors = root.LoadSdfString(request.xml);
   for (const auto& e : errors) {
-    if (e.Code() == sdf::ErrorCode::LINK_INERTIA_INVALID) {
-      // Gazebo classic accepts inertias that break the triangle inequality (the firefly's does).
-      continue;
-    }
-    throw SimError("model '" + label + "': the description does not parse: " + e.Message());
+    if (IsCheckedByTheEngine(e)) continue;
+    sensors::CameraSensor::CheckAll(root.Element());  // names a bad camera better than sdformat does
+    throw SimError("model '" + label + "': the description does not parse: " + Describe(e));
   }
   const sdf::Model* sdf_model = root.Model();
   if (!sdf_model) throw SimError("model '" + label + "': the description holds no <robot> or <model>");

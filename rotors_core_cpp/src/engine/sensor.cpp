@@ -21,6 +21,7 @@ void Sensor::Update(const common::Time& sim_time) {
     return;
   last_update_ = sim_time;
   has_updated_ = true;
+  OnUpdate(sim_time);
   updated_();
 }
 

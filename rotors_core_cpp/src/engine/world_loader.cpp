@@ -1,5 +1,6 @@
 #include "rotors_core/world_loader.h"
 
+#include "rotors_core/sensors/camera_sensor.h"
 #include "sdf_console.h"
 
 #include <cstdlib>
@@ -11,6 +12,8 @@
 #include <sdf/Root.hh>
 #include <sdf/World.hh>
 #include <ignition/math/SphericalCoordinates.hh>
+#include <sdf/Light.hh>
+#include <sdf/Scene.hh>
 
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
@@ -56,10 +59,30 @@ physics::PhysicsParams ReadPhysics(const sdf::World& world) {
   return p;
 }
 
+/// The first directional light is the sun; <scene> gives ambient and background (grey levels).
+geometry::Lighting ReadLighting(const sdf::World& world) {
+  geometry::Lighting lighting;
+  for (uint64_t i = 0; i < world.LightCount(); ++i) {
+    const sdf::Light& light = *world.LightByIndex(i);
+    if (light.Type() != sdf::LightType::DIRECTIONAL) continue;
+    lighting.sun_direction_W = light.Direction();
+    const auto d = light.Diffuse();
+    lighting.sun_diffuse = static_cast<float>((d.R() + d.G() + d.B()) / 3.0);
+    break;
+  }
+  if (const sdf::Scene* scene = world.Scene()) {
+    const auto a = scene->Ambient(), b = scene->Background();
+    lighting.ambient = static_cast<float>((a.R() + a.G() + a.B()) / 3.0);
+    lighting.background = {static_cast<float>(b.R()), static_cast<float>(b.G()), static_cast<float>(b.B())};
+  }
+  return lighting;
+}
+
 physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const std::string& source) {
   for (const auto& e : errors) {
-    if (e.Code() == sdf::ErrorCode::LINK_INERTIA_INVALID) continue;
-    throw SimError("world '" + source + "' does not parse: " + e.Message());
+    if (IsCheckedByTheEngine(e)) continue;
+    sensors::CameraSensor::CheckAll(root.Element());  // names a bad camera better than sdformat does
+    throw SimError("world '" + source + "' does not parse: " + Describe(e));
   }
   if (root.WorldCount() == 0) throw SimError("world '" + source + "' holds no <world> element");
   const sdf::World& sdf_world = *root.WorldByIndex(0);
@@ -72,6 +95,7 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
     origin.heading_deg = sc->HeadingOffset().Degree();
     world->SetOrigin(origin);
   }
+  world->SetLighting(ReadLighting(sdf_world));
   try {
     for (uint64_t i = 0; i < sdf_world.ModelCount(); ++i) {
       const sdf::Model& m = *sdf_world.ModelByIndex(i);

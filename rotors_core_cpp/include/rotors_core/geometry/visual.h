@@ -42,3 +42,17 @@ struct Visual {
 
 }  // namespace geometry
 }  // namespace rotors_sim
+
+namespace rotors_sim {
+namespace geometry {
+
+/// How the world is lit (SDF <light type="directional"> and <scene>), for whoever renders it.
+struct Lighting {
+  ignition::math::Vector3d sun_direction_W{-0.5, 0.1, -0.9};  ///< direction the light travels
+  float sun_diffuse = 0.8f;                                    ///< grey level of the sun's diffuse colour
+  float ambient = 0.4f;                                        ///< <scene><ambient>
+  std::array<float, 3> background{0.7f, 0.7f, 0.7f};          ///< <scene><background>
+};
+
+}  // namespace geometry
+}  // namespace rotors_sim

@@ -11,6 +11,7 @@
 
 #include "rotors_core/common.h"
 #include "rotors_core/event.h"
+#include "rotors_core/geometry/visual.h"
 #include "rotors_core/physics/physics_types.h"
 
 namespace rotors_sim {
@@ -65,6 +66,8 @@ class World : public std::enable_shared_from_this<World> {
   Vector3d Gravity() const { return params_.gravity_W; }
   const SphericalCoordinates& Origin() const { return origin_; }
   void SetOrigin(const SphericalCoordinates& origin) { origin_ = origin; }
+  const geometry::Lighting& GetLighting() const { return lighting_; }
+  void SetLighting(const geometry::Lighting& lighting) { lighting_ = lighting; }
   common::Time SimTime() const { return sim_time_; }
   uint64_t Iterations() const { return iterations_; }
 
@@ -109,6 +112,7 @@ class World : public std::enable_shared_from_this<World> {
   std::string name_;
   PhysicsParams params_;
   SphericalCoordinates origin_;
+  geometry::Lighting lighting_;
   dWorldID ode_world_ = nullptr;
   dSpaceID ode_space_ = nullptr;
   dJointGroupID contact_group_ = nullptr;

@@ -1,6 +1,6 @@
 // A sensor declared in a link's SDF (<gazebo reference="link"><sensor ...>) (gazebo::sensors::Sensor).
 // The engine drives it at its <update_rate> and fires Updated; what it measures is the job of its
-// plugins (rendering sensors such as cameras are not implemented yet).
+// plugins, or of a subclass (CameraSensor renders).
 #pragma once
 
 #include <memory>
@@ -15,6 +15,7 @@ namespace sensors {
 
 class Sensor {
  public:
+  virtual ~Sensor() = default;
   Sensor(std::string name, std::string type, physics::LinkPtr parent, const physics::Pose3d& pose_in_link,
          double update_rate_hz);
 
@@ -31,6 +32,10 @@ class Sensor {
   /// Engine side: fires Updated if 1/rate has passed since the last update.
   void Update(const common::Time& sim_time);
   void Reset() { last_update_ = common::Time(); has_updated_ = false; }
+
+ protected:
+  /// Called at each update, before Updated fires.
+  virtual void OnUpdate(const common::Time& /*sim_time*/) {}
 
  private:
   std::string name_, type_;

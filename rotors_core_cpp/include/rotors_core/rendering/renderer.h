@@ -1,0 +1,47 @@
+// Renders the world's visual geometry as a camera sees it: headless OpenGL 3.3 through EGL on
+// Mesa's surfaceless platform (llvmpipe), no X server. One renderer per process, used from the
+// simulation thread only. Colour is Lambert shading under the world's sun plus Gaussian pixel
+// noise (a hash of pixel, frame and seed: deterministic); depth is the optical-axis distance
+// written by the fragment shader as a float, so it is exact to float precision.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "rotors_core/geometry/visual.h"
+#include "rotors_core/physics/physics_types.h"
+#include "rotors_core/rendering/camera_model.h"
+
+namespace rotors_sim {
+namespace rendering {
+
+struct RenderedFrame {
+  int width_px = 0, height_px = 0;
+  std::vector<uint8_t> image;   ///< rows top to bottom, BytesPerPixel(format) per pixel; empty if not asked
+  std::vector<float> depth_m;   ///< optical-axis distance per pixel, NaN where nothing is in range
+};
+
+class Renderer {
+ public:
+  /// The process' renderer; creates the GL context on first use. Throws SimError when no headless
+  /// OpenGL 3.3 context can be made (the message names the missing package).
+  static Renderer& Instance();
+  ~Renderer();
+
+  /// Renders every visual of every model of `world` from the camera at X_WC (camera frame:
+  /// x forward, z up). noise_seed picks the noise pattern (same seed, same image).
+  void Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
+              uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out);
+
+  /// Triangles uploaded so far (all cached shapes), for benchmarks.
+  size_t CachedTriangles() const;
+
+ private:
+  Renderer();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rendering
+}  // namespace rotors_sim

@@ -1,0 +1,37 @@
+// Every visual shape as triangles with normals, for the renderer. Engine-free: no GL.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rotors_core/geometry/visual.h"
+
+namespace rotors_sim {
+namespace rendering {
+
+/// Unindexed triangles in the shape's own frame: three vertices per triangle, each with a normal.
+struct TriangleSoup {
+  std::vector<float> positions_m;  ///< x y z per vertex
+  std::vector<float> normals;      ///< unit normal per vertex
+  size_t VertexCount() const { return positions_m.size() / 3; }
+  void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c);  ///< flat normal
+  void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
+           const Eigen::Vector3f& na, const Eigen::Vector3f& nb, const Eigen::Vector3f& nc);
+};
+
+/// Unit shapes, scaled by the renderer: a 1 m cube centred at the origin, a sphere of radius 1 m,
+/// a cylinder of radius 1 m and length 1 m along z, a 1 x 1 m square in the xy plane.
+TriangleSoup UnitBox();
+TriangleSoup UnitSphere(int slices = 32, int stacks = 16);
+TriangleSoup UnitCylinder(int slices = 32);
+TriangleSoup UnitSquare();
+
+TriangleSoup FromMesh(const geometry::TriangleMesh& mesh);
+/// One quad per pair of neighbouring samples, normals from the height gradient.
+TriangleSoup FromHeightField(const geometry::HeightField& field);
+/// The occupied cells' faces that border free or unknown space (inner faces are never seen).
+TriangleSoup FromOcTree(const octomap::OcTree& tree);
+
+}  // namespace rendering
+}  // namespace rotors_sim

@@ -1,0 +1,70 @@
+#include "rotors_core/sensors/camera_sensor.h"
+
+#include <functional>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+
+namespace rotors_sim {
+namespace sensors {
+
+CameraSensor::CameraSensor(std::string name, std::string type, physics::LinkPtr parent,
+                           const physics::Pose3d& pose_in_link, double update_rate_hz, const sdf::ElementPtr& sdf)
+    : Sensor(std::move(name), std::move(type), std::move(parent), pose_in_link, update_rate_hz) {
+  const std::string label = Type() + " sensor '" + Name() + "'";
+  if (!(update_rate_hz >= 0.0)) throw SimError(label + ": update_rate must be >= 0");
+  if (sdf && sdf->HasElement("camera")) {
+    for (sdf::ElementPtr c = sdf->GetElement("camera"); c; c = c->GetNextElement("camera")) {
+      try {
+        cameras_.push_back(rendering::ParseCamera(c));
+      } catch (const SimError& e) {
+        throw SimError(label + ": " + e.what());
+      }
+    }
+  }
+  if (cameras_.empty()) throw SimError(label + " has no <camera> element");
+  if (Type() != "multicamera" && cameras_.size() > 1)
+    throw SimError(label + " has " + std::to_string(cameras_.size()) + " <camera> elements; only a multicamera may");
+  frames_.resize(cameras_.size());
+  rendered_update_.assign(cameras_.size(), 0);
+  seed_ = std::hash<std::string>()(ParentLink()->GetModel()->GetName() + "::" + Name());
+}
+
+void CameraSensor::CheckAll(const sdf::ElementPtr& element, const std::string& model) {
+  if (!element) return;
+  const std::string name = element->HasAttribute("name") ? element->Get<std::string>("name") : "";
+  const std::string in_model = element->GetName() == "model" ? name : model;
+  if (element->GetName() == "sensor" && element->HasAttribute("type") &&
+      IsCameraType(element->Get<std::string>("type"))) {
+    const std::string label = "model '" + in_model + "', " + element->Get<std::string>("type") + " sensor '" + name + "'";
+    if (!element->HasElement("camera")) throw SimError(label + " has no <camera> element");
+    for (sdf::ElementPtr c = element->GetElement("camera"); c; c = c->GetNextElement("camera")) {
+      try {
+        rendering::ParseCamera(c);
+      } catch (const SimError& e) {
+        throw SimError(label + ": " + e.what());
+      }
+    }
+    return;
+  }
+  for (sdf::ElementPtr child = element->GetFirstElement(); child; child = child->GetNextElement()) CheckAll(child, in_model);
+}
+
+physics::Pose3d CameraSensor::CameraWorldPose(size_t i) const { return cameras_.at(i).X_SC + WorldPose(); }
+
+void CameraSensor::OnUpdate(const common::Time& /*sim_time*/) { ++update_count_; }
+
+const rendering::RenderedFrame& CameraSensor::Frame(size_t i) {
+  if (rendered_update_.at(i) != update_count_) {
+    const physics::World& world = *ParentLink()->GetModel()->GetWorldRaw();
+    rendering::Renderer::Instance().Render(world, CameraWorldPose(i), cameras_[i],
+                                           seed_ * 1000003u + update_count_ * 16u + i, true, IsDepth(), &frames_[i]);
+    rendered_update_[i] = update_count_;
+  }
+  return frames_[i];
+}
+
+}  // namespace sensors
+}  // namespace rotors_sim

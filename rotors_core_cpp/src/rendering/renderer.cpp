@@ -1,0 +1,374 @@
+#include "rotors_core/rendering/renderer.h"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <tuple>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#define GL_GLEXT_PROTOTYPES
+#include <GL/glcorearb.h>
+#include <Eigen/Geometry>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/rendering/tessellation.h"
+
+namespace rotors_sim {
+namespace rendering {
+namespace {
+
+using geometry::Shape;
+
+const char* kMeshVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 p_V;
+layout(location = 1) in vec3 n_V;
+uniform mat4 T_OV;        // visual frame -> optical frame (x right, y down, z forward)
+uniform mat3 N_OV;        // normals visual -> optical: inverse transpose of T_OV's linear part
+uniform vec4 projection;  // 2 f / W, 2 f / H, near, far
+out vec3 p_O;
+out vec3 n_O;
+void main() {
+  vec4 p = T_OV * vec4(p_V, 1.0);
+  p_O = p.xyz;
+  n_O = N_OV * n_V;
+  float near = projection.z, far = projection.w;
+  // x_ndc = 2 f x / (W z), y_ndc = 2 f y / (H z): pixel u = f x / z + (W - 1) / 2, rows top down
+  gl_Position = vec4(projection.x * p.x, projection.y * p.y,
+                     (far + near) / (far - near) * p.z - 2.0 * far * near / (far - near), p.z);
+})";
+
+const char* kBackgroundVertexShader = R"(#version 330 core
+out vec3 p_O;
+out vec3 n_O;
+void main() {
+  // one triangle covering the viewport, on the far plane
+  vec2 corner = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+  p_O = vec3(0.0);
+  n_O = vec3(0.0);
+  gl_Position = vec4(corner, 1.0, 1.0);
+})";
+
+const char* kFragmentShader = R"(#version 330 core
+in vec3 p_O;
+in vec3 n_O;
+uniform vec3 albedo;
+uniform vec3 to_sun_O;
+uniform float ambient;
+uniform float sun_diffuse;
+uniform bool background;
+uniform bool grey;
+uniform vec2 noise;       // mean, stddev (full scale 1)
+uniform uvec2 seed;
+layout(location = 0) out vec4 colour;
+layout(location = 1) out float depth_m;
+
+uint Hash(uint x) {  // lowbias32
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return x;
+}
+float Uniform01(uint k) { return (float(Hash(k) >> 8) + 0.5) / 16777216.0; }
+float Gaussian(uint channel) {  // Box-Muller from two hashed uniforms
+  uint k = Hash(uint(gl_FragCoord.x) * 73856093u ^ uint(gl_FragCoord.y) * 19349663u ^ seed.x) ^ seed.y;
+  k = Hash(k + channel * 0x9e3779b9u);
+  return sqrt(-2.0 * log(Uniform01(k))) * cos(6.28318530718 * Uniform01(k ^ 0x68e31da4u));
+}
+
+void main() {
+  vec3 c = albedo;
+  if (!background) {
+    vec3 n = normalize(n_O);
+    if (dot(n, p_O) > 0.0) n = -n;  // light the side the camera sees
+    c = albedo * (ambient + sun_diffuse * max(dot(n, to_sun_O), 0.0));
+  }
+  if (grey) c = vec3(dot(c, vec3(0.299, 0.587, 0.114)));
+  if (noise.y > 0.0 || noise.x != 0.0) {
+    c.r += noise.x + noise.y * Gaussian(0u);
+    if (grey) { c.g = c.r; c.b = c.r; }
+    else { c.g += noise.x + noise.y * Gaussian(1u); c.b += noise.x + noise.y * Gaussian(2u); }
+  }
+  colour = vec4(clamp(c, 0.0, 1.0), 1.0);
+  depth_m = background ? -1.0 : p_O.z;
+})";
+
+GLuint Compile(GLenum type, const char* source) {
+  GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
+    throw SimError(std::string("camera renderer: shader does not compile: ") + log);
+  }
+  return shader;
+}
+
+GLuint Link(const char* vertex, const char* fragment) {
+  GLuint program = glCreateProgram();
+  glAttachShader(program, Compile(GL_VERTEX_SHADER, vertex));
+  glAttachShader(program, Compile(GL_FRAGMENT_SHADER, fragment));
+  glBindFragDataLocation(program, 0, "colour");
+  glBindFragDataLocation(program, 1, "depth_m");
+  glLinkProgram(program);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) throw SimError("camera renderer: shader program does not link");
+  return program;
+}
+
+struct GpuMesh {
+  GLuint vao = 0, vbo = 0;
+  GLsizei vertices = 0;
+  std::shared_ptr<const void> source;  // keeps the key's object alive
+};
+
+struct Target {
+  GLuint fbo = 0, colour = 0, depth_out = 0, depth_buffer = 0;
+};
+
+Eigen::Isometry3d ToEigen(const ignition::math::Pose3d& X) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
+  return T;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+  GLuint mesh_program = 0, background_program = 0, empty_vao = 0;
+  std::map<const void*, GpuMesh> meshes;                       // by source object
+  std::map<std::tuple<int, int, int>, Target> targets;         // by width, height, format
+  size_t triangles = 0;
+
+  void CreateContext();
+  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup);
+  const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
+  Target& TargetFor(int width, int height, PixelFormat format);
+};
+
+void Renderer::Impl::CreateContext() {
+  auto get_platform_display =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  const std::string fix = " (headless rendering needs Mesa's EGL: apt install libegl-mesa0 libgl1-mesa-dri)";
+  if (!get_platform_display) throw SimError("camera renderer: EGL has no eglGetPlatformDisplayEXT" + fix);
+  display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  EGLint major = 0, minor = 0;
+  if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
+    throw SimError("camera renderer: no surfaceless EGL display" + fix);
+  if (!eglBindAPI(EGL_OPENGL_API)) throw SimError("camera renderer: EGL cannot bind OpenGL" + fix);
+  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+  if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+    throw SimError("camera renderer: no OpenGL 3.3 core context" + fix);
+  mesh_program = Link(kMeshVertexShader, kFragmentShader);
+  background_program = Link(kBackgroundVertexShader, kFragmentShader);
+  glGenVertexArrays(1, &empty_vao);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);  // meshes of unknown winding; the optical frame mirrors GL's anyway
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+}
+
+const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup) {
+  GpuMesh mesh;
+  mesh.source = std::move(source);
+  mesh.vertices = static_cast<GLsizei>(soup.VertexCount());
+  std::vector<float> interleaved;
+  interleaved.reserve(soup.positions_m.size() * 2);
+  for (size_t i = 0; i < soup.VertexCount(); ++i) {
+    interleaved.insert(interleaved.end(), soup.positions_m.begin() + 3 * i, soup.positions_m.begin() + 3 * i + 3);
+    interleaved.insert(interleaved.end(), soup.normals.begin() + 3 * i, soup.normals.begin() + 3 * i + 3);
+  }
+  glGenVertexArrays(1, &mesh.vao);
+  glBindVertexArray(mesh.vao);
+  glGenBuffers(1, &mesh.vbo);
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.vbo);
+  glBufferData(GL_ARRAY_BUFFER, interleaved.size() * sizeof(float), interleaved.data(), GL_STATIC_DRAW);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+  glEnableVertexAttribArray(0);
+  glEnableVertexAttribArray(1);
+  glBindVertexArray(0);
+  triangles += soup.VertexCount() / 3;
+  return meshes.emplace(key, std::move(mesh)).first->second;
+}
+
+/// The GPU mesh of a shape and the scale S that takes the mesh's frame to the visual frame.
+const GpuMesh* Renderer::Impl::MeshFor(const Shape& shape, Eigen::Matrix4d* S) {
+  static const int kUnitBox = 0, kUnitSphere = 0, kUnitCylinder = 0, kUnitSquare = 0;
+  S->setIdentity();
+  auto cached = [&](const void* key) -> const GpuMesh* {
+    auto it = meshes.find(key);
+    return it == meshes.end() ? nullptr : &it->second;
+  };
+  const GpuMesh* mesh = nullptr;
+  switch (shape.type) {
+    case Shape::Type::kBox:
+      *S = Eigen::Vector4d(shape.box_size_m.X(), shape.box_size_m.Y(), shape.box_size_m.Z(), 1).asDiagonal();
+      return (mesh = cached(&kUnitBox)) ? mesh : &Upload(&kUnitBox, nullptr, UnitBox());
+    case Shape::Type::kSphere:
+      *S = Eigen::Vector4d(shape.radius_m, shape.radius_m, shape.radius_m, 1).asDiagonal();
+      return (mesh = cached(&kUnitSphere)) ? mesh : &Upload(&kUnitSphere, nullptr, UnitSphere());
+    case Shape::Type::kCylinder:
+      *S = Eigen::Vector4d(shape.radius_m, shape.radius_m, shape.length_m, 1).asDiagonal();
+      return (mesh = cached(&kUnitCylinder)) ? mesh : &Upload(&kUnitCylinder, nullptr, UnitCylinder());
+    case Shape::Type::kPlane: {
+      const Eigen::Vector3d n(shape.plane_normal.X(), shape.plane_normal.Y(), shape.plane_normal.Z());
+      S->topLeftCorner<3, 3>() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n.normalized())
+                                     .toRotationMatrix() *
+                                 Eigen::Vector3d(shape.plane_size_m.X(), shape.plane_size_m.Y(), 1).asDiagonal();
+      return (mesh = cached(&kUnitSquare)) ? mesh : &Upload(&kUnitSquare, nullptr, UnitSquare());
+    }
+    case Shape::Type::kMesh:
+      if (!shape.mesh) return nullptr;
+      return (mesh = cached(shape.mesh.get())) ? mesh : &Upload(shape.mesh.get(), shape.mesh, FromMesh(*shape.mesh));
+    case Shape::Type::kHeightmap:
+      if (!shape.heightfield) return nullptr;
+      return (mesh = cached(shape.heightfield.get()))
+                 ? mesh
+                 : &Upload(shape.heightfield.get(), shape.heightfield, FromHeightField(*shape.heightfield));
+    case Shape::Type::kOcTree:
+      if (!shape.octree) return nullptr;
+      return (mesh = cached(shape.octree.get())) ? mesh
+                                                  : &Upload(shape.octree.get(), shape.octree, FromOcTree(*shape.octree));
+  }
+  return nullptr;
+}
+
+Target& Renderer::Impl::TargetFor(int width, int height, PixelFormat format) {
+  const auto key = std::make_tuple(width, height, static_cast<int>(format));
+  auto it = targets.find(key);
+  if (it != targets.end()) return it->second;
+  Target t;
+  glGenFramebuffers(1, &t.fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
+  auto renderbuffer = [&](GLenum internal_format, GLenum attachment) {
+    GLuint rb = 0;
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, internal_format, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, rb);
+    return rb;
+  };
+  // L8 renders into one channel, so that the read-back is a copy
+  t.colour = renderbuffer(format == PixelFormat::kL8 ? GL_R8 : GL_RGBA8, GL_COLOR_ATTACHMENT0);
+  t.depth_out = renderbuffer(GL_R32F, GL_COLOR_ATTACHMENT1);
+  t.depth_buffer = renderbuffer(GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
+  const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glDrawBuffers(2, buffers);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw SimError("camera renderer: cannot make a " + std::to_string(width) + " x " + std::to_string(height) +
+                   " render target");
+  return targets.emplace(key, t).first->second;
+}
+
+Renderer& Renderer::Instance() {
+  static Renderer renderer;
+  return renderer;
+}
+
+Renderer::Renderer() : impl_(new Impl) { impl_->CreateContext(); }
+
+Renderer::~Renderer() {
+  if (impl_->display != EGL_NO_DISPLAY) {
+    eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (impl_->context != EGL_NO_CONTEXT) eglDestroyContext(impl_->display, impl_->context);
+    eglTerminate(impl_->display);
+  }
+}
+
+size_t Renderer::CachedTriangles() const { return impl_->triangles; }
+
+void Renderer::Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
+                      uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
+  Impl& r = *impl_;
+  const CameraIntrinsics& in = camera.intrinsics;
+  const int W = in.width_px, H = in.height_px;
+  const PixelFormat format = camera.format;
+  Target& target = r.TargetFor(W, H, format);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+  glViewport(0, 0, W, H);
+  glClear(GL_DEPTH_BUFFER_BIT);
+
+  const geometry::Lighting& light = world.GetLighting();
+  const Eigen::Isometry3d T_OW = ToEigen(OpticalInCamera() + X_WC).inverse();  // X_WO = X_WC X_CO
+  Eigen::Vector3d to_sun_W(-light.sun_direction_W.X(), -light.sun_direction_W.Y(), -light.sun_direction_W.Z());
+  const Eigen::Vector3f to_sun_O = (T_OW.linear() * to_sun_W.normalized()).cast<float>();
+  const float f = static_cast<float>(in.FocalLengthPx());
+
+  for (GLuint program : {r.background_program, r.mesh_program}) {
+    glUseProgram(program);
+    glUniform3f(glGetUniformLocation(program, "to_sun_O"), to_sun_O.x(), to_sun_O.y(), to_sun_O.z());
+    glUniform1f(glGetUniformLocation(program, "ambient"), light.ambient);
+    glUniform1f(glGetUniformLocation(program, "sun_diffuse"), light.sun_diffuse);
+    glUniform1i(glGetUniformLocation(program, "grey"), format == PixelFormat::kL8);
+    glUniform2f(glGetUniformLocation(program, "noise"), static_cast<float>(camera.noise_mean),
+                static_cast<float>(camera.noise_stddev));
+    glUniform2ui(glGetUniformLocation(program, "seed"), static_cast<GLuint>(noise_seed),
+                 static_cast<GLuint>(noise_seed >> 32));
+    glUniform1i(glGetUniformLocation(program, "background"), program == r.background_program);
+  }
+
+  // the sky, through the same noise as everything else
+  glUseProgram(r.background_program);
+  glUniform3f(glGetUniformLocation(r.background_program, "albedo"), light.background[0], light.background[1],
+              light.background[2]);
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(r.empty_vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glEnable(GL_DEPTH_TEST);
+
+  glUseProgram(r.mesh_program);
+  glUniform4f(glGetUniformLocation(r.mesh_program, "projection"), 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
+              static_cast<float>(in.far_m));
+  const GLint loc_T = glGetUniformLocation(r.mesh_program, "T_OV");
+  const GLint loc_N = glGetUniformLocation(r.mesh_program, "N_OV");
+  const GLint loc_albedo = glGetUniformLocation(r.mesh_program, "albedo");
+  for (const physics::ModelPtr& model : world.Models()) {
+    for (const geometry::Visual& visual : model->Visuals()) {
+      Eigen::Matrix4d S;
+      const GpuMesh* mesh = r.MeshFor(visual.shape, &S);
+      if (!mesh) continue;
+      const ignition::math::Pose3d X_WV = visual.X_LV + visual.link->WorldPose();
+      const Eigen::Matrix4d T_OV = (T_OW * ToEigen(X_WV)).matrix() * S;
+      const Eigen::Matrix4f T = T_OV.cast<float>();
+      const Eigen::Matrix3f N = T_OV.topLeftCorner<3, 3>().inverse().transpose().cast<float>();
+      glUniformMatrix4fv(loc_T, 1, GL_FALSE, T.data());
+      glUniformMatrix3fv(loc_N, 1, GL_FALSE, N.data());
+      glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
+      glBindVertexArray(mesh->vao);
+      glDrawArrays(GL_TRIANGLES, 0, mesh->vertices);
+    }
+  }
+  glBindVertexArray(0);
+
+  out->width_px = W;
+  out->height_px = H;
+  out->image.clear();
+  out->depth_m.clear();
+  if (want_image) {
+    out->image.resize(static_cast<size_t>(W) * H * BytesPerPixel(format));
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    const GLenum gl_format = format == PixelFormat::kL8 ? GL_RED : format == PixelFormat::kR8G8B8 ? GL_RGB : GL_BGR;
+    glReadPixels(0, 0, W, H, gl_format, GL_UNSIGNED_BYTE, out->image.data());
+  }
+  if (want_depth) {
+    out->depth_m.resize(static_cast<size_t>(W) * H);
+    glReadBuffer(GL_COLOR_ATTACHMENT1);
+    glReadPixels(0, 0, W, H, GL_RED, GL_FLOAT, out->depth_m.data());
+    for (float& z : out->depth_m)
+      if (z < 0.0f) z = std::numeric_limits<float>::quiet_NaN();
+  }
+}
+
+}  // namespace rendering
+}  // namespace rotors_sim

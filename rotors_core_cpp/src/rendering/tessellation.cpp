@@ -1,0 +1,146 @@
+#include "rotors_core/rendering/tessellation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <octomap/OcTree.h>
+
+#include "rotors_core/geometry/octree_cells.h"
+#include "rotors_core/geometry/shapes.h"
+
+namespace rotors_sim {
+namespace rendering {
+
+using Eigen::Vector3f;
+
+void TriangleSoup::Add(const Vector3f& a, const Vector3f& b, const Vector3f& c) {
+  Vector3f n = (b - a).cross(c - a);
+  const float norm = n.norm();
+  n = norm > 0 ? Vector3f(n / norm) : Vector3f::UnitZ();
+  Add(a, b, c, n, n, n);
+}
+
+void TriangleSoup::Add(const Vector3f& a, const Vector3f& b, const Vector3f& c, const Vector3f& na,
+                       const Vector3f& nb, const Vector3f& nc) {
+  for (const Vector3f* p : {&a, &b, &c}) positions_m.insert(positions_m.end(), {p->x(), p->y(), p->z()});
+  for (const Vector3f* n : {&na, &nb, &nc}) normals.insert(normals.end(), {n->x(), n->y(), n->z()});
+}
+
+namespace {
+/// Two triangles a b c, a c d (counter-clockwise seen from the outside).
+void AddQuad(TriangleSoup* soup, const Vector3f& a, const Vector3f& b, const Vector3f& c, const Vector3f& d) {
+  soup->Add(a, b, c);
+  soup->Add(a, c, d);
+}
+
+/// The face of an axis-aligned cube (centre, half size h) whose outward normal is +-axis.
+void AddCubeFace(TriangleSoup* soup, const Vector3f& centre, float h, int axis, int sign) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  Vector3f e_u = Vector3f::Zero(), e_v = Vector3f::Zero(), e_n = Vector3f::Zero();
+  e_u[u] = h;
+  e_v[v] = h;
+  e_n[axis] = sign * h;
+  const Vector3f f = centre + e_n;
+  // u x v = axis, so (u, v) order is counter-clockwise seen from +axis
+  if (sign > 0)
+    AddQuad(soup, f - e_u - e_v, f + e_u - e_v, f + e_u + e_v, f - e_u + e_v);
+  else
+    AddQuad(soup, f - e_u - e_v, f - e_u + e_v, f + e_u + e_v, f + e_u - e_v);
+}
+}  // namespace
+
+TriangleSoup UnitBox() {
+  TriangleSoup soup;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign : {-1, 1}) AddCubeFace(&soup, Vector3f::Zero(), 0.5f, axis, sign);
+  return soup;
+}
+
+TriangleSoup UnitSphere(int slices, int stacks) {
+  TriangleSoup soup;
+  auto point = [&](int i, int j) {
+    const double theta = M_PI * j / stacks, phi = 2 * M_PI * i / slices;
+    return Vector3f(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+  };
+  for (int j = 0; j < stacks; ++j)
+    for (int i = 0; i < slices; ++i) {
+      const Vector3f a = point(i, j), b = point(i, j + 1), c = point(i + 1, j + 1), d = point(i + 1, j);
+      if (j > 0) soup.Add(a, b, d, a, b, d);
+      if (j < stacks - 1) soup.Add(b, c, d, b, c, d);
+    }
+  return soup;
+}
+
+TriangleSoup UnitCylinder(int slices) {
+  TriangleSoup soup;
+  const Vector3f top(0, 0, 0.5f), bottom(0, 0, -0.5f);
+  for (int i = 0; i < slices; ++i) {
+    const double a0 = 2 * M_PI * i / slices, a1 = 2 * M_PI * (i + 1) / slices;
+    const Vector3f r0(std::cos(a0), std::sin(a0), 0), r1(std::cos(a1), std::sin(a1), 0);
+    soup.Add(bottom + r0, bottom + r1, top + r1, r0, r1, r1);
+    soup.Add(bottom + r0, top + r1, top + r0, r0, r1, r0);
+    soup.Add(top, top + r0, top + r1);
+    soup.Add(bottom, bottom + r1, bottom + r0);
+  }
+  return soup;
+}
+
+TriangleSoup UnitSquare() {
+  TriangleSoup soup;
+  AddQuad(&soup, {-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, {-0.5f, 0.5f, 0});
+  return soup;
+}
+
+TriangleSoup FromMesh(const geometry::TriangleMesh& mesh) {
+  TriangleSoup soup;
+  const auto& v = mesh.vertices_m;
+  auto vertex = [&](uint32_t i) { return Vector3f(v[3 * i], v[3 * i + 1], v[3 * i + 2]); };
+  for (size_t t = 0; t < mesh.TriangleCount(); ++t)
+    soup.Add(vertex(mesh.indices[3 * t]), vertex(mesh.indices[3 * t + 1]), vertex(mesh.indices[3 * t + 2]));
+  return soup;
+}
+
+TriangleSoup FromHeightField(const geometry::HeightField& h) {
+  TriangleSoup soup;
+  const int n = h.n;
+  const double dx = h.size_x_m / (n - 1), dy = h.size_y_m / (n - 1);
+  auto at = [&](int r, int c) {
+    const int rr = std::clamp(r, 0, n - 1), cc = std::clamp(c, 0, n - 1);
+    return Vector3f(h.pos_x_m - h.size_x_m / 2 + cc * dx, h.pos_y_m + h.size_y_m / 2 - rr * dy,
+                    h.heights_m[rr * n + cc]);
+  };
+  auto normal = [&](int r, int c) {
+    // central differences; rows run towards -y
+    const double dz_dx = (at(r, c + 1).z() - at(r, c - 1).z()) / (at(r, c + 1).x() - at(r, c - 1).x());
+    const double dz_dy = (at(r - 1, c).z() - at(r + 1, c).z()) / (at(r - 1, c).y() - at(r + 1, c).y());
+    return Vector3f(Eigen::Vector3d(-dz_dx, -dz_dy, 1.0).normalized().cast<float>());
+  };
+  for (int r = 0; r + 1 < n; ++r)
+    for (int c = 0; c + 1 < n; ++c) {
+      // (r+1, c) is south-west: counter-clockwise from above is sw, se, ne, nw
+      const Vector3f sw = at(r + 1, c), se = at(r + 1, c + 1), ne = at(r, c + 1), nw = at(r, c);
+      soup.Add(sw, se, ne, normal(r + 1, c), normal(r + 1, c + 1), normal(r, c + 1));
+      soup.Add(sw, ne, nw, normal(r + 1, c), normal(r, c + 1), normal(r, c));
+    }
+  return soup;
+}
+
+TriangleSoup FromOcTree(const octomap::OcTree& tree) {
+  TriangleSoup soup;
+  const double res = tree.getResolution();
+  geometry::ForEachOccupiedCell(tree, [&](const octomap::point3d& centre) {
+    for (int axis = 0; axis < 3; ++axis)
+      for (int sign : {-1, 1}) {
+        octomap::point3d neighbour = centre;
+        neighbour(axis) += static_cast<float>(sign * res);
+        const octomap::OcTreeNode* node = tree.search(neighbour);
+        if (node && tree.isNodeOccupied(node)) continue;
+        AddCubeFace(&soup, Vector3f(centre.x(), centre.y(), centre.z()), static_cast<float>(res / 2), axis, sign);
+      }
+  });
+  return soup;
+}
+
+}  // namespace rendering
+}  // namespace rotors_sim

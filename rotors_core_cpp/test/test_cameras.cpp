@@ -1,0 +1,286 @@
+// Rendered cameras against the pinhole model: where a box corner appears (K [R|t] X), the depth
+// of a plane, stereo disparity f b / Z, the pixel noise, determinism, the update rate and
+// one-line errors for bad camera declarations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/sensors/camera_sensor.h"
+#include "rotors_core/world_loader.h"
+#include "test_worlds.h"
+
+using namespace rotors_sim;
+using ignition::math::Pose3d;
+
+namespace {
+
+std::string PoseText(const Pose3d& X) {
+  std::ostringstream s;
+  s.precision(17);
+  s << X.Pos().X() << " " << X.Pos().Y() << " " << X.Pos().Z() << " " << X.Rot().Roll() << " " << X.Rot().Pitch()
+    << " " << X.Rot().Yaw();
+  return s.str();
+}
+
+std::string Camera(const std::string& name, const Pose3d& X_SC, int w, int h, double hfov, const std::string& format,
+                   double stddev = 0.0, double far = 100.0) {
+  std::ostringstream s;
+  s << "<camera name='" << name << "'><pose>" << PoseText(X_SC) << "</pose><horizontal_fov>" << hfov
+    << "</horizontal_fov><image><width>" << w << "</width><height>" << h << "</height><format>" << format
+    << "</format></image><clip><near>0.02</near><far>" << far << "</far></clip>";
+  if (stddev > 0) s << "<noise><type>gaussian</type><mean>0</mean><stddev>" << stddev << "</stddev></noise>";
+  s << "</camera>";
+  return s.str();
+}
+
+/// A static model "rig" at X_WM whose link carries the sensor at X_LS.
+std::string Rig(const Pose3d& X_WM, const Pose3d& X_LS, const std::string& type, double rate,
+                const std::string& cameras) {
+  return "<model name='rig'><static>true</static><pose>" + PoseText(X_WM) + "</pose><link name='link'><sensor name='cam' type='" +
+         type + "'><pose>" + PoseText(X_LS) + "</pose><update_rate>" + std::to_string(rate) + "</update_rate>" +
+         cameras + "</sensor></link></model>";
+}
+
+std::string BoxModel(const std::string& name, const Pose3d& X_WB, double sx, double sy, double sz,
+                     const std::string& rgba = "1 1 1 1") {
+  std::ostringstream size;
+  size << sx << " " << sy << " " << sz;
+  return "<model name='" + name + "'><static>true</static><pose>" + PoseText(X_WB) +
+         "</pose><link name='link'><visual name='visual'><geometry><box><size>" + size.str() +
+         "</size></box></geometry><material><diffuse>" + rgba + "</diffuse></material></visual></link></model>";
+}
+
+/// Unlit scene (ambient 1, no sun), black sky: a surface shows its albedo exactly.
+std::string World(const std::string& models, const std::string& background = "0 0 0 1") {
+  std::string w = WorldSdf(0.001, -9.8, false, "world");
+  return w.substr(0, w.find("</world>")) + "<scene><ambient>1 1 1 1</ambient><background>" + background +
+         "</background></scene><light name='sun' type='directional'><diffuse>0 0 0 1</diffuse>" +
+         "<direction>0 0 -1</direction></light>" + models + "</world></sdf>";
+}
+
+Eigen::Isometry3d ToEigen(const Pose3d& X) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
+  return T;
+}
+
+/// The optical frame in the camera frame: x right = -y, y down = -z, z forward = x.
+Eigen::Isometry3d T_CO() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  return T;
+}
+
+/// Pinhole projection u = K [R|t] X of a world point, with [R|t] the world in the optical frame.
+Eigen::Vector2d Project(const Eigen::Matrix3d& K, const Eigen::Isometry3d& T_WO, const Eigen::Vector3d& p_W) {
+  const Eigen::Vector3d uvw = K * (T_WO.inverse() * p_W);
+  return uvw.head<2>() / uvw.z();
+}
+
+sensors::CameraSensorPtr TheCamera(const physics::WorldPtr& world) {
+  auto sensor = std::dynamic_pointer_cast<sensors::CameraSensor>(world->ModelByName("rig")->Sensors().at(0));
+  EXPECT_TRUE(sensor);
+  return sensor;
+}
+
+uint8_t Pixel(const rendering::RenderedFrame& f, int u, int v) { return f.image[static_cast<size_t>(v) * f.width_px + u]; }
+
+/// The first column of row v, from the left, that shows the box (>127): the box edge lies within
+/// half a pixel of (column - 0.5).
+double LeftEdge(const rendering::RenderedFrame& f, int v) {
+  for (int u = 0; u < f.width_px; ++u)
+    if (Pixel(f, u, v) > 127) return u - 0.5;
+  return NAN;
+}
+double TopEdge(const rendering::RenderedFrame& f, int u) {
+  for (int v = 0; v < f.height_px; ++v)
+    if (Pixel(f, u, v) > 127) return v - 0.5;
+  return NAN;
+}
+
+// Poses shared by the tests: a tilted, turned rig, the sensor offset on its link, the camera
+// offset in the sensor.
+const Pose3d X_WM(0.3, -0.2, 1.1, 0.1, 0.2, 0.3);
+const Pose3d X_LS(0.05, 0.01, 0.02, 0.0, -0.05, 0.02);
+const Pose3d X_SC(0.015, 0.055, 0.0065, 0.0, 0.0, 0.0);
+
+}  // namespace
+
+TEST(Camera, IntrinsicsFollowFovAndSize) {
+  rendering::CameraIntrinsics in;
+  in.width_px = 752;
+  in.height_px = 480;
+  in.horizontal_fov_rad = 1.3962634;
+  // f = W / (2 tan(hfov / 2)): the image's half width subtends half the FOV
+  EXPECT_NEAR(in.FocalLengthPx(), 752 / (2 * std::tan(0.6981317)), 1e-9);
+  EXPECT_NEAR(std::atan2(in.Cx() + 0.5, in.FocalLengthPx()) * 2, 1.3962634, 1e-9);
+  EXPECT_DOUBLE_EQ(in.K()(0, 2), 375.5);
+  EXPECT_DOUBLE_EQ(in.K()(1, 2), 239.5);
+  EXPECT_DOUBLE_EQ(in.K()(0, 0), in.K()(1, 1));
+}
+
+TEST(Camera, BoxCornerAppearsWhereThePinholeModelPutsIt) {
+  const Pose3d X_WC = X_SC + (X_LS + X_WM);
+  // a 1 m cube axis-aligned with the camera, 4 m ahead, 0.5 m left, 0.3 m up: its face towards
+  // the camera is a rectangle in the image, its upper left corner at (x, y, z)_C = (3.5, 1, 0.8)
+  const Pose3d X_WB = Pose3d(4, 0.5, 0.3, 0, 0, 0) + X_WC;
+  WorldGuard g{WorldLoader::LoadString(
+      World(BoxModel("box", X_WB, 1, 1, 1) + Rig(X_WM, X_LS, "camera", 30, Camera("", X_SC, 752, 480, 1.3962634, "L8"))),
+      "corner")};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  const rendering::RenderedFrame& f = cam->Frame(0);
+  ASSERT_EQ(f.image.size(), 752u * 480u);
+
+  const Eigen::Matrix3d K = cam->Camera(0).intrinsics.K();
+  const Eigen::Isometry3d T_WO = ToEigen(X_WC) * T_CO();
+  const Eigen::Vector3d corner_W = ToEigen(X_WC) * Eigen::Vector3d(3.5, 1.0, 0.8);
+  const Eigen::Vector2d uv = Project(K, T_WO, corner_W);
+  const Eigen::Vector2d centre = Project(K, T_WO, ToEigen(X_WC) * Eigen::Vector3d(3.5, 0.5, 0.3));
+  const double u_measured = LeftEdge(f, static_cast<int>(std::lround(centre.y())));
+  const double v_measured = TopEdge(f, static_cast<int>(std::lround(centre.x())));
+  std::printf("corner predicted (%.3f, %.3f) px, measured (%.1f, %.1f) px\n", uv.x(), uv.y(), u_measured, v_measured);
+  EXPECT_LE(std::abs(u_measured - uv.x()), 0.5 + 1e-6);
+  EXPECT_LE(std::abs(v_measured - uv.y()), 0.5 + 1e-6);
+  // and nothing of the box above or left of the corner
+  EXPECT_LT(Pixel(f, static_cast<int>(std::floor(uv.x())) - 1, static_cast<int>(std::lround(centre.y()))), 128);
+}
+
+TEST(Camera, DepthOfATiltedPlaneIsExactToAMillimetre) {
+  // a depth camera 1.7 m above a floor (a plane visual), pitched down and turned
+  const Pose3d X_WM_floor(0, 0, 0, 0, 0, 0);
+  const Pose3d X_WM_rig(0.5, -0.3, 1.7, 0.05, 0.6, 0.4);
+  const std::string floor =
+      "<model name='floor'><static>true</static><link name='link'><visual name='visual'><geometry><plane>"
+      "<normal>0 0 1</normal><size>200 200</size></plane></geometry></visual></link></model>";
+  WorldGuard g{WorldLoader::LoadString(
+      World(floor + Rig(X_WM_rig, Pose3d(), "depth", 30, Camera("", Pose3d(), 320, 240, 1.5, "L8", 0.0, 50.0))), "plane")};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  const rendering::RenderedFrame& f = cam->Frame(0);
+  ASSERT_EQ(f.depth_m.size(), 320u * 240u);
+  // plane z_W = 0: a pixel's ray r_O = ((u - cx) / f, (v - cy) / f, 1) meets it at Z = -h / (up_O . r_O)
+  const Eigen::Isometry3d T_WO = ToEigen(X_WM_rig) * T_CO();
+  const Eigen::Vector3d up_O = T_WO.linear().transpose() * Eigen::Vector3d::UnitZ();
+  const double h = T_WO.translation().z(), fpx = cam->Camera(0).intrinsics.FocalLengthPx();
+  int checked = 0;
+  double worst = 0;
+  for (int v = 0; v < 240; ++v)
+    for (int u = 0; u < 320; ++u) {
+      const Eigen::Vector3d r((u - 159.5) / fpx, (v - 119.5) / fpx, 1.0);
+      const double denominator = up_O.dot(r);
+      const double Z = denominator < 0 ? -h / denominator : INFINITY;
+      const float z = f.depth_m[v * 320 + u];
+      if (Z > 49.0) continue;  // near the far clip a pixel may fall either side
+      ASSERT_FALSE(std::isnan(z)) << "pixel (" << u << ", " << v << ") sees no floor, expected " << Z << " m";
+      worst = std::max(worst, std::abs(z - Z));
+      ++checked;
+    }
+  std::printf("%d pixels on the plane, largest depth error %.6f m\n", checked, worst);
+  EXPECT_GT(checked, 20000);
+  EXPECT_LT(worst, 0.001);
+  // above the horizon: nothing, NaN
+  EXPECT_TRUE(std::isnan(f.depth_m[0]));
+}
+
+TEST(Camera, StereoDisparityIsFocalLengthTimesBaselineOverDepth) {
+  const double b = 0.11;
+  const Pose3d X_WC_left = X_SC + (X_LS + X_WM);
+  const Pose3d X_WB = Pose3d(3.0, 0.3, 0.2, 0, 0, 0) + X_WC_left;  // face at Z = 2.5 m in the left camera
+  // the sensor sits half a baseline right of the left camera
+  const Pose3d X_SensorInLink =
+      Pose3d(X_SC.Pos() - ignition::math::Vector3d(0, b / 2, 0), ignition::math::Quaterniond()) + X_LS;
+  const std::string cameras = Camera("left", Pose3d(0, b / 2, 0, 0, 0, 0), 752, 480, 1.3962634, "L8") +
+                              Camera("right", Pose3d(0, -b / 2, 0, 0, 0, 0), 752, 480, 1.3962634, "L8");
+  WorldGuard g{WorldLoader::LoadString(
+      World(BoxModel("box", X_WB, 1, 1, 1) + Rig(X_WM, X_SensorInLink, "multicamera", 30, cameras)),
+      "stereo")};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  ASSERT_EQ(cam->CameraCount(), 2u);
+  const auto& left = cam->Frame(0);
+  const auto& right = cam->Frame(1);
+  const double fpx = cam->Camera(0).intrinsics.FocalLengthPx();
+  const int row = 240;
+  const double disparity = LeftEdge(left, row) - LeftEdge(right, row);
+  std::printf("disparity %.1f px, f b / Z = %.3f px\n", disparity, fpx * b / 2.5);
+  EXPECT_LE(std::abs(disparity - fpx * b / 2.5), 1.0 + 1e-6);  // two edges, each within half a pixel
+}
+
+TEST(Camera, NoiseOfAFlatGreyImageHasTheDeclaredSigmaAndIsDeterministic) {
+  const double sigma = 0.007;
+  auto load = [&] {
+    return WorldLoader::LoadString(
+        World(Rig(X_WM, X_LS, "camera", 30, Camera("", Pose3d(), 752, 480, 1.3962634, "L8", sigma)), "0.5 0.5 0.5 1"),
+        "noise");
+  };
+  WorldGuard g{load()};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  const std::vector<uint8_t> first = cam->Frame(0).image;
+  double sum = 0, sum2 = 0;
+  for (uint8_t p : first) {
+    sum += p / 255.0;
+    sum2 += (p / 255.0) * (p / 255.0);
+  }
+  const double n = first.size(), mean = sum / n, stddev = std::sqrt(sum2 / n - mean * mean);
+  std::printf("flat grey 0.5: mean %.5f, sigma %.5f (declared %.3f)\n", mean, stddev, sigma);
+  EXPECT_NEAR(mean, 127.5 / 255.0, 0.002);
+  EXPECT_NEAR(stddev, sigma, 0.1 * sigma);
+
+  // the next frame has new noise; the same world loaded again gives the same frames
+  for (int i = 0; i < 34; ++i) g.world->Step(1);
+  ASSERT_EQ(cam->UpdateCount(), 2u);
+  const std::vector<uint8_t> second = cam->Frame(0).image;
+  EXPECT_NE(first, second);
+  WorldGuard again{load()};
+  again.world->Step(1);
+  EXPECT_EQ(TheCamera(again.world)->Frame(0).image, first);
+}
+
+TEST(Camera, UpdatesAtItsRateInSimTime) {
+  WorldGuard g{WorldLoader::LoadString(
+      World(Rig(X_WM, X_LS, "camera", 30, Camera("", Pose3d(), 64, 48, 1.0, "R8G8B8"))), "rate")};
+  auto cam = TheCamera(g.world);
+  std::vector<double> stamps;
+  auto connection = cam->ConnectUpdated([&] {
+    stamps.push_back(cam->LastUpdateTime().Double());
+    EXPECT_EQ(cam->Frame(0).image.size(), 64u * 48u * 3u);
+  });
+  g.world->Step(3000);  // 3 s
+  ASSERT_GE(stamps.size(), 89u);
+  EXPECT_LE(stamps.size(), 91u);
+  for (size_t i = 1; i < stamps.size(); ++i) EXPECT_NEAR(stamps[i] - stamps[i - 1], 1.0 / 30, 0.0011);
+  // a frame's stamp is the sim time of the step it shows
+  EXPECT_DOUBLE_EQ(stamps.back(), cam->LastUpdateTime().Double());
+}
+
+TEST(Camera, BadDeclarationsAreOneLineErrorsNamingTheSensor) {
+  auto error_of = [&](const std::string& cameras, const std::string& type = "camera") -> std::string {
+    try {
+      WorldGuard g{WorldLoader::LoadString(World(Rig(X_WM, X_LS, type, 30, cameras)), "bad")};
+    } catch (const SimError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string format = error_of(Camera("", Pose3d(), 64, 48, 1.0, "Y16"));
+  EXPECT_NE(format.find("sensor 'cam'"), std::string::npos) << format;
+  EXPECT_NE(format.find("unknown image format 'Y16'"), std::string::npos) << format;
+  const std::string size = error_of(Camera("", Pose3d(), 0, 48, 1.0, "L8"));
+  EXPECT_NE(size.find("sensor 'cam'"), std::string::npos) << size;
+  EXPECT_NE(size.find("image size 0 x 48 must be positive"), std::string::npos) << size;
+  const std::string fov = error_of(Camera("", Pose3d(), 64, 48, 3.5, "L8"));
+  EXPECT_NE(fov.find("sensor 'cam'"), std::string::npos) << fov;
+  EXPECT_NE(fov.find("horizontal_fov 3.5"), std::string::npos) << fov;
+  const std::string none = error_of("", "multicamera");
+  EXPECT_NE(none.find("has no <camera> element"), std::string::npos) << none;
+  for (const std::string& e : {format, size, fov, none}) EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
