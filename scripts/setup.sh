@@ -13,7 +13,7 @@ apt_packages=(
   liburdfdom-tools librosbag-dev libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
   libtrajectory-msgs-dev libstd-srvs-dev python3-nav-msgs python3-trajectory-msgs
   python3-std-srvs imagemagick libstb-dev libassimp-dev libvisualization-msgs-dev python3-visualization-msgs
-  libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libstereo-msgs-dev python3-stereo-msgs libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
 )
 missing=()
 for p in "${apt_packages[@]}"; do

@@ -1,0 +1,190 @@
+#include "rotors_gazebo_plugins/ros/camera_ros.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <sensor_msgs/image_encodings.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+
+namespace rotors_gazebo_plugins {
+
+using rotors_sim::SimError;
+using rotors_sim::rendering::CameraSpec;
+using rotors_sim::rendering::RenderedFrame;
+
+CameraRosParams CameraRosParams::Read(const sdf::ElementPtr& sdf, const rotors_sim::sensors::CameraSensor& sensor,
+                                      bool depth_plugin) {
+  CheckKnownParams(sdf, {"robotNamespace", "cameraName", "imageTopicName", "cameraInfoTopicName", "frameName",
+                         "updateRate", "alwaysOn", "hackBaseline", "distortionK1", "distortionK2", "distortionK3",
+                         "distortionT1", "distortionT2", "CxPrime", "Cx", "Cy", "focalLength", "borderCrop",
+                         "baseline", "pointCloudCutoff", "pointCloudCutoffMax", "depthImageTopicName",
+                         "depthImageCameraInfoTopicName", "pointCloudTopicName", "disparityTopicName"});
+  CameraRosParams p;
+  if (sdf->HasElement("robotNamespace")) {
+    p.robot_namespace = ReadRobotNamespace(sdf);
+  } else {
+    // gazebo_ros gives a plugin without <robotNamespace> the spawn namespace: the model name
+    p.robot_namespace = sensor.ParentLink()->GetModel()->GetName();
+  }
+  ReadParam(sdf, "cameraName", &p.camera_name);
+  ReadParam(sdf, "imageTopicName", &p.image_topic);
+  ReadParam(sdf, "cameraInfoTopicName", &p.info_topic);
+  ReadParam(sdf, "frameName", &p.frame_name);
+  ReadParam(sdf, "updateRate", &p.update_rate_hz);
+  ReadParam(sdf, "hackBaseline", &p.hack_baseline_m);
+  for (const char* zero : {"distortionK1", "distortionK2", "distortionK3", "distortionT1", "distortionT2", "CxPrime",
+                           "Cx", "Cy", "focalLength", "borderCrop"}) {
+    double value = 0.0;
+    ReadParam(sdf, zero, &value);
+    if (value != 0.0)
+      throw SimError(std::string("<") + zero + "> " + std::to_string(value) +
+                     " is not supported: the image is an ideal pinhole image with K from horizontal_fov and size "
+                     "(leave it 0 or remove it)");
+  }
+  if (depth_plugin) {
+    ReadParam(sdf, "depthImageTopicName", &p.depth_topic);
+    ReadParam(sdf, "depthImageCameraInfoTopicName", &p.depth_info_topic);
+    ReadParam(sdf, "pointCloudTopicName", &p.points_topic);
+    ReadParam(sdf, "disparityTopicName", &p.disparity_topic);
+    ReadParam(sdf, "baseline", &p.baseline_m);
+    ReadParam(sdf, "pointCloudCutoff", &p.cloud_cutoff_min_m);
+    ReadParam(sdf, "pointCloudCutoffMax", &p.cloud_cutoff_max_m);
+    if (p.baseline_m < 0 || p.cloud_cutoff_min_m < 0 || p.cloud_cutoff_max_m < 0)
+      throw SimError("baseline and pointCloudCutoff(Max) must be >= 0");
+  }
+  if (p.update_rate_hz < 0) throw SimError("<updateRate> must be >= 0");
+  return p;
+}
+
+sensor_msgs::CameraInfo CameraInfoMsg(const CameraSpec& camera, double baseline_m) {
+  const auto& in = camera.intrinsics;
+  const Eigen::Matrix3d K = in.K();
+  const double f = in.FocalLengthPx();
+  sensor_msgs::CameraInfo info;
+  info.width = in.width_px;
+  info.height = in.height_px;
+  info.distortion_model = "plumb_bob";
+  info.D.assign(5, 0.0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      info.K[3 * r + c] = K(r, c);
+      info.R[3 * r + c] = r == c ? 1.0 : 0.0;
+      info.P[4 * r + c] = K(r, c);
+    }
+  info.P[3] = -f * baseline_m;  // Tx = -f b (stereo: the second camera)
+  return info;
+}
+
+void ToImageMsg(const RenderedFrame& frame, rotors_sim::rendering::PixelFormat format, sensor_msgs::Image* msg) {
+  msg->width = frame.width_px;
+  msg->height = frame.height_px;
+  msg->encoding = rotors_sim::rendering::RosEncoding(format);
+  msg->is_bigendian = 0;
+  msg->step = frame.width_px * rotors_sim::rendering::BytesPerPixel(format);
+  msg->data = frame.image;
+}
+
+namespace {
+bool InRange(float z, double min_m, double max_m) {
+  return !std::isnan(z) && z >= min_m && (max_m <= 0.0 || z <= max_m);
+}
+}  // namespace
+
+void ToDepthMsg(const RenderedFrame& frame, double min_m, double max_m, sensor_msgs::Image* msg) {
+  msg->width = frame.width_px;
+  msg->height = frame.height_px;
+  msg->encoding = sensor_msgs::image_encodings::TYPE_32FC1;
+  msg->is_bigendian = 0;
+  msg->step = frame.width_px * sizeof(float);
+  msg->data.resize(frame.depth_m.size() * sizeof(float));
+  float* out = reinterpret_cast<float*>(msg->data.data());
+  for (size_t i = 0; i < frame.depth_m.size(); ++i)
+    out[i] = InRange(frame.depth_m[i], min_m, max_m) ? frame.depth_m[i] : std::numeric_limits<float>::quiet_NaN();
+}
+
+void ToCloudMsg(const RenderedFrame& frame, const CameraSpec& camera, double min_m, double max_m,
+                sensor_msgs::PointCloud2* msg) {
+  const auto& in = camera.intrinsics;
+  const double f = in.FocalLengthPx(), cx = in.Cx(), cy = in.Cy();
+  sensor_msgs::PointCloud2Modifier modifier(*msg);
+  modifier.setPointCloud2FieldsByString(1, "xyz");
+  modifier.resize(static_cast<size_t>(frame.width_px) * frame.height_px);
+  msg->width = frame.width_px;
+  msg->height = frame.height_px;
+  msg->row_step = msg->point_step * msg->width;
+  msg->is_dense = false;
+  sensor_msgs::PointCloud2Iterator<float> x(*msg, "x"), y(*msg, "y"), z(*msg, "z");
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int v = 0; v < frame.height_px; ++v)
+    for (int u = 0; u < frame.width_px; ++u, ++x, ++y, ++z) {
+      const float Z = frame.depth_m[static_cast<size_t>(v) * frame.width_px + u];
+      if (!InRange(Z, min_m, max_m)) {
+        *x = *y = *z = nan;
+        continue;
+      }
+      // back-projection through K: (u, v, 1) Z = K (x, y, Z)
+      *x = static_cast<float>((u - cx) * Z / f);
+      *y = static_cast<float>((v - cy) * Z / f);
+      *z = Z;
+    }
+}
+
+void ToDisparityMsg(const RenderedFrame& frame, const CameraSpec& camera, double baseline_m, double min_m,
+                    double max_m, stereo_msgs::DisparityImage* msg) {
+  const double f = camera.intrinsics.FocalLengthPx();
+  msg->f = static_cast<float>(f);
+  msg->T = static_cast<float>(baseline_m);
+  msg->min_disparity = max_m > 0 ? static_cast<float>(f * baseline_m / max_m) : 0.0f;
+  msg->max_disparity = min_m > 0 ? static_cast<float>(f * baseline_m / min_m) : std::numeric_limits<float>::infinity();
+  msg->delta_d = 0.0f;  // exact, not quantised
+  sensor_msgs::Image& d = msg->image;
+  d.width = frame.width_px;
+  d.height = frame.height_px;
+  d.encoding = sensor_msgs::image_encodings::TYPE_32FC1;
+  d.step = frame.width_px * sizeof(float);
+  d.data.resize(frame.depth_m.size() * sizeof(float));
+  float* out = reinterpret_cast<float*>(d.data.data());
+  for (size_t i = 0; i < frame.depth_m.size(); ++i) {
+    const float Z = frame.depth_m[i];
+    out[i] = InRange(Z, min_m, max_m) ? static_cast<float>(f * baseline_m / Z) : -1.0f;  // d = f b / Z
+  }
+}
+
+std::string JoinTopic(const std::string& prefix, const std::string& topic) {
+  if (prefix.empty() || (!topic.empty() && topic.front() == '/')) return topic;
+  return prefix + "/" + topic;
+}
+
+bool RateLimiter::Due(double t_s) {
+  if (rate_hz_ <= 0.0) return true;
+  if (last_s_ >= 0.0 && t_s - last_s_ < 1.0 / rate_hz_ - 1e-6) return false;
+  last_s_ = t_s;
+  return true;
+}
+
+CameraChannel::CameraChannel(ros::NodeHandle& node, const CameraRosParams& params, const std::string& prefix,
+                             size_t camera_index, const CameraSpec& camera, std::string frame_id, double baseline_m)
+    : index_(camera_index), frame_id_(std::move(frame_id)), format_(camera.format) {
+  image_pub_ = node.advertise<sensor_msgs::Image>(JoinTopic(prefix, params.image_topic), 2);
+  info_pub_ = node.advertise<sensor_msgs::CameraInfo>(JoinTopic(prefix, params.info_topic), 2);
+  info_ = CameraInfoMsg(camera, baseline_m);
+  info_.header.frame_id = frame_id_;
+}
+
+void CameraChannel::Publish(rotors_sim::sensors::CameraSensor& sensor, const ros::Time& stamp) {
+  info_.header.stamp = stamp;
+  info_pub_.publish(info_);
+  if (image_pub_.getNumSubscribers() == 0) return;
+  sensor_msgs::ImagePtr image(new sensor_msgs::Image);
+  ToImageMsg(sensor.Frame(index_), format_, image.get());
+  image->header = info_.header;
+  image_pub_.publish(image);
+}
+
+}  // namespace rotors_gazebo_plugins
