@@ -245,6 +245,18 @@ TEST(Camera, NoiseOfAFlatGreyImageHasTheDeclaredSigmaAndIsDeterministic) {
   EXPECT_EQ(TheCamera(again.world)->Frame(0).image, first);
 }
 
+TEST(Camera, UpdatesAtItsRateInSimTimeEvenWhenThePeriodIsNoWholeNumberOfSteps) {
+  // 0.01 s steps (RotorS' basic world) and 30 Hz: intervals of 0.03 and 0.04 s, 30 frames a second
+  std::string w = World(Rig(X_WM, X_LS, "camera", 30, Camera("", Pose3d(), 64, 48, 1.0, "L8")));
+  w.replace(w.find("<max_step_size>0.001<"), 20, "<max_step_size>0.01");
+  WorldGuard g{WorldLoader::LoadString(w, "rate_coarse")};
+  auto cam = TheCamera(g.world);
+  int frames = 0;
+  auto connection = cam->ConnectUpdated([&] { ++frames; });
+  g.world->Step(1000);  // 10 s
+  EXPECT_NEAR(frames, 300, 1);
+}
+
 TEST(Camera, UpdatesAtItsRateInSimTime) {
   WorldGuard g{WorldLoader::LoadString(
       World(Rig(X_WM, X_LS, "camera", 30, Camera("", Pose3d(), 64, 48, 1.0, "R8G8B8"))), "rate")};

@@ -16,9 +16,12 @@ std::string Sensor::ParentName() const { return parent_->GetName(); }
 physics::Pose3d Sensor::WorldPose() const { return Compose(parent_->WorldPose(), X_LS_); }
 
 void Sensor::Update(const common::Time& sim_time) {
-  if (has_updated_ && update_rate_hz_ > 0.0 &&
-      (sim_time - last_update_).Double() < 1.0 / update_rate_hz_ - 1e-9)
-    return;
+  const double t = sim_time.Double();
+  if (has_updated_ && update_rate_hz_ > 0.0 && t < next_due_s_ - 1e-9) return;
+  // The next update is due one period after this one was due (not after it happened), so that
+  // the mean rate is update_rate even when the period is not a whole number of steps.
+  const double period = update_rate_hz_ > 0.0 ? 1.0 / update_rate_hz_ : 0.0;
+  next_due_s_ = (has_updated_ && t < next_due_s_ + period) ? next_due_s_ + period : t + period;
   last_update_ = sim_time;
   has_updated_ = true;
   OnUpdate(sim_time);

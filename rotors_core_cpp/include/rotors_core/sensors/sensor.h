@@ -29,9 +29,13 @@ class Sensor {
   common::Time LastUpdateTime() const { return last_update_; }
   event::ConnectionPtr ConnectUpdated(std::function<void()> cb) { return updated_.Connect(std::move(cb)); }
 
-  /// Engine side: fires Updated if 1/rate has passed since the last update.
+  /// Engine side: fires Updated when an update is due (every 1/rate of sim time on average).
   void Update(const common::Time& sim_time);
-  void Reset() { last_update_ = common::Time(); has_updated_ = false; }
+  void Reset() {
+    last_update_ = common::Time();
+    has_updated_ = false;
+    next_due_s_ = 0.0;
+  }
 
  protected:
   /// Called at each update, before Updated fires.
@@ -44,6 +48,7 @@ class Sensor {
   double update_rate_hz_;
   common::Time last_update_;
   bool has_updated_ = false;
+  double next_due_s_ = 0.0;  ///< [s] sim time the next update is due
   event::EventT<> updated_;
 };
 using SensorPtr = std::shared_ptr<Sensor>;
