@@ -89,6 +89,28 @@ print((t() - s0) / (time.monotonic() - w0))
 """
 
 
+# As CLOCK_WATCH, while subscribed to the VI-sensor's stereo images (so that they are rendered and
+# sent); also prints the stereo pairs received per second of sim time.
+VI_WATCH = """
+import sys, time, rospy
+from rosgraph_msgs.msg import Clock
+rospy.init_node('bench_vi', anonymous=True, disable_signals=True)
+count = {'left': 0, 'right': 0}
+def counter(side):
+    def cb(msg): count[side] += 1
+    return cb
+# AnyMsg: received whole but not deserialised, so the watcher's Python costs little
+subs = [rospy.Subscriber(f'/firefly/vi_sensor/{s}/image_raw', rospy.AnyMsg, counter(s), queue_size=5) for s in count]
+t = lambda: rospy.wait_for_message('/clock', Clock, timeout=30).clock.to_sec()
+begin, end = 8.0, 28.0
+while t() < begin: pass
+w0, s0, n0 = time.monotonic(), t(), count['right']
+while t() < end: pass
+s1, n1 = t(), count['right']
+print((n1 - n0) / (s1 - s0), (s1 - s0) / (time.monotonic() - w0))
+"""
+
+
 class Graph:
     """A private ROS master running `launch_cmd`; stopped with Ctrl-C semantics on exit."""
 
@@ -139,6 +161,21 @@ def waypoint_flight_steps_per_s(world: str) -> float:
     with Graph(["rotors_gazebo", "mav_with_waypoint_publisher.launch", "gui:=false", "real_time_factor:=0",
                 "lockstep:=true", f"world_name:={world}", f"waypoint_file:={waypoints}"]) as g:
         return g.python(CLOCK_WATCH, "30", "60") / 0.01
+
+
+def vi_sensor_closed_loop(real_time_factor: str) -> float:
+    """The hovering example with the VI-sensor (stereo 752 x 480 at 30 Hz, images subscribed),
+    lockstep; real_time_factor "1" (RotorS' pacing) or "0" (as fast as possible). Sim s per wall s."""
+    with Graph(["rotors_gazebo", "mav_hovering_example_with_vi_sensor.launch", "gui:=false", "lockstep:=true",
+                f"real_time_factor:={real_time_factor}"]) as g:
+        return g.python(VI_WATCH)
+
+
+def camera_fps(world: str) -> Dict:
+    """rotors_camera_bench: stereo pairs and depth frames rendered per second (one thread asking)."""
+    worlds = Path(sh(["rospack", "find", "rotors_gazebo"]).strip()) / "worlds"
+    out = sh([str(WS / "devel" / "lib" / "rotors_core" / "rotors_camera_bench"), str(worlds / f"{world}.world"), "200"])
+    return json.loads(out.strip().splitlines()[-1])
 
 
 def estimator_cost_us() -> Dict:
@@ -222,6 +259,9 @@ def main() -> int:
     scaling = {n: swarm_rtf(n) for n in (1, 5, 10, 20)}
     est_cost = estimator_cost_us()
     est_rtf = [closed_loop_with_estimator() for _ in range(3)]
+    cameras = {world: camera_fps(world) for world in ("basic", "powerplant")}
+    vi_paced = statistics.median(vi_sensor_closed_loop("1") for _ in range(3))
+    vi_fast = statistics.median(vi_sensor_closed_loop("0") for _ in range(3))
     flight_steps = {world: statistics.median(waypoint_flight_steps_per_s(world) for _ in range(3))
                     for world in ("basic", "powerplant")}
     res = {
@@ -237,6 +277,9 @@ def main() -> int:
         "estimator": est_cost,
         "closed_loop_rtf_lockstep_with_estimator": statistics.median(est_rtf),
         "waypoint_flight_steps_per_s": flight_steps,
+        "camera_fps": cameras,
+        "vi_sensor_closed_loop_rtf_paced": vi_paced,
+        "vi_sensor_closed_loop_rtf_as_fast_as_possible": vi_fast,
         "not_measured": [],
     }
     rows = [("engine, firefly with all plugins, 1 ms step, no ROS", f"{res['engine_steps_per_s_1ms_no_ros']:,.0f} steps/s",
@@ -265,6 +308,12 @@ def main() -> int:
               f"{steps:,.0f} steps/s", "") for world, steps in flight_steps.items()]
     rows += [("ratio: power plant world / basic world", f"{flight_steps['powerplant'] / flight_steps['basic']:.0%}",
               ">= 50 %")]
+    for world, fps in cameras.items():
+        rows += [(f"VI-sensor stereo pair, 2 x 752 x 480 L8 with noise, {world} world", f"{fps['stereo_pairs_per_s']:.0f} pairs/s", ""),
+                 (f"depth camera, 640 x 480 with depth read back, {world} world", f"{fps['depth_frames_per_s']:.0f} frames/s", "")]
+    rows += [("hovering example with the VI-sensor (stereo at 30 Hz), lockstep, paced at real time",
+              f"{vi_paced:.2f} x real time", ">= 1"),
+             ("the same, as fast as possible", f"{vi_fast:.2f} x real time", ">= 2")]
     w = [max(len(r[i]) for r in rows) for i in range(3)]
     print(f"{'measurement'.ljust(w[0])}  {'median'.ljust(w[1])}  target")
     for r in rows:

@@ -146,13 +146,13 @@ struct Renderer::Impl {
   EGLContext context = EGL_NO_CONTEXT;
   GLuint mesh_program = 0, background_program = 0, empty_vao = 0;
   std::map<const void*, GpuMesh> meshes;                       // by source object
-  std::map<std::tuple<int, int, int>, Target> targets;         // by width, height, format
+  std::map<std::tuple<int, int, int, bool>, Target> targets;   // by width, height, format, depth
   size_t triangles = 0;
 
   void CreateContext();
   const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup);
   const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
-  Target& TargetFor(int width, int height, PixelFormat format);
+  Target& TargetFor(int width, int height, PixelFormat format, bool depth);
 };
 
 void Renderer::Impl::CreateContext() {
@@ -244,8 +244,8 @@ const GpuMesh* Renderer::Impl::MeshFor(const Shape& shape, Eigen::Matrix4d* S) {
   return nullptr;
 }
 
-Target& Renderer::Impl::TargetFor(int width, int height, PixelFormat format) {
-  const auto key = std::make_tuple(width, height, static_cast<int>(format));
+Target& Renderer::Impl::TargetFor(int width, int height, PixelFormat format, bool depth) {
+  const auto key = std::make_tuple(width, height, static_cast<int>(format), depth);
   auto it = targets.find(key);
   if (it != targets.end()) return it->second;
   Target t;
@@ -261,10 +261,11 @@ Target& Renderer::Impl::TargetFor(int width, int height, PixelFormat format) {
   };
   // L8 renders into one channel, so that the read-back is a copy
   t.colour = renderbuffer(format == PixelFormat::kL8 ? GL_R8 : GL_RGBA8, GL_COLOR_ATTACHMENT0);
-  t.depth_out = renderbuffer(GL_R32F, GL_COLOR_ATTACHMENT1);
+  // the float depth output only for depth cameras: a plain camera does not pay for writing it
+  if (depth) t.depth_out = renderbuffer(GL_R32F, GL_COLOR_ATTACHMENT1);
   t.depth_buffer = renderbuffer(GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
   const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glDrawBuffers(2, buffers);
+  glDrawBuffers(depth ? 2 : 1, buffers);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw SimError("camera renderer: cannot make a " + std::to_string(width) + " x " + std::to_string(height) +
                    " render target");
@@ -294,10 +295,10 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   const CameraIntrinsics& in = camera.intrinsics;
   const int W = in.width_px, H = in.height_px;
   const PixelFormat format = camera.format;
-  Target& target = r.TargetFor(W, H, format);
+  Target& target = r.TargetFor(W, H, format, want_depth);
   glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
   glViewport(0, 0, W, H);
-  glClear(GL_DEPTH_BUFFER_BIT);
+  glClear(GL_DEPTH_BUFFER_BIT);  // to 1: the far plane
 
   const geometry::Lighting& light = world.GetLighting();
   const Eigen::Isometry3d T_OW = ToEigen(OpticalInCamera() + X_WC).inverse();  // X_WO = X_WC X_CO
@@ -317,15 +318,6 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
                  static_cast<GLuint>(noise_seed >> 32));
     glUniform1i(glGetUniformLocation(program, "background"), program == r.background_program);
   }
-
-  // the sky, through the same noise as everything else
-  glUseProgram(r.background_program);
-  glUniform3f(glGetUniformLocation(r.background_program, "albedo"), light.background[0], light.background[1],
-              light.background[2]);
-  glDisable(GL_DEPTH_TEST);
-  glBindVertexArray(r.empty_vao);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glEnable(GL_DEPTH_TEST);
 
   glUseProgram(r.mesh_program);
   glUniform4f(glGetUniformLocation(r.mesh_program, "projection"), 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
@@ -349,6 +341,17 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
       glDrawArrays(GL_TRIANGLES, 0, mesh->vertices);
     }
   }
+  // the sky last, on the far plane where nothing was drawn (early depth test: no overdraw), through
+  // the same noise as everything else
+  glUseProgram(r.background_program);
+  glUniform3f(glGetUniformLocation(r.background_program, "albedo"), light.background[0], light.background[1],
+              light.background[2]);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glBindVertexArray(r.empty_vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
   glBindVertexArray(0);
 
   out->width_px = W;

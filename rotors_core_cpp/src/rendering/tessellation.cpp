@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
 
 #include <Eigen/Geometry>
 #include <octomap/OcTree.h>
@@ -127,18 +130,55 @@ TriangleSoup FromHeightField(const geometry::HeightField& h) {
 }
 
 TriangleSoup FromOcTree(const octomap::OcTree& tree) {
-  TriangleSoup soup;
+  // Exposed cell faces, grouped by (axis, side, layer) into 2-D masks; each mask is covered by
+  // greedy maximal rectangles, so a flat wall is a few quads instead of one per cell.
   const double res = tree.getResolution();
+  auto index = [&](float c) { return static_cast<int>(std::floor(c / res)); };
+  std::map<std::tuple<int, int, int>, std::set<std::pair<int, int>>> masks;
   geometry::ForEachOccupiedCell(tree, [&](const octomap::point3d& centre) {
+    const int ijk[3] = {index(centre.x()), index(centre.y()), index(centre.z())};
     for (int axis = 0; axis < 3; ++axis)
       for (int sign : {-1, 1}) {
         octomap::point3d neighbour = centre;
         neighbour(axis) += static_cast<float>(sign * res);
         const octomap::OcTreeNode* node = tree.search(neighbour);
         if (node && tree.isNodeOccupied(node)) continue;
-        AddCubeFace(&soup, Vector3f(centre.x(), centre.y(), centre.z()), static_cast<float>(res / 2), axis, sign);
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        masks[{axis, sign, ijk[axis]}].insert({ijk[u], ijk[v]});
       }
   });
+  TriangleSoup soup;
+  for (auto& [key, cells] : masks) {
+    const auto [axis, sign, layer] = key;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    while (!cells.empty()) {
+      // grow a rectangle from the smallest cell: along v first, then along u while every row is full
+      const auto [i0, j0] = *cells.begin();
+      int j1 = j0;
+      while (cells.count({i0, j1 + 1})) ++j1;
+      int i1 = i0;
+      for (bool full = true; full;) {
+        for (int j = j0; j <= j1 && full; ++j) full = cells.count({i1 + 1, j}) > 0;
+        if (full) ++i1;
+      }
+      for (int i = i0; i <= i1; ++i)
+        for (int j = j0; j <= j1; ++j) cells.erase({i, j});
+      Vector3f lo, hi;
+      lo[axis] = hi[axis] = static_cast<float>((layer + (sign > 0 ? 1 : 0)) * res);
+      lo[u] = static_cast<float>(i0 * res);
+      hi[u] = static_cast<float>((i1 + 1) * res);
+      lo[v] = static_cast<float>(j0 * res);
+      hi[v] = static_cast<float>((j1 + 1) * res);
+      Vector3f a = lo, b = lo, c = hi, d = lo;
+      b[u] = hi[u];
+      d[v] = hi[v];
+      // u x v = axis: a b c d is counter-clockwise seen from +axis
+      if (sign > 0)
+        AddQuad(&soup, a, b, c, d);
+      else
+        AddQuad(&soup, a, d, c, b);
+    }
+  }
   return soup;
 }
 
