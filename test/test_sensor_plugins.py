@@ -1,5 +1,5 @@
 """Sensor plugins in the running simulator: the odometry outage map (package:// URL) suppresses
-measurements over black pixels; the IMU at rest reads +g."""
+measurements over black pixels; the IMU at rest reads +g; exact and noisy depth cameras."""
 from pathlib import Path
 
 import pytest
@@ -88,3 +88,58 @@ def test_wind_force_accelerates_a_free_body_as_f_over_m(ros: RosGraph, tmp_path:
     # semi-implicit Euler: y_N = a dt^2 N (N+1) / 2 with a = 2 m/s^2
     n = round(t / 0.01)
     assert result["y"] == pytest.approx(2.0 * 0.01 ** 2 * n * (n + 1) / 2, rel=1e-6)
+
+
+def depth_rig(name: str) -> str:
+    """A static rig 2 m above the ground with two depth cameras looking straight down: exact
+    (libgazebo_ros_openni_kinect) and Kinect-noisy (librotors_gazebo_noisydepth_plugin)."""
+    def depth_sensor(sensor: str, plugin: str, extra: str) -> str:
+        return f"""<sensor type="depth" name="{sensor}"><pose>0 0 0 0 1.5707963 0</pose><update_rate>10</update_rate>
+      <camera><horizontal_fov>1.0</horizontal_fov><image><width>160</width><height>120</height><format>L8</format></image>
+        <clip><near>0.05</near><far>10</far></clip></camera>
+      <plugin name="{sensor}_plugin" filename="{plugin}"><robotNamespace>{name}</robotNamespace>
+        <cameraName>{sensor}</cameraName><frameName>{name}/optical</frameName>{extra}</plugin></sensor>"""
+    return f"""<robot name="{name}">
+  <link name="{name}/base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <gazebo><static>true</static></gazebo>
+  <gazebo reference="{name}/base_link">
+    {depth_sensor("exact", "libgazebo_ros_openni_kinect.so", "<pointCloudCutoff>0.1</pointCloudCutoff>")}
+    {depth_sensor("kinect", "librotors_gazebo_noisydepth_plugin.so",
+                  "<depthNoiseModelName>Kinect</depthNoiseModelName><randomEngineSeed>5</randomEngineSeed>")}
+  </gazebo>
+</robot>"""
+
+
+def test_depth_cameras_exact_and_kinect_noisy(ros: RosGraph, tmp_path: Path):
+    """The ground 2 m below: the exact camera reads 2 m to a millimetre, the
+    noisy one scatters with Kinect's sigma(2 m) = 0.0012 + 0.0019 (2 - 0.4)^2 = 6.06 mm."""
+    start_server(ros, "--rtf", "0")
+    f = tmp_path / "rig.urdf"
+    f.write_text(depth_rig("rig"))
+    ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(f), "-model", "rig", "-z", "2.0"])
+    result = ros.rospy("""
+        import numpy as np
+        from sensor_msgs.msg import Image, PointCloud2
+        def centre(topic, n):
+            out = []
+            for _ in range(n):
+                m = rospy.wait_for_message(topic, Image, timeout=30)
+                d = np.frombuffer(m.data, dtype=np.float32).reshape(m.height, m.width)
+                out.append(d[50:70, 70:90].ravel())
+            return np.concatenate(out), m
+        exact, m = centre('/rig/exact/depth/image_raw', 1)
+        noisy, _ = centre('/rig/kinect/depth/image_raw', 8)
+        result.update(exact_min=float(exact.min()), exact_max=float(exact.max()), encoding=m.encoding,
+                      frame=m.header.frame_id, noisy_mean=float(noisy.mean()), noisy_std=float(noisy.std()))
+        cloud = rospy.wait_for_message('/rig/kinect/points', PointCloud2, timeout=30)
+        result['cloud'] = [cloud.width, cloud.height]
+    """)
+    print(result)
+    assert result["encoding"] == "32FC1" and result["frame"] == "rig/optical"
+    # depth is the distance along the optical axis: 2 m at every pixel of a camera facing the plane
+    assert abs(result["exact_min"] - 2.0) < 0.001 and abs(result["exact_max"] - 2.0) < 0.001
+    sigma = 0.0012 + 0.0019 * (2.0 - 0.4) ** 2
+    assert abs(result["noisy_mean"] - 2.0) < 0.005
+    assert abs(result["noisy_std"] - sigma) < 0.15 * sigma
+    assert result["cloud"] == [160, 120]

@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <ignition/math/Vector3.hh>
@@ -23,6 +24,7 @@ bool ReadVector(const sdf::ElementPtr& sdf, const std::string& name, Eigen::Vect
 
 /// Throws SimError naming the first child element not in `known`.
 void CheckKnownParams(const sdf::ElementPtr& sdf, std::initializer_list<const char*> known);
+void CheckKnownParams(const sdf::ElementPtr& sdf, const std::vector<std::string>& known);
 
 /// Throws SimError("<what>") if `why` is not empty (for Params::Validate()).
 void ThrowIfInvalid(const std::string& why);

@@ -19,12 +19,14 @@ using rotors_sim::rendering::CameraSpec;
 using rotors_sim::rendering::RenderedFrame;
 
 CameraRosParams CameraRosParams::Read(const sdf::ElementPtr& sdf, const rotors_sim::sensors::CameraSensor& sensor,
-                                      bool depth_plugin) {
-  CheckKnownParams(sdf, {"robotNamespace", "cameraName", "imageTopicName", "cameraInfoTopicName", "frameName",
-                         "updateRate", "alwaysOn", "hackBaseline", "distortionK1", "distortionK2", "distortionK3",
-                         "distortionT1", "distortionT2", "CxPrime", "Cx", "Cy", "focalLength", "borderCrop",
-                         "baseline", "pointCloudCutoff", "pointCloudCutoffMax", "depthImageTopicName",
-                         "depthImageCameraInfoTopicName", "pointCloudTopicName", "disparityTopicName"});
+                                      bool depth_plugin, const std::vector<std::string>& extra_known) {
+  std::vector<std::string> known = {"robotNamespace", "cameraName", "imageTopicName", "cameraInfoTopicName", "frameName",
+                                   "updateRate", "alwaysOn", "hackBaseline", "distortionK1", "distortionK2", "distortionK3",
+                                   "distortionT1", "distortionT2", "CxPrime", "Cx", "Cy", "focalLength", "borderCrop",
+                                   "baseline", "pointCloudCutoff", "pointCloudCutoffMax", "depthImageTopicName",
+                                   "depthImageCameraInfoTopicName", "pointCloudTopicName", "disparityTopicName"};
+  known.insert(known.end(), extra_known.begin(), extra_known.end());
+  CheckKnownParams(sdf, known);
   CameraRosParams p;
   if (sdf->HasElement("robotNamespace")) {
     p.robot_namespace = ReadRobotNamespace(sdf);

@@ -15,6 +15,10 @@ bool ReadVector(const sdf::ElementPtr& sdf, const std::string& name, Eigen::Vect
 }
 
 void CheckKnownParams(const sdf::ElementPtr& sdf, std::initializer_list<const char*> known) {
+  CheckKnownParams(sdf, std::vector<std::string>(known.begin(), known.end()));
+}
+
+void CheckKnownParams(const sdf::ElementPtr& sdf, const std::vector<std::string>& known) {
   if (!sdf) return;
   const std::set<std::string> names(known.begin(), known.end());
   for (sdf::ElementPtr e = sdf->GetFirstElement(); e; e = e->GetNextElement()) {

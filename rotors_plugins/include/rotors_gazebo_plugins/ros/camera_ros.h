@@ -34,8 +34,9 @@ struct CameraRosParams {
   double baseline_m = 0.0, cloud_cutoff_min_m = 0.0, cloud_cutoff_max_m = 0.0;
 
   /// Reads and checks the plugin's <plugin> element; throws SimError naming a bad or unknown one.
+  /// `extra_known`: further parameters the calling plugin reads itself.
   static CameraRosParams Read(const sdf::ElementPtr& sdf, const rotors_sim::sensors::CameraSensor& sensor,
-                              bool depth_plugin);
+                              bool depth_plugin, const std::vector<std::string>& extra_known = {});
 };
 
 /// K from the intrinsics, P = [K | (-f b, 0, 0)], R = I, no distortion (plumb_bob, zeros).

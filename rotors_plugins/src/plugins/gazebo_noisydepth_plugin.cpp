@@ -1,0 +1,55 @@
+// librotors_gazebo_noisydepth_plugin.so (RotorS): a depth camera with axial noise,
+// <depthNoiseModelName> Kinect (default) or D435 (models/depth_noise_model.h); for D435 also
+// <horizontal_fov>, <baseline>, <D435NoiseSubpixelErr>, <D435MaxStdev>. Its defaults: image on
+// ir/image_raw + ir/camera_info, cloud on points, depth on depth/image_raw, cutoff 0.4-5 m.
+// <randomEngineSeed> makes the noise repeatable.
+#include "depth_camera_ros_plugin.h"
+#include "rotors_gazebo_plugins/models/depth_noise_model.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboNoisyDepth : public DepthCameraRosPlugin {
+ protected:
+  CameraRosParams ReadParams(const sdf::ElementPtr& sdf) override {
+    CameraRosParams p = CameraRosParams::Read(sdf, *sensor_, true,
+                                              {"depthNoiseModelName", "horizontal_fov", "D435NoiseSubpixelErr",
+                                               "D435MaxStdev", "randomEngineSeed"});
+    if (!sdf->HasElement("imageTopicName")) p.image_topic = "ir/image_raw";
+    if (!sdf->HasElement("cameraInfoTopicName")) p.info_topic = "ir/camera_info";
+    if (!sdf->HasElement("pointCloudTopicName")) p.points_topic = "points";
+    if (!sdf->HasElement("pointCloudCutoff")) p.cloud_cutoff_min_m = 0.4;
+    if (!sdf->HasElement("pointCloudCutoffMax")) p.cloud_cutoff_max_m = 5.0;
+    DepthNoiseParams noise;
+    std::string model = "Kinect";
+    ReadParam(sdf, "depthNoiseModelName", &model);
+    noise.model = DepthNoiseParams::ParseModel(model);
+    noise.min_depth_m = p.cloud_cutoff_min_m;
+    noise.max_depth_m = p.cloud_cutoff_max_m;
+    noise.width_px = sensor_->Camera(0).intrinsics.width_px;
+    noise.horizontal_fov_rad = sensor_->Camera(0).intrinsics.horizontal_fov_rad;
+    ReadParam(sdf, "horizontal_fov", &noise.horizontal_fov_rad);
+    if (p.baseline_m > 0) noise.baseline_m = p.baseline_m;
+    ReadParam(sdf, "D435NoiseSubpixelErr", &noise.subpixel_error_px);
+    ReadParam(sdf, "D435MaxStdev", &noise.max_stdev_m);
+    ThrowIfInvalid(noise.Validate());
+    noise_ = std::make_unique<DepthNoiseModel>(noise, ReadSeed(sdf));
+    return p;
+  }
+
+  const rotors_sim::rendering::RenderedFrame& Measured(const rotors_sim::rendering::RenderedFrame& rendered,
+                                                       rotors_sim::rendering::RenderedFrame* scratch) override {
+    scratch->width_px = rendered.width_px;
+    scratch->height_px = rendered.height_px;
+    scratch->depth_m = rendered.depth_m;
+    noise_->Apply(&scratch->depth_m);
+    return *scratch;
+  }
+
+ private:
+  std::unique_ptr<DepthNoiseModel> noise_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+RSIM_REGISTER_SENSOR_PLUGIN(rotors_gazebo_plugins::GazeboNoisyDepth)
