@@ -173,8 +173,10 @@ def vi_sensor_closed_loop(real_time_factor: str) -> float:
 
 def camera_fps(world: str) -> Dict:
     """rotors_camera_bench: stereo pairs and depth frames rendered per second (one thread asking)."""
-    worlds = Path(sh(["rospack", "find", "rotors_gazebo"]).strip()) / "worlds"
-    out = sh([str(WS / "devel" / "lib" / "rotors_core" / "rotors_camera_bench"), str(worlds / f"{world}.world"), "200"])
+    package = Path(sh(["rospack", "find", "rotors_gazebo"]).strip())
+    env = dict(os.environ, GAZEBO_MODEL_PATH=str(package / "models"))  # as the launch files set it
+    out = sh([str(WS / "devel" / "lib" / "rotors_core" / "rotors_camera_bench"), str(package / "worlds" / f"{world}.world"),
+              "200"], env=env)
     return json.loads(out.strip().splitlines()[-1])
 
 

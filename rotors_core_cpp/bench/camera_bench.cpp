@@ -57,7 +57,13 @@ int main(int argc, char** argv) {
   text << in.rdbuf();
   std::string world_sdf = text.str();
   world_sdf.insert(world_sdf.rfind("</world>"), kRig);
-  physics::WorldPtr world = WorldLoader::LoadString(world_sdf, argv[1]);
+  physics::WorldPtr world;
+  try {
+    world = WorldLoader::LoadString(world_sdf, argv[1]);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rotors_camera_bench: %s\n", e.what());
+    return 1;
+  }
   auto model = world->ModelByName("bench_rig");
   auto stereo = std::dynamic_pointer_cast<sensors::CameraSensor>(model->Sensors().at(0));
   auto depth = std::dynamic_pointer_cast<sensors::CameraSensor>(model->Sensors().at(1));

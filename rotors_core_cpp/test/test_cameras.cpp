@@ -4,11 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
+
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 
 #include "rotors_core/error.h"
+#include "rotors_core/model_builder.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/sensors/camera_sensor.h"
@@ -295,4 +300,91 @@ TEST(Camera, BadDeclarationsAreOneLineErrorsNamingTheSensor) {
   const std::string none = error_of("", "multicamera");
   EXPECT_NE(none.find("has no <camera> element"), std::string::npos) << none;
   for (const std::string& e : {format, size, fov, none}) EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
+
+namespace {
+
+/// A 2 x 2 m textured square facing -x (towards a camera on the x axis looking at it), as OBJ + MTL
+/// + a 2 x 2 PPM texture: red, green (top row), blue, white (bottom row). Returns the OBJ path.
+std::string TexturedSquare(const std::string& folder, bool with_texture_file) {
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder + "/square.mtl") << "newmtl tex\nKd 1 1 1\nmap_Kd quadrants.ppm\n";
+  // u runs along -y (left to right seen from the camera), v along +z
+  std::ofstream(folder + "/square.obj") << "mtllib square.mtl\nv 0 1 -1\nv 0 -1 -1\nv 0 -1 1\nv 0 1 1\n"
+                                        << "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl tex\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+  if (with_texture_file) {
+    std::ofstream ppm(folder + "/quadrants.ppm", std::ios::binary);
+    const unsigned char pixels[] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+    ppm << "P6\n2 2\n255\n";
+    ppm.write(reinterpret_cast<const char*>(pixels), sizeof(pixels));
+  } else {
+    std::filesystem::remove(folder + "/quadrants.ppm");
+  }
+  return folder + "/square.obj";
+}
+
+std::string MeshModel(const std::string& name, const std::string& obj, const Pose3d& X_WM) {
+  return "<model name='" + name + "'><static>true</static><pose>" + PoseText(X_WM) +
+         "</pose><link name='link'><visual name='v'><geometry><mesh><uri>" + obj +
+         "</uri></mesh></geometry></visual></link></model>";
+}
+
+}  // namespace
+
+TEST(Camera, MeshTexturesAreDrawn) {
+  const std::string folder = std::filesystem::temp_directory_path().string() + "/rotors_texture_" + std::to_string(getpid());
+  const std::string obj = TexturedSquare(folder, true);
+  // camera at the origin looking along +x at the square 3 m ahead (unlit: colours are the texels)
+  WorldGuard g{WorldLoader::LoadString(
+      World(MeshModel("square", obj, Pose3d(3, 0, 0, 0, 0, 0)) +
+            Rig(Pose3d(), Pose3d(), "camera", 30, Camera("", Pose3d(), 200, 200, 1.2, "R8G8B8"))),
+      "texture")};
+  g.world->Step(1);
+  {
+    const auto& vis = g.world->ModelByName("square")->Visuals().at(0);
+    const auto& m = *vis.shape.mesh;
+    for (float x : m.uvs) std::printf("%.2f ", x);
+    std::printf("DEBUG has_material %d colours %zu uvs %zu tex '%s' c0 %f %f %f rgba %f\n", vis.has_material, m.colours.size(), m.uvs.size(), m.texture_file.c_str(), m.colours[0], m.colours[1], m.colours[2], vis.rgba[0]);
+  }
+  const auto& f = TheCamera(g.world)->Frame(0);
+  { std::ofstream o("/tmp/tex_debug.ppm", std::ios::binary); o << "P6\n200 200\n255\n"; o.write((const char*)f.image.data(), f.image.size()); }
+  auto rgb = [&](int u, int v) {
+    const uint8_t* p = &f.image[(static_cast<size_t>(v) * 200 + u) * 3];
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  // the square spans 2 m at 3 m: f = 100 / tan(0.6) = 146 px, half width 146 / 3 = 49 px around the
+  // centre; a quadrant's centre is 24 px from it
+  const int q = 24;
+  EXPECT_EQ(rgb(100 - q, 100 - q), (std::array<int, 3>{255, 0, 0}));    // top left: red
+  EXPECT_EQ(rgb(100 + q, 100 - q), (std::array<int, 3>{0, 255, 0}));    // top right: green
+  EXPECT_EQ(rgb(100 - q, 100 + q), (std::array<int, 3>{0, 0, 255}));    // bottom left: blue
+  EXPECT_EQ(rgb(100 + q, 100 + q), (std::array<int, 3>{255, 255, 255}));  // bottom right: white
+  std::filesystem::remove_all(folder);
+}
+
+TEST(Camera, AMissingTextureFailsTheModelUnlessBrokenSensorsAreSkipped) {
+  const std::string folder = std::filesystem::temp_directory_path().string() + "/rotors_notexture_" + std::to_string(getpid());
+  const std::string obj = TexturedSquare(folder, false);
+  const std::string world =
+      World(MeshModel("square", obj, Pose3d(3, 0, 0, 0, 0, 0)) +
+            Rig(Pose3d(), Pose3d(), "camera", 30, Camera("", Pose3d(), 64, 48, 1.2, "R8G8B8")));
+  std::string error;
+  try {
+    WorldGuard g{WorldLoader::LoadString(world, "missing")};
+  } catch (const SimError& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("camera sensor 'cam'"), std::string::npos) << error;
+  EXPECT_NE(error.find("quadrants.ppm' of visual 'square::link::v' does not exist"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos);
+
+  ModelBuilder::SetSkipBrokenSensors(true);
+  {
+    WorldGuard g{WorldLoader::LoadString(world, "missing_skipped")};
+    EXPECT_TRUE(g.world->ModelByName("rig")->Sensors().empty());
+    g.world->Step(10);  // the simulation goes on without it
+    EXPECT_EQ(g.world->Iterations(), 10u);
+  }
+  ModelBuilder::SetSkipBrokenSensors(false);
+  std::filesystem::remove_all(folder);
 }

@@ -19,6 +19,10 @@ struct SpawnRequest {
 
 class ModelBuilder {
  public:
+  /// Off (the default): a sensor that cannot be built (a bad camera, a missing texture) fails the
+  /// whole model. On (rotors_sim_server --skip-broken-sensors): the model loads without that
+  /// sensor and its plugins, and the reason is printed in one line.
+  static void SetSkipBrokenSensors(bool skip);
   /// Throws SimError with one line naming the model and the problem.
   static physics::ModelPtr Spawn(const physics::WorldPtr& world, const SpawnRequest& request);
   /// Builds an already parsed SDF model (used for the models of a world file).

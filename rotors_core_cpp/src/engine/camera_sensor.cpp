@@ -1,5 +1,6 @@
 #include "rotors_core/sensors/camera_sensor.h"
 
+#include <filesystem>
 #include <functional>
 
 #include "rotors_core/error.h"
@@ -27,6 +28,18 @@ CameraSensor::CameraSensor(std::string name, std::string type, physics::LinkPtr 
   if (cameras_.empty()) throw SimError(label + " has no <camera> element");
   if (Type() != "multicamera" && cameras_.size() > 1)
     throw SimError(label + " has " + std::to_string(cameras_.size()) + " <camera> elements; only a multicamera may");
+  // what it will draw must be drawable: the textures of the meshes in the world so far
+  auto check_textures = [&](const physics::Model& model) {
+    for (const geometry::Visual& v : model.Visuals())
+      if (v.shape.mesh && !v.shape.mesh->texture_file.empty() && !v.shape.mesh->uvs.empty() &&
+          !std::filesystem::exists(v.shape.mesh->texture_file))
+        throw SimError(label + ": texture '" + v.shape.mesh->texture_file + "' of visual '" + v.scoped_name +
+                       "' does not exist");
+  };
+  const physics::Model& own = *ParentLink()->GetModel();
+  check_textures(own);
+  for (const physics::ModelPtr& m : own.GetWorldRaw()->Models())
+    if (m.get() != &own) check_textures(*m);
   frames_.resize(cameras_.size());
   rendered_update_.assign(cameras_.size(), 0);
   seed_ = std::hash<std::string>()(ParentLink()->GetModel()->GetName() + "::" + Name());

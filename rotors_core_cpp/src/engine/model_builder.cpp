@@ -176,6 +176,7 @@ void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const
     if (visual->Material()) {
       const auto c = visual->Material()->Diffuse();
       out.rgba = {static_cast<float>(c.R()), static_cast<float>(c.G()), static_cast<float>(c.B()), static_cast<float>(c.A())};
+      out.has_material = true;
     } else if (out.shape.mesh) {
       out.rgba = out.shape.mesh->rgba;
     }
@@ -201,6 +202,8 @@ void LoadPlugins(const physics::WorldPtr& world, const physics::ModelPtr& model)
   }
 }
 
+bool g_skip_broken_sensors = false;
+
 void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model, const sdf::Model& sdf_model) {
   event::ScopedCurrentEvents scope(&world->Events());
   for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i) {
@@ -212,10 +215,17 @@ void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model,
       sensors::SensorPtr sensor;
       // the type as written (sdformat renames "depth" to "depth_camera")
       const std::string type = s.Element() ? s.Element()->Get<std::string>("type") : s.TypeStr();
-      if (sensors::CameraSensor::IsCameraType(type))
-        sensor = std::make_shared<sensors::CameraSensor>(s.Name(), type, model->GetLink(sdf_link.Name()), X_LS,
-                                                         s.UpdateRate(), s.Element());
-      else
+      if (sensors::CameraSensor::IsCameraType(type)) {
+        try {
+          sensor = std::make_shared<sensors::CameraSensor>(s.Name(), type, model->GetLink(sdf_link.Name()), X_LS,
+                                                           s.UpdateRate(), s.Element());
+        } catch (const SimError& e) {
+          if (!g_skip_broken_sensors) throw SimError("model '" + model->GetName() + "', " + e.what());
+          std::cerr << "[rotors_sim] model '" << model->GetName() << "': left out (--skip-broken-sensors): " << e.what()
+                    << "\n";
+          continue;
+        }
+      } else
         sensor = std::make_shared<sensors::Sensor>(s.Name(), s.TypeStr(), model->GetLink(sdf_link.Name()), X_LS,
                                                    s.UpdateRate());
       model->AddSensor(sensor);
@@ -238,6 +248,8 @@ void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model,
 }
 
 }  // namespace
+
+void ModelBuilder::SetSkipBrokenSensors(bool skip) { g_skip_broken_sensors = skip; }
 
 physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const SpawnRequest& request) {
   SilenceSdformatConsole();

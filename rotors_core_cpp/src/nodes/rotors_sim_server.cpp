@@ -3,6 +3,8 @@
 //   --rtf X    real-time factor, 0 = as fast as possible (default: the world's)
 //   --lockstep A1[:I1],A2[:I2]   lockstep participants: answer topic A (header-stamped), answering
 //              the simulator's input topic I (see rotors_core/ros/lockstep.h)
+//   --skip-broken-sensors  a camera that cannot be built is left out (one line says why) instead
+//                          of failing its model
 //   --lockstep-lenient   wait only for connected participants, mute silent ones (earlier versions)
 // Private parameters ~world_name, ~paused and ~real_time_factor do the same.
 #include <csignal>
@@ -16,6 +18,7 @@
 
 #include "rotors_core/error.h"
 #include "rotors_core/geometry/uri_resolver.h"
+#include "rotors_core/model_builder.h"
 #include "rotors_core/ros/sim_server.h"
 
 namespace {
@@ -56,17 +59,19 @@ int main(int argc, char** argv) {
         std::cerr << "[rotors_sim] error: " << e.what() << "\n";
         return 2;
       }
+    } else if (arg == "--skip-broken-sensors") {
+      rotors_sim::ModelBuilder::SetSkipBrokenSensors(true);
     } else if (arg == "--lockstep-lenient") {
       options.lockstep.mode = rotors_sim::LockstepOptions::Mode::kLenient;
     } else if (!arg.empty() && arg[0] != '-') {
       options.world_file = arg;
     } else {
-      std::cerr << "[rotors_sim] error: unknown option '" << arg << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] [--lockstep-lenient])\n";
+      std::cerr << "[rotors_sim] error: unknown option '" << arg << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors])\n";
       return 2;
     }
   }
   if (options.world_file.empty()) {
-    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] [--lockstep-lenient])\n";
+    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors])\n";
     return 2;
   }
   try {

@@ -6,11 +6,14 @@
 #include <string>
 #include <tuple>
 
+#include <iostream>
+
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
 #include <Eigen/Geometry>
+#include <stb/stb_image.h>
 
 #include "rotors_core/error.h"
 #include "rotors_core/physics/link.h"
@@ -27,15 +30,21 @@ using geometry::Shape;
 const char* kMeshVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 p_V;
 layout(location = 1) in vec3 n_V;
+layout(location = 2) in vec3 colour_V;
+layout(location = 3) in vec2 uv_V;
 uniform mat4 T_OV;        // visual frame -> optical frame (x right, y down, z forward)
 uniform mat3 N_OV;        // normals visual -> optical: inverse transpose of T_OV's linear part
 uniform vec4 projection;  // 2 f / W, 2 f / H, near, far
 out vec3 p_O;
 out vec3 n_O;
+out vec3 vertex_colour;
+out vec2 uv;
 void main() {
   vec4 p = T_OV * vec4(p_V, 1.0);
   p_O = p.xyz;
   n_O = N_OV * n_V;
+  vertex_colour = colour_V;
+  uv = uv_V;
   float near = projection.z, far = projection.w;
   // x_ndc = 2 f x / (W z), y_ndc = 2 f y / (H z): pixel u = f x / z + (W - 1) / 2, rows top down
   gl_Position = vec4(projection.x * p.x, projection.y * p.y,
@@ -45,18 +54,27 @@ void main() {
 const char* kBackgroundVertexShader = R"(#version 330 core
 out vec3 p_O;
 out vec3 n_O;
+out vec3 vertex_colour;
+out vec2 uv;
 void main() {
   // one triangle covering the viewport, on the far plane
   vec2 corner = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
   p_O = vec3(0.0);
   n_O = vec3(0.0);
+  vertex_colour = vec3(1.0);
+  uv = vec2(0.0);
   gl_Position = vec4(corner, 1.0, 1.0);
 })";
 
 const char* kFragmentShader = R"(#version 330 core
 in vec3 p_O;
 in vec3 n_O;
+in vec3 vertex_colour;
+in vec2 uv;
 uniform vec3 albedo;
+uniform bool use_vertex_colour;
+uniform bool use_texture;
+uniform sampler2D texture_image;
 uniform vec3 to_sun_O;
 uniform float ambient;
 uniform float sun_diffuse;
@@ -80,10 +98,12 @@ float Gaussian(uint channel) {  // Box-Muller from two hashed uniforms
 
 void main() {
   vec3 c = albedo;
+  if (use_vertex_colour) c *= vertex_colour;
+  if (use_texture) c *= texture(texture_image, uv).rgb;
   if (!background) {
     vec3 n = normalize(n_O);
     if (dot(n, p_O) > 0.0) n = -n;  // light the side the camera sees
-    c = albedo * (ambient + sun_diffuse * max(dot(n, to_sun_O), 0.0));
+    c *= ambient + sun_diffuse * max(dot(n, to_sun_O), 0.0);
   }
   if (grey) c = vec3(dot(c, vec3(0.299, 0.587, 0.114)));
   if (noise.y > 0.0 || noise.x != 0.0) {
@@ -123,8 +143,9 @@ GLuint Link(const char* vertex, const char* fragment) {
 }
 
 struct GpuMesh {
-  GLuint vao = 0, vbo = 0;
+  GLuint vao = 0, vbo = 0, texture = 0;  // texture 0: none
   GLsizei vertices = 0;
+  bool own_colours = false;              // per-vertex colours from the mesh file
   std::shared_ptr<const void> source;  // keeps the key's object alive
 };
 
@@ -150,7 +171,8 @@ struct Renderer::Impl {
   size_t triangles = 0;
 
   void CreateContext();
-  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup);
+  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup,
+                        const std::string& texture_file = "");
   const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
   Target& TargetFor(int width, int height, PixelFormat format, bool depth);
 };
@@ -178,26 +200,64 @@ void Renderer::Impl::CreateContext() {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
 
-const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup) {
+const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup,
+                                      const std::string& texture_file) {
   GpuMesh mesh;
   mesh.source = std::move(source);
   mesh.vertices = static_cast<GLsizei>(soup.VertexCount());
+  mesh.own_colours = !soup.colours.empty();
+  constexpr int kFloats = 11;  // position, normal, colour, uv
   std::vector<float> interleaved;
-  interleaved.reserve(soup.positions_m.size() * 2);
+  interleaved.reserve(soup.VertexCount() * kFloats);
   for (size_t i = 0; i < soup.VertexCount(); ++i) {
     interleaved.insert(interleaved.end(), soup.positions_m.begin() + 3 * i, soup.positions_m.begin() + 3 * i + 3);
     interleaved.insert(interleaved.end(), soup.normals.begin() + 3 * i, soup.normals.begin() + 3 * i + 3);
+    if (mesh.own_colours)
+      interleaved.insert(interleaved.end(), soup.colours.begin() + 3 * i, soup.colours.begin() + 3 * i + 3);
+    else
+      interleaved.insert(interleaved.end(), {1.0f, 1.0f, 1.0f});
+    if (!soup.uvs.empty())
+      interleaved.insert(interleaved.end(), soup.uvs.begin() + 2 * i, soup.uvs.begin() + 2 * i + 2);
+    else
+      interleaved.insert(interleaved.end(), {0.0f, 0.0f});
   }
   glGenVertexArrays(1, &mesh.vao);
   glBindVertexArray(mesh.vao);
   glGenBuffers(1, &mesh.vbo);
   glBindBuffer(GL_ARRAY_BUFFER, mesh.vbo);
   glBufferData(GL_ARRAY_BUFFER, interleaved.size() * sizeof(float), interleaved.data(), GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
-  glEnableVertexAttribArray(0);
-  glEnableVertexAttribArray(1);
+  const GLsizei stride = kFloats * sizeof(float);
+  const int sizes[] = {3, 3, 3, 2};
+  for (int a = 0, offset = 0; a < 4; offset += sizes[a], ++a) {
+    glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offset * sizeof(float)));
+    glEnableVertexAttribArray(a);
+  }
   glBindVertexArray(0);
+  if (!texture_file.empty() && !soup.uvs.empty()) {
+    int w = 0, h = 0, channels = 0;
+    unsigned char* pixels = stbi_load(texture_file.c_str(), &w, &h, &channels, 3);
+    if (!pixels) {
+      // CameraSensor checks textures when it is created; a model spawned later is drawn without
+      std::cerr << "[rotors_sim] camera renderer: texture '" << texture_file << "' cannot be read ("
+                << stbi_failure_reason() << "); the mesh is drawn without it\n";
+    } else {
+      glGenTextures(1, &mesh.texture);
+      glBindTexture(GL_TEXTURE_2D, mesh.texture);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      // image row 0 is the top; texture coordinate v = 0 is the bottom
+      std::vector<unsigned char> flipped(static_cast<size_t>(w) * h * 3);
+      for (int r = 0; r < h; ++r)
+        std::copy(pixels + static_cast<size_t>(r) * w * 3, pixels + static_cast<size_t>(r + 1) * w * 3,
+                  flipped.begin() + static_cast<size_t>(h - 1 - r) * w * 3);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, w, h, 0, GL_RGB, GL_UNSIGNED_BYTE, flipped.data());
+      glGenerateMipmap(GL_TEXTURE_2D);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+      stbi_image_free(pixels);
+    }
+  }
   triangles += soup.VertexCount() / 3;
   return meshes.emplace(key, std::move(mesh)).first->second;
 }
@@ -230,7 +290,9 @@ const GpuMesh* Renderer::Impl::MeshFor(const Shape& shape, Eigen::Matrix4d* S) {
     }
     case Shape::Type::kMesh:
       if (!shape.mesh) return nullptr;
-      return (mesh = cached(shape.mesh.get())) ? mesh : &Upload(shape.mesh.get(), shape.mesh, FromMesh(*shape.mesh));
+      return (mesh = cached(shape.mesh.get()))
+                 ? mesh
+                 : &Upload(shape.mesh.get(), shape.mesh, FromMesh(*shape.mesh), shape.mesh->texture_file);
     case Shape::Type::kHeightmap:
       if (!shape.heightfield) return nullptr;
       return (mesh = cached(shape.heightfield.get()))
@@ -308,6 +370,8 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
 
   for (GLuint program : {r.background_program, r.mesh_program}) {
     glUseProgram(program);
+    glUniform1i(glGetUniformLocation(program, "use_vertex_colour"), 0);
+    glUniform1i(glGetUniformLocation(program, "use_texture"), 0);
     glUniform3f(glGetUniformLocation(program, "to_sun_O"), to_sun_O.x(), to_sun_O.y(), to_sun_O.z());
     glUniform1f(glGetUniformLocation(program, "ambient"), light.ambient);
     glUniform1f(glGetUniformLocation(program, "sun_diffuse"), light.sun_diffuse);
@@ -325,6 +389,10 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   const GLint loc_T = glGetUniformLocation(r.mesh_program, "T_OV");
   const GLint loc_N = glGetUniformLocation(r.mesh_program, "N_OV");
   const GLint loc_albedo = glGetUniformLocation(r.mesh_program, "albedo");
+  const GLint loc_vertex_colour = glGetUniformLocation(r.mesh_program, "use_vertex_colour");
+  const GLint loc_texture = glGetUniformLocation(r.mesh_program, "use_texture");
+  glUniform1i(glGetUniformLocation(r.mesh_program, "texture_image"), 0);
+  glActiveTexture(GL_TEXTURE0);
   for (const physics::ModelPtr& model : world.Models()) {
     for (const geometry::Visual& visual : model->Visuals()) {
       Eigen::Matrix4d S;
@@ -336,7 +404,16 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
       const Eigen::Matrix3f N = T_OV.topLeftCorner<3, 3>().inverse().transpose().cast<float>();
       glUniformMatrix4fv(loc_T, 1, GL_FALSE, T.data());
       glUniformMatrix3fv(loc_N, 1, GL_FALSE, N.data());
-      glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
+      // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
+      const bool own = mesh->own_colours && !visual.has_material;
+      const bool textured = mesh->texture != 0 && !visual.has_material;
+      if (own)
+        glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);
+      else
+        glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
+      glUniform1i(loc_vertex_colour, own);
+      glUniform1i(loc_texture, textured);
+      if (textured) glBindTexture(GL_TEXTURE_2D, mesh->texture);
       glBindVertexArray(mesh->vao);
       glDrawArrays(GL_TRIANGLES, 0, mesh->vertices);
     }

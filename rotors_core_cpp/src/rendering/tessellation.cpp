@@ -99,8 +99,16 @@ TriangleSoup FromMesh(const geometry::TriangleMesh& mesh) {
   TriangleSoup soup;
   const auto& v = mesh.vertices_m;
   auto vertex = [&](uint32_t i) { return Vector3f(v[3 * i], v[3 * i + 1], v[3 * i + 2]); };
-  for (size_t t = 0; t < mesh.TriangleCount(); ++t)
-    soup.Add(vertex(mesh.indices[3 * t]), vertex(mesh.indices[3 * t + 1]), vertex(mesh.indices[3 * t + 2]));
+  for (size_t t = 0; t < mesh.TriangleCount(); ++t) {
+    const uint32_t* index = &mesh.indices[3 * t];
+    soup.Add(vertex(index[0]), vertex(index[1]), vertex(index[2]));
+    for (int k = 0; k < 3; ++k) {
+      if (!mesh.colours.empty())
+        soup.colours.insert(soup.colours.end(), mesh.colours.begin() + 3 * index[k], mesh.colours.begin() + 3 * index[k] + 3);
+      if (!mesh.uvs.empty())
+        soup.uvs.insert(soup.uvs.end(), mesh.uvs.begin() + 2 * index[k], mesh.uvs.begin() + 2 * index[k] + 2);
+    }
+  }
   return soup;
 }
 

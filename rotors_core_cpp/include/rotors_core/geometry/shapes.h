@@ -21,6 +21,9 @@ struct TriangleMesh {
   std::vector<double> vertices_m;   ///< x0 y0 z0 x1 y1 z1 ... [m]
   std::vector<uint32_t> indices;    ///< three per triangle
   std::array<float, 4> rgba{0.7f, 0.7f, 0.7f, 1.0f};  ///< diffuse colour of the first material
+  std::vector<float> colours;       ///< r g b per vertex (its material's diffuse or vertex colour), for renderers
+  std::vector<float> uvs;           ///< u v per vertex when the file has texture coordinates, else empty
+  std::string texture_file;         ///< the first diffuse texture (resolved path; may not exist), else empty
   size_t TriangleCount() const { return indices.size() / 3; }
 };
 

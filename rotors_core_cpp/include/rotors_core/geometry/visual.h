@@ -38,6 +38,7 @@ struct Visual {
   ignition::math::Pose3d X_LV;  ///< visual frame in the link frame
   Shape shape;
   std::array<float, 4> rgba{0.7f, 0.7f, 0.7f, 1.0f};
+  bool has_material = false;  ///< rgba from an SDF/URDF <material>: it overrides a mesh's own colours
 };
 
 }  // namespace geometry

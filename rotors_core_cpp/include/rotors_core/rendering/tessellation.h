@@ -14,6 +14,8 @@ namespace rendering {
 struct TriangleSoup {
   std::vector<float> positions_m;  ///< x y z per vertex
   std::vector<float> normals;      ///< unit normal per vertex
+  std::vector<float> colours;      ///< r g b per vertex (a mesh's own colours), or empty: white
+  std::vector<float> uvs;          ///< u v per vertex (texture coordinates), or empty
   size_t VertexCount() const { return positions_m.size() / 3; }
   void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c);  ///< flat normal
   void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
