@@ -57,10 +57,11 @@ bool DrawShape(const Shape& shape, const ignition::math::Pose3d& X_WV, visualiza
       m->scale.z = shape.length_m;
       return true;
     case Shape::Type::kPlane: {
-      // a thin box in the plane, its normal along the marker's z
+      // a thin box just below the plane, its normal along the marker's z (so rviz's grid in the
+      // plane stays visible on top of it)
       ignition::math::Quaterniond R;
       R.From2Axes(ignition::math::Vector3d::UnitZ, shape.plane_normal.Normalized());
-      SetPose(ignition::math::Pose3d(ignition::math::Vector3d::Zero, R) + X_WV, m);
+      SetPose(ignition::math::Pose3d(shape.plane_normal.Normalized() * -0.002, R) + X_WV, m);
       m->type = visualization_msgs::Marker::CUBE;
       m->scale.x = shape.plane_size_m.X();
       m->scale.y = shape.plane_size_m.Y();
