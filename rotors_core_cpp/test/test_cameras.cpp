@@ -385,3 +385,57 @@ TEST(Camera, AMissingTextureFailsTheModelUnlessBrokenSensorsAreSkipped) {
   ModelBuilder::SetSkipBrokenSensors(false);
   std::filesystem::remove_all(folder);
 }
+
+TEST(Camera, HeightmapDepthFollowsTheTerrain) {
+  // a 33 x 33 ramp rising along +x over 20 x 20 m, 0 to 2 m
+  const std::string pgm = std::filesystem::temp_directory_path().string() + "/rotors_ramp_" + std::to_string(getpid()) + ".pgm";
+  {
+    std::ofstream f(pgm, std::ios::binary);
+    f << "P5\n33 33\n255\n";
+    for (int r = 0; r < 33; ++r)
+      for (int c = 0; c < 33; ++c) f.put(static_cast<char>(c * 255 / 32));
+  }
+  // the terrain: sample c (x = -10 + c 20 / 32) at height floor(c 255 / 32) / 255 * 2, linear between
+  auto terrain_z = [](double x) {
+    const double s = std::clamp((x + 10.0) / 20.0 * 32.0, 0.0, 32.0);
+    const int c = std::min(static_cast<int>(s), 31);
+    auto h = [](int k) { return (k * 255 / 32) / 255.0 * 2.0; };
+    return h(c) + (s - c) * (h(c + 1) - h(c));
+  };
+  const std::string terrain =
+      "<model name='terrain'><static>true</static><link name='link'><visual name='v'><geometry><heightmap><uri>" + pgm +
+      "</uri><size>20 20 2</size><pos>0 0 0</pos></heightmap></geometry></visual></link></model>";
+  // looking down from 8 m, turned and tilted a little
+  const Pose3d X_WM_rig(0.5, 0.3, 8.0, 0.05, 1.5, 0.3);
+  WorldGuard g{WorldLoader::LoadString(
+      World(terrain + Rig(X_WM_rig, Pose3d(), "depth", 30, Camera("", Pose3d(), 160, 120, 1.0, "L8", 0.0, 50.0))),
+      "heightmap")};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  const auto& f = cam->Frame(0);
+  const Eigen::Isometry3d T_WO = ToEigen(X_WM_rig) * T_CO();
+  const Eigen::Vector3d C = T_WO.translation();
+  const double fpx = cam->Camera(0).intrinsics.FocalLengthPx();
+  double worst = 0;
+  int checked = 0;
+  for (int v = 0; v < 120; v += 3)
+    for (int u = 0; u < 160; u += 3) {
+      const Eigen::Vector3d d = T_WO.linear() * Eigen::Vector3d((u - 79.5) / fpx, (v - 59.5) / fpx, 1.0);
+      // C + t d meets the terrain where C.z + t d.z = terrain_z(C.x + t d.x) (bisection; the ray
+      // goes down, so the difference falls with t); the optical depth is t
+      double lo = 0.0, hi = 50.0;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi), p_z = C.z() + mid * d.z(), ground = terrain_z(C.x() + mid * d.x());
+        (p_z > ground ? lo : hi) = mid;
+      }
+      const double t = 0.5 * (lo + hi);
+      const Eigen::Vector3d p = C + t * d;
+      if (std::abs(p.x()) > 9.9 || std::abs(p.y()) > 9.9) continue;  // off the terrain
+      worst = std::max(worst, std::abs(f.depth_m[v * 160 + u] - t));
+      ++checked;
+    }
+  std::printf("%d pixels on the ramp, largest depth error %.6f m\n", checked, worst);
+  EXPECT_GT(checked, 1000);
+  EXPECT_LT(worst, 0.001);
+  std::filesystem::remove(pgm);
+}

@@ -143,8 +143,8 @@ GLuint Link(const char* vertex, const char* fragment) {
 }
 
 struct GpuMesh {
-  GLuint vao = 0, vbo = 0, texture = 0;  // texture 0: none
-  GLsizei vertices = 0;
+  GLuint vao = 0, vbo = 0, ebo = 0, texture = 0;  // ebo 0: not indexed; texture 0: none
+  GLsizei vertices = 0;                            // vertices drawn (indices when indexed)
   bool own_colours = false;              // per-vertex colours from the mesh file
   std::shared_ptr<const void> source;  // keeps the key's object alive
 };
@@ -204,7 +204,7 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
                                       const std::string& texture_file) {
   GpuMesh mesh;
   mesh.source = std::move(source);
-  mesh.vertices = static_cast<GLsizei>(soup.VertexCount());
+  mesh.vertices = static_cast<GLsizei>(soup.indices.empty() ? soup.VertexCount() : soup.indices.size());
   mesh.own_colours = !soup.colours.empty();
   constexpr int kFloats = 11;  // position, normal, colour, uv
   std::vector<float> interleaved;
@@ -232,6 +232,11 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
     glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offset * sizeof(float)));
     glEnableVertexAttribArray(a);
   }
+  if (!soup.indices.empty()) {
+    glGenBuffers(1, &mesh.ebo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.ebo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, soup.indices.size() * sizeof(uint32_t), soup.indices.data(), GL_STATIC_DRAW);
+  }
   glBindVertexArray(0);
   if (!texture_file.empty() && !soup.uvs.empty()) {
     int w = 0, h = 0, channels = 0;
@@ -258,7 +263,7 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
       stbi_image_free(pixels);
     }
   }
-  triangles += soup.VertexCount() / 3;
+  triangles += soup.TriangleCount();
   return meshes.emplace(key, std::move(mesh)).first->second;
 }
 
@@ -415,7 +420,10 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
       glUniform1i(loc_texture, textured);
       if (textured) glBindTexture(GL_TEXTURE_2D, mesh->texture);
       glBindVertexArray(mesh->vao);
-      glDrawArrays(GL_TRIANGLES, 0, mesh->vertices);
+      if (mesh->ebo)
+        glDrawElements(GL_TRIANGLES, mesh->vertices, GL_UNSIGNED_INT, nullptr);
+      else
+        glDrawArrays(GL_TRIANGLES, 0, mesh->vertices);
     }
   }
   // the sky last, on the far plane where nothing was drawn (early depth test: no overdraw), through

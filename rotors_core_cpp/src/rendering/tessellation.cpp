@@ -113,6 +113,7 @@ TriangleSoup FromMesh(const geometry::TriangleMesh& mesh) {
 }
 
 TriangleSoup FromHeightField(const geometry::HeightField& h) {
+  // one shared vertex per sample (normal from the height gradient), two indexed triangles per cell
   TriangleSoup soup;
   const int n = h.n;
   const double dx = h.size_x_m / (n - 1), dy = h.size_y_m / (n - 1);
@@ -121,18 +122,21 @@ TriangleSoup FromHeightField(const geometry::HeightField& h) {
     return Vector3f(h.pos_x_m - h.size_x_m / 2 + cc * dx, h.pos_y_m + h.size_y_m / 2 - rr * dy,
                     h.heights_m[rr * n + cc]);
   };
-  auto normal = [&](int r, int c) {
-    // central differences; rows run towards -y
-    const double dz_dx = (at(r, c + 1).z() - at(r, c - 1).z()) / (at(r, c + 1).x() - at(r, c - 1).x());
-    const double dz_dy = (at(r - 1, c).z() - at(r + 1, c).z()) / (at(r - 1, c).y() - at(r + 1, c).y());
-    return Vector3f(Eigen::Vector3d(-dz_dx, -dz_dy, 1.0).normalized().cast<float>());
-  };
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      // central differences; rows run towards -y
+      const double dz_dx = (at(r, c + 1).z() - at(r, c - 1).z()) / (at(r, c + 1).x() - at(r, c - 1).x());
+      const double dz_dy = (at(r - 1, c).z() - at(r + 1, c).z()) / (at(r - 1, c).y() - at(r + 1, c).y());
+      const Vector3f p = at(r, c), normal = Eigen::Vector3d(-dz_dx, -dz_dy, 1.0).normalized().cast<float>();
+      soup.positions_m.insert(soup.positions_m.end(), {p.x(), p.y(), p.z()});
+      soup.normals.insert(soup.normals.end(), {normal.x(), normal.y(), normal.z()});
+    }
+  auto index = [&](int r, int c) { return static_cast<uint32_t>(r * n + c); };
   for (int r = 0; r + 1 < n; ++r)
     for (int c = 0; c + 1 < n; ++c) {
       // (r+1, c) is south-west: counter-clockwise from above is sw, se, ne, nw
-      const Vector3f sw = at(r + 1, c), se = at(r + 1, c + 1), ne = at(r, c + 1), nw = at(r, c);
-      soup.Add(sw, se, ne, normal(r + 1, c), normal(r + 1, c + 1), normal(r, c + 1));
-      soup.Add(sw, ne, nw, normal(r + 1, c), normal(r, c + 1), normal(r, c));
+      const uint32_t sw = index(r + 1, c), se = index(r + 1, c + 1), ne = index(r, c + 1), nw = index(r, c);
+      soup.indices.insert(soup.indices.end(), {sw, se, ne, sw, ne, nw});
     }
   return soup;
 }

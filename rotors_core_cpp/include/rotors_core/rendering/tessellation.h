@@ -10,13 +10,16 @@
 namespace rotors_sim {
 namespace rendering {
 
-/// Unindexed triangles in the shape's own frame: three vertices per triangle, each with a normal.
+/// Triangles in the shape's own frame, each vertex with a normal: three vertices per triangle, or
+/// shared vertices and three indices per triangle (smooth surfaces such as heightmaps).
 struct TriangleSoup {
   std::vector<float> positions_m;  ///< x y z per vertex
   std::vector<float> normals;      ///< unit normal per vertex
   std::vector<float> colours;      ///< r g b per vertex (a mesh's own colours), or empty: white
   std::vector<float> uvs;          ///< u v per vertex (texture coordinates), or empty
+  std::vector<uint32_t> indices;   ///< three per triangle, or empty: the vertices taken in threes
   size_t VertexCount() const { return positions_m.size() / 3; }
+  size_t TriangleCount() const { return indices.empty() ? VertexCount() / 3 : indices.size() / 3; }
   void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c);  ///< flat normal
   void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
            const Eigen::Vector3f& na, const Eigen::Vector3f& nb, const Eigen::Vector3f& nc);
