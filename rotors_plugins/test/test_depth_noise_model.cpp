@@ -49,6 +49,13 @@ TEST(DepthNoiseModel, D435SigmaIsTheRmsErrorFormula) {
   EXPECT_DOUBLE_EQ(DepthNoiseModel(p, 1).Sigma(8.0), 0.01);  // capped
 }
 
+TEST(DepthNoiseModel, PmdSigmaIsOnePercentOfDistance) {
+  DepthNoiseParams p;
+  p.model = DepthNoiseParams::ParseModel("PMD");
+  p.max_depth_m = 10;
+  ExpectStatistics(p, 2.5, 0.025);  // sigma(z) = 0.01 z
+}
+
 TEST(DepthNoiseModel, OutOfRangeIsNanAndTheSeedRepeats) {
   DepthNoiseParams p;
   p.min_depth_m = 0.5;
@@ -59,5 +66,5 @@ TEST(DepthNoiseModel, OutOfRangeIsNanAndTheSeedRepeats) {
   EXPECT_TRUE(std::isnan(a[0]) && std::isnan(a[3]) && std::isnan(a[4]));
   EXPECT_EQ(a[1], b[1]);
   EXPECT_EQ(a[2], b[2]);
-  EXPECT_THROW(DepthNoiseParams::ParseModel("PMD"), rotors_sim::SimError);
+  EXPECT_THROW(DepthNoiseParams::ParseModel("Lidar"), rotors_sim::SimError);
 }

@@ -14,7 +14,8 @@ DepthNoiseParams::Model DepthNoiseParams::ParseModel(const std::string& name) {
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
   if (lower == "kinect") return Model::kKinect;
   if (lower == "d435") return Model::kD435;
-  throw rotors_sim::SimError("depthNoiseModelName '" + name + "' is not a model (Kinect or D435)");
+  if (lower == "pmd") return Model::kPMD;
+  throw rotors_sim::SimError("depthNoiseModelName '" + name + "' is not a model (Kinect, D435 or PMD)");
 }
 
 std::string DepthNoiseParams::Validate() const {
@@ -27,6 +28,7 @@ std::string DepthNoiseParams::Validate() const {
 
 double DepthNoiseModel::Sigma(double z) const {
   if (p_.model == DepthNoiseParams::Model::kKinect) return 0.0012 + 0.0019 * (z - 0.4) * (z - 0.4);
+  if (p_.model == DepthNoiseParams::Model::kPMD) return 0.01 * z;
   const double f_px = p_.width_px / (2.0 * std::tan(p_.horizontal_fov_rad / 2.0));
   return std::min(z * z * p_.subpixel_error_px / (f_px * p_.baseline_m), p_.max_stdev_m);
 }

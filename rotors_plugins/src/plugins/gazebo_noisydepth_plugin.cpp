@@ -1,5 +1,5 @@
 // librotors_gazebo_noisydepth_plugin.so (RotorS): a depth camera with axial noise,
-// <depthNoiseModelName> Kinect (default) or D435 (models/depth_noise_model.h); for D435 also
+// <depthNoiseModelName> Kinect (default), D435 or PMD (models/depth_noise_model.h); for D435 also
 // <horizontal_fov>, <baseline>, <D435NoiseSubpixelErr>, <D435MaxStdev>. Its defaults: image on
 // ir/image_raw + ir/camera_info, cloud on points, depth on depth/image_raw, cutoff 0.4-5 m.
 // <randomEngineSeed> makes the noise repeatable.

@@ -2,7 +2,8 @@
 //   Kinect (Nguyen, Izadi, Lovell 2012, 10-60 deg model): sigma(z) = 0.0012 + 0.0019 (z - 0.4)^2  [m]
 //   D435 (Intel's theoretical RMS error):                 sigma(z) = z^2 e_subpixel / (f b)       [m]
 //     with f = W / (2 tan(hfov / 2)) [px], b the baseline [m], capped at max_stdev.
-// Depth outside (min, max) becomes NaN. PMD time-of-flight noise is not modelled (no source for it).
+//   PMD (time of flight, the 1 % of distance PMD states):  sigma(z) = 0.01 z                      [m]
+// Depth outside (min, max) becomes NaN.
 #pragma once
 
 #include <random>
@@ -12,13 +13,13 @@
 namespace rotors_gazebo_plugins {
 
 struct DepthNoiseParams {
-  enum class Model { kKinect, kD435 };
+  enum class Model { kKinect, kD435, kPMD };
   Model model = Model::kKinect;
   double min_depth_m = 0.2, max_depth_m = 1000.0;
   // D435 only
   double horizontal_fov_rad = 1.5707963, baseline_m = 0.05, subpixel_error_px = 0.1, max_stdev_m = 3.0;
   int width_px = 640;
-  /// "Kinect" or "D435" (any case); throws SimError naming the value otherwise.
+  /// "Kinect", "D435" or "PMD" (any case); throws SimError naming the value otherwise.
   static Model ParseModel(const std::string& name);
   std::string Validate() const;
 };
