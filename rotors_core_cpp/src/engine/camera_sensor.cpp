@@ -10,22 +10,32 @@
 
 namespace rotors_sim {
 namespace sensors {
+namespace {
+
+/// The <camera> elements of a sensor element; SimError "<label>: <problem>" for a bad one.
+std::vector<rendering::CameraSpec> ParseCameras(const sdf::ElementPtr& sensor, const std::string& label) {
+  std::vector<rendering::CameraSpec> cameras;
+  if (sensor && sensor->HasElement("camera")) {
+    for (sdf::ElementPtr c = sensor->GetElement("camera"); c; c = c->GetNextElement("camera")) {
+      try {
+        cameras.push_back(rendering::ParseCamera(c));
+      } catch (const SimError& e) {
+        throw SimError(label + ": " + e.what());
+      }
+    }
+  }
+  if (cameras.empty()) throw SimError(label + " has no <camera> element");
+  return cameras;
+}
+
+}  // namespace
 
 CameraSensor::CameraSensor(std::string name, std::string type, physics::LinkPtr parent,
                            const physics::Pose3d& pose_in_link, double update_rate_hz, const sdf::ElementPtr& sdf)
     : Sensor(std::move(name), std::move(type), std::move(parent), pose_in_link, update_rate_hz) {
   const std::string label = Type() + " sensor '" + Name() + "'";
   if (!(update_rate_hz >= 0.0)) throw SimError(label + ": update_rate must be >= 0");
-  if (sdf && sdf->HasElement("camera")) {
-    for (sdf::ElementPtr c = sdf->GetElement("camera"); c; c = c->GetNextElement("camera")) {
-      try {
-        cameras_.push_back(rendering::ParseCamera(c));
-      } catch (const SimError& e) {
-        throw SimError(label + ": " + e.what());
-      }
-    }
-  }
-  if (cameras_.empty()) throw SimError(label + " has no <camera> element");
+  cameras_ = ParseCameras(sdf, label);
   if (Type() != "multicamera" && cameras_.size() > 1)
     throw SimError(label + " has " + std::to_string(cameras_.size()) + " <camera> elements; only a multicamera may");
   // what it will draw must be drawable: the textures of the meshes in the world so far
@@ -51,15 +61,7 @@ void CameraSensor::CheckAll(const sdf::ElementPtr& element, const std::string& m
   const std::string in_model = element->GetName() == "model" ? name : model;
   if (element->GetName() == "sensor" && element->HasAttribute("type") &&
       IsCameraType(element->Get<std::string>("type"))) {
-    const std::string label = "model '" + in_model + "', " + element->Get<std::string>("type") + " sensor '" + name + "'";
-    if (!element->HasElement("camera")) throw SimError(label + " has no <camera> element");
-    for (sdf::ElementPtr c = element->GetElement("camera"); c; c = c->GetNextElement("camera")) {
-      try {
-        rendering::ParseCamera(c);
-      } catch (const SimError& e) {
-        throw SimError(label + ": " + e.what());
-      }
-    }
+    ParseCameras(element, "model '" + in_model + "', " + element->Get<std::string>("type") + " sensor '" + name + "'");
     return;
   }
   for (sdf::ElementPtr child = element->GetFirstElement(); child; child = child->GetNextElement()) CheckAll(child, in_model);
