@@ -101,12 +101,19 @@ def counter(side):
     return cb
 # AnyMsg: received whole but not deserialised, so the watcher's Python costs little
 subs = [rospy.Subscriber(f'/firefly/vi_sensor/{s}/image_raw', rospy.AnyMsg, counter(s), queue_size=5) for s in count]
-t = lambda: rospy.wait_for_message('/clock', Clock, timeout=30).clock.to_sec()
+sim = {'t': -1.0}
+# one /clock subscription for the whole run, read at 20 Hz wall time (no busy loop, no re-subscribing)
+clock = rospy.Subscriber('/clock', Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
+def wait_until(t_sim, limit_s=120.0):
+    deadline = time.monotonic() + limit_s
+    while sim['t'] < t_sim:
+        if time.monotonic() > deadline: sys.exit(f'sim time stuck at {sim["t"]:.2f} s, waiting for {t_sim} s')
+        time.sleep(0.05)
 begin, end = 8.0, 28.0
-while t() < begin: pass
-w0, s0, n0 = time.monotonic(), t(), count['right']
-while t() < end: pass
-s1, n1 = t(), count['right']
+wait_until(begin)
+w0, s0, n0 = time.monotonic(), sim['t'], count['right']
+wait_until(end)
+s1, n1 = sim['t'], count['right']
 print((n1 - n0) / (s1 - s0), (s1 - s0) / (time.monotonic() - w0))
 """
 

@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
   std::stringstream text;
   text << in.rdbuf();
   std::string world_sdf = text.str();
+  if (!in || world_sdf.rfind("</world>") == std::string::npos) {
+    std::fprintf(stderr, "rotors_camera_bench: '%s' is no world file (cannot be read or has no </world>)\n", argv[1]);
+    return 1;
+  }
   world_sdf.insert(world_sdf.rfind("</world>"), kRig);
   physics::WorldPtr world;
   try {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <unistd.h>
@@ -16,6 +17,7 @@
 #include "rotors_core/model_builder.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
+#include "rotors_core/rendering/tessellation.h"
 #include "rotors_core/sensors/camera_sensor.h"
 #include "rotors_core/world_loader.h"
 #include "test_worlds.h"
@@ -129,6 +131,98 @@ TEST(Camera, IntrinsicsFollowFovAndSize) {
   EXPECT_DOUBLE_EQ(in.K()(0, 2), 375.5);
   EXPECT_DOUBLE_EQ(in.K()(1, 2), 239.5);
   EXPECT_DOUBLE_EQ(in.K()(0, 0), in.K()(1, 1));
+}
+
+TEST(Camera, FrustumCullingNeverDropsASphereThatProjectsIntoTheImage) {
+  rendering::CameraIntrinsics in;
+  in.width_px = 752;
+  in.height_px = 480;
+  in.horizontal_fov_rad = 1.3962634;
+  in.near_m = 0.02;
+  in.far_m = 30.0;
+  const Eigen::Matrix3d K = in.K();
+  // a point is seen when it lies between the clip planes and projects (K X) into the image
+  auto seen = [&](const Eigen::Vector3d& X_O) {
+    if (X_O.z() < in.near_m || X_O.z() > in.far_m) return false;
+    const Eigen::Vector3d uv = K * X_O / X_O.z();
+    return uv.x() >= -0.5 && uv.x() <= 751.5 && uv.y() >= -0.5 && uv.y() <= 479.5;
+  };
+  std::srand(7);
+  auto uniform = [] { return 2.0 * std::rand() / RAND_MAX - 1.0; };
+  int culled = 0, kept_but_unseen = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Eigen::Vector3d c(8 * uniform(), 8 * uniform(), 10 * uniform());
+    const double r = 0.05 + std::abs(uniform());
+    bool any_seen = false;  // the sphere's surface and centre, sampled
+    for (int k = 0; k < 400 && !any_seen; ++k) {
+      const Eigen::Vector3d d = Eigen::Vector3d(uniform(), uniform(), uniform()).normalized();
+      any_seen = seen(c + r * d) || seen(c);
+    }
+    if (!in.MaySee(c, r)) {
+      ++culled;
+      EXPECT_FALSE(any_seen) << "culled a sphere at " << c.transpose() << " r " << r << " that is in view";
+    } else if (!any_seen) {
+      ++kept_but_unseen;
+    }
+  }
+  // the test is not empty: most spheres off the view are culled
+  EXPECT_GT(culled, 2000);
+  EXPECT_LT(kept_but_unseen, culled / 4);
+  EXPECT_FALSE(in.MaySee(Eigen::Vector3d(0, 0, -1), 0.5));   // behind the camera
+  EXPECT_FALSE(in.MaySee(Eigen::Vector3d(0, 0, 31.5), 1.0));  // beyond the far plane
+  EXPECT_TRUE(in.MaySee(Eigen::Vector3d(0, 0, -1), 1.5));    // reaches past the near plane
+}
+
+namespace {
+/// Every triangle of a soup as its three corner positions, sorted: the soup's content, order-free.
+std::multiset<std::vector<float>> Triangles(const rendering::TriangleSoup& soup) {
+  std::multiset<std::vector<float>> out;
+  for (size_t t = 0; t < soup.TriangleCount(); ++t) {
+    std::vector<float> corners;
+    for (int c = 0; c < 3; ++c) {
+      const size_t v = soup.indices.empty() ? 3 * t + c : soup.indices[3 * t + c];
+      corners.insert(corners.end(), soup.positions_m.begin() + 3 * v, soup.positions_m.begin() + 3 * v + 3);
+    }
+    out.insert(corners);
+  }
+  return out;
+}
+
+void ExpectChunksCoverTheSoup(rendering::TriangleSoup soup) {
+  const auto before = Triangles(soup);
+  const std::vector<rendering::Chunk> chunks = rendering::SortIntoChunks(&soup, 4, 100);
+  EXPECT_EQ(Triangles(soup), before);  // the same triangles, only reordered
+  EXPECT_GT(chunks.size(), 8u);
+  EXPECT_LE(chunks.size(), 64u);
+  size_t next = 0;
+  for (const rendering::Chunk& chunk : chunks) {
+    EXPECT_EQ(chunk.first_triangle, next);  // contiguous runs covering every triangle once
+    next += chunk.triangles;
+    for (size_t t = chunk.first_triangle; t < chunk.first_triangle + chunk.triangles; ++t)
+      for (int c = 0; c < 3; ++c) {
+        const size_t v = soup.indices.empty() ? 3 * t + c : soup.indices[3 * t + c];
+        const Eigen::Vector3f p(soup.positions_m[3 * v], soup.positions_m[3 * v + 1], soup.positions_m[3 * v + 2]);
+        EXPECT_LE((p - chunk.centre_m).norm(), chunk.radius_m * (1 + 1e-6f));
+      }
+  }
+  EXPECT_EQ(next, soup.TriangleCount());
+}
+}  // namespace
+
+TEST(Camera, ChunksOfAMeshHoldEveryTriangleOnceInsideTheirSpheres) {
+  ExpectChunksCoverTheSoup(rendering::UnitSphere(64, 32));  // vertices in threes
+  rendering::TriangleSoup grid;                              // shared vertices, indexed
+  const int n = 30;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      grid.positions_m.insert(grid.positions_m.end(), {float(i), float(j), std::sin(0.3f * i) * std::cos(0.2f * j)});
+  grid.normals.assign(grid.positions_m.size(), 0.0f);
+  for (uint32_t i = 0; i + 1 < n; ++i)
+    for (uint32_t j = 0; j + 1 < n; ++j) {
+      const uint32_t a = i * n + j, b = a + n, c = b + 1, d = a + 1;
+      grid.indices.insert(grid.indices.end(), {a, b, c, a, c, d});
+    }
+  ExpectChunksCoverTheSoup(grid);
 }
 
 TEST(Camera, BoxCornerAppearsWhereThePinholeModelPutsIt) {

@@ -34,6 +34,19 @@ Eigen::Matrix3d CameraIntrinsics::K() const {
   return K;
 }
 
+bool CameraIntrinsics::MaySee(const Eigen::Vector3d& c_O, double r) const {
+  if (c_O.z() < near_m - r || c_O.z() > far_m + r) return false;
+  // side planes through the optical centre and the image edges: a point is inside when
+  // |x| f <= z W/2 and |y| f <= z H/2 (a pixel of margin)
+  const double f = FocalLengthPx();
+  const double half_w = width_px / 2.0 + 1.0, half_h = height_px / 2.0 + 1.0;
+  // signed distance of the centre beyond each side plane; the sphere is outside when beyond by r
+  auto beyond = [&](double lateral_m, double half_px) {
+    return (std::abs(lateral_m) * f - c_O.z() * half_px) / std::hypot(f, half_px) > r;
+  };
+  return !beyond(c_O.x(), half_w) && !beyond(c_O.y(), half_h);
+}
+
 std::string CameraIntrinsics::Validate() const {
   if (width_px <= 0 || height_px <= 0)
     return "image size " + std::to_string(width_px) + " x " + std::to_string(height_px) + " must be positive";

@@ -144,8 +144,8 @@ GLuint Link(const char* vertex, const char* fragment) {
 
 struct GpuMesh {
   GLuint vao = 0, vbo = 0, ebo = 0, texture = 0;  // ebo 0: not indexed; texture 0: none
-  GLsizei vertices = 0;                            // vertices drawn (indices when indexed)
   bool own_colours = false;              // per-vertex colours from the mesh file
+  std::vector<Chunk> chunks;             // compact runs of triangles, each culled on its own
   std::shared_ptr<const void> source;  // keeps the key's object alive
 };
 
@@ -171,7 +171,7 @@ struct Renderer::Impl {
   size_t triangles = 0;
 
   void CreateContext();
-  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup,
+  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, TriangleSoup soup,
                         const std::string& texture_file = "");
   const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
   Target& TargetFor(int width, int height, PixelFormat format, bool depth);
@@ -200,12 +200,12 @@ void Renderer::Impl::CreateContext() {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
 
-const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source, const TriangleSoup& soup,
+const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source, TriangleSoup soup,
                                       const std::string& texture_file) {
   GpuMesh mesh;
   mesh.source = std::move(source);
-  mesh.vertices = static_cast<GLsizei>(soup.indices.empty() ? soup.VertexCount() : soup.indices.size());
   mesh.own_colours = !soup.colours.empty();
+  mesh.chunks = SortIntoChunks(&soup);
   constexpr int kFloats = 11;  // position, normal, colour, uv
   std::vector<float> interleaved;
   interleaved.reserve(soup.VertexCount() * kFloats);
@@ -398,6 +398,7 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   const GLint loc_texture = glGetUniformLocation(r.mesh_program, "use_texture");
   glUniform1i(glGetUniformLocation(r.mesh_program, "texture_image"), 0);
   glActiveTexture(GL_TEXTURE0);
+  std::vector<const Chunk*> visible;
   for (const physics::ModelPtr& model : world.Models()) {
     for (const geometry::Visual& visual : model->Visuals()) {
       Eigen::Matrix4d S;
@@ -405,8 +406,16 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
       if (!mesh) continue;
       const ignition::math::Pose3d X_WV = visual.X_LV + visual.link->WorldPose();
       const Eigen::Matrix4d T_OV = (T_OW * ToEigen(X_WV)).matrix() * S;
+      // the chunks in view only (a vehicle's own body behind its camera is skipped)
+      const Eigen::Matrix3d A = T_OV.topLeftCorner<3, 3>();
+      const double scale = A.colwise().norm().maxCoeff();
+      visible.clear();
+      for (const Chunk& chunk : mesh->chunks)
+        if (in.MaySee(A * chunk.centre_m.cast<double>() + T_OV.topRightCorner<3, 1>(), scale * chunk.radius_m))
+          visible.push_back(&chunk);
+      if (visible.empty()) continue;
       const Eigen::Matrix4f T = T_OV.cast<float>();
-      const Eigen::Matrix3f N = T_OV.topLeftCorner<3, 3>().inverse().transpose().cast<float>();
+      const Eigen::Matrix3f N = A.inverse().transpose().cast<float>();
       glUniformMatrix4fv(loc_T, 1, GL_FALSE, T.data());
       glUniformMatrix3fv(loc_N, 1, GL_FALSE, N.data());
       // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
@@ -420,10 +429,14 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
       glUniform1i(loc_texture, textured);
       if (textured) glBindTexture(GL_TEXTURE_2D, mesh->texture);
       glBindVertexArray(mesh->vao);
-      if (mesh->ebo)
-        glDrawElements(GL_TRIANGLES, mesh->vertices, GL_UNSIGNED_INT, nullptr);
-      else
-        glDrawArrays(GL_TRIANGLES, 0, mesh->vertices);
+      for (const Chunk* chunk : visible) {
+        const auto first = static_cast<GLint>(3 * chunk->first_triangle);
+        const auto count = static_cast<GLsizei>(3 * chunk->triangles);
+        if (mesh->ebo)
+          glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
+        else
+          glDrawArrays(GL_TRIANGLES, first, count);
+      }
     }
   }
   // the sky last, on the far plane where nothing was drawn (early depth test: no overdraw), through

@@ -17,6 +17,84 @@ namespace rendering {
 
 using Eigen::Vector3f;
 
+namespace {
+/// The sphere around the given vertices: centred on their bounding box.
+template <typename VertexIds>
+void SphereAround(const TriangleSoup& soup, const VertexIds& ids, Vector3f* centre_m, float* radius_m) {
+  const Eigen::Map<const Eigen::Matrix3Xf> p(soup.positions_m.data(), 3,
+                                             static_cast<Eigen::Index>(soup.VertexCount()));
+  Vector3f lo = Vector3f::Constant(INFINITY), hi = Vector3f::Constant(-INFINITY);
+  for (uint32_t v : ids) {
+    lo = lo.cwiseMin(p.col(v));
+    hi = hi.cwiseMax(p.col(v));
+  }
+  *centre_m = 0.5f * (lo + hi);
+  float r2 = 0.0f;
+  for (uint32_t v : ids) r2 = std::max(r2, (p.col(v) - *centre_m).squaredNorm());
+  *radius_m = std::sqrt(r2);
+}
+}  // namespace
+
+std::vector<Chunk> SortIntoChunks(TriangleSoup* soup, int cells_per_axis, size_t min_triangles) {
+  const size_t n = soup->TriangleCount();
+  if (n == 0) return {};
+  const bool indexed = !soup->indices.empty();
+  auto vertex = [&](size_t triangle, int corner) -> uint32_t {
+    return indexed ? soup->indices[3 * triangle + corner] : static_cast<uint32_t>(3 * triangle + corner);
+  };
+  const Eigen::Map<const Eigen::Matrix3Xf> p(soup->positions_m.data(), 3,
+                                             static_cast<Eigen::Index>(soup->VertexCount()));
+  const Vector3f lo = p.rowwise().minCoeff(), extent = (p.rowwise().maxCoeff() - lo).cwiseMax(1e-9f);
+  const int cells = n < min_triangles ? 1 : cells_per_axis;
+  std::vector<int> cell(n);
+  for (size_t t = 0; t < n; ++t) {
+    const Vector3f centroid = (p.col(vertex(t, 0)) + p.col(vertex(t, 1)) + p.col(vertex(t, 2))) / 3.0f;
+    const Eigen::Vector3i c = ((centroid - lo).cwiseQuotient(extent) * cells).cast<int>().cwiseMin(cells - 1);
+    cell[t] = (c.z() * cells + c.y()) * cells + c.x();
+  }
+  std::vector<size_t> order(n);
+  for (size_t t = 0; t < n; ++t) order[t] = t;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cell[a] < cell[b]; });
+
+  if (indexed) {
+    std::vector<uint32_t> indices(soup->indices.size());
+    for (size_t i = 0; i < n; ++i)
+      std::copy_n(soup->indices.begin() + 3 * order[i], 3, indices.begin() + 3 * i);
+    soup->indices.swap(indices);
+  } else {
+    // every per-vertex array moves with its triangle's three vertices
+    auto permute = [&](std::vector<float>* values, int per_vertex) {
+      if (values->empty()) return;
+      std::vector<float> sorted(values->size());
+      const size_t per_triangle = 3 * per_vertex;
+      for (size_t i = 0; i < n; ++i)
+        std::copy_n(values->begin() + per_triangle * order[i], per_triangle, sorted.begin() + per_triangle * i);
+      values->swap(sorted);
+    };
+    permute(&soup->positions_m, 3);
+    permute(&soup->normals, 3);
+    permute(&soup->colours, 3);
+    permute(&soup->uvs, 2);
+  }
+
+  std::vector<Chunk> chunks;
+  for (size_t begin = 0; begin < n;) {
+    size_t end = begin;
+    while (end < n && cell[order[end]] == cell[order[begin]]) ++end;
+    Chunk chunk;
+    chunk.first_triangle = begin;
+    chunk.triangles = end - begin;
+    std::vector<uint32_t> ids;
+    ids.reserve(3 * chunk.triangles);
+    for (size_t t = begin; t < end; ++t)
+      for (int corner = 0; corner < 3; ++corner) ids.push_back(vertex(t, corner));
+    SphereAround(*soup, ids, &chunk.centre_m, &chunk.radius_m);
+    chunks.push_back(chunk);
+    begin = end;
+  }
+  return chunks;
+}
+
 void TriangleSoup::Add(const Vector3f& a, const Vector3f& b, const Vector3f& c) {
   Vector3f n = (b - a).cross(c - a);
   const float norm = n.norm();

@@ -30,6 +30,9 @@ struct CameraIntrinsics {
   double Cx() const { return (width_px - 1) / 2.0; }
   double Cy() const { return (height_px - 1) / 2.0; }
   Eigen::Matrix3d K() const;
+  /// False when a sphere (centre in the optical frame) lies wholly outside the view frustum, so
+  /// that nothing of what it encloses can be seen; true when it may be seen.
+  bool MaySee(const Eigen::Vector3d& centre_O_m, double radius_m) const;
   std::string Validate() const;  ///< empty when valid, else a one-line reason
 };
 

@@ -25,6 +25,19 @@ struct TriangleSoup {
            const Eigen::Vector3f& na, const Eigen::Vector3f& nb, const Eigen::Vector3f& nc);
 };
 
+/// A run of triangles of a soup and a sphere around them, so that the renderer can skip the run
+/// when the sphere is out of view.
+struct Chunk {
+  size_t first_triangle = 0, triangles = 0;
+  Eigen::Vector3f centre_m = Eigen::Vector3f::Zero();
+  float radius_m = 0.0f;
+};
+
+/// Reorders a soup's triangles by the cell of a grid over its bounding box (at most
+/// cells_per_axis^3 cells; one cell for soups of fewer than min_triangles) and returns one chunk
+/// per non-empty cell. The set of triangles and each triangle's vertices are unchanged.
+std::vector<Chunk> SortIntoChunks(TriangleSoup* soup, int cells_per_axis = 4, size_t min_triangles = 1024);
+
 /// Unit shapes, scaled by the renderer: a 1 m cube centred at the origin, a sphere of radius 1 m,
 /// a cylinder of radius 1 m and length 1 m along z, a 1 x 1 m square in the xy plane.
 TriangleSoup UnitBox();
