@@ -255,6 +255,22 @@ def swarm_rtf(n: int) -> float:
         return g.python(SWARM_WATCH, str(n))
 
 
+def sweep_flights_per_hour(workers: int) -> Dict:
+    """The shipped firefly sweep (16 hovering flights of 20 s, lockstep) on local Ray with
+    `workers` flights at a time: flights per wall hour, start-up of Ray included."""
+    package = Path(sh(["rospack", "find", "rotors_evaluation"]).strip())
+    out = OUT / f"sweep_{workers}"
+    subprocess.run(["rm", "-rf", str(out)], check=True)
+    t0 = time.monotonic()
+    subprocess.run([sys.executable, str(package / "scripts" / "sweep.py"),
+                    str(package / "sweeps" / "firefly_lee_gains_x_wind.yaml"), "-o", str(out), "--workers", str(workers)],
+                   check=True, capture_output=True, timeout=1800)
+    wall_s = time.monotonic() - t0
+    with open(out / "results.csv") as f:
+        ok = sum(1 for line in f if ",ok," in line)
+    return {"flights": ok, "wall_s": wall_s, "flights_per_hour": 3600.0 * ok / wall_s}
+
+
 def main() -> int:
     OUT.mkdir(parents=True, exist_ok=True)
     urdf = OUT / "firefly.urdf"
@@ -273,6 +289,7 @@ def main() -> int:
     vi_fast = statistics.median(vi_sensor_closed_loop("0") for _ in range(3))
     flight_steps = {world: statistics.median(waypoint_flight_steps_per_s(world) for _ in range(3))
                     for world in ("basic", "powerplant")}
+    sweeps = {n: sweep_flights_per_hour(n) for n in (1, 2)}
     res = {
         "engine_steps_per_s_1ms_no_ros": eng["steps_per_s"],
         "engine_plugins": eng["plugins"],
@@ -289,6 +306,7 @@ def main() -> int:
         "camera_fps": cameras,
         "vi_sensor_closed_loop_rtf_paced": vi_paced,
         "vi_sensor_closed_loop_rtf_as_fast_as_possible": vi_fast,
+        "sweep_firefly_lee_gains_x_wind": sweeps,
         "not_measured": [],
     }
     rows = [("engine, firefly with all plugins, 1 ms step, no ROS", f"{res['engine_steps_per_s_1ms_no_ros']:,.0f} steps/s",
@@ -323,6 +341,9 @@ def main() -> int:
     rows += [("hovering example with the VI-sensor (stereo at 30 Hz), lockstep, paced at real time",
               f"{vi_paced:.2f} x real time", ">= 1"),
              ("the same, as fast as possible", f"{vi_fast:.2f} x real time", ">= 2")]
+    rows += [(f"sweep.py, shipped firefly sweep (16 x 20 s hovering flights), local Ray, {n} worker{'s' if n > 1 else ''}",
+              f"{r['flights_per_hour']:,.0f} flights/h ({r['flights']} in {r['wall_s']:.0f} s)", "")
+             for n, r in sweeps.items()]
     w = [max(len(r[i]) for r in rows) for i in range(3)]
     print(f"{'measurement'.ljust(w[0])}  {'median'.ljust(w[1])}  target")
     for r in rows:

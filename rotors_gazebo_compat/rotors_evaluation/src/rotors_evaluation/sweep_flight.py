@@ -1,0 +1,324 @@
+"""One flight of a sweep, isolated: its own ROS master (on a port verified to be its own), ROS_HOME
+and log folder, in lockstep and as fast as possible, stopped at its sim time or its wall-time limit,
+then evaluated. run_flight never raises: a flight that fails or hangs comes back as a row with
+status 'failed', the reason and the last lines of its log, so the sweep goes on."""
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+import traceback
+import xmlrpc.client
+from pathlib import Path
+from typing import Any, Dict, List, Optional
+
+import yaml
+from xml.sax.saxutils import quoteattr
+
+from rotors_evaluation.sweep_spec import FORCED_ARGS
+
+LOG_TAIL_LINES = 15
+STALL_LIMIT_S = 60.0      # wall seconds without sim time advancing before a flight is called stalled
+STOP_GRACE_S = 20.0       # wall seconds roslaunch gets to shut down (and close the bag) after Ctrl-C
+
+CLOCK_WATCH = r"""
+import sys, time, rospy
+from rosgraph_msgs.msg import Clock
+rospy.init_node("sweep_clock_watch", anonymous=True, disable_signals=True)
+sim = {"t": -1.0}
+rospy.Subscriber("/clock", Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
+while True:
+    print(f"{sim['t']:.4f}", flush=True)
+    time.sleep(0.1)
+"""
+
+
+class FlightFailed(Exception):
+    pass
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _start_own_master(env: Dict[str, str], log_dir: Path) -> (subprocess.Popen, int):
+    """A rosmaster on a free port, verified to be ours (its getPid is our child's pid): when another
+    flight took the port between choosing and binding, our master exits and we try another port."""
+    for _ in range(8):
+        port = _free_port()
+        log = open(log_dir / "rosmaster.log", "a")
+        proc = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=log, stderr=subprocess.STDOUT,
+                                preexec_fn=_default_signals)
+        master = xmlrpc.client.ServerProxy(f"http://127.0.0.1:{port}")
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and proc.poll() is None:
+            try:
+                code, _, pid = master.getPid("/sweep")
+                if code == 1 and pid == proc.pid:
+                    return proc, port
+                break  # somebody else's master answers on this port
+            except (OSError, xmlrpc.client.Error):
+                time.sleep(0.1)
+        _stop(proc, 5)
+    raise FlightFailed("could not start a ROS master of its own (8 ports tried)")
+
+
+def _stop(proc: Optional[subprocess.Popen], grace_s: float, sig=signal.SIGINT) -> None:
+    """Ctrl-C to the process group, then SIGKILL after grace_s."""
+    if proc is None or proc.poll() is not None:
+        return
+    try:
+        os.killpg(proc.pid, sig)
+        proc.wait(timeout=grace_s)
+    except subprocess.TimeoutExpired:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        proc.wait(timeout=10)
+    except ProcessLookupError:
+        pass
+
+
+def _graph_processes(port: int, comm: str = "") -> List[int]:
+    """Pids of the processes that talk to the master on this port (ROS_MASTER_URI in their
+    environment; roslaunch puts every node in a session of its own, so process groups do not
+    find them), optionally only those named comm."""
+    uri = re.compile(rb"(?:^|\0)ROS_MASTER_URI=http://[^:/]+:%d/?(?:\0|$)" % port)
+    pids = []
+    for proc in Path("/proc").glob("[0-9]*"):
+        try:
+            if int(proc.name) == os.getpid() or (comm and (proc / "comm").read_text().strip() != comm[:15]):
+                continue
+            if uri.search((proc / "environ").read_bytes()):
+                pids.append(int(proc.name))
+        except (OSError, ValueError):
+            continue
+    return pids
+
+
+def _kill_leftovers(port: int) -> None:
+    for pid in _graph_processes(port):
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+
+
+def _default_signals() -> None:
+    """In the child: Ctrl-C and SIGTERM unblocked and back to their defaults (a Ray worker blocks
+    SIGINT; the mask is inherited through exec, so roslaunch would never hear Ctrl-C)."""
+    os.setsid()
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _log_tail(path: Path, lines: int = LOG_TAIL_LINES) -> str:
+    try:
+        return "\n".join(path.read_text(errors="replace").splitlines()[-lines:])
+    except OSError:
+        return ""
+
+
+def _flat(params: Dict[str, Any], kind: str) -> Dict[str, Any]:
+    """controller.position_gain.x -> {'position_gain/x': v}: rosparam sets each leaf alone (a
+    nested dict would replace the whole position_gain, dropping y and z)."""
+    return {k.split(".", 1)[1].replace(".", "/"): v for k, v in params.items() if k.startswith(kind + ".")}
+
+
+def _arg_text(value: Any) -> str:
+    return ("true" if value else "false") if isinstance(value, bool) else str(value)
+
+
+def _xacro_arg(name: str, value: Any) -> str:
+    """name:=value for the xacro command line, quoted when the value holds spaces ("1 0 0")."""
+    text = _arg_text(value)
+    return f"{name}:='{text}'" if any(c.isspace() for c in text) or not text else f"{name}:={text}"
+
+
+def launch_arguments(sweep: Dict[str, Any], params: Dict[str, Any], seed: int, flight_dir: Path) -> Dict[str, str]:
+    """The forced, fixed and varied launch arguments of this flight (parameter files written)."""
+    declared = sweep["launch_args"]
+    merged = {**sweep["fixed"], **params}
+    args = {k: v for k, v in FORCED_ARGS.items() if k in declared}
+    if "real_time_factor" in declared:
+        args["real_time_factor"] = _arg_text(sweep["real_time_factor"])
+    if "paused" in declared:
+        args["paused"] = "true"  # the examples unpause when their nodes are up
+    if "random_seed" in declared:
+        args["random_seed"] = str(seed)
+    if "log_file" in declared:
+        args["log_file"] = "flight"
+    args.update({k.split(".", 1)[1]: _arg_text(v) for k, v in merged.items() if k.startswith("launch.")})
+    xacro = " ".join(_xacro_arg(k.split(".", 1)[1], v) for k, v in merged.items() if k.startswith("model."))
+    if xacro:
+        args["xacro_args"] = xacro
+    for kind, carrier, file_name in (("controller", "extra_controller_params", "controller.yaml"),
+                                     ("estimator", "extra_msf_params", "estimator.yaml")):
+        values = _flat(merged, kind)
+        if values:
+            (flight_dir / file_name).write_text(yaml.safe_dump(values, default_flow_style=False))
+            args[carrier] = str(flight_dir / file_name)
+    return args
+
+
+def write_flight_launch(sweep: Dict[str, Any], args: Dict[str, str], flight_dir: Path) -> Path:
+    """flight.launch: includes the sweep's launch file with this flight's arguments. Written as XML,
+    because roslaunch's command line refuses a value that itself holds ':=' (xacro_args)."""
+    lines = ["<launch>", f"  <include file={quoteattr(str(sweep['launch_file']))}>"]
+    lines += [f"    <arg name={quoteattr(k)} value={quoteattr(v)}/>" for k, v in args.items()]
+    lines += ["  </include>", "</launch>"]
+    path = flight_dir / "flight.launch"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: Dict[str, Any]) -> Path:
+    """Runs the launch until the sweep's sim time; returns the bag."""
+    env = dict(os.environ)
+    env.pop("DISPLAY", None)
+    env["ROS_HOME"] = str(flight_dir)
+    env["ROS_LOG_DIR"] = str(flight_dir / "log")
+    (flight_dir / "log").mkdir(exist_ok=True)
+    master, port = _start_own_master(env, flight_dir)
+    env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
+    launch = watch = None
+    log_path = flight_dir / "roslaunch.log"
+    try:
+        launch_file = write_flight_launch(
+            sweep, launch_arguments(sweep, flight["params"], flight["seed"], flight_dir), flight_dir)
+        with open(log_path, "w") as log:
+            launch = subprocess.Popen(["roslaunch", "-p", str(port), str(launch_file)], env=env, stdout=log,
+                                      stderr=subprocess.STDOUT, preexec_fn=_default_signals)
+        watch = subprocess.Popen([sys.executable, "-c", CLOCK_WATCH], env=env, stdout=subprocess.PIPE,
+                                 stderr=subprocess.DEVNULL, text=True, preexec_fn=_default_signals)
+        sim = {"t": -1.0}
+
+        def read_clock():
+            for line in watch.stdout:
+                try:
+                    sim["t"] = float(line)
+                except ValueError:
+                    pass
+        threading.Thread(target=read_clock, daemon=True).start()
+
+        target = float(sweep["sim_time_s"])
+        inject = sweep.get("inject_failure")
+        inject_at = inject["at_sim_s"] if inject and inject["flight"] == flight["index"] else None
+        t0 = time.monotonic()
+        last_t, last_change = -1.0, t0
+        simulator_seen = False
+        while True:
+            time.sleep(0.05)
+            now, t = time.monotonic(), sim["t"]
+            row["sim_s"] = max(t, 0.0)
+            if t >= target:
+                break
+            if t != last_t:
+                last_t, last_change = t, now
+            if launch.poll() is not None:
+                raise FlightFailed(f"roslaunch exited with code {launch.returncode} at sim time {max(t, 0):.2f} s")
+            servers = _graph_processes(port, "rotors_sim_server")
+            simulator_seen = simulator_seen or bool(servers)
+            if simulator_seen and not servers:
+                raise FlightFailed(f"the simulator (rotors_sim_server) died at sim time {max(t, 0):.2f} s")
+            if inject_at is not None and t >= inject_at:
+                for pid in servers:  # the injected fault: the simulator crashes
+                    os.kill(pid, signal.SIGKILL)
+                inject_at = None
+            if now - t0 > float(sweep["wall_limit_s"]):
+                raise FlightFailed(f"wall-time limit {sweep['wall_limit_s']:.0f} s reached at sim time "
+                                   f"{max(t, 0):.2f} s of {target:.0f} s")
+            if now - last_change > STALL_LIMIT_S:
+                raise FlightFailed(f"sim time stalled at {max(t, 0):.2f} s for {STALL_LIMIT_S:.0f} s")
+    finally:
+        _stop(watch, 5, signal.SIGKILL)
+        _stop(launch, STOP_GRACE_S)
+        _kill_leftovers(port)  # a node roslaunch could not stop (or every node, if roslaunch was killed)
+        _stop(master, 10)
+    bags = sorted(flight_dir.glob("*.bag"))
+    if not bags:
+        raise FlightFailed("no bag was written (enable_logging)")
+    return bags[-1]
+
+
+def _evaluate(sweep: Dict[str, Any], bag: Path, flight_dir: Path) -> Dict[str, Any]:
+    from rotors_evaluation.bag_data import load_flight
+    from rotors_evaluation.evaluations import EVALUATORS
+    from rotors_evaluation.options import parse
+    opts = parse("sweep", ["-b", str(bag), "--mav_name", sweep["mav_name"], "--end_time", str(sweep["sim_time_s"]),
+                           *(f"--{k}={v}" for k, v in sweep["eval_options"].items())])
+    metrics: Dict[str, Any] = {}
+    data = None
+    for kind in sweep["evaluations"]:
+        if kind == "estimator":
+            from rotors_evaluation.estimator import evaluate_estimator
+            r = evaluate_estimator(bag, sweep["mav_name"], begin=opts.begin_time or None, end=opts.end_time)
+            metrics.update({"estimator_position_rms_m": r.position_rms, "estimator_velocity_rms_mps": r.velocity_rms,
+                            "estimator_max_position_error_m": r.max_position_error})
+            continue
+        if data is None:
+            data = load_flight(bag, opts.mav_name, opts.pose_topic, opts.twist_topic, opts.waypoint_topic,
+                               opts.wrench_topic, opts.motor_velocity_topic)
+        r = EVALUATORS[kind](data, opts, out=lambda *_: None)
+        if not math.isfinite(r.position_rms):
+            # the set point node is not in lockstep: starved of CPU, it can wake up sim seconds late
+            first = data.waypoints[0].t if data.waypoints else float("nan")
+            raise FlightFailed(f"{kind} evaluation window is empty: the first set point came at {first:.2f} s sim "
+                               f"time (the waypoint node fell behind the simulator; lower real_time_factor)")
+        metrics[f"{kind}_position_rms_m"] = r.position_rms
+        metrics[f"{kind}_angular_velocity_rms_radps"] = r.angular_velocity_rms
+        metrics[f"{kind}_collisions"] = len(r.collision_times)
+        if kind != "hovering":
+            metrics[f"{kind}_settling_time_s"] = r.settling_time
+    return metrics
+
+
+def _ray_node() -> str:
+    """The Ray node this flight runs on (empty outside Ray)."""
+    try:
+        import ray
+        return ray.get_runtime_context().get_node_id() if ray.is_initialized() else ""
+    except ImportError:
+        return ""
+
+
+def run_flight(sweep: Dict[str, Any], flight: Dict[str, Any], out_dir: str) -> Dict[str, Any]:
+    """Flies and evaluates one flight; always returns its row (status 'ok' or 'failed')."""
+    flight_dir = Path(out_dir) / "flights" / flight["id"]
+    shutil.rmtree(flight_dir, ignore_errors=True)
+    flight_dir.mkdir(parents=True)
+    row: Dict[str, Any] = {"id": flight["id"], "index": flight["index"], "repetition": flight["repetition"],
+                           "seed": flight["seed"], **flight["params"], "status": "failed", "reason": "",
+                           "sim_s": 0.0, "wall_s": 0.0, "host": socket.gethostname(), "node": _ray_node(), "bag": "",
+                           "log_tail": ""}
+    (flight_dir / "flight.json").write_text(json.dumps(flight, indent=1) + "\n")
+    t0 = time.monotonic()
+    try:
+        bag = _fly(sweep, flight, flight_dir, row)
+        row.update(_evaluate(sweep, bag, flight_dir))
+        row["status"] = "ok"
+        if sweep["keep_bags"]:
+            row["bag"] = str(bag)
+        else:
+            bag.unlink()
+    except FlightFailed as e:
+        row["reason"] = str(e)
+    except Exception as e:  # an evaluation or set-up error: recorded, the sweep goes on
+        row["reason"] = f"{type(e).__name__}: {e}".splitlines()[0]
+        (flight_dir / "error.txt").write_text(traceback.format_exc())
+    row["wall_s"] = round(time.monotonic() - t0, 3)
+    if row["status"] != "ok":
+        row["log_tail"] = _log_tail(flight_dir / "roslaunch.log")
+    shutil.rmtree(flight_dir / "log", ignore_errors=True)  # rosout copies; roslaunch.log keeps the output
+    (flight_dir / "result.json").write_text(json.dumps(row, indent=1, default=str) + "\n")
+    return row
