@@ -158,3 +158,28 @@ def test_the_same_sweep_runs_on_a_two_node_ray_cluster(tmp_path: Path):
         assert len(nodes) == 2, nodes  # both nodes flew
     finally:
         subprocess.run([ray, "stop", "--force"], env=env, capture_output=True, timeout=120)
+
+
+def test_sensor_noise_varies_through_the_models_xacro_arguments(tmp_path: Path):
+    """model.odometry_noise_position and model.imu_gyroscope_noise_density reach the plugins'
+    noiseNormalPosition and gyroscopeNoiseDensity of the spawned description."""
+    import shlex
+    from rotors_evaluation import sweep_flight, sweep_spec
+    text = SMALL.replace("""vary:
+  controller.position_gain.x: [4, 8]
+  model.wind_force_mean: [0, 2]
+inject_failure: {flight: 3, at_sim_s: 3}""", """vary:
+  model.odometry_noise_position: ["0 0 0", "0.05 0.05 0.05"]
+  model.imu_gyroscope_noise_density: [0.0003394, 0.001]""")
+    (tmp_path / "noise.yaml").write_text(text)
+    spec = sweep_spec.load(tmp_path / "noise.yaml")
+    assert len(spec.flights) == 8
+    last = spec.flights[-1]
+    args = sweep_flight.launch_arguments(spec.to_json(), last.params, last.seed, tmp_path)
+    xacro = [str(REPO / "rotors_description" / "scripts" / "rotors_xacro"),
+             str(REPO / "rotors_description" / "urdf" / "mav_generic_odometry_sensor.gazebo"),
+             "mav_name:=firefly", "namespace:=firefly", *shlex.split(args["xacro_args"])]
+    urdf = subprocess.run(xacro, capture_output=True, text=True, check=True).stdout
+    assert "<noiseNormalPosition>0.05 0.05 0.05</noiseNormalPosition>" in urdf
+    assert "<gyroscopeNoiseDensity>0.001</gyroscopeNoiseDensity>" in urdf
+    assert "<windForceMean>0</windForceMean>" in urdf  # the fixed enable_wind came along
