@@ -105,6 +105,15 @@ def _graph_processes(port: int, comm: str = "") -> List[int]:
     return pids
 
 
+def _alive(pid: int) -> bool:
+    """The process exists and is not a zombie waiting for its parent."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return False
+    return stat[stat.rindex(")") + 2] != "Z"
+
+
 def _kill_leftovers(port: int) -> None:
     for pid in _graph_processes(port):
         try:
@@ -216,7 +225,7 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
         inject_at = inject["at_sim_s"] if inject and inject["flight"] == flight["index"] else None
         t0 = time.monotonic()
         last_t, last_change = -1.0, t0
-        simulator_seen = False
+        simulator_seen, servers = False, []
         while True:
             time.sleep(0.05)
             now, t = time.monotonic(), sim["t"]
@@ -227,7 +236,9 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
                 last_t, last_change = t, now
             if launch.poll() is not None:
                 raise FlightFailed(f"roslaunch exited with code {launch.returncode} at sim time {max(t, 0):.2f} s")
-            servers = _graph_processes(port, "rotors_sim_server")
+            # /proc is scanned until the simulator appears; after that only its pids are watched
+            servers = [p for p in servers if _alive(p)] if servers else \
+                _graph_processes(port, "rotors_sim_server")
             simulator_seen = simulator_seen or bool(servers)
             if simulator_seen and not servers:
                 raise FlightFailed(f"the simulator (rotors_sim_server) died at sim time {max(t, 0):.2f} s")

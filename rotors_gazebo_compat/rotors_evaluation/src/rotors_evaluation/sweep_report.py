@@ -55,6 +55,33 @@ def _number(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
 
 
+def _by_combination(spec: SweepSpec, rows: List[Dict[str, Any]], metric: str) -> "OrderedDict[tuple, List[float]]":
+    """The metric of the ok flights of each combination of varied values (every combination that
+    has a flight appears, possibly with no values)."""
+    groups: "OrderedDict[tuple, List[float]]" = OrderedDict()
+    for r in rows:
+        values = groups.setdefault(tuple(r.get(n) for n in spec.vary), [])
+        if r["status"] == "ok" and _number(r.get(metric)):
+            values.append(r[metric])
+    return groups
+
+
+def _text(v: Any) -> str:
+    return f"{v:.4g}" if _number(v) else str(v)
+
+
+def _save(fig, ax, title: str, ylabel: str, path: Path) -> Path:
+    """Labels, grid and layout shared by the sweep's figures; writes and closes the figure."""
+    import matplotlib.pyplot as plt
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
 def plot(spec: SweepSpec, rows: List[Dict[str, Any]], out_dir: Path) -> List[Path]:
     import matplotlib
     matplotlib.use("Agg")
@@ -75,33 +102,18 @@ def plot(spec: SweepSpec, rows: List[Dict[str, Any]], out_dir: Path) -> List[Pat
         if not numeric:
             ax.set_xticks(range(len(values)), [str(v) for v in values])
         ax.set_xlabel(name)
-        ax.set_ylabel(metric)
-        ax.set_title(f"{spec.name}: {metric} against {name}", fontsize=9)
-        ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-        fig.tight_layout()
-        path = out_dir / f"{metric}_vs_{name.replace('/', '_')}.png"
-        fig.savefig(path, dpi=100)
-        plt.close(fig)
-        saved.append(path)
+        saved.append(_save(fig, ax, f"{spec.name}: {metric} against {name}", metric,
+                           out_dir / f"{metric}_vs_{name.replace('/', '_')}.png"))
     # one box per parameter combination, over its repetitions (seeds)
-    groups: "OrderedDict[str, List[float]]" = OrderedDict()
-    for r in ok:
-        label = ", ".join(f"{n.split('.')[-1]}={r[n]:.4g}" if _number(r[n]) else f"{n.split('.')[-1]}={r[n]}"
-                          for n in spec.vary) or "all"
-        groups.setdefault(label, []).append(r[metric])
+    groups = {", ".join(f"{n.split('.')[-1]}={_text(v)}" for n, v in zip(spec.vary, key)) or "all": values
+              for key, values in _by_combination(spec, rows, metric).items() if values}
     if groups:
         fig, ax = plt.subplots(figsize=(max(6, 0.6 * len(groups) + 2), 4.5))
         ax.boxplot(list(groups.values()))
         ax.set_xticks(range(1, len(groups) + 1), list(groups), rotation=60, ha="right", fontsize=7)
-        ax.set_ylabel(metric)
-        ax.set_title(f"{spec.name}: {metric} over {spec.repetitions} seed(s) per combination", fontsize=9)
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        path = out_dir / f"{metric}_boxplot_over_seeds.png"
-        fig.savefig(path, dpi=100)
-        plt.close(fig)
-        saved.append(path)
+        saved.append(_save(fig, ax, f"{spec.name}: {metric} over {spec.repetitions} seed(s) per combination", metric,
+                           out_dir / f"{metric}_boxplot_over_seeds.png"))
     return saved
 
 
@@ -112,7 +124,8 @@ def write_report(spec: SweepSpec, rows: List[Dict[str, Any]], out_dir: Path, wal
     failed = [r for r in rows if r["status"] != "ok"]
     lines = [f"# Sweep {spec.name}", "",
              f"- sweep file: `{spec.source}`; launch `{spec.launch_file.name}`; {spec.sim_time_s:g} s of sim time per "
-             f"flight, lockstep, as fast as possible",
+             f"flight, lockstep, " + (f"paced at {spec.real_time_factor:g}x real time" if spec.real_time_factor > 0
+                                      else "as fast as possible"),
              f"- {len(rows)} flights: {len(ok)} ok, {len(failed)} failed; wall time of this run {wall_s:.1f} s",
              f"- fixed: {', '.join(f'{k}={v}' for k, v in spec.fixed.items()) or 'nothing'}",
              f"- varied: {', '.join(f'{k} ({len(v)} values)' for k, v in spec.vary.items()) or 'nothing'}; "
@@ -122,14 +135,9 @@ def write_report(spec: SweepSpec, rows: List[Dict[str, Any]], out_dir: Path, wal
     names = list(spec.vary)
     header = names + ["mean", "std", "n"]
     lines += ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    groups: "OrderedDict[tuple, List[float]]" = OrderedDict()
-    for r in rows:
-        groups.setdefault(tuple(r.get(n) for n in names), [])
-        if r["status"] == "ok" and _number(r.get(metric)):
-            groups[tuple(r.get(n) for n in names)].append(r[metric])
-    for key, values in groups.items():
+    for key, values in _by_combination(spec, rows, metric).items():
         stats = [f"{np.mean(values):.4f}", f"{np.std(values):.4f}", str(len(values))] if values else ["-", "-", "0"]
-        lines.append("| " + " | ".join([*(f"{v:.4g}" if _number(v) else str(v) for v in key), *stats]) + " |")
+        lines.append("| " + " | ".join([*map(_text, key), *stats]) + " |")
     lines += ["", "## Plots", ""] + [f"![{p.stem}]({p.name})" for p in plots]
     lines += ["", "## Failures", ""]
     if not failed:
