@@ -20,10 +20,11 @@ class LeePositionControllerNode {
  public:
   LeePositionControllerNode(ros::NodeHandle nh, const LeePositionControllerParameters& params)
       : nh_(nh), controller_(params) {
-    motor_pub_ = nh_.advertise<mav_msgs::Actuators>("command/motor_speed", 1);
-    trajectory_sub_ = nh_.subscribe("command/trajectory", 1, &LeePositionControllerNode::OnTrajectory, this);
-    pose_sub_ = nh_.subscribe("command/pose", 1, &LeePositionControllerNode::OnPose, this);
-    odometry_sub_ = nh_.subscribe("odometry", 1, &LeePositionControllerNode::OnOdometry, this,
+    motor_pub_ = nh_.advertise<mav_msgs::Actuators>(mav_msgs::default_topics::COMMAND_ACTUATORS, 1);
+    trajectory_sub_ =
+        nh_.subscribe(mav_msgs::default_topics::COMMAND_TRAJECTORY, 1, &LeePositionControllerNode::OnTrajectory, this);
+    pose_sub_ = nh_.subscribe(mav_msgs::default_topics::COMMAND_POSE, 1, &LeePositionControllerNode::OnPose, this);
+    odometry_sub_ = nh_.subscribe(mav_msgs::default_topics::ODOMETRY, 1, &LeePositionControllerNode::OnOdometry, this,
                                   ros::TransportHints().tcpNoDelay());
   }
 
@@ -39,7 +40,7 @@ class LeePositionControllerNode {
     timer_.stop();
     TrajectoryPoint point;
     point.position_W = {p.x, p.y, p.z};
-    point.yaw_rad = YawOf(msg->pose.orientation);
+    point.yaw_rad = mav_msgs::yawFromQuaternion(mav_msgs::quaternionFromMsg(msg->pose.orientation));
     controller_.SetTrajectoryPoint(point);
   }
 
@@ -60,19 +61,14 @@ class LeePositionControllerNode {
         ROS_WARN("[lee_position_controller] ignoring trajectory: point %zu: %s", i, why.c_str());
         return;
       }
+      mav_msgs::EigenTrajectoryPoint eigen_point;
+      mav_msgs::eigenTrajectoryPointFromMsg(pt, &eigen_point);
       TrajectoryPoint p;
-      const auto& t = pt.transforms[0].translation;
-      p.position_W = {t.x, t.y, t.z};
-      p.yaw_rad = YawOf(pt.transforms[0].rotation);
-      if (!pt.velocities.empty()) {
-        const auto& v = pt.velocities[0];
-        p.velocity_W = {v.linear.x, v.linear.y, v.linear.z};
-        p.yaw_rate_rad_s = v.angular.z;
-      }
-      if (!pt.accelerations.empty()) {
-        const auto& a = pt.accelerations[0];
-        p.acceleration_W = {a.linear.x, a.linear.y, a.linear.z};
-      }
+      p.position_W = eigen_point.position_W;
+      p.velocity_W = eigen_point.velocity_W;
+      p.acceleration_W = eigen_point.acceleration_W;
+      p.yaw_rad = eigen_point.getYaw();
+      p.yaw_rate_rad_s = eigen_point.getYawRate();
       if (!p.IsFinite()) {
         ROS_WARN("[lee_position_controller] ignoring trajectory: point %zu has NaN or inf", i);
         return;

@@ -1,28 +1,26 @@
-// Message <-> controller type conversions for the nodes.
+// What the controller nodes add to the mav_msgs C++ API: the controller's state type from
+// odometry, a rejecting (not normalising) quaternion check, and the motor command message.
 #pragma once
 
 #include <cmath>
 #include <string>
 
-#include <Eigen/Geometry>
 #include <geometry_msgs/Quaternion.h>
-#include <mav_msgs/Actuators.h>
+#include <mav_msgs/conversions.h>
 #include <nav_msgs/Odometry.h>
 
 #include "rotors_control/lee_position_controller.h"
 
 namespace rotors_control {
 
-inline VehicleState StateFromOdometry(const nav_msgs::Odometry& odom) {
+inline VehicleState StateFromOdometry(const nav_msgs::Odometry& msg) {
+  mav_msgs::EigenOdometry odometry;
+  mav_msgs::eigenOdometryFromMsg(msg, &odometry);
   VehicleState s;
-  const auto& p = odom.pose.pose.position;
-  const auto& q = odom.pose.pose.orientation;
-  const auto& v = odom.twist.twist.linear;
-  const auto& w = odom.twist.twist.angular;
-  s.position_W = {p.x, p.y, p.z};
-  s.orientation_W_B = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized();
-  s.velocity_B = {v.x, v.y, v.z};  // nav_msgs/Odometry twist is in the child (body) frame
-  s.angular_velocity_B = {w.x, w.y, w.z};
+  s.position_W = odometry.position_W;
+  s.orientation_W_B = odometry.orientation_W_B;
+  s.velocity_B = odometry.velocity_B;  // nav_msgs/Odometry twist is in the child (body) frame
+  s.angular_velocity_B = odometry.angular_velocity_B;
   return s;
 }
 
@@ -34,14 +32,10 @@ inline std::string CheckUnitQuaternion(const geometry_msgs::Quaternion& q) {
   return {};
 }
 
-inline double YawOf(const geometry_msgs::Quaternion& q) {
-  return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
-}
-
 inline mav_msgs::Actuators ActuatorsMsg(const Eigen::VectorXd& omega, const ros::Time& stamp) {
   mav_msgs::Actuators msg;
   msg.header.stamp = stamp;
-  msg.angular_velocities.assign(omega.data(), omega.data() + omega.size());
+  mav_msgs::msgActuatorsFromEigen(mav_msgs::EigenActuators(omega), &msg);
   return msg;
 }
 

@@ -1,0 +1,133 @@
+// Eigen helpers of the mav_comm API (rotors_reference.md 2.2): message <-> Eigen, skew/vee,
+// rotation vectors, yaw and Euler angles, gravity by latitude and height, rotor speeds from an
+// allocation matrix. Header-only.
+#pragma once
+
+#include <cmath>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <geometry_msgs/Point.h>
+#include <geometry_msgs/Quaternion.h>
+#include <geometry_msgs/Vector3.h>
+
+namespace mav_msgs {
+
+/// Norms below this count as zero (quaternions, rotation vectors).
+constexpr double kSmallValueCheck = 1.e-6;
+constexpr double kNumNanosecondsPerSecond = 1.e9;
+
+inline Eigen::Vector3d vector3FromMsg(const geometry_msgs::Vector3& msg) { return {msg.x, msg.y, msg.z}; }
+
+inline Eigen::Vector3d vector3FromPointMsg(const geometry_msgs::Point& msg) { return {msg.x, msg.y, msg.z}; }
+
+/// Normalised; a quaternion of (almost) zero norm gives the identity.
+inline Eigen::Quaterniond quaternionFromMsg(const geometry_msgs::Quaternion& msg) {
+  Eigen::Quaterniond q(msg.w, msg.x, msg.y, msg.z);
+  if (!(q.norm() >= kSmallValueCheck)) return Eigen::Quaterniond::Identity();
+  return q.normalized();
+}
+
+inline void vectorEigenToMsg(const Eigen::Vector3d& v, geometry_msgs::Vector3* msg) {
+  msg->x = v.x();
+  msg->y = v.y();
+  msg->z = v.z();
+}
+
+inline void pointEigenToMsg(const Eigen::Vector3d& p, geometry_msgs::Point* msg) {
+  msg->x = p.x();
+  msg->y = p.y();
+  msg->z = p.z();
+}
+
+inline void quaternionEigenToMsg(const Eigen::Quaterniond& q, geometry_msgs::Quaternion* msg) {
+  msg->w = q.w();
+  msg->x = q.x();
+  msg->y = q.y();
+  msg->z = q.z();
+}
+
+/// [v]x, with [v]x u = v x u.
+inline Eigen::Matrix3d skewMatrixFromVector(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0.0, -v.z(), v.y(),  //
+      v.z(), 0.0, -v.x(),   //
+      -v.y(), v.x(), 0.0;
+  return S;
+}
+
+/// The vee map, inverse of skewMatrixFromVector.
+inline Eigen::Vector3d vectorFromSkewMatrix(const Eigen::Matrix3d& S) { return {S(2, 1), S(0, 2), S(1, 0)}; }
+
+/// R^T R = I and det R = +1, within 1e-6.
+inline bool isRotationMatrix(const Eigen::Matrix3d& R) {
+  return (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < kSmallValueCheck &&
+         std::abs(R.determinant() - 1.0) < kSmallValueCheck;
+}
+
+/// Rodrigues: exp([v]x), the rotation by |v| about v / |v|.
+inline void matrixFromRotationVector(const Eigen::Vector3d& v, Eigen::Matrix3d* R) {
+  const double angle = v.norm();
+  if (angle < kSmallValueCheck) {
+    *R = Eigen::Matrix3d::Identity() + skewMatrixFromVector(v);
+    return;
+  }
+  *R = Eigen::AngleAxisd(angle, v / angle).toRotationMatrix();
+}
+
+/// log(R) as a rotation vector (angle in [0, pi]).
+inline void vectorFromRotationMatrix(const Eigen::Matrix3d& R, Eigen::Vector3d* v) {
+  const Eigen::AngleAxisd aa(R);
+  *v = aa.angle() * aa.axis();
+}
+
+/// psi = atan2(2 (w z + x y), 1 - 2 (y^2 + z^2)) (z-y'-x'' convention).
+inline double yawFromQuaternion(const Eigen::Quaterniond& q) {
+  return std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()), 1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
+}
+
+inline Eigen::Quaterniond quaternionFromYaw(double yaw) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+}
+
+/// Replaces the yaw of *q, keeping roll and pitch.
+inline void setQuaternionYaw(double yaw, Eigen::Quaterniond* q) {
+  // Rz(yaw) Ry(pitch) Rx(roll) = Rz(yaw - yaw_now) q
+  const double yaw_now = yawFromQuaternion(*q);
+  *q = (quaternionFromYaw(yaw - yaw_now) * (*q)).normalized();
+}
+
+/// (roll, pitch, yaw) of the z-y'-x'' convention: R = Rz(yaw) Ry(pitch) Rx(roll).
+inline void getEulerAnglesFromQuaternion(const Eigen::Quaternion<double>& q, Eigen::Vector3d* euler_angles) {
+  const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
+  const double roll = std::atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y));
+  const double sin_pitch = std::max(-1.0, std::min(1.0, 2.0 * (w * y - z * x)));
+  *euler_angles = {roll, std::asin(sin_pitch), yawFromQuaternion(q)};
+}
+
+/// Normal gravity [m/s^2] at a height [m] and latitude [rad]:
+/// g = 9.780327 ((1 + 0.0053024 sin^2 phi - 0.0000058 sin^2 2 phi) - 3.155e-7 h)
+inline double MagnitudeOfGravity(const double height, const double latitude_radians) {
+  const double s = std::sin(latitude_radians), s2 = std::sin(2.0 * latitude_radians);
+  return 9.780327 * ((1.0 + 0.0053024 * s * s - 0.0000058 * s2 * s2) - 3.155e-7 * height);
+}
+
+/// Squared rotor speeds that give the body torque J dw/dt + w x J w and the thrust m |a|,
+/// through allocation_inverse (N x 4), the pseudo-inverse of the allocation matrix that maps squared
+/// rotor speeds to (roll, pitch, yaw torque, thrust).
+inline void getSquaredRotorSpeedsFromAllocationAndState(const Eigen::MatrixXd& allocation_inverse,
+                                                        const Eigen::Vector3d& inertia_diagonal, double mass,
+                                                        const Eigen::Vector3d& angular_velocity_B,
+                                                        const Eigen::Vector3d& angular_acceleration_B,
+                                                        const Eigen::Vector3d& thrust_acceleration_B,
+                                                        Eigen::VectorXd* rotor_rates_squared) {
+  const Eigen::Vector3d J = inertia_diagonal;
+  // tau = J dw/dt + w x (J w)
+  const Eigen::Vector3d torque =
+      J.asDiagonal() * angular_acceleration_B + angular_velocity_B.cross(J.asDiagonal() * angular_velocity_B);
+  Eigen::Vector4d wrench;
+  wrench << torque, mass * thrust_acceleration_B.norm();
+  *rotor_rates_squared = allocation_inverse * wrench;
+}
+
+}  // namespace mav_msgs
