@@ -1,0 +1,102 @@
+#include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <ignition/math/SphericalCoordinates.hh>
+
+namespace rotors_gazebo_plugins {
+
+namespace {
+std::string CheckNonNegative(std::initializer_list<std::pair<const char*, double>> values) {
+  for (const auto& [name, value] : values)
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+      std::ostringstream why;
+      why << name << " = " << value << " must be a finite number >= 0";
+      return why.str();
+    }
+  return {};
+}
+}  // namespace
+
+Eigen::Vector3d GeodeticFromWorld(const GeodeticOrigin& origin, const Eigen::Vector3d& p_W) {
+  using ignition::math::Angle;
+  const ignition::math::SphericalCoordinates earth(ignition::math::SphericalCoordinates::EARTH_WGS84,
+                                                   Angle(origin.latitude_deg * M_PI / 180.0),
+                                                   Angle(origin.longitude_deg * M_PI / 180.0), origin.elevation_m,
+                                                   Angle(origin.heading_deg * M_PI / 180.0));
+  // LOCAL2: the world frame with the heading applied correctly (ignition-math 6's LOCAL is not).
+  const ignition::math::Vector3d lla_rad = earth.PositionTransform(
+      {p_W.x(), p_W.y(), p_W.z()}, ignition::math::SphericalCoordinates::LOCAL2,
+      ignition::math::SphericalCoordinates::SPHERICAL);
+  return {lla_rad.X() * 180.0 / M_PI, lla_rad.Y() * 180.0 / M_PI, lla_rad.Z()};
+}
+
+std::string GpsParams::Validate() const {
+  return CheckNonNegative({{"horPosStdDev", hor_pos_std_dev_m},
+                           {"verPosStdDev", ver_pos_std_dev_m},
+                           {"horVelStdDev", hor_vel_std_dev_m_s},
+                           {"verVelStdDev", ver_vel_std_dev_m_s}});
+}
+
+GpsModel::GpsModel(const GpsParams& params, const GeodeticOrigin& origin, uint64_t seed)
+    : params_(params), origin_(origin), rng_(seed) {}
+
+GpsSample GpsModel::Measure(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W) {
+  const Eigen::Vector3d sigma_p(params_.hor_pos_std_dev_m, params_.hor_pos_std_dev_m, params_.ver_pos_std_dev_m);
+  const Eigen::Vector3d sigma_v(params_.hor_vel_std_dev_m_s, params_.hor_vel_std_dev_m_s, params_.ver_vel_std_dev_m_s);
+  Eigen::Vector3d n_p, n_v;
+  for (int i = 0; i < 3; ++i) n_p[i] = sigma_p[i] * unit_normal_(rng_);
+  for (int i = 0; i < 3; ++i) n_v[i] = sigma_v[i] * unit_normal_(rng_);
+  return {GeodeticFromWorld(origin_, p_W + n_p), v_W + n_v};
+}
+
+std::string MagnetometerParams::Validate() const {
+  if (!reference_NED_T.allFinite() || reference_NED_T.norm() == 0.0)
+    return "refMagNorth/East/Down must be finite and not all zero";
+  for (int i = 0; i < 3; ++i) {
+    const std::string why = CheckNonNegative({{"noiseNormal", noise_normal_T[i]},
+                                              {"noiseUniformInitialBias", noise_uniform_initial_bias_T[i]}});
+    if (!why.empty()) return why;
+  }
+  return {};
+}
+
+MagnetometerModel::MagnetometerModel(const MagnetometerParams& params, uint64_t seed) : params_(params), rng_(seed) {
+  for (int i = 0; i < 3; ++i) {
+    const double b = params_.noise_uniform_initial_bias_T[i];
+    bias_B_T_[i] = std::uniform_real_distribution<double>(-b, b)(rng_);
+  }
+}
+
+Eigen::Vector3d MagnetometerModel::Measure(const Eigen::Quaterniond& q_WB) {
+  Eigen::Vector3d n;
+  for (int i = 0; i < 3; ++i) n[i] = params_.noise_normal_T[i] * unit_normal_(rng_);
+  // B_B = R_WB^T m_W + b_B + n
+  return q_WB.conjugate() * params_.ReferenceWorld() + bias_B_T_ + n;
+}
+
+std::string PressureParams::Validate() const {
+  if (!std::isfinite(reference_altitude_m)) return "referenceAltitude must be finite";
+  return CheckNonNegative({{"pressureVariance", pressure_variance_pa2}});
+}
+
+double StandardAtmospherePressure(double h_m) {
+  constexpr double kEarthRadius_m = 6356766.0, kT0_K = 288.15, kP0_Pa = 101325.0, kLapse_K_m = 0.0065;
+  constexpr double kG0 = 9.80665, kMolarMass_kg_kmol = 28.9644, kGasConstant_J_kmol_K = 8314.32;
+  // h_gp = R_e h / (R_e + h)
+  const double h_gp = kEarthRadius_m * h_m / (kEarthRadius_m + h_m);
+  // T = T_0 - L h_gp
+  const double T = kT0_K - kLapse_K_m * h_gp;
+  // p = p_0 (T / T_0)^(g_0 M / (R L))
+  return kP0_Pa * std::pow(T / kT0_K, kG0 * kMolarMass_kg_kmol / (kGasConstant_J_kmol_K * kLapse_K_m));
+}
+
+PressureModel::PressureModel(const PressureParams& params, uint64_t seed) : params_(params), rng_(seed) {}
+
+double PressureModel::Measure(double z_W_m) {
+  return StandardAtmospherePressure(params_.reference_altitude_m + z_W_m) +
+         std::sqrt(params_.pressure_variance_pa2) * unit_normal_(rng_);
+}
+
+}  // namespace rotors_gazebo_plugins

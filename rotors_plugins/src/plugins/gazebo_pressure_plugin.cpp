@@ -1,0 +1,59 @@
+// librotors_gazebo_pressure_plugin.so (rotors_reference.md 4.11): sensor_msgs/FluidPressure on
+// <ns>/<pressureTopic> every physics step: the standard atmosphere at referenceAltitude + z_W,
+// plus N(0, pressureVariance).
+#include <sensor_msgs/FluidPressure.h>
+
+#include "rotors_core/event.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin.h"
+#include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboPressurePlugin : public rotors_sim::ModelPlugin {
+ public:
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+    CheckKnownParams(sdf, {"robotNamespace", "linkName", "pressureTopic", "referenceAltitude", "pressureVariance",
+                           "randomEngineSeed"});
+    const std::string ns = ReadRobotNamespace(sdf);
+    std::string link_name, topic = "air_pressure";
+    RequireParam(sdf, "linkName", &link_name);
+    ReadParam(sdf, "pressureTopic", &topic);
+    PressureParams p;
+    ReadParam(sdf, "referenceAltitude", &p.reference_altitude_m);
+    ReadParam(sdf, "pressureVariance", &p.pressure_variance_pa2);
+    ThrowIfInvalid(p.Validate());
+    model_ = std::make_unique<PressureModel>(p, ReadSeed(sdf));
+    link_ = RequireLink(model, link_name);
+    world_ = model->GetWorldRaw();
+    msg_.header.frame_id = link_name;
+    msg_.variance = p.pressure_variance_pa2;
+    node_ = MakeNode(ns);
+    if (!node_) return;
+    pub_ = node_->advertise<sensor_msgs::FluidPressure>(topic, 10);
+    connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
+  }
+
+ private:
+  void OnUpdate() {
+    msg_.header.stamp = ToRos(world_->SimTime());
+    msg_.fluid_pressure = model_->Measure(link_->WorldPose().Pos().Z());
+    pub_.publish(msg_);
+  }
+
+  std::unique_ptr<PressureModel> model_;
+  rotors_sim::physics::LinkPtr link_;
+  rotors_sim::physics::World* world_ = nullptr;
+  sensor_msgs::FluidPressure msg_;
+  std::shared_ptr<ros::NodeHandle> node_;
+  ros::Publisher pub_;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+GZ_REGISTER_MODEL_PLUGIN(rotors_gazebo_plugins::GazeboPressurePlugin)

@@ -1,0 +1,136 @@
+"""RotorS' GPS, magnetometer and barometer on the firefly (enable_navigation_sensors:=true): rates in
+sim time, NavSatFix against the ground-truth position mapped to WGS84 by the textbook formulas
+(within 1 cm), pressure against the standard atmosphere, the magnetic field in the body frame."""
+import math
+from pathlib import Path
+
+import numpy as np
+
+from conftest import RosGraph, stop_launch, wait_sim_time
+
+A, F = 6378137.0, 1 / 298.257223563  # WGS84
+E2 = F * (2 - F)
+LAT0, LON0, H0 = 47.3667, 8.55, 500.0  # the basic world's spherical_coordinates
+
+
+def ecef(lat_deg, lon_deg, h):
+    phi, lam = math.radians(lat_deg), math.radians(lon_deg)
+    n = A / math.sqrt(1 - E2 * math.sin(phi) ** 2)
+    return np.array([(n + h) * math.cos(phi) * math.cos(lam), (n + h) * math.cos(phi) * math.sin(lam),
+                     (n * (1 - E2) + h) * math.sin(phi)])
+
+
+def enu(lat_deg, lon_deg, h):
+    """East, north, up of a WGS84 point from the world origin."""
+    phi, lam = math.radians(LAT0), math.radians(LON0)
+    east = [-math.sin(lam), math.cos(lam), 0]
+    north = [-math.sin(phi) * math.cos(lam), -math.sin(phi) * math.sin(lam), math.cos(phi)]
+    up = [math.cos(phi) * math.cos(lam), math.cos(phi) * math.sin(lam), math.sin(phi)]
+    return np.array([east, north, up]) @ (ecef(lat_deg, lon_deg, h) - ecef(LAT0, LON0, H0))
+
+
+def isa_pressure(h):
+    h_gp = 6356766.0 * h / (6356766.0 + h)
+    return 101325.0 * ((288.15 - 0.0065 * h_gp) / 288.15) ** (9.80665 * 28.9644 / (8314.32 * 0.0065))
+
+
+def test_gps_magnetometer_barometer_on_the_firefly(ros: RosGraph, tmp_path: Path):
+    # roslaunch's command line refuses values holding ':=', so the xacro arguments go in an include
+    flight = tmp_path / "flight.launch"
+    flight.write_text("""<launch><include file="$(find rotors_gazebo)/launch/mav_hovering_example.launch">
+      <arg name="gui" value="false"/><arg name="lockstep" value="true"/><arg name="real_time_factor" value="2"/>
+      <arg name="enable_navigation_sensors" value="true"/>
+      <arg name="xacro_args" value="gps_hor_pos_std_dev:=0 gps_ver_pos_std_dev:=0"/>
+    </include></launch>""")
+    proc = ros.start(["roslaunch", "-p", str(ros.port), str(flight)], "launch")
+    try:
+        wait_sim_time(ros, 8.0)
+        got = ros.rospy("""
+            import math
+            from geometry_msgs.msg import PoseStamped, TwistStamped
+            from nav_msgs.msg import Odometry
+            from sensor_msgs.msg import NavSatFix, MagneticField, FluidPressure
+            log = {k: [] for k in ('gps', 'speed', 'mag', 'baro', 'odom')}
+            rospy.Subscriber('/firefly/gps', NavSatFix, lambda m: log['gps'].append(
+                [m.header.stamp.to_sec(), m.latitude, m.longitude, m.altitude, m.status.status, m.status.service,
+                 m.header.frame_id]))
+            rospy.Subscriber('/firefly/ground_speed', TwistStamped, lambda m: log['speed'].append(
+                [m.header.stamp.to_sec(), m.twist.linear.x, m.twist.linear.y, m.twist.linear.z]))
+            rospy.Subscriber('/firefly/magnetic_field', MagneticField, lambda m: log['mag'].append(
+                [m.header.stamp.to_sec(), m.magnetic_field.x, m.magnetic_field.y, m.magnetic_field.z]))
+            rospy.Subscriber('/firefly/air_pressure', FluidPressure, lambda m: log['baro'].append(
+                [m.header.stamp.to_sec(), m.fluid_pressure]))
+            rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, lambda m: log['odom'].append(
+                [m.header.stamp.to_sec(), m.pose.pose.position.x, m.pose.pose.position.y, m.pose.pose.position.z,
+                 m.pose.pose.orientation.x, m.pose.pose.orientation.y, m.pose.pose.orientation.z,
+                 m.pose.pose.orientation.w, m.twist.twist.linear.x, m.twist.twist.linear.y, m.twist.twist.linear.z]))
+            pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
+            time.sleep(1.0)
+            cmd = PoseStamped()
+            cmd.pose.position.x, cmd.pose.position.y, cmd.pose.position.z = 6.0, -4.0, 3.0
+            cmd.pose.orientation.z, cmd.pose.orientation.w = math.sin(0.4), math.cos(0.4)
+            pub.publish(cmd)
+            t0 = rospy.Time.now().to_sec()
+            while rospy.Time.now().to_sec() < t0 + 8.0:
+                time.sleep(0.05)
+            result.update(log)
+        """, timeout=300)
+    finally:
+        stop_launch(proc)
+    odom = np.array(got["odom"])
+    t_odom = odom[:, 0]
+
+    def truth_at(t):
+        """The ground truth of that step (None if the client missed it)."""
+        i = int(np.argmin(np.abs(t_odom - t)))
+        return odom[i] if abs(t_odom[i] - t) < 1e-6 else None
+
+    missed = {k: sum(truth_at(m[0]) is None for m in got[k]) for k in ("gps", "speed", "mag", "baro")}
+    print(f"samples without a received ground truth of the same step: {missed}")
+    assert all(missed[k] <= 0.1 * len(got[k]) for k in missed), missed
+    for k in missed:
+        got[k] = [m for m in got[k] if truth_at(m[0]) is not None]
+
+    # rates in sim time
+    for key, rate in (("gps", 5.0), ("speed", 5.0), ("mag", 100.0), ("baro", 100.0)):
+        stamps = np.array([m[0] for m in got[key]])
+        measured = (len(stamps) - 1) / (stamps[-1] - stamps[0])
+        print(f"{key}: {len(stamps)} messages, {measured:.2f} Hz in sim time")
+        assert abs(measured - rate) < 0.02 * rate, (key, measured)
+    # GPS: the noise-free fix is the ground-truth position on WGS84
+    errors, max_speed = [], 0.0
+    for stamp, lat, lon, alt, status, service, frame in got["gps"]:
+        assert (status, service, frame) == (0, 1, "firefly/gps_link")
+        truth = truth_at(stamp)
+        errors.append(np.linalg.norm(enu(lat, lon, alt) - truth[1:4]))
+        q = truth[4:8]
+        v_w = rotate(q, truth[8:11])
+        max_speed = max(max_speed, np.linalg.norm(v_w))
+    print(f"GPS against ground truth on WGS84: largest error {max(errors) * 1000:.2f} mm over {len(errors)} fixes "
+          f"(up to {max_speed:.2f} m/s)")
+    assert max(errors) < 0.01
+    # ground speed: world-frame velocity with sigma 0.1 m/s
+    residuals = []
+    for stamp, vx, vy, vz in got["speed"]:
+        truth = truth_at(stamp)
+        residuals.append(np.array([vx, vy, vz]) - rotate(truth[4:8], truth[8:11]))
+    sigma = np.std(residuals, axis=0)
+    print(f"ground speed noise sigma {sigma} (declared 0.1 m/s)")
+    assert np.all((sigma > 0.05) & (sigma < 0.16))
+    # barometer (no noise by default): the standard atmosphere at 500 m + z
+    worst = max(abs(p - isa_pressure(500.0 + truth_at(t)[3])) for t, p in got["baro"])
+    assert worst < 1e-6, worst
+    # magnetometer: the ENU reference field rotated into the body, within bias + 4 sigma
+    m_w = np.array([8.15e-7, 2.1493e-5, -4.2795e-5])
+    worst = max(np.max(np.abs(np.array(b) - rotate(truth_at(t)[4:8], m_w, inverse=True)))
+                for t, *b in got["mag"])
+    print(f"magnetometer: largest difference from R^T m_W {worst:.3g} T (bias within 4e-7, sigma 8e-8)")
+    assert worst < 4e-7 + 4 * 8e-8
+
+
+def rotate(q_xyzw, v, inverse=False):
+    x, y, z, w = q_xyzw
+    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                  [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                  [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    return (r.T if inverse else r) @ np.asarray(v)
