@@ -79,3 +79,56 @@ def write_flight(path: Path, position: Callable[[float], Tuple[float, float, flo
         for t, conn, msgtype, msg in sorted(events, key=lambda e: e[0]):
             w.write(conn, int(round(t * 1e9)), TS.serialize_ros1(msg, msgtype))
     return path
+
+
+# ---- RotorS before mav_msgs 3.0 (2014-2015): names and types of that generation ----------------
+OLD_TYPES = {
+    "mav_msgs/msg/CommandTrajectoryPositionYaw": "Header header\ngeometry_msgs/Vector3 position\n"
+    "geometry_msgs/Vector3 velocity\ngeometry_msgs/Vector3 acceleration\ngeometry_msgs/Vector3 jerk\n"
+    "geometry_msgs/Vector3 snap\nfloat64 yaw\nfloat64 yaw_rate\n",
+    "mav_msgs/msg/CommandMotorSpeed": "Header header\nfloat32[] motor_speed\n",
+    "mav_msgs/msg/CommandTrajectoryVelocityYawrate": "Header header\ngeometry_msgs/Vector3 velocity\n"
+    "float64 yaw_rate\n",
+}
+for _name, _definition in OLD_TYPES.items():
+    TS.register(get_types_from_msg(_definition, _name))
+T = TS.types
+
+
+def write_old_rotors_flight(path: Path, position: Callable[[float], Tuple[float, float, float]],
+                            waypoints: Iterable[Tuple[float, tuple]], collisions: Iterable[float] = (),
+                            mav: str = "asymmetric_quadrotor", set_point_type: str = "CommandTrajectoryPositionYaw",
+                            duration: float = 40.0) -> Path:
+    """The layout of RotorS' own test bag: ground truth without the MAV prefix, /motors as
+    MotorSpeed, /<mav>/collisions, set points on /<mav>/command/trajectory_position_yaw, and the
+    controller's mav_msgs/CommandMotorSpeed. Angular velocity (0.08, 0, 0) throughout."""
+    sp_type = f"mav_msgs/msg/{set_point_type}"
+    with Writer(path) as w:
+        c_pose = w.add_connection("/ground_truth/pose", "geometry_msgs/msg/PoseStamped", typestore=TS)
+        c_twist = w.add_connection("/ground_truth/twist", "geometry_msgs/msg/TwistStamped", typestore=TS)
+        c_motors = w.add_connection("/motors", "mav_msgs/msg/MotorSpeed", typestore=TS)
+        c_cmd = w.add_connection(f"/{mav}/command/motor_speed", "mav_msgs/msg/CommandMotorSpeed", typestore=TS)
+        c_coll = w.add_connection(f"/{mav}/collisions", "geometry_msgs/msg/WrenchStamped", typestore=TS)
+        c_sp = w.add_connection(f"/{mav}/command/trajectory_position_yaw", sp_type, typestore=TS)
+        events = []
+        for k in range(1, int(round(duration * 100)) + 1):
+            t = k * 0.01
+            events.append((t, c_pose, "geometry_msgs/msg/PoseStamped", pose_stamped(t, position(t))))
+            events.append((t, c_twist, "geometry_msgs/msg/TwistStamped", twist_stamped(t, (0.08, 0.0, 0.0))))
+            speeds = np.full(4, 600.0)
+            events.append((t, c_motors, "mav_msgs/msg/MotorSpeed", T["mav_msgs/msg/MotorSpeed"](header=header(t),
+                                                                                                motor_speed=speeds)))
+            events.append((t, c_cmd, "mav_msgs/msg/CommandMotorSpeed", T["mav_msgs/msg/CommandMotorSpeed"](
+                header=header(t), motor_speed=speeds.astype(np.float32))))
+        for t, (x, y, z) in waypoints:
+            if set_point_type == "CommandTrajectoryPositionYaw":
+                msg = T[sp_type](header=header(t), position=vec(x, y, z), velocity=vec(0, 0, 0),
+                                 acceleration=vec(0, 0, 0), jerk=vec(0, 0, 0), snap=vec(0, 0, 0), yaw=0.0, yaw_rate=0.0)
+            else:
+                msg = T[sp_type](header=header(t), velocity=vec(x, y, z), yaw_rate=0.0)
+            events.append((t, c_sp, sp_type, msg))
+        for t in collisions:
+            events.append((t, c_coll, "geometry_msgs/msg/WrenchStamped", wrench(t)))
+        for t, conn, msgtype, msg in sorted(events, key=lambda e: e[0]):
+            w.write(conn, int(round(t * 1e9)), TS.serialize_ros1(msg, msgtype))
+    return path

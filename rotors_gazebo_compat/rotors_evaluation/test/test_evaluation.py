@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from synthetic_bags import write_flight
+from synthetic_bags import write_flight, write_old_rotors_flight
 
 SCRIPTS = Path(__file__).resolve().parents[1] / "scripts"
 
@@ -122,3 +122,43 @@ def test_empty_and_truncated_bags_get_one_clear_line(tmp_path: Path):
     assert f"rosbag reindex {truncated}" in res.stderr
     res = run("hovering_eval.py", "-b", str(tmp_path / "missing.bag"))
     assert res.returncode == 1 and "does not exist" in res.stderr
+
+
+def test_pre_2_0_rotors_bag_is_evaluated_by_every_script(tmp_path: Path):
+    """RotorS' own test bag layout (reference 1.6): old names without prefix, MotorSpeed on /motors,
+    /<mav>/collisions, CommandTrajectoryPositionYaw set points, CommandMotorSpeed commands."""
+    def position(t):  # as hover_bag, then waypoint 1 at 20 s to (2, 0, 1) reached at 23.5 s
+        if t <= 10.0:
+            return (0.0, 0.0, 0.1 if t < 5 else 0.5)
+        if t <= 20.0:
+            return (0.04, 0.0, 1.03)
+        return (1.5, 0.0, 1.0) if t < 23.5 else (2.0, 0.0, 1.0)
+    bag = write_old_rotors_flight(tmp_path / "waypoint_example.bag", position,
+                                  [(5.0, (0.0, 0.0, 1.0)), (20.0, (2.0, 0.0, 1.0))], collisions=[35.0])
+    res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor", "-m", "/motors", "--json", "-")
+    assert res.returncode == 0, res.stderr
+    assert "[Waypoint 0]: [0.000, 0.000, 1.000, 0.000] at time 5.000 s" in res.stdout
+    assert "Collision at time 35.000 s!" in res.stdout  # and, as RotorS, no points
+    summary = json.loads(res.stdout[res.stdout.index("{"):])
+    assert summary["position_rms"] == pytest.approx(0.05, abs=1e-12)
+    assert summary["topics"]["waypoints"] == "asymmetric_quadrotor/command/trajectory_position_yaw"
+    assert summary["topics"]["motors"] == "motors" and summary["topics"]["wrench"] == "asymmetric_quadrotor/collisions"
+    res = run("waypoints_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor", "--json", "-")
+    assert res.returncode == 0, res.stderr
+    summary = json.loads(res.stdout[res.stdout.index("{"):])
+    assert summary["segments"][1]["settling_time"] == pytest.approx(3.5, abs=0.011)
+    print(res.stdout)
+
+
+def test_a_topic_of_a_type_the_evaluation_cannot_use_is_one_line(tmp_path: Path):
+    bag = write_old_rotors_flight(tmp_path / "velocity.bag", lambda t: (0.0, 0.0, 1.0), [(5.0, (1.0, 0.0, 0.0))],
+                                  set_point_type="CommandTrajectoryVelocityYawrate")
+    res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor")
+    assert res.returncode == 1 and "Traceback" not in res.stderr, res.stderr
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1, res.stderr
+    assert ("waypoint topic 'asymmetric_quadrotor/command/trajectory_position_yaw' has type "
+            "mav_msgs/msg/CommandTrajectoryVelocityYawrate, which holds no position set point") in lines[0]
+    res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor", "-t", "/motors")
+    assert res.returncode == 1 and len(res.stderr.strip().splitlines()) == 1, res.stderr
+    assert "twist topic 'motors' has type mav_msgs/msg/MotorSpeed" in res.stderr

@@ -1,9 +1,13 @@
 """Reads the series the evaluation needs from a ROS 1 bag with rosbags (pure Python).
 
 Understands bags written by the simulator's bag plugin, bags from `rosbag record` (topics with a
-leading slash), compressed bags, and bags of the original RotorS (topics without the MAV prefix,
-mav_msgs/MotorSpeed). Message types are taken from the definitions stored in the bag.
+leading slash), compressed bags, and bags of every RotorS generation: topics with or without the
+MAV prefix, the pre-2.0 names (`motors`, `collisions`, `command/trajectory_position_yaw`) and types
+(mav_msgs/MotorSpeed, CommandMotorSpeed, CommandTrajectoryPositionYaw and any other set point with
+`position` and `yaw` fields). Message types are taken from the definitions stored in the bag. A
+topic of a type the evaluation cannot use is one line naming the topic and the type.
 """
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
@@ -61,6 +65,13 @@ STATUS_RUNNING = 0
 
 
 POSE_COMMAND_TOPIC = "/command/pose"
+# Names older RotorS generations used for the same data (tried after the given topic).
+OLD_TOPIC_NAMES = {
+    "/motor_speed": ("/motors",),
+    "/wrench": ("/collisions",),
+    "/command/trajectory": (POSE_COMMAND_TOPIC, "/command/trajectory_position_yaw"),
+}
+TWIST_TYPES = ("geometry_msgs/msg/TwistStamped", "nav_msgs/msg/Odometry", "geometry_msgs/msg/Twist")
 POSE_TYPES = ("geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/TransformStamped",
               "geometry_msgs/msg/PointStamped", "nav_msgs/msg/Odometry", "geometry_msgs/msg/Pose")
 
@@ -88,6 +99,23 @@ def _position(msg, msgtype: str) -> np.ndarray:
     else:  # geometry_msgs/Pose
         p = msg.position
     return np.array([p.x, p.y, p.z])
+
+
+def _set_point(msg, msgtype: str, topic: str):
+    """(position, orientation or yaw) of a set-point message; None for a trajectory without points.
+    BagError for a type that holds no position set point."""
+    if msgtype.endswith("/PoseStamped"):
+        return msg.pose.position, msg.pose.orientation
+    if msgtype.endswith("/Pose"):
+        return msg.position, msg.orientation
+    if msgtype.endswith("MultiDOFJointTrajectory"):
+        if msg.points and msg.points[0].transforms:
+            return msg.points[0].transforms[0].translation, msg.points[0].transforms[0].rotation
+        return None
+    if hasattr(msg, "position") and hasattr(msg, "yaw"):  # mav_msgs/CommandTrajectoryPositionYaw and kin (pre-2.0)
+        return msg.position, float(msg.yaw)
+    raise BagError(f"waypoint topic '{topic}' has type {msgtype}, which holds no position set point (usable: "
+                   f"MultiDOFJointTrajectory, PoseStamped, Pose, or a message with position and yaw fields)")
 
 
 class FlightBag:
@@ -126,6 +154,14 @@ class FlightBag:
                 return candidate
         return None
 
+    def resolve_any(self, mav_name: str, topic: str) -> Optional[str]:
+        """resolve() of the topic, then of the names older RotorS generations used for it."""
+        for candidate in (topic,) + OLD_TOPIC_NAMES.get("/" + topic.lstrip("/"), ()):
+            found = self.resolve(mav_name, candidate)
+            if found:
+                return found
+        return None
+
     def require(self, mav_name: str, topic: str, what: str) -> str:
         found = self.resolve(mav_name, topic)
         if found is None:
@@ -154,8 +190,17 @@ class FlightBag:
         conns = [c for c in self.reader.connections if c.topic.lstrip("/") == topic.lstrip("/")]
         if not conns:  # rosbags reads every connection when given none
             return
-        for conn, t_ns, raw in self.reader.messages(connections=conns):
-            yield self.typestore.deserialize_ros1(raw, conn.msgtype), conn.msgtype, t_ns
+        try:
+            for conn, t_ns, raw in self.reader.messages(connections=conns):
+                try:
+                    msg = self.typestore.deserialize_ros1(raw, conn.msgtype)
+                except Exception as e:  # noqa: BLE001 - a definition that does not match the bytes
+                    raise BagError(f"topic '{topic}' of type {conn.msgtype} in bag '{self.path.name}' cannot be "
+                                   f"decoded: {e}") from e
+                yield msg, conn.msgtype, t_ns
+        except ReaderError as e:
+            raise BagError(f"cannot read topic '{topic}' of bag '{self.path}': {e} (if it is truncated, run: "
+                           f"rosbag reindex {self.path})") from e
 
 
 def _until(data: FlightData, end: Optional[FlightEnd]) -> FlightData:
@@ -187,42 +232,53 @@ def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, wa
         if not t:
             raise BagError(f"pose topic '{pose}' has no messages in bag '{bag.path.name}'")
         twist = used["twist"] = bag.require(mav_name, twist_topic, "twist")
+        if bag.topics[twist] not in TWIST_TYPES:
+            raise BagError(f"twist topic '{twist}' has type {bag.topics[twist]}; expected one of {', '.join(TWIST_TYPES)}")
         tw, w = [], []
         for msg, msgtype, t_ns in bag.messages(twist):
-            ang = msg.twist.twist.angular if msgtype.endswith("Odometry") else msg.twist.angular
+            if msgtype.endswith("Odometry"):
+                ang = msg.twist.twist.angular
+            else:
+                ang = msg.twist.angular if msgtype.endswith("TwistStamped") else msg.angular
             tw.append(_stamp(msg, t_ns))
             w.append([ang.x, ang.y, ang.z])
         waypoints = []
-        # the waypoint topic, else the pose command (hovering_example_msf sends a PoseStamped there)
-        wp_topic = bag.resolve(mav_name, waypoint_topic) or bag.resolve(mav_name, POSE_COMMAND_TOPIC)
+        # the waypoint topic, else the pose command (hovering_example_msf sends a PoseStamped there),
+        # else the pre-2.0 command/trajectory_position_yaw
+        wp_topic = bag.resolve_any(mav_name, waypoint_topic)
         if wp_topic:
             used["waypoints"] = wp_topic
             last = None
             for msg, msgtype, t_ns in bag.messages(wp_topic):
-                if msgtype.endswith("PoseStamped"):
-                    pos, rot = msg.pose.position, msg.pose.orientation
-                elif msg.points and msg.points[0].transforms:
-                    pos, rot = msg.points[0].transforms[0].translation, msg.points[0].transforms[0].rotation
-                else:
+                point = _set_point(msg, msgtype, wp_topic)
+                if point is None:
                     continue
-                sample = WaypointSample(_stamp(msg, t_ns), np.array([pos.x, pos.y, pos.z]), _yaw(rot))
+                pos, rot = point
+                yaw = rot if isinstance(rot, float) else _yaw(rot)
+                sample = WaypointSample(_stamp(msg, t_ns), np.array([pos.x, pos.y, pos.z]), yaw)
                 key = (tuple(sample.position), sample.yaw)
                 if key != last:  # consecutive duplicates are dropped, as RotorS
                     waypoints.append(sample)
                 last = key
         collisions = []
-        wrench = bag.resolve(mav_name, wrench_topic)
-        if wrench:
+        wrench = bag.resolve_any(mav_name, wrench_topic)
+        if wrench:  # every message is a contact, whatever its type (WrenchStamped; older: collisions)
             used["wrench"] = wrench
             collisions = [_stamp(msg, t_ns) for msg, _, t_ns in bag.messages(wrench)]
         motors = None
         if motor_topic:
-            motor = bag.resolve(mav_name, motor_topic)
+            motor = bag.resolve_any(mav_name, motor_topic)
+            sample = next(bag.messages(motor), None) if motor else None
+            if sample is not None and not (hasattr(sample[0], "angular_velocities") or hasattr(sample[0], "motor_speed")):
+                print(f"note: motor topic '{motor}' has type {sample[1]}, which holds no rotor speeds; motor speeds "
+                      f"are left out", file=sys.stderr)
+                motor = None
             if motor:
                 used["motors"] = motor
                 tm, om = [], []
                 for msg, msgtype, t_ns in bag.messages(motor):
-                    speeds = msg.motor_speed if msgtype.endswith("MotorSpeed") else msg.angular_velocities
+                    # Actuators; pre-2.0 MotorSpeed and CommandMotorSpeed
+                    speeds = msg.angular_velocities if hasattr(msg, "angular_velocities") else msg.motor_speed
                     tm.append(_stamp(msg, t_ns))
                     om.append(list(speeds))
                 if tm and len({len(o) for o in om}) == 1:

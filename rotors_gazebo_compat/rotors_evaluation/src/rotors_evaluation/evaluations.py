@@ -41,6 +41,7 @@ class EvalResult:
     settling_time: Optional[float] = None
     scores: dict = field(default_factory=dict)
     plots: List[str] = field(default_factory=list)
+    topics: dict = field(default_factory=dict)  # what each series was read from (old bags use other names)
 
 
 def _load(opts: EvalOptions, bag: Path) -> FlightData:
@@ -68,7 +69,7 @@ def evaluate_hovering(data: FlightData, opts: EvalOptions, out=print) -> EvalRes
     end = min(start + opts.rms_calc_time, opts.end_time)
     out(f"Setting the evaluation start time {opts.delay_first_evaluation:.1f} s after the waypoint was published "
         f"(evaluating {start:.2f} s to {end:.2f} s).")
-    result = EvalResult(str(data.path), opts.mav_name, "hovering")
+    result = EvalResult(str(data.path), opts.mav_name, "hovering", topics=dict(data.topics))
     pos_rms, ang_rms = _window_rms(data, wp.position, start, end)
     result.segments.append(SegmentResult([*wp.position.tolist(), wp.yaw], wp.t, None, pos_rms, ang_rms))
     result.position_rms, result.angular_velocity_rms = pos_rms, ang_rms
@@ -78,7 +79,7 @@ def evaluate_hovering(data: FlightData, opts: EvalOptions, out=print) -> EvalRes
 
 def evaluate_waypoints(data: FlightData, opts: EvalOptions, out=print) -> EvalResult:
     _require_waypoints(data, opts)
-    result = EvalResult(str(data.path), opts.mav_name, "waypoints")
+    result = EvalResult(str(data.path), opts.mav_name, "waypoints", topics=dict(data.topics))
     t_last = float(data.position.t[-1])
     settle_times, pos_list, ang_list = [], [], []
     for i, wp in enumerate(data.waypoints):
@@ -120,7 +121,7 @@ def evaluate_disturbance(data: FlightData, opts: EvalOptions, out=print) -> Eval
     for i, w in enumerate(data.waypoints):
         if w.t <= DISTURBANCE_TIME_S:
             wp = w
-    result = EvalResult(str(data.path), opts.mav_name, "disturbance")
+    result = EvalResult(str(data.path), opts.mav_name, "disturbance", topics=dict(data.topics))
     out(f"Disturbance at {DISTURBANCE_TIME_S:.1f} s; set point [{wp.position[0]:.3f}, {wp.position[1]:.3f}, "
         f"{wp.position[2]:.3f}]")
     after = data.position.window(DISTURBANCE_TIME_S, float(data.position.t[-1]))
