@@ -79,6 +79,79 @@ TEST(LeePositionController, HoverThrustEqualsWeightAndRotorsStopWithoutReference
   EXPECT_NEAR(omega.mean(), 547.6, 0.1);
 }
 
+TEST(LeePositionController, FailedRotorIsLeftOutAndTheOthersCarryTheHover) {
+  LeePositionController lee(FireflyLee());
+  VehicleState s;
+  s.position_W = {0, 0, 1};
+  TrajectoryPoint ref;
+  ref.position_W = {0, 0, 1};
+  lee.SetTrajectoryPoint(ref);
+  ASSERT_EQ(lee.SetRotorSpeedFactor(1, 0.0), "");
+  const Eigen::VectorXd omega = lee.RotorSpeeds(s);
+  // By hand: with rotor 1 (90 deg, cw) out, zero roll, pitch and yaw torque force rotor 4 (the
+  // opposite one) to zero and leave rotors 0, 2, 3, 5 with a quarter of the weight each.
+  const double k_F = 8.54858e-6, quarter_weight = 1.56779 * 9.81 / 4.0;
+  EXPECT_NEAR(omega[1], 0.0, 1e-9);
+  EXPECT_TRUE(lee.YawReleased());
+  // the yaw reference is given up: a yawed MAV is not turned back (only the rate is damped)
+  VehicleState yawed = s;
+  yawed.orientation_W_B = Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ());
+  double thrust_yawed = 0.0;
+  Eigen::Matrix3d R_d;
+  lee.ComputeThrustAndAttitude(yawed, &thrust_yawed, &R_d);
+  EXPECT_TRUE(R_d.isApprox(yawed.orientation_W_B.toRotationMatrix(), 1e-12));
+  // (within what the yaml's 4-digit angles, 0.5236 for pi/6, leave)
+  EXPECT_NEAR(omega[4], 0.0, 0.01);
+  for (int i : {0, 2, 3, 5}) EXPECT_NEAR(k_F * omega[i] * omega[i], quarter_weight, 1e-4) << "rotor " << i;
+  // derated to half speed: rotor 1 is commanded so that it gives its share at half the speed
+  LeePositionController derated(FireflyLee());
+  derated.SetTrajectoryPoint(ref);
+  ASSERT_EQ(derated.SetRotorSpeedFactor(1, 0.5), "");
+  EXPECT_FALSE(derated.YawReleased());
+  const Eigen::VectorXd w = derated.RotorSpeeds(s);
+  Eigen::VectorXd real = w;
+  real[1] *= 0.5;  // what the derated motor makes of its command
+  const Eigen::Matrix4Xd A = AllocationMatrix(FireflyYaml());
+  const Eigen::Vector4d wrench = A * real.cwiseAbs2();
+  EXPECT_NEAR(wrench[3], 1.56779 * 9.81, 1e-6);
+  EXPECT_LT(wrench.head<3>().norm(), 1e-9);
+  // torques the five rotors cannot make (rotor 4 would have to push down): the yaw gives way to the
+  // nearest feasible value, roll, pitch and thrust stay exact
+  const MotorMixer five_rotors([] {
+    VehicleParameters v = FireflyYaml();
+    v.rotors[1].rotor_force_constant = 0.0;
+    return v;
+  }());
+  int infeasible = 0;
+  for (double alpha_z : {-2.0, 2.0}) {
+    const Eigen::VectorXd w2 = five_rotors.RotorSpeeds({0.5, -0.3, alpha_z}, 15.0).cwiseAbs2();
+    const Eigen::Vector4d made = five_rotors.Allocation() * w2;
+    const Eigen::Vector3d J = FireflyYaml().inertia_kg_m2.diagonal();
+    EXPECT_NEAR(made[0], J[0] * 0.5, 1e-6);
+    EXPECT_NEAR(made[1], J[1] * -0.3, 1e-6);
+    EXPECT_NEAR(made[3], 15.0, 1e-6);
+    // the plain pseudo-inverse: feasible (no negative omega^2) -> yaw as asked, else yaw moved
+    const Eigen::Matrix4Xd& A5 = five_rotors.Allocation();
+    Eigen::Vector4d wrench_asked;
+    wrench_asked << J[0] * 0.5, J[1] * -0.3, J[2] * alpha_z, 15.0;
+    const Eigen::VectorXd plain = A5.transpose() * (A5 * A5.transpose()).inverse() * wrench_asked;
+    if (plain.minCoeff() >= 0.0) {
+      EXPECT_NEAR(made[2], wrench_asked[2], 1e-9);
+    } else {
+      EXPECT_GT(std::abs(made[2] - wrench_asked[2]), 1e-3);
+      ++infeasible;
+    }
+  }
+  EXPECT_EQ(infeasible, 1);  // one sign of yaw torque is out of reach here
+  // refused: a rotor that does not exist, a factor outside [0, 1], a quadrotor losing a rotor
+  EXPECT_NE(lee.SetRotorSpeedFactor(6, 0.0).find("does not exist"), std::string::npos);
+  EXPECT_NE(lee.SetRotorSpeedFactor(0, 1.5).find("must be in [0, 1]"), std::string::npos);
+  LeePositionControllerParameters quad = FireflyLee();
+  quad.vehicle = PelicanYaml();
+  LeePositionController pelican(quad);
+  EXPECT_NE(pelican.SetRotorSpeedFactor(0, 0.0).find("rank 3"), std::string::npos);
+}
+
 TEST(LeePositionController, PositionErrorTiltsTowardsTheReferenceAndYawFollows) {
   LeePositionController lee(FireflyLee());
   TrajectoryPoint ref;

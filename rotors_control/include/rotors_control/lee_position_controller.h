@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -65,6 +67,14 @@ class LeePositionController {
   explicit LeePositionController(const LeePositionControllerParameters& params);
 
   void SetTrajectoryPoint(const TrajectoryPoint& point);
+  /// Rotor `rotor` now turns at speed_factor times its command (a derated motor; 0: failed). The
+  /// allocation models it with k_F s^2, so the other rotors take over its share (RotorS issue 511).
+  /// With a rotor failed (0) the yaw reference is given up: the desired heading is the current one
+  /// (a hexacopter on five rotors cannot make yaw torque of one sign; a yaw error that builds up
+  /// would take Lee's SO(3) error towards pi, where it no longer holds roll and pitch).
+  /// Returns "" or why the change was refused (the previous allocation is kept).
+  std::string SetRotorSpeedFactor(size_t rotor, double speed_factor);
+  bool YawReleased() const { return yaw_released_; }
   bool HasReference() const { return has_reference_; }
   /// Rotor speeds [rad/s]; zeros until the first reference (the rotors stay stopped).
   Eigen::VectorXd RotorSpeeds(const VehicleState& state) const;
@@ -78,6 +88,9 @@ class LeePositionController {
   AccelerationLimits limits_;
   TrajectoryPoint reference_;
   bool has_reference_ = false;
+  std::vector<double> nominal_force_constants_;  ///< k_F of each rotor when healthy
+  std::vector<double> speed_factors_;            ///< 1 healthy, 0 failed
+  bool yaw_released_ = false;                    ///< a rotor has failed: hold no yaw reference
 };
 
 }  // namespace rotors_control

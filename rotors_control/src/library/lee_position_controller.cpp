@@ -56,7 +56,31 @@ LeePositionController::LeePositionController(const LeePositionControllerParamete
     : params_(Validated(params)),
       attitude_law_(params.attitude, params.vehicle.inertia_kg_m2),
       mixer_(params.vehicle),
-      limits_(LimitsOf(params_)) {}
+      limits_(LimitsOf(params_)) {
+  for (const Rotor& r : params_.vehicle.rotors) nominal_force_constants_.push_back(r.rotor_force_constant);
+  speed_factors_.assign(nominal_force_constants_.size(), 1.0);
+}
+
+std::string LeePositionController::SetRotorSpeedFactor(size_t rotor, double speed_factor) {
+  if (rotor >= nominal_force_constants_.size())
+    return "rotor " + std::to_string(rotor) + " does not exist (the vehicle has " +
+           std::to_string(nominal_force_constants_.size()) + ")";
+  if (!(speed_factor >= 0.0 && speed_factor <= 1.0))
+    return "speed_factor " + std::to_string(speed_factor) + " must be in [0, 1]";
+  LeePositionControllerParameters p = params_;
+  // omega_real = s omega_cmd: thrust and moment k_F omega_real^2 = (s^2 k_F) omega_cmd^2 (eqs. 1, 4)
+  p.vehicle.rotors[rotor].rotor_force_constant = nominal_force_constants_[rotor] * speed_factor * speed_factor;
+  try {
+    mixer_ = MotorMixer(p.vehicle);
+  } catch (const std::invalid_argument& e) {
+    return "rotor " + std::to_string(rotor) + " at " + std::to_string(speed_factor) + ": " + e.what();
+  }
+  params_ = p;
+  limits_ = LimitsOf(params_);
+  speed_factors_[rotor] = speed_factor;
+  yaw_released_ = std::find(speed_factors_.begin(), speed_factors_.end(), 0.0) != speed_factors_.end();
+  return {};
+}
 
 void LeePositionController::SetTrajectoryPoint(const TrajectoryPoint& point) {
   reference_ = point;
@@ -77,8 +101,10 @@ void LeePositionController::ComputeThrustAndAttitude(const VehicleState& s, doub
   if (limits_.Active()) a = -SaturatedAcceleration(-a, limits_);
   // Lee2010 eq. (15): f = -m a . R e3
   *thrust_N = -m * a.dot(R * e3);
-  // Desired attitude: b3_d = -a / |a|, b1_d from the yaw, b2_d = b3_d x b1_d normalised
-  const Eigen::Vector3d b1_d(std::cos(reference_.yaw_rad), std::sin(reference_.yaw_rad), 0.0);
+  // Desired attitude: b3_d = -a / |a|, b1_d from the yaw (the current one when yaw is given up),
+  // b2_d = b3_d x b1_d normalised
+  const double yaw_d = yaw_released_ ? std::atan2(R(1, 0), R(0, 0)) : reference_.yaw_rad;
+  const Eigen::Vector3d b1_d(std::cos(yaw_d), std::sin(yaw_d), 0.0);
   const Eigen::Vector3d b3_d = -a / a.norm();
   const Eigen::Vector3d b2_d = b3_d.cross(b1_d).normalized();
   R_WD->col(0) = b2_d.cross(b3_d);
@@ -91,7 +117,7 @@ Eigen::VectorXd LeePositionController::RotorSpeeds(const VehicleState& s) const 
   double thrust_N = 0.0;
   Eigen::Matrix3d R_WD;
   ComputeThrustAndAttitude(s, &thrust_N, &R_WD);
-  const Eigen::Vector3d omega_d(0.0, 0.0, reference_.yaw_rate_rad_s);
+  const Eigen::Vector3d omega_d(0.0, 0.0, yaw_released_ ? 0.0 : reference_.yaw_rate_rad_s);
   const Eigen::Vector3d alpha =
       attitude_law_.AngularAcceleration(s.orientation_W_B.toRotationMatrix(), s.angular_velocity_B, R_WD, omega_d);
   return mixer_.RotorSpeeds(alpha, thrust_N);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/Dense>
@@ -50,11 +51,30 @@ double MotorMixer::FeasibleThrust(const Eigen::Vector3d& alpha_B, double thrust_
   return std::max(feasible, 0.0);
 }
 
+double MotorMixer::FeasibleYaw(const Eigen::VectorXd& without_yaw, const Eigen::VectorXd& per_yaw, double yaw) {
+  // omega_i^2 = without_yaw_i + per_yaw_i y >= 0 for every i bounds y to [lo, hi]
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < per_yaw.size(); ++i) {
+    if (per_yaw[i] > 0.0) lo = std::max(lo, -without_yaw[i] / per_yaw[i]);
+    if (per_yaw[i] < 0.0) hi = std::min(hi, without_yaw[i] / -per_yaw[i]);
+  }
+  return lo <= hi ? std::clamp(yaw, lo, hi) : yaw;  // empty: yaw cannot help, the rotors clip
+}
+
 Eigen::VectorXd MotorMixer::RotorSpeeds(const Eigen::Vector3d& alpha_B, double thrust_N) const {
-  Eigen::Vector4d input;
-  input << alpha_B, FeasibleThrust(alpha_B, thrust_N);
-  const Eigen::VectorXd omega_squared = (A_pinv_J_ * input).cwiseMax(0.0);
-  return omega_squared.cwiseSqrt();
+  // omega^2 = A^T (A A^T)^-1 blockdiag(J, 1) [alpha; T] = without_yaw + per_yaw alpha_z
+  const Eigen::VectorXd per_yaw = A_pinv_J_.col(2);
+  const auto without_yaw = [&](double thrust) {
+    return Eigen::VectorXd(A_pinv_J_.leftCols<2>() * alpha_B.head<2>() + A_pinv_J_.col(3) * thrust);
+  };
+  // A rotor cannot push downwards: when one would have to, the yaw acceleration gives way (moves to
+  // the nearest feasible value), so roll, pitch and thrust stay exact. A hexacopter with a failed
+  // rotor gives up yaw this way and keeps its position. The thrust limit then uses that yaw.
+  double alpha_z = FeasibleYaw(without_yaw(thrust_N), per_yaw, alpha_B.z());
+  const double thrust = FeasibleThrust({alpha_B.x(), alpha_B.y(), alpha_z}, thrust_N);
+  const Eigen::VectorXd base = without_yaw(thrust);
+  alpha_z = FeasibleYaw(base, per_yaw, alpha_z);
+  return (base + per_yaw * alpha_z).cwiseMax(0.0).cwiseSqrt();
 }
 
 }  // namespace rotors_control

@@ -1,4 +1,5 @@
 // lee_position_controller_node: odometry + command/trajectory | command/pose -> command/motor_speed.
+// Ours: motor_failure (rotors_comm/MotorFailure) re-allocates without (or with a derated) rotor.
 // Parameters from the private namespace (lee_controller_<mav>.yaml and <mav>.yaml). Trajectory
 // points are released at their time_from_start (sim time). The motor command is stamped with the
 // odometry stamp it answers (lockstep keys on this).
@@ -6,6 +7,7 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <mav_msgs/Actuators.h>
+#include <rotors_comm/MotorFailure.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
@@ -24,11 +26,24 @@ class LeePositionControllerNode {
     trajectory_sub_ =
         nh_.subscribe(mav_msgs::default_topics::COMMAND_TRAJECTORY, 1, &LeePositionControllerNode::OnTrajectory, this);
     pose_sub_ = nh_.subscribe(mav_msgs::default_topics::COMMAND_POSE, 1, &LeePositionControllerNode::OnPose, this);
+    failure_sub_ = nh_.subscribe("motor_failure", 10, &LeePositionControllerNode::OnMotorFailure, this);
     odometry_sub_ = nh_.subscribe(mav_msgs::default_topics::ODOMETRY, 1, &LeePositionControllerNode::OnOdometry, this,
                                   ros::TransportHints().tcpNoDelay());
   }
 
  private:
+  /// A motor fault the simulator (or a real MAV's failure detection) announces: re-allocate.
+  void OnMotorFailure(const rotors_comm::MotorFailureConstPtr& msg) {
+    const std::string why = msg->motor_number < 0 ? "motor_number must be >= 0"
+                                                  : controller_.SetRotorSpeedFactor(msg->motor_number, msg->speed_factor);
+    if (!why.empty()) {
+      ROS_ERROR("[lee_position_controller] motor_failure not applied: %s", why.c_str());
+      return;
+    }
+    ROS_WARN("[lee_position_controller] motor %d at %.2f of its command: allocation updated", msg->motor_number,
+             msg->speed_factor);
+  }
+
   void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
     const std::string why = CheckUnitQuaternion(msg->pose.orientation);
     const auto& p = msg->pose.position;
@@ -101,7 +116,7 @@ class LeePositionControllerNode {
   std::deque<std::pair<double, TrajectoryPoint>> pending_;
   ros::Timer timer_;
   ros::Publisher motor_pub_;
-  ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_;
+  ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_, failure_sub_;
 };
 
 }  // namespace rotors_control

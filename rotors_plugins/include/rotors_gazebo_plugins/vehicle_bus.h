@@ -1,6 +1,7 @@
 // In-process data shared by the plugins of one vehicle (keyed by robot namespace): the latest
 // motor command (controller interface -> motor models, no ROS round trip), the real rotor speeds
-// (motor models -> multirotor base, bag) and the wind velocity (wind plugin -> motor models).
+// (motor models -> multirotor base, bag), the wind velocity (wind plugin -> motor models) and
+// injected motor faults (multirotor base's service -> motor models).
 #pragma once
 
 #include <string>
@@ -10,17 +11,30 @@
 
 namespace rotors_gazebo_plugins {
 
+/// A motor that turns at speed_factor times its command from start_time_s on (0: failed).
+struct MotorFault {
+  double speed_factor = 1.0;
+  double start_time_s = 0.0;  ///< [s] sim time
+};
+
 struct VehicleBus {
   std::vector<double> motor_command_rad_s;   ///< empty until the first valid command
   std::vector<double> rotor_speed_rad_s;     ///< signed real speed per motor number
   int rotor_count = 0;                       ///< number of motor models registered
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
+  std::vector<MotorFault> motor_faults;      ///< per motor number (healthy by default)
 
   /// The bus of a namespace (created on first use; lives as long as the process).
   static VehicleBus& For(const std::string& robot_namespace);
   /// Drops a namespace's bus (when its model is deleted, so a re-spawn starts clean).
   static void Release(const std::string& robot_namespace);
   void RegisterRotor(int motor_number);
+  /// The factor motor `motor_number`'s command is scaled by at sim time t_s.
+  double SpeedFactor(int motor_number, double t_s) const {
+    if (motor_number >= static_cast<int>(motor_faults.size())) return 1.0;
+    const MotorFault& f = motor_faults[motor_number];
+    return t_s >= f.start_time_s ? f.speed_factor : 1.0;
+  }
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -22,6 +22,7 @@ void VehicleBus::Release(const std::string& robot_namespace) { Buses().erase(rob
 void VehicleBus::RegisterRotor(int motor_number) {
   if (motor_number + 1 > rotor_count) rotor_count = motor_number + 1;
   rotor_speed_rad_s.resize(rotor_count, 0.0);
+  motor_faults.resize(rotor_count);
 }
 
 }  // namespace rotors_gazebo_plugins

@@ -1,6 +1,7 @@
 // librotors_gazebo_motor_model.so: one rotor (reference section 4.1). Reads its command from the
 // vehicle bus, applies eqs. 1-4 through RotorModel, spins the rotor joint for rviz and publishes
-// the real signed rotor speed [rad/s] on motor_speed/<N>.
+// the real signed rotor speed [rad/s] on motor_speed/<N>. An injected fault (VehicleBus::SpeedFactor)
+// scales the command the motor follows.
 #include <std_msgs/Float32.h>
 
 #include "rotors_core/error.h"
@@ -72,7 +73,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     node_ = MakeNode(namespace_);
     if (node_) speed_pub_ = node_->advertise<std_msgs::Float32>(speed_topic, 1);
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
-        [this](const rotors_sim::common::UpdateInfo&) { OnUpdate(); });
+        [this](const rotors_sim::common::UpdateInfo& info) { OnUpdate(info.simTime.Double()); });
   }
 
   void Reset() override {
@@ -81,7 +82,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
   }
 
  private:
-  void OnUpdate() {
+  void OnUpdate(double t_s) {
     // Forces from the speed reached in the last step (the one-step lag of RotorS, ref. 4.1).
     const auto X_WR = link_->WorldPose();
     const Eigen::Vector3d airspeed_W = ToEigen(link_->WorldLinearVel()) - bus_->wind_velocity_W;
@@ -91,7 +92,9 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     parent_link_->AddTorque(X_WR.Rot().RotateVector(FromEigen(w.reaction_moment_R + w.rolling_moment_R)));
 
     const auto& cmd = bus_->motor_command_rad_s;
-    const double omega_cmd = motor_number_ < static_cast<int>(cmd.size()) ? cmd[motor_number_] : 0.0;
+    // an injected fault scales what the motor makes of its command (0: failed)
+    const double omega_cmd = (motor_number_ < static_cast<int>(cmd.size()) ? cmd[motor_number_] : 0.0) *
+                             bus_->SpeedFactor(motor_number_, t_s);
     rotor_->UpdateSpeed(omega_cmd, dt_s_);
     bus_->rotor_speed_rad_s[motor_number_] = rotor_->SignedOmega();
     // The joint spins slowed down only so that rviz shows it without aliasing; the physics and

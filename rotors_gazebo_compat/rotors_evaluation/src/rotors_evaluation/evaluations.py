@@ -17,7 +17,6 @@ from rotors_evaluation.plots import plot_flight
 POSITION_SCORES = (0.0, 1.5, 3.5, 5.0)   # max 0.2 m
 ANGULAR_SCORES = (0.0, 1.0, 2.0, 3.0)    # max 0.2 rad/s
 SETTLING_SCORES = (0.0, 1.5, 3.5, 5.0)   # max 10 s
-DISTURBANCE_TIME_S = 40.0                # the wind gust of mav_with_wind_gust starts at 40 s
 
 
 @dataclass
@@ -117,21 +116,22 @@ def evaluate_waypoints(data: FlightData, opts: EvalOptions, out=print) -> EvalRe
 
 def evaluate_disturbance(data: FlightData, opts: EvalOptions, out=print) -> EvalResult:
     _require_waypoints(data, opts)
+    t_d = opts.disturbance_time  # 40 s by default: mav_with_wind_gust's gust
     wp = data.waypoints[-1]
     for i, w in enumerate(data.waypoints):
-        if w.t <= DISTURBANCE_TIME_S:
+        if w.t <= t_d:
             wp = w
     result = EvalResult(str(data.path), opts.mav_name, "disturbance", topics=dict(data.topics))
-    out(f"Disturbance at {DISTURBANCE_TIME_S:.1f} s; set point [{wp.position[0]:.3f}, {wp.position[1]:.3f}, "
+    out(f"Disturbance at {t_d:.1f} s; set point [{wp.position[0]:.3f}, {wp.position[1]:.3f}, "
         f"{wp.position[2]:.3f}]")
-    after = data.position.window(DISTURBANCE_TIME_S, float(data.position.t[-1]))
-    settle = metrics.settling_time(after, wp.position, opts.settling_radius, opts.min_settled_time, DISTURBANCE_TIME_S)
-    begin = DISTURBANCE_TIME_S + (settle if settle is not None else 0.0)
+    after = data.position.window(t_d, float(data.position.t[-1]))
+    settle = metrics.settling_time(after, wp.position, opts.settling_radius, opts.min_settled_time, t_d)
+    begin = t_d + (settle if settle is not None else 0.0)
     pos, ang = _window_rms(data, wp.position, begin, begin + opts.rms_calc_time)
     result.settling_time = settle if settle is not None else 1.01 * 10.0
     out(f"Settling time after the disturbance: {result.settling_time:.2f} s"
         + ("" if settle is not None else " (did not settle)"))
-    result.segments.append(SegmentResult([*wp.position.tolist(), wp.yaw], DISTURBANCE_TIME_S, settle, pos, ang))
+    result.segments.append(SegmentResult([*wp.position.tolist(), wp.yaw], t_d, settle, pos, ang))
     result.position_rms, result.angular_velocity_rms = pos, ang
     _report(result, metrics.collisions_after(data.collision_times, data.waypoints[0].t + opts.delay_first_evaluation,
                                                      opts.end_time),

@@ -35,6 +35,7 @@ class EvalOptions:
     settling_radius: float
     min_settled_time: float
     delay_first_evaluation: float
+    disturbance_time: float
     json: Optional[Path]
     plot_dir: Path
 
@@ -59,6 +60,8 @@ def parse(description: str, argv: Optional[Sequence[str]] = None, many_bags: boo
     p.add_argument("-w", "--waypoint_topic", default="/command/trajectory")
     p.add_argument("-W", "--wrench_topic", default="/wrench")
     p.add_argument("-D", "--delay_first_evaluation", type=float, default=5.0, help="[s]")
+    p.add_argument("--disturbance_time", type=float, default=40.0,
+                   help="[s] when the disturbance starts (disturbance_eval; 40 s: mav_with_wind_gust's gust)")
     p.add_argument("-n", "--mav_name", default="")
     p.add_argument("--json", type=Path, help="also write a machine-readable summary here ('-' = stdout)")
     p.add_argument("--plot_dir", type=Path, default=Path("."), help="where saved plots go (default: cwd)")
@@ -66,4 +69,5 @@ def parse(description: str, argv: Optional[Sequence[str]] = None, many_bags: boo
     bags = a.bagfile if many_bags else [a.bagfile]
     return EvalOptions(bags, a.mav_name, a.pose_topic, a.twist_topic, a.motor_velocity_topic, a.waypoint_topic,
                        a.wrench_topic, a.save_plots, a.prefix, a.plot, a.begin_time, a.end_time, a.rms_calc_time,
-                       a.settling_radius, a.min_settled_time, a.delay_first_evaluation, a.json, a.plot_dir)
+                       a.settling_radius, a.min_settled_time, a.delay_first_evaluation, a.disturbance_time, a.json,
+                       a.plot_dir)
