@@ -1,15 +1,26 @@
 // librotors_gazebo_wind_plugin.so (reference section 4.6): wind speed that acts through the rotor
 // model (airspeed, eqs. 2-3) and RotorS' force-on-link mode with a timed gust. The variance
 // parameters are used (seeded); RotorS ignored them. Publishes wind_speed and external_force.
+// The wind speed, in order of precedence:
+//   1. RotorS' custom static wind field (useCustomStaticWindField, customWindFieldPath: hemicyl
+//      format, trilinear on its terrain-following grid) where the link is inside the grid;
+//   2. ours: the last rotors_comm/WindSpeed received on <windSpeedSubTopic> (an external wind
+//      generator drives it);
+//   3. ours: <windProfilePath>, a "t vx vy vz" file interpolated in sim time;
+//   4. windSpeedMean (+ variance) along windDirection.
 #include <geometry_msgs/WrenchStamped.h>
 #include <rotors_comm/WindSpeed.h>
 
+#include <optional>
+
 #include "rotors_core/error.h"
+#include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
+#include "rotors_gazebo_plugins/models/wind_field.h"
 #include "rotors_gazebo_plugins/models/wind_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
@@ -24,7 +35,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
                            "linkName", "windSpeedMean", "windSpeedVariance", "windDirection", "windForceMean",
                            "windForceVariance", "windGustStart", "windGustDuration", "windGustForceMean",
                            "windGustForceVariance", "windGustDirection", "useCustomStaticWindField",
-                           "customWindFieldPath", "randomEngineSeed"});
+                           "customWindFieldPath", "randomEngineSeed", "windProfilePath", "windSpeedSubTopic"});
     namespace_ = ReadRobotNamespace(sdf);
     std::string link_name = "base_link", force_topic = "external_force", speed_topic = "wind_speed";
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
@@ -35,8 +46,18 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     ReadParam(sdf, "windSpeedPubTopic", &speed_topic);
     if (!ReadVector(sdf, "xyzOffset", &offset)) throw rotors_sim::SimError("missing required parameter <xyzOffset>");
     ReadParam(sdf, "useCustomStaticWindField", &custom_field);
-    if (custom_field)
-      throw rotors_sim::SimError("useCustomStaticWindField = true: custom wind fields are not supported yet");
+    std::string field_path, profile_path, speed_sub_topic;
+    ReadParam(sdf, "customWindFieldPath", &field_path);
+    ReadParam(sdf, "windProfilePath", &profile_path);
+    ReadParam(sdf, "windSpeedSubTopic", &speed_sub_topic);
+    if (custom_field && field_path.empty())
+      throw rotors_sim::SimError("useCustomStaticWindField = true needs <customWindFieldPath>");
+    try {
+      if (custom_field) field_ = std::make_unique<WindField>(WindField::Load(ResolvePath(field_path)));
+      if (!profile_path.empty()) profile_ = std::make_unique<WindProfile>(WindProfile::Load(ResolvePath(profile_path)));
+    } catch (const std::runtime_error& e) {
+      throw rotors_sim::SimError(e.what());
+    }
     WindParams p;
     ReadParam(sdf, "windSpeedMean", &p.wind_speed_mean_m_s);
     ReadParam(sdf, "windSpeedVariance", &p.wind_speed_variance);
@@ -58,14 +79,40 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     if (node_) {
       force_pub_ = node_->advertise<geometry_msgs::WrenchStamped>(force_topic, 10);
       speed_pub_ = node_->advertise<rotors_comm::WindSpeed>(speed_topic, 10);
+      if (!speed_sub_topic.empty())
+        speed_sub_ = node_->subscribe(speed_sub_topic, 1, &GazeboWindPlugin::OnWindSpeed, this);
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
         [this](const rotors_sim::common::UpdateInfo& info) { OnUpdate(info); });
   }
 
  private:
+  /// "package://", absolute, or (as RotorS) relative to the simulator's working directory.
+  static std::string ResolvePath(const std::string& path) {
+    return path.rfind("package://", 0) == 0 ? rotors_sim::geometry::UriResolver::Resolve(path) : path;
+  }
+
+  void OnWindSpeed(const rotors_comm::WindSpeedConstPtr& msg) {
+    const Eigen::Vector3d v(msg->velocity.x, msg->velocity.y, msg->velocity.z);
+    if (!v.allFinite()) {
+      ROS_ERROR_THROTTLE(1.0, "[wind_plugin] %s: ignoring a wind speed with NaN or inf", namespace_.c_str());
+      return;
+    }
+    external_speed_W_ = v;
+  }
+
   void OnUpdate(const rotors_sim::common::UpdateInfo& info) {
-    const WindSample s = wind_->Sample(info.simTime.Double());
+    WindSample s = wind_->Sample(info.simTime.Double());
+    if (external_speed_W_) {
+      s.velocity_W = *external_speed_W_;
+    } else if (profile_) {
+      s.velocity_W = profile_->Velocity(info.simTime.Double());
+    }
+    if (field_) {
+      const auto p = link_->WorldPose().Pos();
+      Eigen::Vector3d v_field;
+      if (field_->Velocity({p.X(), p.Y(), p.Z()}, &v_field)) s.velocity_W = v_field;
+    }
     bus_->wind_velocity_W = s.velocity_W;
     const rotors_sim::physics::Vector3d force_W(s.force_W.x(), s.force_W.y(), s.force_W.z());
     if (force_W != rotors_sim::physics::Vector3d::Zero) link_->AddForceAtRelativePosition(force_W, offset_L_);
@@ -85,11 +132,15 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
   std::string namespace_, frame_id_ = "world";
   rotors_sim::physics::Vector3d offset_L_;
   std::unique_ptr<WindModel> wind_;
+  std::unique_ptr<WindField> field_;
+  std::unique_ptr<WindProfile> profile_;
+  std::optional<Eigen::Vector3d> external_speed_W_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   VehicleBus* bus_ = nullptr;
   std::shared_ptr<ros::NodeHandle> node_;
   ros::Publisher force_pub_, speed_pub_;
+  ros::Subscriber speed_sub_;
   rotors_sim::event::ConnectionPtr connection_;
 };
 
