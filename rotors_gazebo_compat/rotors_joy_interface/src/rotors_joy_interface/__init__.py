@@ -1,0 +1,1 @@
+"""Hand flying: Joy -> RollPitchYawrateThrust, a terminal keyboard joystick, evdev gamepads."""

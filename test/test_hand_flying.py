@@ -1,0 +1,138 @@
+"""Hand flying: rotors_joy_interface's mapping (RotorS' axes, scales and parameters), the terminal
+keyboard joystick and the gamepad scaling, and a flight: mav_with_keyboard.launch run in a
+pseudo-terminal, driven by scripted key presses, climbs, rolls and yaws as commanded."""
+import json
+import math
+import os
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from conftest import REPO, RosGraph, stop_launch
+
+sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_joy_interface" / "src"))
+from rotors_joy_interface.gamepad import GamepadLayout, normalise  # noqa: E402
+from rotors_joy_interface.joy_mapping import JoyError, JoyMapping  # noqa: E402
+from rotors_joy_interface.keyboard import BUTTON_YAW_RIGHT, KeyJoystick, decode_keys  # noqa: E402
+
+
+def test_joy_mapping_is_rotors():
+    m = JoyMapping()
+    buttons = [0] * 12
+    # full left stick, full forward, thrust axis at 0: roll = 1 * 10 deg * -1, pitch = 10 deg, T = 15 N
+    roll, pitch, yaw_rate, thrust = m.command([1.0, 1.0, 0.0], buttons)
+    assert roll == pytest.approx(-math.radians(10)) and pitch == pytest.approx(math.radians(10))
+    assert yaw_rate == 0.0 and thrust == (0.0, 0.0, 15.0)
+    buttons[3] = 1
+    assert m.command([0, 0, -1.0], buttons)[2:] == (pytest.approx(math.radians(45)), (0.0, 0.0, 0.0))
+    buttons[3], buttons[4] = 0, 1
+    assert m.command([0, 0, 1.0], buttons)[2:] == (pytest.approx(-math.radians(45)), (0.0, 0.0, 30.0))
+    wing = JoyMapping.from_params({"is_fixed_wing": True, "axis_thrust_": 3})
+    assert wing.command([0, 0, 0, -0.5], [0] * 12)[3] == (0.0, 0.0, 0.0)
+    assert wing.command([0, 0, 0, 0.5], [0] * 12)[3] == (0.5, 0.0, 0.0)
+    with pytest.raises(JoyError, match="Joy has 2 axes; axis_thrust_ = 2 needs at least 3"):
+        m.command([0.0, 0.0], [0] * 12)
+    with pytest.raises(JoyError, match="must be finite and in"):
+        m.command([float("nan"), 0.0, 0.0], [0] * 12)
+    with pytest.raises(JoyError, match="unknown parameter 'max_rol'"):
+        JoyMapping.from_params({"max_rol": 0.2})
+
+
+def test_keyboard_joystick_and_gamepad_scaling():
+    keys, rest = decode_keys("w\x1b[Cd\x1b[")
+    assert keys == ["w", "right", "d"] and rest == "\x1b["
+    keys, rest = decode_keys(rest + "A")
+    assert keys == ["up"] and rest == ""
+    stick = KeyJoystick()
+    assert stick.press_all(["w"] * 22 + ["right", "right", "d", "x"], 0.0) == ["x"]
+    axes, buttons = stick.state(0.1)
+    assert axes[2] == pytest.approx(0.1) and axes[0] == pytest.approx(-0.4) and buttons[BUTTON_YAW_RIGHT] == 1
+    axes, buttons = stick.state(0.7)  # released 0.5 s after the last press: roll springs back at 2/s
+    assert buttons[BUTTON_YAW_RIGHT] == 0 and axes[0] == pytest.approx(0.0) and axes[2] == pytest.approx(0.1)
+    assert normalise(0, 0, 255) == 1.0 and normalise(255, 0, 255) == -1.0 and normalise(127.5, 0, 255) == 0.0
+    pad = GamepadLayout({0: (-32768, 32767), 1: (-32768, 32767)}, [0x130, 0x131])
+    pad.on_abs(0, -32768)  # stick full left
+    pad.on_key(0x131, 1)
+    assert pad.axes == [1.0, 0.0] and pad.buttons == [0, 1]  # no event on axis 1 yet
+
+
+RECORDER = textwrap.dedent("""
+    import json, math, sys, time, rospy
+    from nav_msgs.msg import Odometry
+    from mav_msgs.msg import RollPitchYawrateThrust
+    rospy.init_node('recorder', anonymous=True)
+    odom, cmd = [], []
+    def on_odom(m):
+        q = m.pose.pose.orientation
+        odom.append([time.monotonic(), m.pose.pose.position.y, m.pose.pose.position.z,
+                     math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2))])
+    rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, on_odom)
+    rospy.Subscriber('/firefly/command/roll_pitch_yawrate_thrust', RollPitchYawrateThrust,
+                     lambda m: cmd.append([time.monotonic(), m.roll, m.pitch, m.yaw_rate, m.thrust.z]))
+    print('READY', flush=True)
+    time.sleep(float(sys.argv[1]))
+    print('RESULT=' + json.dumps({'odom': odom, 'cmd': cmd}), flush=True)
+""")
+
+
+def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
+    master, slave = os.openpty()
+    launch_log = open(tmp_path / "launch.log", "w")
+    proc = subprocess.Popen(["roslaunch", "-p", str(ros.port), "rotors_gazebo", "mav_with_keyboard.launch",
+                             "gui:=false"], env=ros.env, stdin=slave, stdout=launch_log, stderr=subprocess.STDOUT,
+                            start_new_session=True)
+    proc.log_path = tmp_path / "launch.log"
+    recorder = None
+    try:
+        assert ros.wait_for(lambda: "rotors_joy_interface" in ros.run(["rosnode", "list"], check=False).stdout
+                            and "Successfully spawned" in proc.log_path.read_text(), 60)
+        recorder = subprocess.Popen([sys.executable, "-c", RECORDER, "14"], env=ros.env, stdout=subprocess.PIPE,
+                                    text=True)
+        assert recorder.stdout.readline().strip() == "READY"
+        time.sleep(1.0)
+
+        def keys(key: str, count: int, period: float = 0.05) -> float:
+            t = time.monotonic()
+            for _ in range(count):
+                os.write(master, key.encode())
+                time.sleep(period)
+            return t
+
+        t_climb = keys("w", 22)                  # thrust axis -1 + 22 * 0.05 = 0.1: 16.5 N
+        time.sleep(2.5)
+        keys("s", 2)                             # 15 N, about the weight
+        time.sleep(0.5)
+        t_roll = keys("\x1b[C", 30)              # right arrow held 1.5 s: roll +10 deg
+        time.sleep(1.5)
+        t_yaw = keys("d", 30)                    # D held 1.5 s: yaw rate -45 deg/s
+        out, _ = recorder.communicate(timeout=30)
+    finally:
+        if recorder is not None and recorder.poll() is None:
+            recorder.kill()
+        stop_launch(proc)
+        os.close(master)
+        os.close(slave)
+    log = proc.log_path.read_text()
+    assert "keys: arrows roll/pitch" in log, log[-3000:]
+    rec = json.loads(next(l for l in out.splitlines() if l.startswith("RESULT="))[len("RESULT="):])
+    odom, cmd = np.array(rec["odom"]), np.array(rec["cmd"])
+
+    def at(series, t):
+        return series[np.argmin(np.abs(series[:, 0] - t))]
+
+    assert cmd[:, 4].max() == pytest.approx(16.5, abs=1e-5)          # W x 22
+    assert cmd[:, 1].max() == pytest.approx(math.radians(10), abs=1e-6)   # right arrow: roll right
+    assert cmd[:, 3].min() == pytest.approx(-math.radians(45), abs=1e-6)  # D: yaw right
+    climbed = at(odom, t_roll)[2] - at(odom, t_climb)[2]
+    moved = at(odom, t_yaw)[1] - at(odom, t_roll)[1]
+    yawed = at(odom, t_yaw + 3.0)[3] - at(odom, t_yaw)[3]
+    print(f"keyboard flight: climbed {climbed:.2f} m, rolled right and moved {moved:.2f} m in y, "
+          f"yawed {math.degrees(yawed):.1f} deg in 3 s")
+    assert climbed > 1.0
+    assert moved < -0.5
+    assert yawed < -math.radians(20)  # RotorS' RPYT gains follow a yaw-rate step in about 2 s
