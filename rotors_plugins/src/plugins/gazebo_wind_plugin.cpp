@@ -52,6 +52,9 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     ReadParam(sdf, "windSpeedSubTopic", &speed_sub_topic);
     if (custom_field && field_path.empty())
       throw rotors_sim::SimError("useCustomStaticWindField = true needs <customWindFieldPath>");
+    if (!custom_field && !field_path.empty())
+      ROS_WARN("[wind_plugin] %s: <customWindFieldPath> '%s' is not used: <useCustomStaticWindField> is false",
+               namespace_.c_str(), field_path.c_str());
     try {
       if (custom_field) field_ = std::make_unique<WindField>(WindField::Load(ResolvePath(field_path)));
       if (!profile_path.empty()) profile_ = std::make_unique<WindProfile>(WindProfile::Load(ResolvePath(profile_path)));
