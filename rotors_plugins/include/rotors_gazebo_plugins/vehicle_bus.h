@@ -4,6 +4,7 @@
 // injected motor faults (multirotor base's service -> motor models).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,10 @@ struct VehicleBus {
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
   std::vector<MotorFault> motor_faults;      ///< per motor number (healthy by default)
 
-  /// The bus of a namespace (created on first use; lives as long as the process).
-  static VehicleBus& For(const std::string& robot_namespace);
-  /// Drops a namespace's bus (when its model is deleted, so a re-spawn starts clean).
-  static void Release(const std::string& robot_namespace);
+  /// The bus of a namespace, shared by the plugins of the vehicle that hold it. It lives as long
+  /// as one of them: a model deleted and re-spawned under the same namespace (with another rotor
+  /// count, too) starts on a fresh bus.
+  static std::shared_ptr<VehicleBus> For(const std::string& robot_namespace);
   void RegisterRotor(int motor_number);
   /// The factor motor `motor_number`'s command is scaled by at sim time t_s.
   double SpeedFactor(int motor_number, double t_s) const {

@@ -5,19 +5,21 @@
 
 namespace rotors_gazebo_plugins {
 namespace {
-std::map<std::string, std::unique_ptr<VehicleBus>>& Buses() {
-  static std::map<std::string, std::unique_ptr<VehicleBus>> buses;
+std::map<std::string, std::weak_ptr<VehicleBus>>& Buses() {
+  static std::map<std::string, std::weak_ptr<VehicleBus>> buses;
   return buses;
 }
 }  // namespace
 
-VehicleBus& VehicleBus::For(const std::string& robot_namespace) {
-  auto& bus = Buses()[robot_namespace];
-  if (!bus) bus = std::make_unique<VehicleBus>();
-  return *bus;
+std::shared_ptr<VehicleBus> VehicleBus::For(const std::string& robot_namespace) {
+  std::weak_ptr<VehicleBus>& entry = Buses()[robot_namespace];
+  std::shared_ptr<VehicleBus> bus = entry.lock();
+  if (!bus) {  // first plugin of this vehicle, or the last holder of the previous one is gone
+    bus = std::make_shared<VehicleBus>();
+    entry = bus;
+  }
+  return bus;
 }
-
-void VehicleBus::Release(const std::string& robot_namespace) { Buses().erase(robot_namespace); }
 
 void VehicleBus::RegisterRotor(int motor_number) {
   if (motor_number + 1 > rotor_count) rotor_count = motor_number + 1;

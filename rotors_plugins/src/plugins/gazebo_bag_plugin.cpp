@@ -64,7 +64,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     model_ = model.get();
     world_ = model->GetWorldRaw();
-    bus_ = &VehicleBus::For(ns_);
+    bus_ = VehicleBus::For(ns_);
     node_ = MakeNode(ns_);
     if (!node_) return;  // no ROS, no bag
     std::string t;
@@ -204,7 +204,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::Model* model_ = nullptr;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
-  VehicleBus* bus_ = nullptr;
+  std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
   std::vector<ros::Subscriber> subs_;
   ros::ServiceServer service_;

@@ -41,7 +41,7 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
     ReadParam(sdf, "commandMotorSpeedSubTopic", &command_topic);
     ReadParam(sdf, "motorSpeedCommandPubTopic", &direct_topic);
     model_name_ = model->GetName();
-    bus_ = &VehicleBus::For(namespace_);
+    bus_ = VehicleBus::For(namespace_);
     node_ = MakeNode(namespace_);
     if (!node_) return;
     subs_.push_back(node_->subscribe(command_topic, 1, &GazeboControllerInterface::OnCommand, this,
@@ -70,7 +70,7 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
   }
 
   std::string namespace_, model_name_;
-  VehicleBus* bus_ = nullptr;
+  std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
   std::vector<ros::Subscriber> subs_;
   std::string last_reason_;

@@ -67,7 +67,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     parent_link_ = joint_->GetParent();
     dt_s_ = model->GetWorldRaw()->Physics().max_step_size_s;
-    bus_ = &VehicleBus::For(namespace_);
+    bus_ = VehicleBus::For(namespace_);
     bus_->RegisterRotor(motor_number_);
 
     node_ = MakeNode(namespace_);
@@ -115,7 +115,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
   std::unique_ptr<RotorModel> rotor_;
   rotors_sim::physics::JointPtr joint_;
   rotors_sim::physics::LinkPtr link_, parent_link_;
-  VehicleBus* bus_ = nullptr;
+  std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
   ros::Publisher speed_pub_;
   rotors_sim::event::ConnectionPtr connection_;

@@ -32,7 +32,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
     ReadParam(sdf, "motorPubTopic", &topic);
     RequireLink(model, frame_id_);
     world_ = model->GetWorldRaw();
-    bus_ = &VehicleBus::For(namespace_);
+    bus_ = VehicleBus::For(namespace_);
     node_ = MakeNode(namespace_);
     if (node_) {
       pub_ = node_->advertise<mav_msgs::Actuators>(topic, 1);
@@ -104,7 +104,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
 
   std::string namespace_, frame_id_ = "base_link";
   rotors_sim::physics::World* world_ = nullptr;
-  VehicleBus* bus_ = nullptr;
+  std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   struct Announcement {
     int motor_number;
     double announce_at_s;  ///< [s] sim time

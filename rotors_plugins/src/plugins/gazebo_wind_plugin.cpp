@@ -77,7 +77,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     offset_L_ = {offset.x(), offset.y(), offset.z()};
     world_ = model->GetWorldRaw();
-    bus_ = &VehicleBus::For(namespace_);
+    bus_ = VehicleBus::For(namespace_);
     node_ = MakeNode(namespace_);
     if (node_) {
       force_pub_ = node_->advertise<geometry_msgs::WrenchStamped>(force_topic, 10);
@@ -140,7 +140,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
   std::optional<Eigen::Vector3d> external_speed_W_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
-  VehicleBus* bus_ = nullptr;
+  std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
   ros::Publisher force_pub_, speed_pub_;
   ros::Subscriber speed_sub_;
