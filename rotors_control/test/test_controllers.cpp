@@ -40,8 +40,8 @@ TEST(AttitudeControlLaw, AttitudeErrorOnSO3) {
     gains.attitude_gain = {2, 2, 2};
     gains.angular_rate_gain = {0, 0, 0};
     const Eigen::Matrix3d J = Eigen::Matrix3d::Identity() * 0.1;
-    const Eigen::Vector3d alpha = AttitudeControlLaw(gains, J).AngularAcceleration(R, Eigen::Vector3d::Zero(), R_d,
-                                                                                   Eigen::Vector3d::Zero());
+    const Eigen::Vector3d alpha =
+        AttitudeControlLaw(gains, J).AngularAcceleration(R, Eigen::Vector3d::Zero(), R_d, Eigen::Vector3d::Zero());
     EXPECT_TRUE(alpha.isApprox(-20.0 * std::sin(theta) * axis, 1e-9) || theta == 0.0);
   }
   EXPECT_TRUE(Vee(Hat(Eigen::Vector3d(1, 2, 3))).isApprox(Eigen::Vector3d(1, 2, 3)));

@@ -72,15 +72,19 @@ int main(int argc, char** argv) {
   auto stereo = std::dynamic_pointer_cast<sensors::CameraSensor>(model->Sensors().at(0));
   auto depth = std::dynamic_pointer_cast<sensors::CameraSensor>(model->Sensors().at(1));
   world->Step(1);
-  const double pair_fps = Fps([&] {
-    world->Step(34);  // one sensor period at 1 ms steps: a new update, new frames
-    stereo->Frame(0);
-    stereo->Frame(1);
-  }, frames);
-  const double depth_fps = Fps([&] {
-    world->Step(34);
-    depth->Frame(0);
-  }, frames);
+  const double pair_fps = Fps(
+      [&] {
+        world->Step(34);  // one sensor period at 1 ms steps: a new update, new frames
+        stereo->Frame(0);
+        stereo->Frame(1);
+      },
+      frames);
+  const double depth_fps = Fps(
+      [&] {
+        world->Step(34);
+        depth->Frame(0);
+      },
+      frames);
   if (argc > 3) {
     auto write = [&](const std::string& name, int w, int h, const std::vector<uint8_t>& grey) {
       std::ofstream f(std::string(argv[3]) + "/" + name, std::ios::binary);
@@ -91,7 +95,8 @@ int main(int argc, char** argv) {
     write("right.pgm", 752, 480, stereo->Frame(1).image);
     const auto& d = depth->Frame(0).depth_m;
     std::vector<uint8_t> grey(d.size());
-    for (size_t i = 0; i < d.size(); ++i) grey[i] = std::isnan(d[i]) ? 0 : static_cast<uint8_t>(255 - std::min(d[i], 10.0f) * 25);
+    for (size_t i = 0; i < d.size(); ++i)
+      grey[i] = std::isnan(d[i]) ? 0 : static_cast<uint8_t>(255 - std::min(d[i], 10.0f) * 25);
     write("depth.pgm", 640, 480, grey);
   }
   std::printf("{\"stereo_pairs_per_s\": %.1f, \"depth_frames_per_s\": %.1f, \"triangles\": %zu}\n", pair_fps, depth_fps,

@@ -30,8 +30,8 @@ namespace {
 std::string PoseText(const Pose3d& X) {
   std::ostringstream s;
   s.precision(17);
-  s << X.Pos().X() << " " << X.Pos().Y() << " " << X.Pos().Z() << " " << X.Rot().Roll() << " " << X.Rot().Pitch()
-    << " " << X.Rot().Yaw();
+  s << X.Pos().X() << " " << X.Pos().Y() << " " << X.Pos().Z() << " " << X.Rot().Roll() << " " << X.Rot().Pitch() << " "
+    << X.Rot().Yaw();
   return s.str();
 }
 
@@ -49,9 +49,9 @@ std::string Camera(const std::string& name, const Pose3d& X_SC, int w, int h, do
 /// A static model "rig" at X_WM whose link carries the sensor at X_LS.
 std::string Rig(const Pose3d& X_WM, const Pose3d& X_LS, const std::string& type, double rate,
                 const std::string& cameras) {
-  return "<model name='rig'><static>true</static><pose>" + PoseText(X_WM) + "</pose><link name='link'><sensor name='cam' type='" +
-         type + "'><pose>" + PoseText(X_LS) + "</pose><update_rate>" + std::to_string(rate) + "</update_rate>" +
-         cameras + "</sensor></link></model>";
+  return "<model name='rig'><static>true</static><pose>" + PoseText(X_WM) +
+         "</pose><link name='link'><sensor name='cam' type='" + type + "'><pose>" + PoseText(X_LS) +
+         "</pose><update_rate>" + std::to_string(rate) + "</update_rate>" + cameras + "</sensor></link></model>";
 }
 
 std::string BoxModel(const std::string& name, const Pose3d& X_WB, double sx, double sy, double sz,
@@ -97,7 +97,9 @@ sensors::CameraSensorPtr TheCamera(const physics::WorldPtr& world) {
   return sensor;
 }
 
-uint8_t Pixel(const rendering::RenderedFrame& f, int u, int v) { return f.image[static_cast<size_t>(v) * f.width_px + u]; }
+uint8_t Pixel(const rendering::RenderedFrame& f, int u, int v) {
+  return f.image[static_cast<size_t>(v) * f.width_px + u];
+}
 
 /// The first column of row v, from the left, that shows the box (>127): the box edge lies within
 /// half a pixel of (column - 0.5).
@@ -168,9 +170,9 @@ TEST(Camera, FrustumCullingNeverDropsASphereThatProjectsIntoTheImage) {
   // the test is not empty: most spheres off the view are culled
   EXPECT_GT(culled, 2000);
   EXPECT_LT(kept_but_unseen, culled / 4);
-  EXPECT_FALSE(in.MaySee(Eigen::Vector3d(0, 0, -1), 0.5));   // behind the camera
+  EXPECT_FALSE(in.MaySee(Eigen::Vector3d(0, 0, -1), 0.5));    // behind the camera
   EXPECT_FALSE(in.MaySee(Eigen::Vector3d(0, 0, 31.5), 1.0));  // beyond the far plane
-  EXPECT_TRUE(in.MaySee(Eigen::Vector3d(0, 0, -1), 1.5));    // reaches past the near plane
+  EXPECT_TRUE(in.MaySee(Eigen::Vector3d(0, 0, -1), 1.5));     // reaches past the near plane
 }
 
 namespace {
@@ -211,7 +213,7 @@ void ExpectChunksCoverTheSoup(rendering::TriangleSoup soup) {
 
 TEST(Camera, ChunksOfAMeshHoldEveryTriangleOnceInsideTheirSpheres) {
   ExpectChunksCoverTheSoup(rendering::UnitSphere(64, 32));  // vertices in threes
-  rendering::TriangleSoup grid;                              // shared vertices, indexed
+  rendering::TriangleSoup grid;                             // shared vertices, indexed
   const int n = 30;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
@@ -230,9 +232,10 @@ TEST(Camera, BoxCornerAppearsWhereThePinholeModelPutsIt) {
   // a 1 m cube axis-aligned with the camera, 4 m ahead, 0.5 m left, 0.3 m up: its face towards
   // the camera is a rectangle in the image, its upper left corner at (x, y, z)_C = (3.5, 1, 0.8)
   const Pose3d X_WB = Pose3d(4, 0.5, 0.3, 0, 0, 0) + X_WC;
-  WorldGuard g{WorldLoader::LoadString(
-      World(BoxModel("box", X_WB, 1, 1, 1) + Rig(X_WM, X_LS, "camera", 30, Camera("", X_SC, 752, 480, 1.3962634, "L8"))),
-      "corner")};
+  WorldGuard g{
+      WorldLoader::LoadString(World(BoxModel("box", X_WB, 1, 1, 1) +
+                                    Rig(X_WM, X_LS, "camera", 30, Camera("", X_SC, 752, 480, 1.3962634, "L8"))),
+                              "corner")};
   g.world->Step(1);
   auto cam = TheCamera(g.world);
   const rendering::RenderedFrame& f = cam->Frame(0);
@@ -260,7 +263,8 @@ TEST(Camera, DepthOfATiltedPlaneIsExactToAMillimetre) {
       "<model name='floor'><static>true</static><link name='link'><visual name='visual'><geometry><plane>"
       "<normal>0 0 1</normal><size>200 200</size></plane></geometry></visual></link></model>";
   WorldGuard g{WorldLoader::LoadString(
-      World(floor + Rig(X_WM_rig, Pose3d(), "depth", 30, Camera("", Pose3d(), 320, 240, 1.5, "L8", 0.0, 50.0))), "plane")};
+      World(floor + Rig(X_WM_rig, Pose3d(), "depth", 30, Camera("", Pose3d(), 320, 240, 1.5, "L8", 0.0, 50.0))),
+      "plane")};
   g.world->Step(1);
   auto cam = TheCamera(g.world);
   const rendering::RenderedFrame& f = cam->Frame(0);
@@ -299,8 +303,7 @@ TEST(Camera, StereoDisparityIsFocalLengthTimesBaselineOverDepth) {
   const std::string cameras = Camera("left", Pose3d(0, b / 2, 0, 0, 0, 0), 752, 480, 1.3962634, "L8") +
                               Camera("right", Pose3d(0, -b / 2, 0, 0, 0, 0), 752, 480, 1.3962634, "L8");
   WorldGuard g{WorldLoader::LoadString(
-      World(BoxModel("box", X_WB, 1, 1, 1) + Rig(X_WM, X_SensorInLink, "multicamera", 30, cameras)),
-      "stereo")};
+      World(BoxModel("box", X_WB, 1, 1, 1) + Rig(X_WM, X_SensorInLink, "multicamera", 30, cameras)), "stereo")};
   g.world->Step(1);
   auto cam = TheCamera(g.world);
   ASSERT_EQ(cam->CameraCount(), 2u);
@@ -426,7 +429,8 @@ std::string MeshModel(const std::string& name, const std::string& obj, const Pos
 }  // namespace
 
 TEST(Camera, MeshTexturesAreDrawn) {
-  const std::string folder = std::filesystem::temp_directory_path().string() + "/rotors_texture_" + std::to_string(getpid());
+  const std::string folder =
+      std::filesystem::temp_directory_path().string() + "/rotors_texture_" + std::to_string(getpid());
   const std::string obj = TexturedSquare(folder, true);
   // camera at the origin looking along +x at the square 3 m ahead (unlit: colours are the texels)
   WorldGuard g{WorldLoader::LoadString(
@@ -454,11 +458,11 @@ TEST(Camera, MeshTexturesAreDrawn) {
 }
 
 TEST(Camera, AMissingTextureFailsTheModelUnlessBrokenSensorsAreSkipped) {
-  const std::string folder = std::filesystem::temp_directory_path().string() + "/rotors_notexture_" + std::to_string(getpid());
+  const std::string folder =
+      std::filesystem::temp_directory_path().string() + "/rotors_notexture_" + std::to_string(getpid());
   const std::string obj = TexturedSquare(folder, false);
-  const std::string world =
-      World(MeshModel("square", obj, Pose3d(3, 0, 0, 0, 0, 0)) +
-            Rig(Pose3d(), Pose3d(), "camera", 30, Camera("", Pose3d(), 64, 48, 1.2, "R8G8B8")));
+  const std::string world = World(MeshModel("square", obj, Pose3d(3, 0, 0, 0, 0, 0)) +
+                                  Rig(Pose3d(), Pose3d(), "camera", 30, Camera("", Pose3d(), 64, 48, 1.2, "R8G8B8")));
   std::string error;
   try {
     WorldGuard g{WorldLoader::LoadString(world, "missing")};
@@ -482,7 +486,8 @@ TEST(Camera, AMissingTextureFailsTheModelUnlessBrokenSensorsAreSkipped) {
 
 TEST(Camera, HeightmapDepthFollowsTheTerrain) {
   // a 33 x 33 ramp rising along +x over 20 x 20 m, 0 to 2 m
-  const std::string pgm = std::filesystem::temp_directory_path().string() + "/rotors_ramp_" + std::to_string(getpid()) + ".pgm";
+  const std::string pgm =
+      std::filesystem::temp_directory_path().string() + "/rotors_ramp_" + std::to_string(getpid()) + ".pgm";
   {
     std::ofstream f(pgm, std::ios::binary);
     f << "P5\n33 33\n255\n";

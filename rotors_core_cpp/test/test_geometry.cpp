@@ -36,8 +36,8 @@ fs::path TempDir() {
 std::string FloorObj(double a, double z) {
   const fs::path p = TempDir() / "floor.obj";
   std::ofstream f(p);
-  f << "v " << -a << " " << -a << " " << z << "\nv " << a << " " << -a << " " << z << "\nv " << a << " " << a << " " << z
-    << "\nv " << -a << " " << a << " " << z << "\nf 1 2 3\nf 1 3 4\n";
+  f << "v " << -a << " " << -a << " " << z << "\nv " << a << " " << -a << " " << z << "\nv " << a << " " << a << " "
+    << z << "\nv " << -a << " " << a << " " << z << "\nf 1 2 3\nf 1 3 4\n";
   return p.string();
 }
 
@@ -82,7 +82,8 @@ std::string LoadError(const std::string& world_text) {
 
 // A box dropped on a mesh floor at z = 0.5 m rests with its centre half its height above it.
 TEST(Geometry, BoxRestsOnTrimeshFloorAtAnalyticHeight) {
-  WorldGuard g{WorldLoader::LoadString(World(StaticModel("floor", "<mesh><uri>" + FloorObj(5, 0.5) + "</uri></mesh>")), "mesh")};
+  WorldGuard g{
+      WorldLoader::LoadString(World(StaticModel("floor", "<mesh><uri>" + FloorObj(5, 0.5) + "</uri></mesh>")), "mesh")};
   auto box = DropBox(g.world, "box", 0.3, -0.2, 1.0);
   const uint64_t messages = physics::OdeMessageCount();
   g.world->Step(500);
@@ -104,9 +105,10 @@ TEST(Geometry, HeightfieldGivesContactHeightOfTheTerrain) {
   std::vector<physics::ModelPtr> balls;
   for (int i = 0; i < 4; ++i) {
     SpawnRequest r;
-    r.xml = "<robot name='b'><link name='ball" + std::to_string(i) +
-            "'><inertial><mass value='0.1'/><inertia ixx='1e-4' ixy='0' ixz='0' iyy='1e-4' iyz='0' izz='1e-4'/></inertial>"
-            "<collision><geometry><sphere radius='0.1'/></geometry></collision></link></robot>";
+    r.xml =
+        "<robot name='b'><link name='ball" + std::to_string(i) +
+        "'><inertial><mass value='0.1'/><inertia ixx='1e-4' ixy='0' ixz='0' iyy='1e-4' iyz='0' izz='1e-4'/></inertial>"
+        "<collision><geometry><sphere radius='0.1'/></geometry></collision></link></robot>";
     r.model_name = "ball" + std::to_string(i);
     r.X_WM = physics::Pose3d(points[i][0], points[i][1], field->HeightAt(points[i][0], points[i][1]) + 0.105, 0, 0, 0);
     balls.push_back(ModelBuilder::Spawn(g.world, r));
@@ -177,7 +179,8 @@ TEST(Geometry, BadFilesGiveOneLineNamingTheFile) {
   e = LoadError(World(StaticModel("m", "<mesh><uri>" + garbage.string() + "</uri></mesh>")));
   EXPECT_NE(e.find("garbage.stl"), std::string::npos) << e;
 
-  e = LoadError(World(StaticModel("h", "<heightmap><uri>" + RampPgm(30, "wrong.pgm") + "</uri><size>10 10 1</size></heightmap>")));
+  e = LoadError(World(
+      StaticModel("h", "<heightmap><uri>" + RampPgm(30, "wrong.pgm") + "</uri><size>10 10 1</size></heightmap>")));
   EXPECT_NE(e.find("wrong.pgm"), std::string::npos) << e;
   EXPECT_NE(e.find("30 x 30"), std::string::npos) << e;
 

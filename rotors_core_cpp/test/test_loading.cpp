@@ -73,7 +73,7 @@ TEST(Loading, FixedJointsAreLumpedAndZeroRangeJointsWelded) {
 TEST(Loading, SeveralModelsInOneWorld) {
   WorldGuard g{WorldLoader::LoadString(WorldSdf(0.01, -9.8, true), "multi")};
   for (int i = 0; i < 3; ++i) Spawn(g.world, kMiniMav, "mav" + std::to_string(i), 0, i, 0.5);
-  EXPECT_EQ(g.world->ModelCount(), 4u);  // ground + 3
+  EXPECT_EQ(g.world->ModelCount(), 4u);                      // ground + 3
   EXPECT_THROW(Spawn(g.world, kMiniMav, "mav1"), SimError);  // the name is taken
   g.world->Step(200);
   for (int i = 0; i < 3; ++i) {
@@ -109,7 +109,8 @@ TEST(Loading, MalformedXmlIsAClearError) {
 
 TEST(Loading, UnparsableWorldIsAClearError) {
   try {
-    WorldLoader::LoadString("<sdf version='1.6'><world name='w'><physics type='ode'><max_step_size>abc", "broken.world");
+    WorldLoader::LoadString("<sdf version='1.6'><world name='w'><physics type='ode'><max_step_size>abc",
+                            "broken.world");
     FAIL() << "expected SimError";
   } catch (const SimError& e) {
     const std::string what = e.what();

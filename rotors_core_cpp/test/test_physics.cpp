@@ -73,7 +73,9 @@ class RestingContact : public ::testing::TestWithParam<std::string> {};
 TEST_P(RestingContact, NineBodiesOnTheGroundGiveNoSolverErrorsAndCarryTheirWeight) {
   WorldGuard g{WorldLoader::LoadString(WorldSdf(0.01, -9.8, true, GetParam()), "rest_" + GetParam())};
   std::vector<physics::ModelPtr> models;
-  for (int i = 0; i < 9; ++i) models.push_back(SpawnBox(g.world, "mav" + std::to_string(i), 0.1 + 0.01 * i, 1.5, {0.0347563, 0.0458929, 0.0977}, i));
+  for (int i = 0; i < 9; ++i)
+    models.push_back(
+        SpawnBox(g.world, "mav" + std::to_string(i), 0.1 + 0.01 * i, 1.5, {0.0347563, 0.0458929, 0.0977}, i));
   const uint64_t messages_before = physics::OdeMessageCount();
   g.world->Step(1000);  // drop and 10 s at rest
   EXPECT_EQ(physics::OdeMessageCount() - messages_before, 0u);

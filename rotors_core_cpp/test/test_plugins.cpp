@@ -51,8 +51,9 @@ class PluginTest : public ::testing::Test {
 }  // namespace
 
 TEST_F(PluginTest, PluginFromUrdfGetsParametersAndOneUpdatePerStep) {
-  auto model = Spawn(g.world, "mav", PluginBlock("librotors_test_probe_plugin.so",
-                                                 "<linkName>mav/base_link</linkName><gain>2.5</gain>"));
+  auto model =
+      Spawn(g.world, "mav",
+            PluginBlock("librotors_test_probe_plugin.so", "<linkName>mav/base_link</linkName><gain>2.5</gain>"));
   ProbeRecord* rec = Record("mav");
   ASSERT_NE(rec, nullptr);
   EXPECT_TRUE(rec->loaded);
@@ -67,8 +68,9 @@ TEST_F(PluginTest, PluginFromUrdfGetsParametersAndOneUpdatePerStep) {
 
 TEST_F(PluginTest, PluginForceActsThroughTheStep) {
   // force_z = m g cancels gravity: the body hovers
-  auto model = Spawn(g.world, "hover", PluginBlock("librotors_test_probe_plugin.so",
-                                                   "<linkName>hover/base_link</linkName><force_z>9.8</force_z>"));
+  auto model = Spawn(
+      g.world, "hover",
+      PluginBlock("librotors_test_probe_plugin.so", "<linkName>hover/base_link</linkName><force_z>9.8</force_z>"));
   g.world->Step(500);
   EXPECT_NEAR(model->WorldPose().Pos().Z(), 1.0, 1e-9);
 }
@@ -102,15 +104,16 @@ TEST_F(PluginTest, MissingRequiredParameterNamesModelPluginAndParameter) {
 }
 
 TEST_F(PluginTest, UnparsableParameterIsAnError) {
-  EXPECT_THROW(Spawn(g.world, "mav", PluginBlock("librotors_test_probe_plugin.so",
-                                                 "<linkName>mav/base_link</linkName><gain>fast</gain>")),
-               SimError);
+  EXPECT_THROW(
+      Spawn(g.world, "mav",
+            PluginBlock("librotors_test_probe_plugin.so", "<linkName>mav/base_link</linkName><gain>fast</gain>")),
+      SimError);
   EXPECT_EQ(g.world->ModelCount(), 0u);
 }
 
 TEST_F(PluginTest, ResetRestoresPosesAndTimeAndCallsPluginReset) {
-  auto model = Spawn(g.world, "mav", PluginBlock("librotors_test_probe_plugin.so", "<linkName>mav/base_link</linkName>"),
-                     3.0);
+  auto model =
+      Spawn(g.world, "mav", PluginBlock("librotors_test_probe_plugin.so", "<linkName>mav/base_link</linkName>"), 3.0);
   g.world->Step(50);
   EXPECT_LT(model->WorldPose().Pos().Z(), 3.0 - 0.1);
   g.world->ResetWorld();
@@ -162,7 +165,8 @@ TEST_F(PluginTest, MissingWorldPluginFailsTheWorldLoad) {
 TEST_F(PluginTest, WorldPluginFromTheWorldFileUpdatesAndResets) {
   WorldGuard w{WorldLoader::LoadString(
       "<sdf version='1.6'><world name='probe_world'><plugin name='p' filename='librotors_test_probe_plugin.so'>"
-      "<gain>3</gain></plugin></world></sdf>", "probe.world")};
+      "<gain>3</gain></plugin></world></sdf>",
+      "probe.world")};
   ProbeRecord* rec = Record("world:probe_world");
   ASSERT_NE(rec, nullptr);
   EXPECT_DOUBLE_EQ(rec->gain, 3.0);

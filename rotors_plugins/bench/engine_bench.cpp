@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
   const bool with_ros = argc == 8 && std::string(argv[7]) == "--ros";
   if (with_ros) {
     int ros_argc = 1;
-    ros::init(ros_argc, argv, "rotors_engine_bench", ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
+    ros::init(ros_argc, argv, "rotors_engine_bench",
+              ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
     ros::start();
   }
   if (argc != 7 && !with_ros) {
@@ -33,7 +34,8 @@ int main(int argc, char** argv) {
   try {
     auto world_params = rotors_sim::WorldLoader::LoadFile(argv[1])->Physics();
     world_params.max_step_size_s = std::stod(argv[4]);
-    if (const char* solver = std::getenv("ROTORS_BENCH_SOLVER")) world_params.quick_solver = std::string(solver) == "quick";
+    if (const char* solver = std::getenv("ROTORS_BENCH_SOLVER"))
+      world_params.quick_solver = std::string(solver) == "quick";
     if (const char* iters = std::getenv("ROTORS_BENCH_ITERS")) world_params.quick_iterations = std::atoi(iters);
     auto world = rotors_sim::physics::World::Create("bench", world_params);
     std::ifstream f(argv[2]);

@@ -74,10 +74,8 @@ TEST(CameraMessages, CloudPointsLieOnTheBoxFacesAndDisparityIsFbOverZ) {
   const double f = camera.intrinsics.FocalLengthPx();
   for (size_t i = 0; i < frame.depth_m.size(); i += 97) {
     const float Z = frame.depth_m[i];
-    if (std::isnan(Z))
-      EXPECT_EQ(d[i], -1.0f);
-    else
-      EXPECT_NEAR(d[i], f * 0.11 / Z, 1e-4);
+    if (std::isnan(Z)) EXPECT_EQ(d[i], -1.0f);
+    else EXPECT_NEAR(d[i], f * 0.11 / Z, 1e-4);
   }
   EXPECT_FLOAT_EQ(disparity.f, static_cast<float>(f));
   EXPECT_FLOAT_EQ(disparity.T, 0.11f);
@@ -89,10 +87,8 @@ TEST(CameraMessages, CloudPointsLieOnTheBoxFacesAndDisparityIsFbOverZ) {
   const float* z = reinterpret_cast<const float*>(depth.data.data());
   for (size_t i = 0; i < frame.depth_m.size(); i += 31) {
     const float Z = frame.depth_m[i];
-    if (!std::isnan(Z) && Z >= 0.5f && Z <= 4.0f)
-      EXPECT_EQ(z[i], Z);
-    else
-      EXPECT_TRUE(std::isnan(z[i]));
+    if (!std::isnan(Z) && Z >= 0.5f && Z <= 4.0f) EXPECT_EQ(z[i], Z);
+    else EXPECT_TRUE(std::isnan(z[i]));
   }
 
   // camera_info: K from the FOV, P[3] = -f b

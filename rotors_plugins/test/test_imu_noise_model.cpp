@@ -51,11 +51,11 @@ Eigen::Vector2d FitNoiseDensityAndRandomWalk(const std::vector<double>& y, doubl
 }  // namespace
 
 TEST(ImuNoiseModel, AllanVarianceRecoversNoiseDensityAndRandomWalk) {
-  ImuNoiseParams p;  // ADIS16448 densities and random walks
-  p.gyroscope_bias_correlation_time_s = 1e12;      // pure random walk (eqs. 14-15)
+  ImuNoiseParams p;                            // ADIS16448 densities and random walks
+  p.gyroscope_bias_correlation_time_s = 1e12;  // pure random walk (eqs. 14-15)
   p.accelerometer_bias_correlation_time_s = 1e12;
   ImuNoiseModel model(p, 42);
-  const double dt = 0.01;  // 100 Hz, as in basic.world
+  const double dt = 0.01;    // 100 Hz, as in basic.world
   const size_t n = 4000000;  // 40000 s, about 11 hours
   std::vector<double> gyro(n), accel(n);
   const ImuSample rest{Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, 9.8)};

@@ -40,7 +40,8 @@ Eigen::Vector3d EnuOf(const Eigen::Vector3d& lla) {
 }
 
 TEST(GpsModel, KnownDisplacementsLandOnWgs84WithinOneCentimetre) {
-  const Eigen::Vector3d origin_ecef = EcefFromGeodetic(kZurich.latitude_deg, kZurich.longitude_deg, kZurich.elevation_m);
+  const Eigen::Vector3d origin_ecef =
+      EcefFromGeodetic(kZurich.latitude_deg, kZurich.longitude_deg, kZurich.elevation_m);
   const Eigen::Matrix3d R_ecef_enu = EnuAxesInEcef(kZurich.latitude_deg, kZurich.longitude_deg);
   for (const Eigen::Vector3d& d : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(100, -50, 20),
                                    Eigen::Vector3d(1500, 2500, 100), Eigen::Vector3d(-20000, 8000, 300)}) {
@@ -54,7 +55,8 @@ TEST(GpsModel, KnownDisplacementsLandOnWgs84WithinOneCentimetre) {
   // radius of curvature
   const double phi = kZurich.latitude_deg * kDeg;
   const double M = kA * (1.0 - kE2) / std::pow(1.0 - kE2 * std::sin(phi) * std::sin(phi), 1.5);
-  EXPECT_NEAR(GeodeticFromWorld(kZurich, {0, 1000, 0}).x() - kZurich.latitude_deg, 1000.0 / ((M + kZurich.elevation_m) * kDeg), 1e-8);
+  EXPECT_NEAR(GeodeticFromWorld(kZurich, {0, 1000, 0}).x() - kZurich.latitude_deg,
+              1000.0 / ((M + kZurich.elevation_m) * kDeg), 1e-8);
 }
 
 TEST(GpsModel, NoiseHasTheDeclaredStandardDeviations) {

@@ -18,7 +18,7 @@ TEST(OutageMap, ShippedMapHasBlackAndWhiteRegionsAndIsCentredOnTheOrigin) {
   EXPECT_NEAR(static_cast<double>(blocked) / total, 0.40, 0.03) << blocked << " of " << total;
   EXPECT_FALSE(map.Available(16.05, -4.95));  // inside the black blob right of the centre
   EXPECT_TRUE(map.Available(0.05, 0.05));     // the white middle
-  EXPECT_TRUE(map.Available(1000.0, 0.0));   // outside the image: always available
+  EXPECT_TRUE(map.Available(1000.0, 0.0));    // outside the image: always available
   EXPECT_TRUE(map.Available(0.0, -1000.0));
 }
 

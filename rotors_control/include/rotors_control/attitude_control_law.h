@@ -10,7 +10,7 @@ Eigen::Vector3d Vee(const Eigen::Matrix3d& S);
 Eigen::Matrix3d Hat(const Eigen::Vector3d& v);
 
 struct AttitudeGains {
-  Eigen::Vector3d attitude_gain{3.0, 3.0, 0.035};      ///< K_R (RotorS code defaults)
+  Eigen::Vector3d attitude_gain{3.0, 3.0, 0.035};        ///< K_R (RotorS code defaults)
   Eigen::Vector3d angular_rate_gain{0.52, 0.52, 0.025};  ///< K_omega
 };
 

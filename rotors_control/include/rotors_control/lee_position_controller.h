@@ -20,8 +20,8 @@ namespace rotors_control {
 constexpr double kMinUpwardAccelerationFraction = 0.2;
 
 struct LeePositionControllerParameters {
-  Eigen::Vector3d position_gain{6.0, 6.0, 6.0};   ///< K_p [N/m]
-  Eigen::Vector3d velocity_gain{4.7, 4.7, 4.7};   ///< K_v [N s/m]
+  Eigen::Vector3d position_gain{6.0, 6.0, 6.0};  ///< K_p [N/m]
+  Eigen::Vector3d velocity_gain{4.7, 4.7, 4.7};  ///< K_v [N s/m]
   /// Ours (RotorS issue #456): the desired acceleration is tilted at most this far from vertical.
   /// With it, or with max_rot_velocity on every rotor (the thrust limit), the desired acceleration
   /// is saturated with vertical priority (SaturatedAcceleration). 0 and no max_rot_velocity: RotorS.
@@ -51,9 +51,9 @@ struct TrajectoryPoint {
 
 /// Limits of the desired acceleration (RotorS issue #456; vertical priority as PX4's position control).
 struct AccelerationLimits {
-  double max_tilt_rad = 0.0;                                      ///< 0: no tilt limit
-  double max_m_s2 = std::numeric_limits<double>::infinity();      ///< all rotors at max_rot_velocity / m
-  double min_up_m_s2 = 0.0;                                       ///< floor of the upward part
+  double max_tilt_rad = 0.0;                                  ///< 0: no tilt limit
+  double max_m_s2 = std::numeric_limits<double>::infinity();  ///< all rotors at max_rot_velocity / m
+  double min_up_m_s2 = 0.0;                                   ///< floor of the upward part
   bool Active() const { return max_tilt_rad > 0.0 || std::isfinite(max_m_s2); }
 };
 

@@ -34,7 +34,7 @@ class MotorMixer {
 
  private:
   Eigen::Matrix4Xd A_;
-  Eigen::MatrixX4d A_pinv_J_;  ///< A^T (A A^T)^-1 blockdiag(J, 1)
+  Eigen::MatrixX4d A_pinv_J_;          ///< A^T (A A^T)^-1 blockdiag(J, 1)
   Eigen::VectorXd omega_max_squared_;  ///< empty when any rotor has no max_rot_velocity
 };
 

@@ -21,5 +21,4 @@ std::string LoadGain(const ros::NodeHandle& nh, const std::string& name, Eigen::
 std::string LoadAttitudeGains(const ros::NodeHandle& nh, AttitudeGains* gains);
 std::string LoadLeeParameters(const ros::NodeHandle& nh, LeePositionControllerParameters* params);
 
-
 }  // namespace rotors_control

@@ -10,7 +10,7 @@
 namespace rotors_control {
 
 struct Rotor {
-  double angle_rad = 0.0;             ///< from body +x about +z
+  double angle_rad = 0.0;  ///< from body +x about +z
   double arm_length_m = 0.215;
   double rotor_force_constant = 8.54858e-6;  ///< k_F [N/(rad/s)^2]
   double rotor_moment_constant = 1.6e-2;     ///< k_M [m]

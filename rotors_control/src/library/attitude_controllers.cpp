@@ -38,10 +38,10 @@ Eigen::VectorXd AttitudeLevelController::RotorSpeeds(const VehicleState& s) cons
   } else {
     const double yaw = std::atan2(R(1, 0), R(0, 0));
     // z-y'-x'': R_d = Rz(yaw) Ry(pitch) Rx(roll)
-    const Eigen::Matrix3d R_d = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                                 Eigen::AngleAxisd(pitch_, Eigen::Vector3d::UnitY()) *
-                                 Eigen::AngleAxisd(roll_, Eigen::Vector3d::UnitX()))
-                                    .toRotationMatrix();
+    const Eigen::Matrix3d R_d =
+        (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_, Eigen::Vector3d::UnitY()) *
+         Eigen::AngleAxisd(roll_, Eigen::Vector3d::UnitX()))
+            .toRotationMatrix();
     alpha = law_.AngularAcceleration(R, s.angular_velocity_B, R_d, Eigen::Vector3d(0, 0, yaw_rate_));
   }
   return mixer_.RotorSpeeds(alpha, thrust_N_);

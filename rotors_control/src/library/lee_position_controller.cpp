@@ -96,8 +96,8 @@ void LeePositionController::ComputeThrustAndAttitude(const VehicleState& s, doub
   const Eigen::Vector3d e_p = s.position_W - reference_.position_W;
   const Eigen::Vector3d e_v = R * s.velocity_B - reference_.velocity_W;
   // a = (K_p e_p + K_v e_v) / m - g e3 - a_d : the negative of the desired acceleration
-  Eigen::Vector3d a = (params_.position_gain.cwiseProduct(e_p) + params_.velocity_gain.cwiseProduct(e_v)) / m -
-                      g * e3 - reference_.acceleration_W;
+  Eigen::Vector3d a = (params_.position_gain.cwiseProduct(e_p) + params_.velocity_gain.cwiseProduct(e_v)) / m - g * e3 -
+                      reference_.acceleration_W;
   if (limits_.Active()) a = -SaturatedAcceleration(-a, limits_);
   // Lee2010 eq. (15): f = -m a . R e3
   *thrust_N = -m * a.dot(R * e3);

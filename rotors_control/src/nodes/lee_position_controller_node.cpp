@@ -34,8 +34,9 @@ class LeePositionControllerNode {
  private:
   /// A motor fault the simulator (or a real MAV's failure detection) announces: re-allocate.
   void OnMotorFailure(const rotors_comm::MotorFailureConstPtr& msg) {
-    const std::string why = msg->motor_number < 0 ? "motor_number must be >= 0"
-                                                  : controller_.SetRotorSpeedFactor(msg->motor_number, msg->speed_factor);
+    const std::string why = msg->motor_number < 0
+                                ? "motor_number must be >= 0"
+                                : controller_.SetRotorSpeedFactor(msg->motor_number, msg->speed_factor);
     if (!why.empty()) {
       ROS_ERROR("[lee_position_controller] motor_failure not applied: %s", why.c_str());
       return;
@@ -48,7 +49,8 @@ class LeePositionControllerNode {
     const std::string why = CheckUnitQuaternion(msg->pose.orientation);
     const auto& p = msg->pose.position;
     if (!why.empty() || !std::isfinite(p.x + p.y + p.z)) {
-      ROS_WARN("[lee_position_controller] ignoring command/pose: %s", why.empty() ? "position has NaN or inf" : why.c_str());
+      ROS_WARN("[lee_position_controller] ignoring command/pose: %s",
+               why.empty() ? "position has NaN or inf" : why.c_str());
       return;
     }
     pending_.clear();
@@ -103,8 +105,8 @@ class LeePositionControllerNode {
     pending_.pop_front();
     if (pending_.empty()) return;
     const double wait_s = std::max(pending_.front().first - t_now, 0.0);
-    timer_ = nh_.createTimer(ros::Duration(std::max(wait_s, 1e-6)), [this](const ros::TimerEvent&) { ReleaseNext(); },
-                             true);
+    timer_ = nh_.createTimer(
+        ros::Duration(std::max(wait_s, 1e-6)), [this](const ros::TimerEvent&) { ReleaseNext(); }, true);
   }
 
   void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
@@ -134,7 +136,7 @@ int main(int argc, char** argv) {
            params.max_tilt_angle_rad > 0.0 ? (std::to_string(params.max_tilt_angle_rad) + " rad").c_str()
                                            : "not limited (no max_tilt_angle)",
            params.vehicle.AllRotorsLimited() ? "lowered to keep the torques when a rotor reaches max_rot_velocity"
-                   : "not limited (no rotor_configuration/i/max_rot_velocity)");
+                                             : "not limited (no rotor_configuration/i/max_rot_velocity)");
   try {
     rotors_control::LeePositionControllerNode node(nh, params);
     ros::spin();

@@ -44,7 +44,8 @@ std::string LoadVehicleParameters(const ros::NodeHandle& nh, VehicleParameters* 
     nh.param(base + "max_rot_velocity", r.max_rot_velocity_rad_s, 0.0);  // ours, optional
     v->rotors.push_back(r);
   }
-  if (v->rotors.empty()) return "missing parameter " + nh.resolveName("rotor_configuration") + " (load the vehicle yaml)";
+  if (v->rotors.empty())
+    return "missing parameter " + nh.resolveName("rotor_configuration") + " (load the vehicle yaml)";
   return v->Validate();
 }
 

@@ -16,8 +16,7 @@ namespace rotors_control {
 
 class AttitudeLevelControllerNode {
  public:
-  AttitudeLevelControllerNode(ros::NodeHandle nh, const AttitudeControllerParameters& params)
-      : controller_(params) {
+  AttitudeLevelControllerNode(ros::NodeHandle nh, const AttitudeControllerParameters& params) : controller_(params) {
     motor_pub_ = nh.advertise<mav_msgs::Actuators>("command/motor_speed", 1);
     subs_.push_back(nh.subscribe("command/roll_pitch_yawrate_thrust", 1, &AttitudeLevelControllerNode::OnRpyt, this));
     subs_.push_back(nh.subscribe("command/attitude_thrust", 1, &AttitudeLevelControllerNode::OnAttitude, this));

@@ -12,7 +12,11 @@ class Time {
  public:
   Time() = default;
   Time(int32_t sec_in, int32_t nsec_in) { Set(int64_t{sec_in} * 1000000000LL + nsec_in); }
-  static Time FromNanoseconds(int64_t ns) { Time t; t.Set(ns); return t; }
+  static Time FromNanoseconds(int64_t ns) {
+    Time t;
+    t.Set(ns);
+    return t;
+  }
   static Time FromSeconds(double s) { return FromNanoseconds(static_cast<int64_t>(s * 1e9 + (s >= 0 ? 0.5 : -0.5))); }
 
   double Double() const { return static_cast<double>(ns_) * 1e-9; }
@@ -33,7 +37,10 @@ class Time {
   void Set(int64_t ns) {
     ns_ = ns;
     int64_t s = ns / 1000000000LL, r = ns % 1000000000LL;
-    if (r < 0) { r += 1000000000LL; --s; }
+    if (r < 0) {
+      r += 1000000000LL;
+      --s;
+    }
     sec = static_cast<int32_t>(s);
     nsec = static_cast<int32_t>(r);
   }

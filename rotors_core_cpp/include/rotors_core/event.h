@@ -15,7 +15,9 @@ namespace event {
 class Connection {
  public:
   explicit Connection(std::function<void()> disconnect) : disconnect_(std::move(disconnect)) {}
-  ~Connection() { if (disconnect_) disconnect_(); }
+  ~Connection() {
+    if (disconnect_) disconnect_();
+  }
   Connection(const Connection&) = delete;
   Connection& operator=(const Connection&) = delete;
 

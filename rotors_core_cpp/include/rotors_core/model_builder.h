@@ -8,7 +8,6 @@
 
 #include "rotors_core/physics/physics_types.h"
 
-
 namespace rotors_sim {
 
 struct SpawnRequest {
@@ -26,8 +25,8 @@ class ModelBuilder {
   /// Throws SimError with one line naming the model and the problem.
   static physics::ModelPtr Spawn(const physics::WorldPtr& world, const SpawnRequest& request);
   /// Builds an already parsed SDF model (used for the models of a world file).
-  static physics::ModelPtr Build(const physics::WorldPtr& world, const sdf::Model& sdf_model,
-                                 const std::string& name, const physics::Pose3d& X_WM);
+  static physics::ModelPtr Build(const physics::WorldPtr& world, const sdf::Model& sdf_model, const std::string& name,
+                                 const physics::Pose3d& X_WM);
 };
 
 }  // namespace rotors_sim

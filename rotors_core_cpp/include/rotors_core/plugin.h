@@ -45,21 +45,18 @@ class SensorPlugin : public PluginBase {
 
 }  // namespace rotors_sim
 
-#define RSIM_REGISTER_SENSOR_PLUGIN(classname)                                       \
-  extern "C" __attribute__((visibility("default"))) rotors_sim::SensorPlugin*      \
-  RotorsSimCreateSensorPlugin() {                                                   \
-    return new classname();                                                         \
+#define RSIM_REGISTER_SENSOR_PLUGIN(classname)                                                                \
+  extern "C" __attribute__((visibility("default"))) rotors_sim::SensorPlugin* RotorsSimCreateSensorPlugin() { \
+    return new classname();                                                                                   \
   }
 #define GZ_REGISTER_SENSOR_PLUGIN(classname) RSIM_REGISTER_SENSOR_PLUGIN(classname)
-#define RSIM_REGISTER_MODEL_PLUGIN(classname)                                        \
-  extern "C" __attribute__((visibility("default"))) rotors_sim::ModelPlugin*       \
-  RotorsSimCreateModelPlugin() {                                                    \
-    return new classname();                                                         \
+#define RSIM_REGISTER_MODEL_PLUGIN(classname)                                                               \
+  extern "C" __attribute__((visibility("default"))) rotors_sim::ModelPlugin* RotorsSimCreateModelPlugin() { \
+    return new classname();                                                                                 \
   }
-#define RSIM_REGISTER_WORLD_PLUGIN(classname)                                        \
-  extern "C" __attribute__((visibility("default"))) rotors_sim::WorldPlugin*       \
-  RotorsSimCreateWorldPlugin() {                                                    \
-    return new classname();                                                         \
+#define RSIM_REGISTER_WORLD_PLUGIN(classname)                                                               \
+  extern "C" __attribute__((visibility("default"))) rotors_sim::WorldPlugin* RotorsSimCreateWorldPlugin() { \
+    return new classname();                                                                                 \
   }
 /// Gazebo spellings, for ported plugins.
 #define GZ_REGISTER_MODEL_PLUGIN(classname) RSIM_REGISTER_MODEL_PLUGIN(classname)

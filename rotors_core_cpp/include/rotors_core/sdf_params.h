@@ -33,8 +33,14 @@ inline bool ParseText(const std::string& text, bool* out) {
   std::string word;
   ParseText(text, &word);
   for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // xacro writes True/False
-  if (word == "true" || word == "1") { *out = true; return true; }
-  if (word == "false" || word == "0") { *out = false; return true; }
+  if (word == "true" || word == "1") {
+    *out = true;
+    return true;
+  }
+  if (word == "false" || word == "0") {
+    *out = false;
+    return true;
+  }
   return false;
 }
 }  // namespace detail

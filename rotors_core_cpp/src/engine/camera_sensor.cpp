@@ -64,7 +64,8 @@ void CameraSensor::CheckAll(const sdf::ElementPtr& element, const std::string& m
     ParseCameras(element, "model '" + in_model + "', " + element->Get<std::string>("type") + " sensor '" + name + "'");
     return;
   }
-  for (sdf::ElementPtr child = element->GetFirstElement(); child; child = child->GetNextElement()) CheckAll(child, in_model);
+  for (sdf::ElementPtr child = element->GetFirstElement(); child; child = child->GetNextElement())
+    CheckAll(child, in_model);
 }
 
 physics::Pose3d CameraSensor::CameraWorldPose(size_t i) const { return cameras_.at(i).X_SC + WorldPose(); }

@@ -136,7 +136,8 @@ CreatedGeom CreateGeom(dSpaceID space, const geometry::Shape& s, const ignition:
     case Shape::Type::kOcTree: {
       if (on_body) throw SimError(where + ": an octomap can only belong to a static model");
       if (X_WC.Rot() != ignition::math::Quaterniond::Identity)
-        throw SimError(where + ": an octomap cannot be rotated (its leaves are axis-aligned); give it a pose without rotation");
+        throw SimError(where +
+                       ": an octomap cannot be rotated (its leaves are axis-aligned); give it a pose without rotation");
       const double p_W[3] = {X_WC.Pos().X(), X_WC.Pos().Y(), X_WC.Pos().Z()};
       out.geom = CreateOcTreeGeom(space, s.octree, p_W);
       break;

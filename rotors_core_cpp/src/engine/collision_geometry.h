@@ -24,7 +24,7 @@ struct CreatedGeom {
 };
 /// nullptr geom for an empty geometry. An octomap geom takes the position `p_WC` (it cannot be
 /// rotated: one line if `X_WC` has a rotation).
-CreatedGeom CreateGeom(dSpaceID space, const geometry::Shape& shape, const ignition::math::Pose3d& X_WC,
-                       bool on_body, const std::string& where);
+CreatedGeom CreateGeom(dSpaceID space, const geometry::Shape& shape, const ignition::math::Pose3d& X_WC, bool on_body,
+                       const std::string& where);
 
 }  // namespace rotors_sim

@@ -16,7 +16,8 @@ Inertial Inertial::operator+(const Inertial& other) const {
   // Parallel-axis theorem: J_c = J_i + m_i (|d|^2 E - d d^T), d = c_i - c
   auto shifted = [&c](const Inertial& in) {
     const Eigen::Vector3d d = in.cog_L_ - c;
-    return Eigen::Matrix3d(in.J_cog_L_ + in.mass_kg_ * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
+    return Eigen::Matrix3d(in.J_cog_L_ +
+                           in.mass_kg_ * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
   };
   return Inertial(m, c, shifted(*this) + shifted(other));
 }

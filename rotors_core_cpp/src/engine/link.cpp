@@ -41,13 +41,9 @@ Vector3d PointVelocity(dBodyID body, const Vector3d& p_W) {
 }
 }  // namespace
 
-Vector3d Link::WorldLinearVel() const {
-  return body_ ? PointVelocity(body_, WorldPose().Pos()) : Vector3d::Zero;
-}
+Vector3d Link::WorldLinearVel() const { return body_ ? PointVelocity(body_, WorldPose().Pos()) : Vector3d::Zero; }
 
-Vector3d Link::WorldCoGLinearVel() const {
-  return body_ ? PointVelocity(body_, WorldCoGPose().Pos()) : Vector3d::Zero;
-}
+Vector3d Link::WorldCoGLinearVel() const { return body_ ? PointVelocity(body_, WorldCoGPose().Pos()) : Vector3d::Zero; }
 
 Vector3d Link::RelativeLinearVel() const { return WorldPose().Rot().RotateVectorReverse(WorldLinearVel()); }
 

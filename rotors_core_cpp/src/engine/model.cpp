@@ -72,7 +72,8 @@ void Model::SetWorldPose(const Pose3d& X_WM) {
   }
 }
 
-Model::GeomInfo* Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface) {
+Model::GeomInfo* Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name,
+                                const SurfaceParams& surface) {
   auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name, surface, nullptr});
   dGeomSetData(geom, info.get());
   geoms_.emplace_back(geom, std::move(info));

@@ -84,8 +84,8 @@ JointSpec ClassifyJoint(const sdf::Joint& joint, const std::string& where) {
       return spec;
     case sdf::JointType::REVOLUTE:
     case sdf::JointType::PRISMATIC:
-      spec.type = joint.Type() == sdf::JointType::REVOLUTE ? physics::Joint::Type::kRevolute
-                                                            : physics::Joint::Type::kPrismatic;
+      spec.type =
+          joint.Type() == sdf::JointType::REVOLUTE ? physics::Joint::Type::kRevolute : physics::Joint::Type::kPrismatic;
       if (axis) {
         spec.lower = axis->Lower();
         spec.upper = axis->Upper();
@@ -175,7 +175,8 @@ void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const
     out.shape = ReadShape(*visual->Geom(), "visual '" + out.scoped_name + "'", sdf_file);
     if (visual->Material()) {
       const auto c = visual->Material()->Diffuse();
-      out.rgba = {static_cast<float>(c.R()), static_cast<float>(c.G()), static_cast<float>(c.B()), static_cast<float>(c.A())};
+      out.rgba = {static_cast<float>(c.R()), static_cast<float>(c.G()), static_cast<float>(c.B()),
+                  static_cast<float>(c.A())};
       out.has_material = true;
     } else if (out.shape.mesh) {
       out.rgba = out.shape.mesh->rgba;
@@ -268,8 +269,8 @@ physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const Spaw
   return Build(world, *sdf_model, name, Compose(request.X_WM, sdf_model->RawPose()));
 }
 
-physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf::Model& sdf_model, const std::string& name,
-                                      const Pose3d& X_WM) {
+physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf::Model& sdf_model,
+                                      const std::string& name, const Pose3d& X_WM) {
   if (name.empty()) throw SimError("a model needs a name");
   if (world->ModelByName(name)) throw SimError("model '" + name + "': a model of that name already exists");
   if (sdf_model.LinkCount() == 0) throw SimError("model '" + name + "': it has no links");
@@ -282,11 +283,13 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
     std::map<std::string, std::string> owner;  // link -> link that owns its ODE body
     std::vector<JointSpec> joints;
     std::map<std::string, std::string> parent_of;
-    for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i) owner[sdf_model.LinkByIndex(i)->Name()] = sdf_model.LinkByIndex(i)->Name();
+    for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i)
+      owner[sdf_model.LinkByIndex(i)->Name()] = sdf_model.LinkByIndex(i)->Name();
     for (uint64_t i = 0; i < sdf_model.JointCount(); ++i) {
       const sdf::Joint* j = sdf_model.JointByIndex(i);
       const std::string where = "model '" + name + "', joint '" + j->Name() + "'";
-      if (j->ParentLinkName() == "world") throw SimError(where + ": joints to 'world' are not supported; make the model static");
+      if (j->ParentLinkName() == "world")
+        throw SimError(where + ": joints to 'world' are not supported; make the model static");
       if (!owner.count(j->ParentLinkName()) || !owner.count(j->ChildLinkName()))
         throw SimError(where + ": parent or child link is missing");
       joints.push_back(ClassifyJoint(*j, where));
@@ -294,7 +297,8 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
     }
     for (size_t pass = 0; pass < owner.size(); ++pass)
       for (const auto& spec : joints)
-        if (spec.type == physics::Joint::Type::kWelded) owner[spec.sdf->ChildLinkName()] = owner[spec.sdf->ParentLinkName()];
+        if (spec.type == physics::Joint::Type::kWelded)
+          owner[spec.sdf->ChildLinkName()] = owner[spec.sdf->ParentLinkName()];
 
     // --- link poses and inertials ---
     std::map<std::string, Pose3d> X_ML;
@@ -329,7 +333,8 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
       for (const auto& other : order) {
         if (owner[other] != o) continue;
         const Pose3d X_OL = Compose(Inverse(X_MO), X_ML[other]);
-        total = total + links[other]->GetInertial().Transformed(ode_convert::ToEigen(X_OL.Rot()), ode_convert::ToEigen(X_OL.Pos()));
+        total = total + links[other]->GetInertial().Transformed(ode_convert::ToEigen(X_OL.Rot()),
+                                                                ode_convert::ToEigen(X_OL.Pos()));
         members += (members.empty() ? "" : ", ") + other;
       }
       const std::string where = "model '" + name + "', link '" + o + "'";
@@ -340,11 +345,13 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
       dMassSetParameters(&mass, total.Mass(), 0, 0, 0, J(0, 0), J(1, 1), J(2, 2), J(0, 1), J(0, 2), J(1, 2));
       if (!dMassCheck(&mass)) {
         std::ostringstream why;
-        why << where << ": inertia [" << J(0, 0) << ", " << J(1, 1) << ", " << J(2, 2) << ", " << J(0, 1) << ", " << J(0, 2)
-            << ", " << J(1, 2) << "] kg m^2 with mass " << total.Mass() << " kg is not positive definite; fix its <inertia>";
+        why << where << ": inertia [" << J(0, 0) << ", " << J(1, 1) << ", " << J(2, 2) << ", " << J(0, 1) << ", "
+            << J(0, 2) << ", " << J(1, 2) << "] kg m^2 with mass " << total.Mass()
+            << " kg is not positive definite; fix its <inertia>";
         throw SimError(why.str());
       }
-      const Pose3d X_MB = Compose(X_MO, Pose3d(ode_convert::FromEigen(total.CoG()), ignition::math::Quaterniond::Identity));
+      const Pose3d X_MB =
+          Compose(X_MO, Pose3d(ode_convert::FromEigen(total.CoG()), ignition::math::Quaterniond::Identity));
       dBodyID body = dBodyCreate(world->OdeWorld());
       dBodySetMass(body, &mass);
       ode_convert::SetBodyPose(body, Compose(X_WM, X_MB));
@@ -357,7 +364,8 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
         continue;
       }
       const auto& b = bodies[owner[link_name]];
-      links[link_name]->AttachToBody(b.first, Compose(Inverse(b.second), X_ML[link_name]), owner[link_name] != link_name);
+      links[link_name]->AttachToBody(b.first, Compose(Inverse(b.second), X_ML[link_name]),
+                                     owner[link_name] != link_name);
     }
 
     // --- joints ---

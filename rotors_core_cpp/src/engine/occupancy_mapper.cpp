@@ -59,7 +59,8 @@ class Mapper {
     }
     const int half = size / 2;
     for (int i = 0; i < 8; ++i) {
-      const int child[3] = {start[0] + ((i & 1) ? half : 0), start[1] + ((i & 2) ? half : 0), start[2] + ((i & 4) ? half : 0)};
+      const int child[3] = {start[0] + ((i & 1) ? half : 0), start[1] + ((i & 2) ? half : 0),
+                            start[2] + ((i & 4) ? half : 0)};
       Visit(child, half);
     }
   }
@@ -91,12 +92,10 @@ class Mapper {
 
 std::string OccupancyRequest::Validate() const {
   std::ostringstream why;
-  if (!(leaf_size_m > 0.0) || !std::isfinite(leaf_size_m))
-    why << "leaf size " << leaf_size_m << " m must be > 0";
+  if (!(leaf_size_m > 0.0) || !std::isfinite(leaf_size_m)) why << "leaf size " << leaf_size_m << " m must be > 0";
   else if (!(lengths_m.X() > 0) || !(lengths_m.Y() > 0) || !(lengths_m.Z() > 0) || !lengths_m.IsFinite())
     why << "bounding box lengths " << lengths_m << " m must all be > 0";
-  else if (!center_W.IsFinite())
-    why << "bounding box origin " << center_W << " must be finite";
+  else if (!center_W.IsFinite()) why << "bounding box origin " << center_W << " must be finite";
   else if (lengths_m.Max() / leaf_size_m > 65536.0)
     why << "bounding box of " << lengths_m.Max() << " m is more than 65536 leaves of " << leaf_size_m << " m";
   return why.str();

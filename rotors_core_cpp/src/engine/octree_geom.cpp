@@ -14,7 +14,7 @@ namespace {
 struct OcTreeGeomData {
   std::shared_ptr<const octomap::OcTree> tree;
   double p_W[3];
-  dGeomID leaf_box;  ///< scratch cube, in no space, moved onto each leaf under test
+  dGeomID leaf_box;                         ///< scratch cube, in no space, moved onto each leaf under test
   std::vector<dContactGeom> found, chosen;  ///< scratch of Collide, kept to reuse their memory
 };
 
@@ -97,8 +97,9 @@ int Collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contacts, int skip)
         }
         return best;
       };
-      auto farthest = std::max_element(found.begin(), found.end(),
-                                       [&](const dContactGeom& a, const dContactGeom& b) { return distance(a) < distance(b); });
+      auto farthest = std::max_element(found.begin(), found.end(), [&](const dContactGeom& a, const dContactGeom& b) {
+        return distance(a) < distance(b);
+      });
       chosen.push_back(*farthest);
       found.erase(farthest);
     }
@@ -134,7 +135,8 @@ int ClassNumber() {
 
 dGeomID CreateOcTreeGeom(dSpaceID space, std::shared_ptr<const octomap::OcTree> tree, const double p_W[3]) {
   dGeomID g = dCreateGeom(ClassNumber());
-  new (dGeomGetClassData(g)) OcTreeGeomData{std::move(tree), {p_W[0], p_W[1], p_W[2]}, dCreateBox(nullptr, 1, 1, 1), {}, {}};
+  new (dGeomGetClassData(g))
+      OcTreeGeomData{std::move(tree), {p_W[0], p_W[1], p_W[2]}, dCreateBox(nullptr, 1, 1, 1), {}, {}};
   if (space) dSpaceAdd(space, g);
   return g;
 }

@@ -13,7 +13,10 @@ inline ignition::math::Vector3d Vec(const dReal* v) { return {v[0], v[1], v[2]};
 inline ignition::math::Quaterniond Quat(const dReal* q) { return {q[0], q[1], q[2], q[3]}; }
 
 inline void ToOde(const ignition::math::Quaterniond& q, dQuaternion out) {
-  out[0] = q.W(); out[1] = q.X(); out[2] = q.Y(); out[3] = q.Z();
+  out[0] = q.W();
+  out[1] = q.X();
+  out[2] = q.Y();
+  out[3] = q.Z();
 }
 
 inline ignition::math::Pose3d BodyPose(dBodyID body) {

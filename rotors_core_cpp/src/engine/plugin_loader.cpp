@@ -40,9 +40,11 @@ std::unique_ptr<PluginT> Create(const std::string& filename, const char* symbol,
   auto factory = reinterpret_cast<Factory>(dlsym(handle, symbol));
   if (!factory) {
     for (const char* other : {"model", "world", "sensor"}) {
-      const std::string other_symbol = std::string("RotorsSimCreate") + char(std::toupper(other[0])) + (other + 1) + "Plugin";
+      const std::string other_symbol =
+          std::string("RotorsSimCreate") + char(std::toupper(other[0])) + (other + 1) + "Plugin";
       if (dlsym(handle, other_symbol.c_str()))
-        throw SimError("plugin '" + filename + "' is a " + other + " plugin and cannot be used as a " + kind + " plugin");
+        throw SimError("plugin '" + filename + "' is a " + other + " plugin and cannot be used as a " + kind +
+                       " plugin");
     }
     std::string macro = kind;
     for (char& c : macro) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -75,7 +77,8 @@ std::string PluginLoader::Resolve(const std::string& filename) {
   }
   std::string searched;
   for (const auto& dir : dirs) searched += (searched.empty() ? "" : ":") + dir;
-  throw SimError("plugin library '" + filename + "' not found in GAZEBO_PLUGIN_PATH, ROTORS_PLUGIN_PATH or LD_LIBRARY_PATH (" +
+  throw SimError("plugin library '" + filename +
+                 "' not found in GAZEBO_PLUGIN_PATH, ROTORS_PLUGIN_PATH or LD_LIBRARY_PATH (" +
                  (searched.empty() ? std::string("all empty") : searched) + "); is the workspace built and sourced?");
 }
 

@@ -8,7 +8,10 @@ namespace sensors {
 
 Sensor::Sensor(std::string name, std::string type, physics::LinkPtr parent, const physics::Pose3d& pose_in_link,
                double update_rate_hz)
-    : name_(std::move(name)), type_(std::move(type)), parent_(std::move(parent)), X_LS_(pose_in_link),
+    : name_(std::move(name)),
+      type_(std::move(type)),
+      parent_(std::move(parent)),
+      X_LS_(pose_in_link),
       update_rate_hz_(update_rate_hz) {}
 
 std::string Sensor::ParentName() const { return parent_->GetName(); }

@@ -57,12 +57,14 @@ std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const std:
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) any_uv = any_uv || scene->mMeshes[m]->HasTextureCoords(0);
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* am = scene->mMeshes[m];
-    const aiMaterial* material = scene->mNumMaterials > am->mMaterialIndex ? scene->mMaterials[am->mMaterialIndex] : nullptr;
+    const aiMaterial* material =
+        scene->mNumMaterials > am->mMaterialIndex ? scene->mMaterials[am->mMaterialIndex] : nullptr;
     aiColor4D diffuse(0.7f, 0.7f, 0.7f, 1.0f);
     if (material) material->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse);
     aiString texture;
-    if (material && mesh->texture_file.empty() && material->GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS &&
-        texture.length > 0 && texture.C_Str()[0] != '*') {  // '*n': embedded, not supported
+    if (material && mesh->texture_file.empty() &&
+        material->GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS && texture.length > 0 &&
+        texture.C_Str()[0] != '*') {  // '*n': embedded, not supported
       mesh->texture_file = (std::filesystem::path(path).parent_path() / texture.C_Str()).lexically_normal().string();
     }
     const uint32_t base = static_cast<uint32_t>(mesh->vertices_m.size() / 3);
@@ -72,7 +74,8 @@ std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const std:
       mesh->colours.insert(mesh->colours.end(), {c.r, c.g, c.b});
       if (any_uv) {
         const bool has = am->HasTextureCoords(0);
-        mesh->uvs.insert(mesh->uvs.end(), {has ? am->mTextureCoords[0][v].x : 0.0f, has ? am->mTextureCoords[0][v].y : 0.0f});
+        mesh->uvs.insert(mesh->uvs.end(),
+                         {has ? am->mTextureCoords[0][v].x : 0.0f, has ? am->mTextureCoords[0][v].y : 0.0f});
       }
     }
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
@@ -100,11 +103,11 @@ double HeightField::HeightAt(double x_m, double y_m) const {
 }
 
 std::shared_ptr<const HeightField> LoadHeightmap(const std::string& path, const std::array<double, 3>& size_m,
-                                                const std::array<double, 3>& pos_m) {
+                                                 const std::array<double, 3>& pos_m) {
   static Cache<HeightField> cache;
   std::ostringstream key;
-  key << path << '|' << size_m[0] << ',' << size_m[1] << ',' << size_m[2] << '|' << pos_m[0] << ',' << pos_m[1]
-      << ',' << pos_m[2];
+  key << path << '|' << size_m[0] << ',' << size_m[1] << ',' << size_m[2] << '|' << pos_m[0] << ',' << pos_m[1] << ','
+      << pos_m[2];
   std::lock_guard<std::mutex> lock(cache.mutex);
   if (auto hit = cache.entries[key.str()].lock()) return hit;
   if (!std::filesystem::exists(path)) throw SimError("heightmap image '" + path + "' does not exist");
@@ -150,7 +153,8 @@ std::shared_ptr<const octomap::OcTree> LoadOcTree(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     tree = std::make_shared<octomap::OcTree>(0.1);
     // readBinary checks the header; a truncated body leaves the stream failed
-    if (!tree->readBinary(in) || in.bad()) throw SimError("octomap '" + path + "' does not parse as a binary OcTree (.bt)");
+    if (!tree->readBinary(in) || in.bad())
+      throw SimError("octomap '" + path + "' does not parse as a binary OcTree (.bt)");
   } else {
     std::unique_ptr<octomap::AbstractOcTree> any(octomap::AbstractOcTree::read(path));
     auto* as_octree = dynamic_cast<octomap::OcTree*>(any.get());

@@ -9,12 +9,10 @@ namespace physics {
 
 std::string SurfaceParams::Validate() const {
   std::ostringstream why;
-  if (!(mu >= 0.0) || !(mu2 >= 0.0))
-    why << "friction mu = " << mu << ", mu2 = " << mu2 << " must be >= 0";
+  if (!(mu >= 0.0) || !(mu2 >= 0.0)) why << "friction mu = " << mu << ", mu2 = " << mu2 << " must be >= 0";
   else if (!(slip1_m_s_N >= 0.0) || !(slip2_m_s_N >= 0.0) || !std::isfinite(slip1_m_s_N) || !std::isfinite(slip2_m_s_N))
     why << "friction slip1 = " << slip1_m_s_N << ", slip2 = " << slip2_m_s_N << " must be >= 0 and finite";
-  else if (!(kp_N_m > 0.0) || !std::isfinite(kp_N_m))
-    why << "contact kp = " << kp_N_m << " N/m must be > 0 and finite";
+  else if (!(kp_N_m > 0.0) || !std::isfinite(kp_N_m)) why << "contact kp = " << kp_N_m << " N/m must be > 0 and finite";
   else if (!(kd_N_s_m >= 0.0) || !std::isfinite(kd_N_s_m))
     why << "contact kd = " << kd_N_s_m << " N s/m must be >= 0 and finite";
   return why.str();

@@ -20,9 +20,8 @@ namespace {
 constexpr int kMaxContactsPerPair = 4;
 
 common::Time WallNow() {
-  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                      std::chrono::steady_clock::now().time_since_epoch())
-                      .count();
+  const auto ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
   return common::Time::FromNanoseconds(ns);
 }
 
@@ -53,8 +52,7 @@ std::string PhysicsParams::Validate() const {
     why << "max_step_size = " << max_step_size_s << " must be > 0 s";
   else if (!(real_time_factor >= 0.0) || !std::isfinite(real_time_factor))
     why << "real_time_factor = " << real_time_factor << " must be >= 0 (0: as fast as possible)";
-  else if (quick_solver && quick_iterations < 1)
-    why << "quick solver iters = " << quick_iterations << " must be >= 1";
+  else if (quick_solver && quick_iterations < 1) why << "quick solver iters = " << quick_iterations << " must be >= 1";
   else if (!std::isfinite(gravity_W.X()) || !std::isfinite(gravity_W.Y()) || !std::isfinite(gravity_W.Z()))
     why << "gravity must be finite";
   return why.str();

@@ -53,7 +53,8 @@ physics::PhysicsParams ReadPhysics(const sdf::World& world) {
     p.erp = Child<double>(e, {"ode", "constraints", "erp"}, p.erp);
     p.contact_max_correcting_vel_m_s =
         Child<double>(e, {"ode", "constraints", "contact_max_correcting_vel"}, p.contact_max_correcting_vel_m_s);
-    p.contact_surface_layer_m = Child<double>(e, {"ode", "constraints", "contact_surface_layer"}, p.contact_surface_layer_m);
+    p.contact_surface_layer_m =
+        Child<double>(e, {"ode", "constraints", "contact_surface_layer"}, p.contact_surface_layer_m);
   }
   p.gravity_W = world.Gravity();
   return p;
@@ -117,7 +118,8 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
           plugin->Load(world, p);
           world->AddPlugin(std::move(plugin));
         } catch (const std::exception& e) {
-          throw SimError("world '" + source + "', plugin '" + p->Get<std::string>("name") + "' (" + filename + "): " + e.what());
+          throw SimError("world '" + source + "', plugin '" + p->Get<std::string>("name") + "' (" + filename +
+                         "): " + e.what());
         }
       }
     }

@@ -66,12 +66,15 @@ int main(int argc, char** argv) {
     } else if (!arg.empty() && arg[0] != '-') {
       options.world_file = arg;
     } else {
-      std::cerr << "[rotors_sim] error: unknown option '" << arg << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors])\n";
+      std::cerr << "[rotors_sim] error: unknown option '" << arg
+                << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] "
+                   "[--lockstep-lenient] [--skip-broken-sensors])\n";
       return 2;
     }
   }
   if (options.world_file.empty()) {
-    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors])\n";
+    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep "
+                 "A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors])\n";
     return 2;
   }
   try {

@@ -144,9 +144,9 @@ GLuint Link(const char* vertex, const char* fragment) {
 
 struct GpuMesh {
   GLuint vao = 0, vbo = 0, ebo = 0, texture = 0;  // ebo 0: not indexed; texture 0: none
-  bool own_colours = false;              // per-vertex colours from the mesh file
-  std::vector<Chunk> chunks;             // compact runs of triangles, each culled on its own
-  std::shared_ptr<const void> source;  // keeps the key's object alive
+  bool own_colours = false;                       // per-vertex colours from the mesh file
+  std::vector<Chunk> chunks;                      // compact runs of triangles, each culled on its own
+  std::shared_ptr<const void> source;             // keeps the key's object alive
 };
 
 struct Target {
@@ -166,8 +166,8 @@ struct Renderer::Impl {
   EGLDisplay display = EGL_NO_DISPLAY;
   EGLContext context = EGL_NO_CONTEXT;
   GLuint mesh_program = 0, background_program = 0, empty_vao = 0;
-  std::map<const void*, GpuMesh> meshes;                       // by source object
-  std::map<std::tuple<int, int, int, bool>, Target> targets;   // by width, height, format, depth
+  std::map<const void*, GpuMesh> meshes;                      // by source object
+  std::map<std::tuple<int, int, int, bool>, Target> targets;  // by width, height, format, depth
   size_t triangles = 0;
 
   void CreateContext();
@@ -187,8 +187,9 @@ void Renderer::Impl::CreateContext() {
   if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
     throw SimError("camera renderer: no surfaceless EGL display" + fix);
   if (!eglBindAPI(EGL_OPENGL_API)) throw SimError("camera renderer: EGL cannot bind OpenGL" + fix);
-  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  const EGLint attributes[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
   if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
     throw SimError("camera renderer: no OpenGL 3.3 core context" + fix);
@@ -214,12 +215,10 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
     interleaved.insert(interleaved.end(), soup.normals.begin() + 3 * i, soup.normals.begin() + 3 * i + 3);
     if (mesh.own_colours)
       interleaved.insert(interleaved.end(), soup.colours.begin() + 3 * i, soup.colours.begin() + 3 * i + 3);
-    else
-      interleaved.insert(interleaved.end(), {1.0f, 1.0f, 1.0f});
+    else interleaved.insert(interleaved.end(), {1.0f, 1.0f, 1.0f});
     if (!soup.uvs.empty())
       interleaved.insert(interleaved.end(), soup.uvs.begin() + 2 * i, soup.uvs.begin() + 2 * i + 2);
-    else
-      interleaved.insert(interleaved.end(), {0.0f, 0.0f});
+    else interleaved.insert(interleaved.end(), {0.0f, 0.0f});
   }
   glGenVertexArrays(1, &mesh.vao);
   glBindVertexArray(mesh.vao);
@@ -288,9 +287,9 @@ const GpuMesh* Renderer::Impl::MeshFor(const Shape& shape, Eigen::Matrix4d* S) {
       return (mesh = cached(&kUnitCylinder)) ? mesh : &Upload(&kUnitCylinder, nullptr, UnitCylinder());
     case Shape::Type::kPlane: {
       const Eigen::Vector3d n(shape.plane_normal.X(), shape.plane_normal.Y(), shape.plane_normal.Z());
-      S->topLeftCorner<3, 3>() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n.normalized())
-                                     .toRotationMatrix() *
-                                 Eigen::Vector3d(shape.plane_size_m.X(), shape.plane_size_m.Y(), 1).asDiagonal();
+      S->topLeftCorner<3, 3>() =
+          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n.normalized()).toRotationMatrix() *
+          Eigen::Vector3d(shape.plane_size_m.X(), shape.plane_size_m.Y(), 1).asDiagonal();
       return (mesh = cached(&kUnitSquare)) ? mesh : &Upload(&kUnitSquare, nullptr, UnitSquare());
     }
     case Shape::Type::kMesh:
@@ -306,7 +305,7 @@ const GpuMesh* Renderer::Impl::MeshFor(const Shape& shape, Eigen::Matrix4d* S) {
     case Shape::Type::kOcTree:
       if (!shape.octree) return nullptr;
       return (mesh = cached(shape.octree.get())) ? mesh
-                                                  : &Upload(shape.octree.get(), shape.octree, FromOcTree(*shape.octree));
+                                                 : &Upload(shape.octree.get(), shape.octree, FromOcTree(*shape.octree));
   }
   return nullptr;
 }
@@ -421,10 +420,8 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
       // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
       const bool own = mesh->own_colours && !visual.has_material;
       const bool textured = mesh->texture != 0 && !visual.has_material;
-      if (own)
-        glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);
-      else
-        glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
+      if (own) glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);
+      else glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
       glUniform1i(loc_vertex_colour, own);
       glUniform1i(loc_texture, textured);
       if (textured) glBindTexture(GL_TEXTURE_2D, mesh->texture);
@@ -434,8 +431,7 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
         const auto count = static_cast<GLsizei>(3 * chunk->triangles);
         if (mesh->ebo)
           glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
-        else
-          glDrawArrays(GL_TRIANGLES, first, count);
+        else glDrawArrays(GL_TRIANGLES, first, count);
       }
     }
   }

@@ -21,8 +21,7 @@ namespace {
 /// The sphere around the given vertices: centred on their bounding box.
 template <typename VertexIds>
 void SphereAround(const TriangleSoup& soup, const VertexIds& ids, Vector3f* centre_m, float* radius_m) {
-  const Eigen::Map<const Eigen::Matrix3Xf> p(soup.positions_m.data(), 3,
-                                             static_cast<Eigen::Index>(soup.VertexCount()));
+  const Eigen::Map<const Eigen::Matrix3Xf> p(soup.positions_m.data(), 3, static_cast<Eigen::Index>(soup.VertexCount()));
   Vector3f lo = Vector3f::Constant(INFINITY), hi = Vector3f::Constant(-INFINITY);
   for (uint32_t v : ids) {
     lo = lo.cwiseMin(p.col(v));
@@ -58,8 +57,7 @@ std::vector<Chunk> SortIntoChunks(TriangleSoup* soup, int cells_per_axis, size_t
 
   if (indexed) {
     std::vector<uint32_t> indices(soup->indices.size());
-    for (size_t i = 0; i < n; ++i)
-      std::copy_n(soup->indices.begin() + 3 * order[i], 3, indices.begin() + 3 * i);
+    for (size_t i = 0; i < n; ++i) std::copy_n(soup->indices.begin() + 3 * order[i], 3, indices.begin() + 3 * i);
     soup->indices.swap(indices);
   } else {
     // every per-vertex array moves with its triangle's three vertices
@@ -102,8 +100,8 @@ void TriangleSoup::Add(const Vector3f& a, const Vector3f& b, const Vector3f& c) 
   Add(a, b, c, n, n, n);
 }
 
-void TriangleSoup::Add(const Vector3f& a, const Vector3f& b, const Vector3f& c, const Vector3f& na,
-                       const Vector3f& nb, const Vector3f& nc) {
+void TriangleSoup::Add(const Vector3f& a, const Vector3f& b, const Vector3f& c, const Vector3f& na, const Vector3f& nb,
+                       const Vector3f& nc) {
   for (const Vector3f* p : {&a, &b, &c}) positions_m.insert(positions_m.end(), {p->x(), p->y(), p->z()});
   for (const Vector3f* n : {&na, &nb, &nc}) normals.insert(normals.end(), {n->x(), n->y(), n->z()});
 }
@@ -124,10 +122,8 @@ void AddCubeFace(TriangleSoup* soup, const Vector3f& centre, float h, int axis, 
   e_n[axis] = sign * h;
   const Vector3f f = centre + e_n;
   // u x v = axis, so (u, v) order is counter-clockwise seen from +axis
-  if (sign > 0)
-    AddQuad(soup, f - e_u - e_v, f + e_u - e_v, f + e_u + e_v, f - e_u + e_v);
-  else
-    AddQuad(soup, f - e_u - e_v, f - e_u + e_v, f + e_u + e_v, f + e_u - e_v);
+  if (sign > 0) AddQuad(soup, f - e_u - e_v, f + e_u - e_v, f + e_u + e_v, f - e_u + e_v);
+  else AddQuad(soup, f - e_u - e_v, f - e_u + e_v, f + e_u + e_v, f + e_u - e_v);
 }
 }  // namespace
 
@@ -182,7 +178,8 @@ TriangleSoup FromMesh(const geometry::TriangleMesh& mesh) {
     soup.Add(vertex(index[0]), vertex(index[1]), vertex(index[2]));
     for (int k = 0; k < 3; ++k) {
       if (!mesh.colours.empty())
-        soup.colours.insert(soup.colours.end(), mesh.colours.begin() + 3 * index[k], mesh.colours.begin() + 3 * index[k] + 3);
+        soup.colours.insert(soup.colours.end(), mesh.colours.begin() + 3 * index[k],
+                            mesh.colours.begin() + 3 * index[k] + 3);
       if (!mesh.uvs.empty())
         soup.uvs.insert(soup.uvs.end(), mesh.uvs.begin() + 2 * index[k], mesh.uvs.begin() + 2 * index[k] + 2);
     }
@@ -263,10 +260,8 @@ TriangleSoup FromOcTree(const octomap::OcTree& tree) {
       b[u] = hi[u];
       d[v] = hi[v];
       // u x v = axis: a b c d is counter-clockwise seen from +axis
-      if (sign > 0)
-        AddQuad(&soup, a, b, c, d);
-      else
-        AddQuad(&soup, a, d, c, b);
+      if (sign > 0) AddQuad(&soup, a, b, c, d);
+      else AddQuad(&soup, a, d, c, b);
     }
   }
   return soup;

@@ -185,14 +185,16 @@ bool Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue,
     for (auto& p : participants_) {
       if (!Required(p) || p.last_stamp >= stamp) continue;
       if (!p.answered && now - start > ros::WallDuration(options_.first_answer_timeout_s)) {
-        ROS_INFO("[rotors_sim] lockstep: no first answer on %s to t = %.3f s within %.1f s; not waiting for it until "
-                 "it answers (e.g. an estimator not yet initialised)",
-                 p.topics.answer_topic.c_str(), stamp.toSec(), options_.first_answer_timeout_s);
+        ROS_INFO(
+            "[rotors_sim] lockstep: no first answer on %s to t = %.3f s within %.1f s; not waiting for it until "
+            "it answers (e.g. an estimator not yet initialised)",
+            p.topics.answer_topic.c_str(), stamp.toSec(), options_.first_answer_timeout_s);
         p.warming_up = true;
       } else if (!hold && now - start > ros::WallDuration(options_.silence_timeout_s)) {
-        ROS_WARN("[rotors_sim] lockstep: no answer on %s for t = %.3f s within %.1f s; not waiting for it until it "
-                 "answers again",
-                 p.topics.answer_topic.c_str(), stamp.toSec(), options_.silence_timeout_s);
+        ROS_WARN(
+            "[rotors_sim] lockstep: no answer on %s for t = %.3f s within %.1f s; not waiting for it until it "
+            "answers again",
+            p.topics.answer_topic.c_str(), stamp.toSec(), options_.silence_timeout_s);
         p.muted = true;
       }
     }

@@ -41,7 +41,8 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   services_.push_back(private_nh_.advertiseService("get_model_state", &SimServer::OnGetModelState, this));
   ROS_INFO("[rotors_sim] world '%s' loaded from %s: step %.4f s, real-time factor %g%s, %s", world_->Name().c_str(),
            options.world_file.c_str(), world_->Physics().max_step_size_s, world_->Physics().real_time_factor,
-           world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "", user_paused_ ? "paused" : "running");
+           world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "",
+           user_paused_ ? "paused" : "running");
   PublishClock();
   PublishWorldMarkers();
 }
@@ -175,8 +176,7 @@ bool SimServer::OnDelete(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::De
 
 /// Gazebo's semantics: pose and twist of the model's frame in the relative model's frame (the world
 /// frame when relative_entity_name is empty or "world"); the twist is expressed in that frame.
-bool SimServer::OnGetModelState(gazebo_msgs::GetModelState::Request& req,
-                                gazebo_msgs::GetModelState::Response& res) {
+bool SimServer::OnGetModelState(gazebo_msgs::GetModelState::Request& req, gazebo_msgs::GetModelState::Response& res) {
   res.header.stamp.fromNSec(world_->SimTime().Nanoseconds());
   const physics::ModelPtr model = world_->ModelByName(req.model_name);
   if (!model) {

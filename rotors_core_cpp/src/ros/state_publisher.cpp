@@ -69,7 +69,10 @@ void StatePublisher::Update(const physics::World& world, bool force) {
     if (js.name.empty()) continue;
     auto it = joint_state_pubs_.find(model->GetName());
     if (it == joint_state_pubs_.end())
-      it = joint_state_pubs_.emplace(model->GetName(), nh_.advertise<sensor_msgs::JointState>("/" + model->GetName() + "/joint_states", 10)).first;
+      it = joint_state_pubs_
+               .emplace(model->GetName(),
+                        nh_.advertise<sensor_msgs::JointState>("/" + model->GetName() + "/joint_states", 10))
+               .first;
     it->second.publish(js);
   }
   if (!transforms.empty()) tf_broadcaster_.sendTransform(transforms);

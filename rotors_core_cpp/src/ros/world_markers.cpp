@@ -33,9 +33,7 @@ std_msgs::ColorRGBA HeightColour(double z, double z_min, double z_max) {
   return c;
 }
 
-void SetPose(const ignition::math::Pose3d& X_WV, visualization_msgs::Marker* m) {
-  m->pose = PoseMsg(X_WV);
-}
+void SetPose(const ignition::math::Pose3d& X_WV, visualization_msgs::Marker* m) { m->pose = PoseMsg(X_WV); }
 
 /// Fills pose, type, scale and points of `m` for the shape at X_WV; false for shapes that cannot be drawn.
 bool DrawShape(const Shape& shape, const ignition::math::Pose3d& X_WV, visualization_msgs::Marker* m) {

@@ -32,9 +32,9 @@ PoseSensorParams MountedSensor() {  // firefly_generic_pose_sensor: xyz (0.03, -
 }
 
 struct RunOptions {
-  int steps = 3000;             ///< 100 Hz IMU
-  int pose_divisor = 10;        ///< 10 Hz pose
-  int delivery_delay_steps = 0; ///< the pose reaches the filter this many IMU steps after capture
+  int steps = 3000;                 ///< 100 Hz IMU
+  int pose_divisor = 10;            ///< 10 Hz pose
+  int delivery_delay_steps = 0;     ///< the pose reaches the filter this many IMU steps after capture
   bool stamp_with_arrival = false;  ///< a filter that ignores the delay: stamp = arrival time
   double outage_from_s = -1, outage_to_s = -1;
   double motion_scale = 1.0;
@@ -140,7 +140,8 @@ TEST(ImuPropagation, ConstantRateAndAccelerationIntegrateExactly) {
   }
   const double T = 5.0;
   EXPECT_LT(QuaternionLog(x.q_WI.conjugate() * Eigen::Quaterniond(Eigen::AngleAxisd(0.7 * T, Eigen::Vector3d::UnitZ())))
-                .norm(), 1e-12);
+                .norm(),
+            1e-12);
   EXPECT_NEAR(x.v_W.z(), 1.2 * T, 1e-10);            // v = a t
   EXPECT_NEAR(x.p_W.z(), 0.5 * 1.2 * T * T, 1e-10);  // p = a t^2 / 2
 }
@@ -162,8 +163,8 @@ TEST(PoseEkf, ConsistentNeesOverMonteCarloRunsWithinChiSquareBounds) {
     ++samples;
   }
   mean /= samples;
-  std::printf("average NEES %.2f (15 expected), %.1f %% of times inside [%.2f, %.2f]\n", mean,
-              100.0 * inside / samples, lower, upper);
+  std::printf("average NEES %.2f (15 expected), %.1f %% of times inside [%.2f, %.2f]\n", mean, 100.0 * inside / samples,
+              lower, upper);
   EXPECT_GE(static_cast<double>(inside) / samples, 0.90);
   EXPECT_NEAR(mean, 15.0, 1.5);
   for (const auto& r : runs) {
@@ -200,8 +201,10 @@ TEST(PoseEkf, BiasesAreEstimatedWithin20PercentAfter30s) {
     const RunResult r = Fly(seed, RunOptions{});
     const Eigen::Vector3d gyr_err = r.final_truth.b_w - r.final_estimate.b_w;
     const Eigen::Vector3d acc_err = r.final_truth.b_a - r.final_estimate.b_a;
-    EXPECT_LT(gyr_err.norm(), 0.2 * r.final_truth.b_w.norm()) << "seed " << seed << " b_w " << r.final_truth.b_w.transpose();
-    EXPECT_LT(acc_err.norm(), 0.2 * r.final_truth.b_a.norm()) << "seed " << seed << " b_a " << r.final_truth.b_a.transpose();
+    EXPECT_LT(gyr_err.norm(), 0.2 * r.final_truth.b_w.norm())
+        << "seed " << seed << " b_w " << r.final_truth.b_w.transpose();
+    EXPECT_LT(acc_err.norm(), 0.2 * r.final_truth.b_a.norm())
+        << "seed " << seed << " b_a " << r.final_truth.b_a.transpose();
   }
 }
 

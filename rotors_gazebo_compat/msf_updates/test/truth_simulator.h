@@ -10,8 +10,8 @@
 namespace msf_updates {
 
 struct TruthSample {
-  CoreState x;         ///< true state (P unused)
-  ImuReading imu;      ///< noisy IMU at x.t_s
+  CoreState x;     ///< true state (P unused)
+  ImuReading imu;  ///< noisy IMU at x.t_s
 };
 
 class TruthSimulator {
@@ -32,7 +32,8 @@ class TruthSimulator {
     if (k > 0) {
       // attitude: q' = 1/2 q (x) [0, omega_I], fine substeps of the analytic body rate
       const double h = kImuDt_s / kSubsteps;
-      for (int i = 0; i < kSubsteps; ++i) q_ = (q_ * QuaternionExp(Omega(t - kImuDt_s + (i + 0.5) * h) * h)).normalized();
+      for (int i = 0; i < kSubsteps; ++i)
+        q_ = (q_ * QuaternionExp(Omega(t - kImuDt_s + (i + 0.5) * h) * h)).normalized();
       // biases: random walks (eqs. 14-15), discretised
       for (int i = 0; i < 3; ++i) b_w_[i] += noise_.core_noise_gyrbias * std::sqrt(kImuDt_s) * n_(rng_);
       for (int i = 0; i < 3; ++i) b_a_[i] += noise_.core_noise_accbias * std::sqrt(kImuDt_s) * n_(rng_);
@@ -46,7 +47,8 @@ class TruthSimulator {
     s.x.b_a = b_a_;
     const Eigen::Vector3d g_W(0.0, 0.0, -noise_.gravity_m_s2);
     s.imu.t_s = t;
-    const double sigma_w = noise_.core_noise_gyr / std::sqrt(kImuDt_s), sigma_a = noise_.core_noise_acc / std::sqrt(kImuDt_s);
+    const double sigma_w = noise_.core_noise_gyr / std::sqrt(kImuDt_s),
+                 sigma_a = noise_.core_noise_acc / std::sqrt(kImuDt_s);
     // (12)-(13): omega_m = omega + b_w + n_w,  a_m = C^T (a - g) + b_a + n_a
     s.imu.omega_m_I = Omega(t) + b_w_ + sigma_w * Normal3();
     s.imu.a_m_I = q_.conjugate() * (Acceleration(t) - g_W) + b_a_ + sigma_a * Normal3();
@@ -67,7 +69,8 @@ class TruthSimulator {
 
   // Trajectory: at rest at t = 0, then a figure in x-y, heave in z, yawing and rolling.
   Eigen::Vector3d Position(double t) const {
-    return motion_ * Eigen::Vector3d(1.0 - std::cos(0.5 * t), 0.5 * (1.0 - std::cos(0.8 * t)), 0.3 * (1.0 - std::cos(0.6 * t)));
+    return motion_ *
+           Eigen::Vector3d(1.0 - std::cos(0.5 * t), 0.5 * (1.0 - std::cos(0.8 * t)), 0.3 * (1.0 - std::cos(0.6 * t)));
   }
   Eigen::Vector3d Velocity(double t) const {
     return motion_ * Eigen::Vector3d(0.5 * std::sin(0.5 * t), 0.4 * std::sin(0.8 * t), 0.18 * std::sin(0.6 * t));

@@ -19,11 +19,11 @@ struct MotorFault {
 };
 
 struct VehicleBus {
-  std::vector<double> motor_command_rad_s;   ///< empty until the first valid command
-  std::vector<double> rotor_speed_rad_s;     ///< signed real speed per motor number
-  int rotor_count = 0;                       ///< number of motor models registered
+  std::vector<double> motor_command_rad_s;                    ///< empty until the first valid command
+  std::vector<double> rotor_speed_rad_s;                      ///< signed real speed per motor number
+  int rotor_count = 0;                                        ///< number of motor models registered
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
-  std::vector<MotorFault> motor_faults;      ///< per motor number (healthy by default)
+  std::vector<MotorFault> motor_faults;                       ///< per motor number (healthy by default)
 
   /// The bus of a namespace, shared by the plugins of the vehicle that hold it. It lives as long
   /// as one of them: a model deleted and re-spawned under the same namespace (with another rotor

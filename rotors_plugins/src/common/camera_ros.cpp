@@ -20,11 +20,31 @@ using rotors_sim::rendering::RenderedFrame;
 
 CameraRosParams CameraRosParams::Read(const sdf::ElementPtr& sdf, const rotors_sim::sensors::CameraSensor& sensor,
                                       bool depth_plugin, const std::vector<std::string>& extra_known) {
-  std::vector<std::string> known = {"robotNamespace", "cameraName", "imageTopicName", "cameraInfoTopicName", "frameName",
-                                   "updateRate", "alwaysOn", "hackBaseline", "distortionK1", "distortionK2", "distortionK3",
-                                   "distortionT1", "distortionT2", "CxPrime", "Cx", "Cy", "focalLength", "borderCrop",
-                                   "baseline", "pointCloudCutoff", "pointCloudCutoffMax", "depthImageTopicName",
-                                   "depthImageCameraInfoTopicName", "pointCloudTopicName", "disparityTopicName"};
+  std::vector<std::string> known = {"robotNamespace",
+                                    "cameraName",
+                                    "imageTopicName",
+                                    "cameraInfoTopicName",
+                                    "frameName",
+                                    "updateRate",
+                                    "alwaysOn",
+                                    "hackBaseline",
+                                    "distortionK1",
+                                    "distortionK2",
+                                    "distortionK3",
+                                    "distortionT1",
+                                    "distortionT2",
+                                    "CxPrime",
+                                    "Cx",
+                                    "Cy",
+                                    "focalLength",
+                                    "borderCrop",
+                                    "baseline",
+                                    "pointCloudCutoff",
+                                    "pointCloudCutoffMax",
+                                    "depthImageTopicName",
+                                    "depthImageCameraInfoTopicName",
+                                    "pointCloudTopicName",
+                                    "disparityTopicName"};
   known.insert(known.end(), extra_known.begin(), extra_known.end());
   CheckKnownParams(sdf, known);
   CameraRosParams p;
@@ -137,8 +157,8 @@ void ToCloudMsg(const RenderedFrame& frame, const CameraSpec& camera, double min
     }
 }
 
-void ToDisparityMsg(const RenderedFrame& frame, const CameraSpec& camera, double baseline_m, double min_m,
-                    double max_m, stereo_msgs::DisparityImage* msg) {
+void ToDisparityMsg(const RenderedFrame& frame, const CameraSpec& camera, double baseline_m, double min_m, double max_m,
+                    stereo_msgs::DisparityImage* msg) {
   const double f = camera.intrinsics.FocalLengthPx();
   msg->f = static_cast<float>(f);
   msg->T = static_cast<float>(baseline_m);

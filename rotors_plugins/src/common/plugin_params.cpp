@@ -44,14 +44,18 @@ std::string ReadRobotNamespace(const sdf::ElementPtr& sdf) {
 rotors_sim::physics::LinkPtr RequireLink(const rotors_sim::physics::ModelPtr& model, const std::string& name,
                                          const char* param) {
   auto link = model->GetLink(name);
-  if (!link) throw rotors_sim::SimError(std::string(param) + " '" + name + "' is not a link of model '" + model->GetName() + "'");
+  if (!link)
+    throw rotors_sim::SimError(std::string(param) + " '" + name + "' is not a link of model '" + model->GetName() +
+                               "'");
   return link;
 }
 
 rotors_sim::physics::JointPtr RequireJoint(const rotors_sim::physics::ModelPtr& model, const std::string& name,
                                            const char* param) {
   auto joint = model->GetJoint(name);
-  if (!joint) throw rotors_sim::SimError(std::string(param) + " '" + name + "' is not a joint of model '" + model->GetName() + "'");
+  if (!joint)
+    throw rotors_sim::SimError(std::string(param) + " '" + name + "' is not a joint of model '" + model->GetName() +
+                               "'");
   return joint;
 }
 

@@ -27,7 +27,8 @@ std::string ImuNoiseParams::Validate() const {
 }
 
 ImuNoiseModel::ImuNoiseModel(const ImuNoiseParams& params, uint64_t seed) : params_(params), rng_(seed) {
-  for (int i = 0; i < 3; ++i) gyroscope_turn_on_bias_[i] = params_.gyroscope_turn_on_bias_sigma * standard_normal_(rng_);
+  for (int i = 0; i < 3; ++i)
+    gyroscope_turn_on_bias_[i] = params_.gyroscope_turn_on_bias_sigma * standard_normal_(rng_);
   for (int i = 0; i < 3; ++i)
     accelerometer_turn_on_bias_[i] = params_.accelerometer_turn_on_bias_sigma * standard_normal_(rng_);
 }

@@ -21,14 +21,13 @@ std::string CheckNonNegative(std::initializer_list<std::pair<const char*, double
 
 Eigen::Vector3d GeodeticFromWorld(const GeodeticOrigin& origin, const Eigen::Vector3d& p_W) {
   using ignition::math::Angle;
-  const ignition::math::SphericalCoordinates earth(ignition::math::SphericalCoordinates::EARTH_WGS84,
-                                                   Angle(origin.latitude_deg * M_PI / 180.0),
-                                                   Angle(origin.longitude_deg * M_PI / 180.0), origin.elevation_m,
-                                                   Angle(origin.heading_deg * M_PI / 180.0));
+  const ignition::math::SphericalCoordinates earth(
+      ignition::math::SphericalCoordinates::EARTH_WGS84, Angle(origin.latitude_deg * M_PI / 180.0),
+      Angle(origin.longitude_deg * M_PI / 180.0), origin.elevation_m, Angle(origin.heading_deg * M_PI / 180.0));
   // LOCAL2: the world frame with the heading applied correctly (ignition-math 6's LOCAL is not).
-  const ignition::math::Vector3d lla_rad = earth.PositionTransform(
-      {p_W.x(), p_W.y(), p_W.z()}, ignition::math::SphericalCoordinates::LOCAL2,
-      ignition::math::SphericalCoordinates::SPHERICAL);
+  const ignition::math::Vector3d lla_rad =
+      earth.PositionTransform({p_W.x(), p_W.y(), p_W.z()}, ignition::math::SphericalCoordinates::LOCAL2,
+                              ignition::math::SphericalCoordinates::SPHERICAL);
   return {lla_rad.X() * 180.0 / M_PI, lla_rad.Y() * 180.0 / M_PI, lla_rad.Z()};
 }
 
@@ -55,8 +54,8 @@ std::string MagnetometerParams::Validate() const {
   if (!reference_NED_T.allFinite() || reference_NED_T.norm() == 0.0)
     return "refMagNorth/East/Down must be finite and not all zero";
   for (int i = 0; i < 3; ++i) {
-    const std::string why = CheckNonNegative({{"noiseNormal", noise_normal_T[i]},
-                                              {"noiseUniformInitialBias", noise_uniform_initial_bias_T[i]}});
+    const std::string why = CheckNonNegative(
+        {{"noiseNormal", noise_normal_T[i]}, {"noiseUniformInitialBias", noise_uniform_initial_bias_T[i]}});
     if (!why.empty()) return why;
   }
   return {};

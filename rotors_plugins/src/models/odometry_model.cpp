@@ -10,10 +10,13 @@ namespace rotors_gazebo_plugins {
 
 std::string OdometryNoiseParams::Validate() const {
   const std::pair<const char*, Eigen::Vector3d> all[] = {
-      {"noiseNormalPosition", normal_position_m}, {"noiseNormalQuaternion", normal_quaternion_rad},
+      {"noiseNormalPosition", normal_position_m},
+      {"noiseNormalQuaternion", normal_quaternion_rad},
       {"noiseNormalLinearVelocity", normal_linear_velocity_m_s},
-      {"noiseNormalAngularVelocity", normal_angular_velocity_rad_s}, {"noiseUniformPosition", uniform_position_m},
-      {"noiseUniformQuaternion", uniform_quaternion_rad}, {"noiseUniformLinearVelocity", uniform_linear_velocity_m_s},
+      {"noiseNormalAngularVelocity", normal_angular_velocity_rad_s},
+      {"noiseUniformPosition", uniform_position_m},
+      {"noiseUniformQuaternion", uniform_quaternion_rad},
+      {"noiseUniformLinearVelocity", uniform_linear_velocity_m_s},
       {"noiseUniformAngularVelocity", uniform_angular_velocity_rad_s}};
   for (const auto& p : all)
     if (!(p.second.minCoeff() >= 0.0) || !p.second.allFinite()) {

@@ -129,9 +129,9 @@ WindProfile WindProfile::Load(const std::string& path) {
     }
     if (x.empty()) continue;
     if (x.size() != 4)
-      throw Bad(path + ":" + std::to_string(number), "expected 't vx vy vz', got " + std::to_string(x.size()) + " values");
-    if (!p.t_s.empty() && x[0] <= p.t_s.back())
-      throw Bad(path + ":" + std::to_string(number), "times must increase");
+      throw Bad(path + ":" + std::to_string(number),
+                "expected 't vx vy vz', got " + std::to_string(x.size()) + " values");
+    if (!p.t_s.empty() && x[0] <= p.t_s.back()) throw Bad(path + ":" + std::to_string(number), "times must increase");
     p.t_s.push_back(x[0]);
     p.velocity_W.emplace_back(x[1], x[2], x[3]);
   }

@@ -19,14 +19,16 @@ class DepthCameraRosPlugin : public rotors_sim::SensorPlugin {
   void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) override {
     sensor_ = std::dynamic_pointer_cast<rotors_sim::sensors::CameraSensor>(sensor);
     if (!sensor_ || !sensor_->IsDepth())
-      throw rotors_sim::SimError(GetFilename() + " belongs in a <sensor type=\"depth\">, not type '" + sensor->Type() + "'");
+      throw rotors_sim::SimError(GetFilename() + " belongs in a <sensor type=\"depth\">, not type '" + sensor->Type() +
+                                 "'");
     params_ = ReadParams(sdf);
     limiter_ = RateLimiter(params_.update_rate_hz);
     node_ = MakeNode(params_.robot_namespace);
     if (!node_) return;
-    const std::string frame = !params_.frame_name.empty()
-                                  ? params_.frame_name
-                                  : JoinTopic(JoinTopic(params_.robot_namespace, params_.camera_name), "camera_optical_link");
+    const std::string frame =
+        !params_.frame_name.empty()
+            ? params_.frame_name
+            : JoinTopic(JoinTopic(params_.robot_namespace, params_.camera_name), "camera_optical_link");
     const std::string& prefix = params_.camera_name;
     image_ = std::make_unique<CameraChannel>(*node_, params_, prefix, 0, sensor_->Camera(0), frame, 0.0);
     depth_pub_ = node_->advertise<sensor_msgs::Image>(JoinTopic(prefix, params_.depth_topic), 2);
@@ -41,9 +43,7 @@ class DepthCameraRosPlugin : public rotors_sim::SensorPlugin {
 
  protected:
   /// The plugin's parameters (defaults and extra parameters differ between depth plugins).
-  virtual CameraRosParams ReadParams(const sdf::ElementPtr& sdf) {
-    return CameraRosParams::Read(sdf, *sensor_, true);
-  }
+  virtual CameraRosParams ReadParams(const sdf::ElementPtr& sdf) { return CameraRosParams::Read(sdf, *sensor_, true); }
   /// The depth the messages carry: the rendered one, or a noisy copy in `scratch`.
   virtual const rotors_sim::rendering::RenderedFrame& Measured(const rotors_sim::rendering::RenderedFrame& rendered,
                                                                rotors_sim::rendering::RenderedFrame* /*scratch*/) {
@@ -95,4 +95,3 @@ class DepthCameraRosPlugin : public rotors_sim::SensorPlugin {
 };
 
 }  // namespace rotors_gazebo_plugins
-

@@ -42,11 +42,27 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
   ~GazeboBagPlugin() override { Close(); }
 
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "bagFileName", "linkName", "frameId", "imuTopic", "odometryTopic",
-                           "commandAttitudeThrustTopic", "commandMotorSpeedTopic", "commandRateThrustTopic",
-                           "windSpeedTopic", "motorTopic", "poseTopic", "twistTopic", "wrenchesTopic",
-                           "externalForceTopic", "waypointTopic", "commandPoseTopic", "extraTopics", "recordingServiceName",
-                           "rotorVelocitySlowdownSim", "waitToRecordBag"});
+    CheckKnownParams(sdf, {"robotNamespace",
+                           "bagFileName",
+                           "linkName",
+                           "frameId",
+                           "imuTopic",
+                           "odometryTopic",
+                           "commandAttitudeThrustTopic",
+                           "commandMotorSpeedTopic",
+                           "commandRateThrustTopic",
+                           "windSpeedTopic",
+                           "motorTopic",
+                           "poseTopic",
+                           "twistTopic",
+                           "wrenchesTopic",
+                           "externalForceTopic",
+                           "waypointTopic",
+                           "commandPoseTopic",
+                           "extraTopics",
+                           "recordingServiceName",
+                           "rotorVelocitySlowdownSim",
+                           "waitToRecordBag"});
     ns_ = ReadRobotNamespace(sdf);
     std::string link_name = "base_link", service = "record_rosbag";
     bool wait_to_record = false;

@@ -23,8 +23,8 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     if (sensor->Type() != "gps" && sensor->Type() != "navsat")
       throw rotors_sim::SimError("librotors_gazebo_gps_plugin.so belongs in a <sensor type=\"gps\">, not type '" +
                                  sensor->Type() + "'");
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "gpsTopic", "groundSpeedTopic", "horPosStdDev",
-                           "verPosStdDev", "horVelStdDev", "verVelStdDev", "randomEngineSeed"});
+    CheckKnownParams(sdf, {"robotNamespace", "linkName", "gpsTopic", "groundSpeedTopic", "horPosStdDev", "verPosStdDev",
+                           "horVelStdDev", "verVelStdDev", "randomEngineSeed"});
     const std::string ns = ReadRobotNamespace(sdf);
     std::string gps_topic = "gps", ground_speed_topic = "ground_speed", link_name;
     ReadParam(sdf, "gpsTopic", &gps_topic);
@@ -40,8 +40,8 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     ThrowIfInvalid(p.Validate());
     sensor_ = sensor;
     const auto& o = sensor->ParentLink()->GetModel()->GetWorldRaw()->Origin();
-    model_ = std::make_unique<GpsModel>(p, GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg},
-                                        ReadSeed(sdf));
+    model_ = std::make_unique<GpsModel>(
+        p, GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg}, ReadSeed(sdf));
     fix_.header.frame_id = sensor->ParentName();
     fix_.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
     fix_.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;

@@ -18,8 +18,8 @@ namespace rotors_gazebo_plugins {
 class GazeboMagnetometerPlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "magnetometerTopic", "refMagNorth", "refMagEast",
-                           "refMagDown", "noiseNormal", "noiseUniformInitialBias", "randomEngineSeed"});
+    CheckKnownParams(sdf, {"robotNamespace", "linkName", "magnetometerTopic", "refMagNorth", "refMagEast", "refMagDown",
+                           "noiseNormal", "noiseUniformInitialBias", "randomEngineSeed"});
     const std::string ns = ReadRobotNamespace(sdf);
     std::string link_name, topic = "magnetic_field";
     RequireParam(sdf, "linkName", &link_name);

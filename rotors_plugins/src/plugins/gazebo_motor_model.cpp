@@ -58,7 +58,8 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     }
     if (motor_type != "velocity")
       throw rotors_sim::SimError("motorType = '" + motor_type + "' is not supported yet; use 'velocity'");
-    if (motor_number_ < 0) throw rotors_sim::SimError("motorNumber = " + std::to_string(motor_number_) + " must be >= 0");
+    if (motor_number_ < 0)
+      throw rotors_sim::SimError("motorNumber = " + std::to_string(motor_number_) + " must be >= 0");
     if (!(slowdown_ >= 1.0)) throw rotors_sim::SimError("rotorVelocitySlowdownSim must be >= 1");
     ThrowIfInvalid(p.Validate());
     rotor_ = std::make_unique<RotorModel>(p);

@@ -55,8 +55,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
           << bus_->rotor_count - 1 << ")";
     else if (!(req.speed_factor >= 0.0 && req.speed_factor <= 1.0))
       why << "speed_factor " << req.speed_factor << " must be in [0, 1] (0: failed, 1: healthy)";
-    else if (!std::isfinite(req.start_time))
-      why << "start_time " << req.start_time << " must be a finite sim time [s]";
+    else if (!std::isfinite(req.start_time)) why << "start_time " << req.start_time << " must be a finite sim time [s]";
     else if (!(req.detection_delay >= 0.0 && std::isfinite(req.detection_delay)))
       why << "detection_delay " << req.detection_delay << " must be a finite time >= 0 [s]";
     res.success = why.str().empty();

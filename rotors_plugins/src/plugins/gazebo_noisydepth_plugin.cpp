@@ -12,9 +12,9 @@ namespace rotors_gazebo_plugins {
 class GazeboNoisyDepth : public DepthCameraRosPlugin {
  protected:
   CameraRosParams ReadParams(const sdf::ElementPtr& sdf) override {
-    CameraRosParams p = CameraRosParams::Read(sdf, *sensor_, true,
-                                              {"depthNoiseModelName", "horizontal_fov", "D435NoiseSubpixelErr",
-                                               "D435MaxStdev", "randomEngineSeed"});
+    CameraRosParams p = CameraRosParams::Read(
+        sdf, *sensor_, true,
+        {"depthNoiseModelName", "horizontal_fov", "D435NoiseSubpixelErr", "D435MaxStdev", "randomEngineSeed"});
     if (!sdf->HasElement("imageTopicName")) p.image_topic = "ir/image_raw";
     if (!sdf->HasElement("cameraInfoTopicName")) p.info_topic = "ir/camera_info";
     if (!sdf->HasElement("pointCloudTopicName")) p.points_topic = "points";

@@ -38,12 +38,29 @@ std::string ResolvePackageUrl(const std::string& url) {
 class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "poseTopic", "poseWithCovarianceTopic", "positionTopic",
-                           "transformTopic", "odometryTopic", "parentFrameId", "childFrameId", "measurementDivisor",
-                           "measurementDelay", "unknownDelay", "noiseNormalPosition", "noiseNormalQuaternion",
-                           "noiseNormalLinearVelocity", "noiseNormalAngularVelocity", "noiseUniformPosition",
-                           "noiseUniformQuaternion", "noiseUniformLinearVelocity", "noiseUniformAngularVelocity",
-                           "covarianceImage", "covarianceImageScale", "randomEngineSeed"});
+    CheckKnownParams(sdf, {"robotNamespace",
+                           "linkName",
+                           "poseTopic",
+                           "poseWithCovarianceTopic",
+                           "positionTopic",
+                           "transformTopic",
+                           "odometryTopic",
+                           "parentFrameId",
+                           "childFrameId",
+                           "measurementDivisor",
+                           "measurementDelay",
+                           "unknownDelay",
+                           "noiseNormalPosition",
+                           "noiseNormalQuaternion",
+                           "noiseNormalLinearVelocity",
+                           "noiseNormalAngularVelocity",
+                           "noiseUniformPosition",
+                           "noiseUniformQuaternion",
+                           "noiseUniformLinearVelocity",
+                           "noiseUniformAngularVelocity",
+                           "covarianceImage",
+                           "covarianceImageScale",
+                           "randomEngineSeed"});
     const std::string ns = ReadRobotNamespace(sdf);
     std::string link_name = "odometry_sensor_link", parent_frame = "world";
     std::string pose_topic = "pose", pose_cov_topic = "pose_with_covariance", position_topic = "position",
@@ -62,7 +79,8 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     if (parent_frame != "world")
       throw rotors_sim::SimError("parentFrameId = '" + parent_frame + "' is not supported yet; use 'world'");
     if (divisor_ < 1) throw rotors_sim::SimError("measurementDivisor = " + std::to_string(divisor_) + " must be >= 1");
-    if (delay_steps_ < 0) throw rotors_sim::SimError("measurementDelay = " + std::to_string(delay_steps_) + " must be >= 0");
+    if (delay_steps_ < 0)
+      throw rotors_sim::SimError("measurementDelay = " + std::to_string(delay_steps_) + " must be >= 0");
     OdometryNoiseParams noise;
     ReadVector(sdf, "noiseNormalPosition", &noise.normal_position_m);
     ReadVector(sdf, "noiseNormalQuaternion", &noise.normal_quaternion_rad);

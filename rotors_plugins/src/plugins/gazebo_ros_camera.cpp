@@ -19,12 +19,14 @@ class GazeboRosCamera : public rotors_sim::SensorPlugin {
     limiter_ = RateLimiter(params.update_rate_hz);
     node_ = MakeNode(params.robot_namespace);
     if (!node_) return;  // no ROS in this process: nothing to publish
-    const std::string frame = !params.frame_name.empty() ? params.frame_name
-                                                         : JoinTopic(JoinTopic(params.robot_namespace, params.camera_name),
-                                                                     "camera_optical_link");
+    const std::string frame =
+        !params.frame_name.empty()
+            ? params.frame_name
+            : JoinTopic(JoinTopic(params.robot_namespace, params.camera_name), "camera_optical_link");
     channel_ = std::make_unique<CameraChannel>(*node_, params, params.camera_name, 0, sensor_->Camera(0), frame, 0.0);
     connection_ = sensor_->ConnectUpdated([this] {
-      if (limiter_.Due(sensor_->LastUpdateTime().Double())) channel_->Publish(*sensor_, ToRos(sensor_->LastUpdateTime()));
+      if (limiter_.Due(sensor_->LastUpdateTime().Double()))
+        channel_->Publish(*sensor_, ToRos(sensor_->LastUpdateTime()));
     });
   }
 

@@ -31,11 +31,27 @@ namespace rotors_gazebo_plugins {
 class GazeboWindPlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "xyzOffset", "windForcePubTopic", "windSpeedPubTopic", "frameId",
-                           "linkName", "windSpeedMean", "windSpeedVariance", "windDirection", "windForceMean",
-                           "windForceVariance", "windGustStart", "windGustDuration", "windGustForceMean",
-                           "windGustForceVariance", "windGustDirection", "useCustomStaticWindField",
-                           "customWindFieldPath", "randomEngineSeed", "windProfilePath", "windSpeedSubTopic"});
+    CheckKnownParams(sdf, {"robotNamespace",
+                           "xyzOffset",
+                           "windForcePubTopic",
+                           "windSpeedPubTopic",
+                           "frameId",
+                           "linkName",
+                           "windSpeedMean",
+                           "windSpeedVariance",
+                           "windDirection",
+                           "windForceMean",
+                           "windForceVariance",
+                           "windGustStart",
+                           "windGustDuration",
+                           "windGustForceMean",
+                           "windGustForceVariance",
+                           "windGustDirection",
+                           "useCustomStaticWindField",
+                           "customWindFieldPath",
+                           "randomEngineSeed",
+                           "windProfilePath",
+                           "windSpeedSubTopic"});
     namespace_ = ReadRobotNamespace(sdf);
     std::string link_name = "base_link", force_topic = "external_force", speed_topic = "wind_speed";
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();

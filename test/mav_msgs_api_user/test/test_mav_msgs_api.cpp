@@ -105,8 +105,9 @@ TEST(MavMsgsConversions, TrajectoryPointRoundTripAndPositionYaw) {
   EXPECT_EQ(hover.points[0].velocities.size(), 1u);
   EXPECT_EQ(hover.points[0].accelerations.size(), 1u);
   EXPECT_EQ(hover.points[0].transforms[0].translation.z, 1.0);
-  EXPECT_NEAR(std::abs(mav_msgs::yawFromQuaternion(mav_msgs::quaternionFromMsg(hover.points[0].transforms[0].rotation))),
-              M_PI, 1e-12);
+  EXPECT_NEAR(
+      std::abs(mav_msgs::yawFromQuaternion(mav_msgs::quaternionFromMsg(hover.points[0].transforms[0].rotation))), M_PI,
+      1e-12);
 
   hover.header.stamp.fromSec(10.0);
   hover.points.push_back(hover.points[0]);
@@ -128,8 +129,7 @@ TEST(MavMsgsConversions, ActuatorsAndCommands) {
   EXPECT_EQ(back.angular_velocities, a.angular_velocities);
 
   mav_msgs::RollPitchYawrateThrust rpyt;
-  mav_msgs::msgRollPitchYawrateThrustFromEigen(mav_msgs::EigenRollPitchYawrateThrust(0.1, 0.2, 0.3, {0, 0, 15}),
-                                               &rpyt);
+  mav_msgs::msgRollPitchYawrateThrustFromEigen(mav_msgs::EigenRollPitchYawrateThrust(0.1, 0.2, 0.3, {0, 0, 15}), &rpyt);
   mav_msgs::EigenRollPitchYawrateThrust e;
   mav_msgs::eigenRollPitchYawrateThrustFromMsg(rpyt, &e);
   EXPECT_EQ(e.pitch, 0.2);

@@ -18,10 +18,10 @@ namespace rotors_sim {
 namespace geometry {
 
 struct OccupancyRequest {
-  ignition::math::Vector3d center_W;  ///< [m] centre of the box
-  ignition::math::Vector3d lengths_m; ///< [m] edge lengths of the box
-  double leaf_size_m = 0.25;          ///< [m] octree resolution
-  std::string Validate() const;       ///< empty when valid, else a one-line reason
+  ignition::math::Vector3d center_W;   ///< [m] centre of the box
+  ignition::math::Vector3d lengths_m;  ///< [m] edge lengths of the box
+  double leaf_size_m = 0.25;           ///< [m] octree resolution
+  std::string Validate() const;        ///< empty when valid, else a one-line reason
 };
 
 /// Occupied leaves only; free space stays unknown. Throws SimError for an invalid request.

@@ -18,12 +18,12 @@ namespace geometry {
 
 /// Triangles in the mesh's own frame, already scaled.
 struct TriangleMesh {
-  std::vector<double> vertices_m;   ///< x0 y0 z0 x1 y1 z1 ... [m]
-  std::vector<uint32_t> indices;    ///< three per triangle
+  std::vector<double> vertices_m;                     ///< x0 y0 z0 x1 y1 z1 ... [m]
+  std::vector<uint32_t> indices;                      ///< three per triangle
   std::array<float, 4> rgba{0.7f, 0.7f, 0.7f, 1.0f};  ///< diffuse colour of the first material
-  std::vector<float> colours;       ///< r g b per vertex (its material's diffuse or vertex colour), for renderers
-  std::vector<float> uvs;           ///< u v per vertex when the file has texture coordinates, else empty
-  std::string texture_file;         ///< the first diffuse texture (resolved path; may not exist), else empty
+  std::vector<float> colours;  ///< r g b per vertex (its material's diffuse or vertex colour), for renderers
+  std::vector<float> uvs;      ///< u v per vertex when the file has texture coordinates, else empty
+  std::string texture_file;    ///< the first diffuse texture (resolved path; may not exist), else empty
   size_t TriangleCount() const { return indices.size() / 3; }
 };
 
@@ -38,14 +38,14 @@ struct HeightField {
   int n = 0;
   double size_x_m = 0, size_y_m = 0, size_z_m = 0;
   double pos_x_m = 0, pos_y_m = 0, pos_z_m = 0;
-  std::vector<double> heights_m;  ///< row-major, n * n, absolute z [m]
+  std::vector<double> heights_m;                  ///< row-major, n * n, absolute z [m]
   double HeightAt(double x_m, double y_m) const;  ///< bilinear between samples
 };
 
 /// Reads a grey (8- or 16-bit) image as SDF <heightmap>: value / max * size_z above pos_z. The
 /// image must be square with 2^k + 1 pixels per side, as in Gazebo. Cached by file, size and pos.
 std::shared_ptr<const HeightField> LoadHeightmap(const std::string& path, const std::array<double, 3>& size_m,
-                                                const std::array<double, 3>& pos_m);
+                                                 const std::array<double, 3>& pos_m);
 
 /// Reads an OctoMap (.bt binary or .ot full). Cached by file. Throws SimError when the file is
 /// missing or does not parse.

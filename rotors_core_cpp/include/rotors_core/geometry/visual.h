@@ -21,10 +21,10 @@ struct Shape {
   enum class Type { kBox, kSphere, kCylinder, kPlane, kMesh, kHeightmap, kOcTree };
   Type type = Type::kBox;
   ignition::math::Vector3d box_size_m;
-  double radius_m = 0.0, length_m = 0.0;        ///< sphere, cylinder
+  double radius_m = 0.0, length_m = 0.0;  ///< sphere, cylinder
   ignition::math::Vector3d plane_normal{0, 0, 1};
   ignition::math::Vector3d plane_size_m{100, 100, 0};
-  std::string mesh_file;                         ///< resolved path (mesh, octomap)
+  std::string mesh_file;  ///< resolved path (mesh, octomap)
   std::array<double, 3> mesh_scale{1, 1, 1};
   std::shared_ptr<const TriangleMesh> mesh;
   std::shared_ptr<const HeightField> heightfield;  ///< in the element's frame
@@ -50,8 +50,8 @@ namespace geometry {
 /// How the world is lit (SDF <light type="directional"> and <scene>), for whoever renders it.
 struct Lighting {
   ignition::math::Vector3d sun_direction_W{-0.5, 0.1, -0.9};  ///< direction the light travels
-  float sun_diffuse = 0.8f;                                    ///< grey level of the sun's diffuse colour
-  float ambient = 0.4f;                                        ///< <scene><ambient>
+  float sun_diffuse = 0.8f;                                   ///< grey level of the sun's diffuse colour
+  float ambient = 0.4f;                                       ///< <scene><ambient>
   std::array<float, 3> background{0.7f, 0.7f, 0.7f};          ///< <scene><background>
 };
 

@@ -26,7 +26,10 @@ class Joint {
   /// Axis in the world frame (index 0 only).
   Vector3d GlobalAxis(unsigned int index) const;
   /// Axis in the child link frame.
-  Vector3d LocalAxis(unsigned int index) const { (void)index; return axis_C_; }
+  Vector3d LocalAxis(unsigned int index) const {
+    (void)index;
+    return axis_C_;
+  }
   /// Joint position [rad or m] (hinge angle wrapped to (-pi, pi] by ODE).
   double Position(unsigned int index = 0) const;
   /// Joint rate of the child relative to the parent [rad/s or m/s].
@@ -38,8 +41,7 @@ class Joint {
   void SetForce(unsigned int index, double effort);
 
   // --- Engine side ---
-  void CreateOdeJoint(dWorldID world, const Vector3d& anchor_W, const Vector3d& axis_W,
-                      double lower, double upper);
+  void CreateOdeJoint(dWorldID world, const Vector3d& anchor_W, const Vector3d& axis_W, double lower, double upper);
 
  private:
   std::string name_;

@@ -28,23 +28,23 @@ class Link {
   // --- State (all accessors are of the link frame origin, as in Gazebo) ---
   Pose3d WorldPose() const;
   Pose3d WorldCoGPose() const;
-  Vector3d WorldLinearVel() const;       ///< [m/s] link origin, world frame
-  Vector3d WorldCoGLinearVel() const;    ///< [m/s] link CoG, world frame
-  Vector3d RelativeLinearVel() const;    ///< [m/s] link origin, link frame
-  Vector3d WorldAngularVel() const;      ///< [rad/s] world frame
-  Vector3d RelativeAngularVel() const;   ///< [rad/s] link frame
-  Vector3d WorldLinearAccel() const;     ///< [m/s^2] link origin, world frame (from the last step)
-  Vector3d RelativeLinearAccel() const;  ///< [m/s^2] link origin, link frame
-  Vector3d WorldAngularAccel() const;    ///< [rad/s^2] world frame
-  Vector3d RelativeAngularAccel() const; ///< [rad/s^2] link frame
+  Vector3d WorldLinearVel() const;        ///< [m/s] link origin, world frame
+  Vector3d WorldCoGLinearVel() const;     ///< [m/s] link CoG, world frame
+  Vector3d RelativeLinearVel() const;     ///< [m/s] link origin, link frame
+  Vector3d WorldAngularVel() const;       ///< [rad/s] world frame
+  Vector3d RelativeAngularVel() const;    ///< [rad/s] link frame
+  Vector3d WorldLinearAccel() const;      ///< [m/s^2] link origin, world frame (from the last step)
+  Vector3d RelativeLinearAccel() const;   ///< [m/s^2] link origin, link frame
+  Vector3d WorldAngularAccel() const;     ///< [rad/s^2] world frame
+  Vector3d RelativeAngularAccel() const;  ///< [rad/s^2] link frame
 
   // --- Forces for the coming step (ignored on static links) ---
-  void AddForce(const Vector3d& force_W);                 ///< [N] at the link CoG
-  void AddRelativeForce(const Vector3d& force_L);         ///< [N] at the link CoG, link frame
+  void AddForce(const Vector3d& force_W);          ///< [N] at the link CoG
+  void AddRelativeForce(const Vector3d& force_L);  ///< [N] at the link CoG, link frame
   void AddForceAtWorldPosition(const Vector3d& force_W, const Vector3d& p_W);
   void AddForceAtRelativePosition(const Vector3d& force_W, const Vector3d& p_L);
-  void AddTorque(const Vector3d& torque_W);               ///< [N m] world frame
-  void AddRelativeTorque(const Vector3d& torque_L);       ///< [N m] link frame
+  void AddTorque(const Vector3d& torque_W);          ///< [N m] world frame
+  void AddRelativeTorque(const Vector3d& torque_L);  ///< [N m] link frame
 
   const std::vector<JointPtr>& GetParentJoints() const { return parent_joints_; }
   const std::vector<JointPtr>& GetChildJoints() const { return child_joints_; }
@@ -57,7 +57,10 @@ class Link {
   const Pose3d& PoseInBody() const { return X_BL_; }
   void AddParentJoint(const JointPtr& j) { parent_joints_.push_back(j); }
   void AddChildJoint(const JointPtr& j) { child_joints_.push_back(j); }
-  void ClearJoints() { parent_joints_.clear(); child_joints_.clear(); }
+  void ClearJoints() {
+    parent_joints_.clear();
+    child_joints_.clear();
+  }
   /// Called by the world before and after each step to difference velocities.
   void RecordVelocityBeforeStep();
   void UpdateAccelerationAfterStep(double dt_s);
@@ -70,8 +73,8 @@ class Link {
   Model* model_;
   Inertial inertial_;
   dBodyID body_ = nullptr;
-  Pose3d X_BL_;           ///< link frame in the ODE body frame
-  Pose3d X_WL_static_;    ///< pose of a static link
+  Pose3d X_BL_;         ///< link frame in the ODE body frame
+  Pose3d X_WL_static_;  ///< pose of a static link
   bool welded_ = false;
   // WorldPose() is asked for several times per step by the engine and the plugins; it is
   // computed once after each change of the body's pose.

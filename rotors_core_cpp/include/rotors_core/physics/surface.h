@@ -10,20 +10,20 @@ namespace physics {
 /// SDF <surface>: <friction><ode><mu>, <mu2>, <slip1>, <slip2> and <contact><ode><kp>, <kd>
 /// (SDF 1.6 defaults).
 struct SurfaceParams {
-  double mu = 1.0;          ///< [-] Coulomb friction coefficient, first friction direction
-  double mu2 = 1.0;         ///< [-] second friction direction
-  double slip1_m_s_N = 0.0; ///< [m/(s N)] force-dependent slip, first friction direction
-  double slip2_m_s_N = 0.0; ///< [m/(s N)] second friction direction
-  double kp_N_m = 1e12;     ///< [N/m] contact stiffness
-  double kd_N_s_m = 1.0;    ///< [N s/m] contact damping
+  double mu = 1.0;               ///< [-] Coulomb friction coefficient, first friction direction
+  double mu2 = 1.0;              ///< [-] second friction direction
+  double slip1_m_s_N = 0.0;      ///< [m/(s N)] force-dependent slip, first friction direction
+  double slip2_m_s_N = 0.0;      ///< [m/(s N)] second friction direction
+  double kp_N_m = 1e12;          ///< [N/m] contact stiffness
+  double kd_N_s_m = 1.0;         ///< [N s/m] contact damping
   std::string Validate() const;  ///< empty when valid, else a one-line reason
 };
 
 /// The constraint parameters of one contact between two surfaces over a step h.
 struct ContactConstraint {
   double mu = 1.0, mu2 = 1.0;
-  double erp = 0.2;  ///< [-] fraction of the penetration corrected per step
-  double cfm = 0.0;  ///< constraint force mixing (compliance) of the normal row
+  double erp = 0.2;                 ///< [-] fraction of the penetration corrected per step
+  double cfm = 0.0;                 ///< constraint force mixing (compliance) of the normal row
   double slip1 = 0.0, slip2 = 0.0;  ///< compliance of the two friction rows
 };
 

@@ -20,11 +20,11 @@ namespace physics {
 
 /// Physics settings of a world (SDF <physics>, ODE solver block).
 struct PhysicsParams {
-  double max_step_size_s = 0.001;        ///< [s] fixed physics step
-  double real_time_factor = 1.0;         ///< pacing target; 0 = as fast as possible
+  double max_step_size_s = 0.001;  ///< [s] fixed physics step
+  double real_time_factor = 1.0;   ///< pacing target; 0 = as fast as possible
   double real_time_update_rate_hz = 1000.0;
-  Vector3d gravity_W{0.0, 0.0, -9.8};    ///< [m/s^2]
-  bool quick_solver = true;              ///< ODE "quick" (iterative) vs "world" (direct) stepper
+  Vector3d gravity_W{0.0, 0.0, -9.8};  ///< [m/s^2]
+  bool quick_solver = true;            ///< ODE "quick" (iterative) vs "world" (direct) stepper
   int quick_iterations = 50;
   double sor = 1.3;
   double cfm = 0.0;
@@ -46,7 +46,7 @@ struct Contact {
   Link* link2 = nullptr;
   Vector3d position_W, normal_W;
   double depth_m = 0.0;
-  Vector3d force1_W, torque1_W;        ///< wrench on link1 from the contact, world frame
+  Vector3d force1_W, torque1_W;  ///< wrench on link1 from the contact, world frame
   Vector3d force2_W, torque2_W;
 };
 

@@ -38,8 +38,8 @@ struct CameraIntrinsics {
 
 /// One <camera> of a camera, multicamera or depth sensor.
 struct CameraSpec {
-  std::string name;                  ///< <camera name="left">, may be empty
-  ignition::math::Pose3d X_SC;       ///< camera frame (x forward, z up) in the sensor frame
+  std::string name;             ///< <camera name="left">, may be empty
+  ignition::math::Pose3d X_SC;  ///< camera frame (x forward, z up) in the sensor frame
   CameraIntrinsics intrinsics;
   PixelFormat format = PixelFormat::kR8G8B8;
   double noise_mean = 0.0, noise_stddev = 0.0;  ///< Gaussian, in units of full scale [0, 1]

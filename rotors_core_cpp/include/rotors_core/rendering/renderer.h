@@ -18,8 +18,8 @@ namespace rendering {
 
 struct RenderedFrame {
   int width_px = 0, height_px = 0;
-  std::vector<uint8_t> image;   ///< rows top to bottom, BytesPerPixel(format) per pixel; empty if not asked
-  std::vector<float> depth_m;   ///< optical-axis distance per pixel, NaN where nothing is in range
+  std::vector<uint8_t> image;  ///< rows top to bottom, BytesPerPixel(format) per pixel; empty if not asked
+  std::vector<float> depth_m;  ///< optical-axis distance per pixel, NaN where nothing is in range
 };
 
 class Renderer {

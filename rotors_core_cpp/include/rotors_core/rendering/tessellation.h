@@ -21,8 +21,8 @@ struct TriangleSoup {
   size_t VertexCount() const { return positions_m.size() / 3; }
   size_t TriangleCount() const { return indices.empty() ? VertexCount() / 3 : indices.size() / 3; }
   void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c);  ///< flat normal
-  void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
-           const Eigen::Vector3f& na, const Eigen::Vector3f& nb, const Eigen::Vector3f& nc);
+  void Add(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c, const Eigen::Vector3f& na,
+           const Eigen::Vector3f& nb, const Eigen::Vector3f& nc);
 };
 
 /// A run of triangles of a soup and a sphere around them, so that the renderer can skip the run

@@ -8,7 +8,8 @@
 // - A participant is present when its answer topic has a publisher and, if an input topic is
 //   declared, the simulator's input topic has a subscriber, and it has been so for settle_s of wall
 //   time (so that its other subscriptions, e.g. a latched set point, are connected before the first
-//   step: runs do not depend on when it started). A participant that is not present holds the clock: the simulator does not step (one line every few seconds names it).
+//   step: runs do not depend on when it started). A participant that is not present holds the clock: the simulator does
+//   not step (one line every few seconds names it).
 // - After a step that published a participant's input (or every step, when no input topic is
 //   declared), the simulator waits until the participant answered with a stamp >= the step's time
 //   (inputs carry the step's time as their stamp, as the odometry and IMU plugins write it).
@@ -41,7 +42,7 @@ std::vector<LockstepParticipant> ParseLockstepParticipants(const std::string& sp
 struct LockstepOptions {
   enum class Mode { kHold, kLenient };
   Mode mode = Mode::kHold;
-  double settle_s = 0.5;                ///< [s wall] a participant that (re)connected is given to connect its other topics
+  double settle_s = 0.5;  ///< [s wall] a participant that (re)connected is given to connect its other topics
   double first_answer_timeout_s = 0.5;  ///< [s wall] waiting for the first answer after (re)connecting
   double silence_timeout_s = 2.0;       ///< [s wall] kLenient: mute; kHold: check whether it is still alive
   double report_period_s = 5.0;         ///< [s wall] between "still waiting" lines
@@ -70,7 +71,7 @@ class Lockstep {
     LockstepParticipant topics;
     ros::Subscriber sub;
     ros::Time last_stamp;
-    bool present = false;          ///< as of the last check
+    bool present = false;  ///< as of the last check
     ros::WallTime present_since;
     bool ever_present = false;
     bool answered = false;         ///< answered since it (re)connected

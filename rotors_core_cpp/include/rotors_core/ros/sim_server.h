@@ -22,8 +22,8 @@ namespace rotors_sim {
 struct SimServerOptions {
   std::string world_file;
   bool paused = false;
-  double real_time_factor = -1.0;  ///< < 0: the world's own; 0: as fast as possible
-  double state_publish_rate_hz = 100.0;  ///< [Hz sim time] TF, joint_states, model_states
+  double real_time_factor = -1.0;                          ///< < 0: the world's own; 0: as fast as possible
+  double state_publish_rate_hz = 100.0;                    ///< [Hz sim time] TF, joint_states, model_states
   std::vector<LockstepParticipant> lockstep_participants;  ///< see Lockstep; empty: free running
   LockstepOptions lockstep;
 };

@@ -17,7 +17,7 @@ visualization_msgs::MarkerArray WorldMarkers(const physics::World& world, const 
 
 /// The occupied leaves of `tree` as a CUBE_LIST at the tree's resolution (larger pruned leaves are
 /// split), coloured by height from blue (low) to red (high), moved by `offset_m`.
-visualization_msgs::Marker OcTreeCubes(const octomap::OcTree& tree, const std::string& frame_id,
-                                       const std::string& ns, const octomap::point3d& offset_m = {0, 0, 0});
+visualization_msgs::Marker OcTreeCubes(const octomap::OcTree& tree, const std::string& frame_id, const std::string& ns,
+                                       const octomap::point3d& offset_m = {0, 0, 0});
 
 }  // namespace rotors_sim

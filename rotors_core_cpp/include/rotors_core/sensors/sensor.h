@@ -25,7 +25,7 @@ class Sensor {
   physics::LinkPtr ParentLink() const { return parent_; }
   const physics::Pose3d& Pose() const { return X_LS_; }  ///< in the parent link frame
   physics::Pose3d WorldPose() const;
-  double UpdateRate() const { return update_rate_hz_; }   ///< [Hz]; 0: every step
+  double UpdateRate() const { return update_rate_hz_; }  ///< [Hz]; 0: every step
   common::Time LastUpdateTime() const { return last_update_; }
   event::ConnectionPtr ConnectUpdated(std::function<void()> cb) { return updated_.Connect(std::move(cb)); }
 

@@ -185,8 +185,7 @@ inline void msgOdometryFromEigen(const EigenOdometry& odometry, nav_msgs::Odomet
   internal::CovarianceFromMatrix(odometry.twist_covariance_, &msg->twist.covariance);
 }
 
-inline void msgPoseStampedFromEigenTrajectoryPoint(const EigenTrajectoryPoint& point,
-                                                   geometry_msgs::PoseStamped* msg) {
+inline void msgPoseStampedFromEigenTrajectoryPoint(const EigenTrajectoryPoint& point, geometry_msgs::PoseStamped* msg) {
   if (point.timestamp_ns >= 0) msg->header.stamp = internal::TimeFromNanoseconds(point.timestamp_ns);
   pointEigenToMsg(point.position_W, &msg->pose.position);
   quaternionEigenToMsg(point.orientation_W_B, &msg->pose.orientation);
@@ -230,7 +229,8 @@ inline void msgMultiDofJointTrajectoryFromEigen(const EigenTrajectoryPointVector
   if (trajectory.front().timestamp_ns >= 0)
     msg->header.stamp = internal::TimeFromNanoseconds(trajectory.front().timestamp_ns);
   msg->points.resize(trajectory.size());
-  for (size_t i = 0; i < trajectory.size(); ++i) msgMultiDofJointTrajectoryPointFromEigen(trajectory[i], &msg->points[i]);
+  for (size_t i = 0; i < trajectory.size(); ++i)
+    msgMultiDofJointTrajectoryPointFromEigen(trajectory[i], &msg->points[i]);
 }
 
 inline void msgMultiDofJointTrajectoryFromEigen(const EigenTrajectoryPointVector& trajectory,

@@ -6,8 +6,8 @@
 
 namespace mav_msgs {
 
-const double kZurichLatitude = 0.8267;  // [rad]
-const double kZurichHeight = 405.94;    // [m]
+const double kZurichLatitude = 0.8267;                                       // [rad]
+const double kZurichHeight = 405.94;                                         // [m]
 const double kGravity = MagnitudeOfGravity(kZurichHeight, kZurichLatitude);  // [m/s^2], about 9.8066
 
 }  // namespace mav_msgs

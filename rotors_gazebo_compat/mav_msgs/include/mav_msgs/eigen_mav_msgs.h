@@ -59,9 +59,9 @@ struct EigenRollPitchYawrateThrust {
   EigenRollPitchYawrateThrust() : roll(0.0), pitch(0.0), yaw_rate(0.0), thrust(Eigen::Vector3d::Zero()) {}
   EigenRollPitchYawrateThrust(double _roll, double _pitch, double _yaw_rate, const Eigen::Vector3d& _thrust)
       : roll(_roll), pitch(_pitch), yaw_rate(_yaw_rate), thrust(_thrust) {}
-  double roll;      ///< [rad]
-  double pitch;     ///< [rad]
-  double yaw_rate;  ///< [rad/s]
+  double roll;             ///< [rad]
+  double pitch;            ///< [rad]
+  double yaw_rate;         ///< [rad/s]
   Eigen::Vector3d thrust;  ///< [N], body frame
 };
 
@@ -69,14 +69,20 @@ struct EigenRollPitchYawrateThrust {
 class EigenMavState {
  public:
   EigenMavState()
-      : position_W(Eigen::Vector3d::Zero()), velocity_W(Eigen::Vector3d::Zero()),
-        acceleration_B(Eigen::Vector3d::Zero()), orientation_W_B(Eigen::Quaterniond::Identity()),
-        angular_velocity_B(Eigen::Vector3d::Zero()), angular_acceleration_B(Eigen::Vector3d::Zero()) {}
+      : position_W(Eigen::Vector3d::Zero()),
+        velocity_W(Eigen::Vector3d::Zero()),
+        acceleration_B(Eigen::Vector3d::Zero()),
+        orientation_W_B(Eigen::Quaterniond::Identity()),
+        angular_velocity_B(Eigen::Vector3d::Zero()),
+        angular_acceleration_B(Eigen::Vector3d::Zero()) {}
   EigenMavState(const Eigen::Vector3d& position_W, const Eigen::Vector3d& velocity_W,
                 const Eigen::Vector3d& acceleration_B, const Eigen::Quaterniond& orientation_W_B,
                 const Eigen::Vector3d& angular_velocity_B, const Eigen::Vector3d& angular_acceleration_B)
-      : position_W(position_W), velocity_W(velocity_W), acceleration_B(acceleration_B),
-        orientation_W_B(orientation_W_B), angular_velocity_B(angular_velocity_B),
+      : position_W(position_W),
+        velocity_W(velocity_W),
+        acceleration_B(acceleration_B),
+        orientation_W_B(orientation_W_B),
+        angular_velocity_B(angular_velocity_B),
         angular_acceleration_B(angular_acceleration_B) {}
 
   std::string toString() const {
@@ -100,25 +106,37 @@ class EigenMavState {
 };
 
 struct EigenTrajectoryPoint {
-
   EigenTrajectoryPoint()
-      : timestamp_ns(-1), time_from_start_ns(0), position_W(Eigen::Vector3d::Zero()),
-        velocity_W(Eigen::Vector3d::Zero()), acceleration_W(Eigen::Vector3d::Zero()), jerk_W(Eigen::Vector3d::Zero()),
-        snap_W(Eigen::Vector3d::Zero()), orientation_W_B(Eigen::Quaterniond::Identity()),
-        angular_velocity_W(Eigen::Vector3d::Zero()), angular_acceleration_W(Eigen::Vector3d::Zero()),
+      : timestamp_ns(-1),
+        time_from_start_ns(0),
+        position_W(Eigen::Vector3d::Zero()),
+        velocity_W(Eigen::Vector3d::Zero()),
+        acceleration_W(Eigen::Vector3d::Zero()),
+        jerk_W(Eigen::Vector3d::Zero()),
+        snap_W(Eigen::Vector3d::Zero()),
+        orientation_W_B(Eigen::Quaterniond::Identity()),
+        angular_velocity_W(Eigen::Vector3d::Zero()),
+        angular_acceleration_W(Eigen::Vector3d::Zero()),
         degrees_of_freedom(MavActuation::DOF4) {}
 
   EigenTrajectoryPoint(int64_t _time_from_start_ns, const Eigen::Vector3d& _position, const Eigen::Vector3d& _velocity,
-                       const Eigen::Vector3d& _acceleration, const Eigen::Vector3d& _jerk,
-                       const Eigen::Vector3d& _snap, const Eigen::Quaterniond& _orientation,
-                       const Eigen::Vector3d& _angular_velocity, const Eigen::Vector3d& _angular_acceleration,
+                       const Eigen::Vector3d& _acceleration, const Eigen::Vector3d& _jerk, const Eigen::Vector3d& _snap,
+                       const Eigen::Quaterniond& _orientation, const Eigen::Vector3d& _angular_velocity,
+                       const Eigen::Vector3d& _angular_acceleration,
                        const MavActuation& _degrees_of_freedom = MavActuation::DOF4)
-      : timestamp_ns(-1), time_from_start_ns(_time_from_start_ns), position_W(_position), velocity_W(_velocity),
-        acceleration_W(_acceleration), jerk_W(_jerk), snap_W(_snap), orientation_W_B(_orientation),
-        angular_velocity_W(_angular_velocity), angular_acceleration_W(_angular_acceleration),
+      : timestamp_ns(-1),
+        time_from_start_ns(_time_from_start_ns),
+        position_W(_position),
+        velocity_W(_velocity),
+        acceleration_W(_acceleration),
+        jerk_W(_jerk),
+        snap_W(_snap),
+        orientation_W_B(_orientation),
+        angular_velocity_W(_angular_velocity),
+        angular_acceleration_W(_angular_acceleration),
         degrees_of_freedom(_degrees_of_freedom) {}
 
-  int64_t timestamp_ns;        ///< -1: not set
+  int64_t timestamp_ns;  ///< -1: not set
   int64_t time_from_start_ns;
   Eigen::Vector3d position_W;
   Eigen::Vector3d velocity_W;
@@ -142,8 +160,7 @@ struct EigenTrajectoryPoint {
     return timestamp_ns == other.timestamp_ns && time_from_start_ns == other.time_from_start_ns &&
            position_W.isApprox(other.position_W, tolerance) && velocity_W.isApprox(other.velocity_W, tolerance) &&
            acceleration_W.isApprox(other.acceleration_W, tolerance) && jerk_W.isApprox(other.jerk_W, tolerance) &&
-           snap_W.isApprox(other.snap_W, tolerance) &&
-           orientation_W_B.isApprox(other.orientation_W_B, tolerance) &&
+           snap_W.isApprox(other.snap_W, tolerance) && orientation_W_B.isApprox(other.orientation_W_B, tolerance) &&
            angular_velocity_W.isApprox(other.angular_velocity_W, tolerance) &&
            angular_acceleration_W.isApprox(other.angular_acceleration_W, tolerance) &&
            degrees_of_freedom == other.degrees_of_freedom;
@@ -193,14 +210,20 @@ typedef EigenTrajectoryPoint EigenTrajectoryReference;
 
 struct EigenOdometry {
   EigenOdometry()
-      : timestamp_ns(-1), position_W(Eigen::Vector3d::Zero()), orientation_W_B(Eigen::Quaterniond::Identity()),
-        velocity_B(Eigen::Vector3d::Zero()), angular_velocity_B(Eigen::Vector3d::Zero()) {
+      : timestamp_ns(-1),
+        position_W(Eigen::Vector3d::Zero()),
+        orientation_W_B(Eigen::Quaterniond::Identity()),
+        velocity_B(Eigen::Vector3d::Zero()),
+        angular_velocity_B(Eigen::Vector3d::Zero()) {
     pose_covariance_.setZero();
     twist_covariance_.setZero();
   }
   EigenOdometry(const Eigen::Vector3d& _position, const Eigen::Quaterniond& _orientation,
                 const Eigen::Vector3d& _velocity_body, const Eigen::Vector3d& _angular_velocity)
-      : timestamp_ns(-1), position_W(_position), orientation_W_B(_orientation), velocity_B(_velocity_body),
+      : timestamp_ns(-1),
+        position_W(_position),
+        orientation_W_B(_orientation),
+        velocity_B(_velocity_body),
         angular_velocity_B(_angular_velocity) {
     pose_covariance_.setZero();
     twist_covariance_.setZero();
@@ -215,7 +238,9 @@ struct EigenOdometry {
   Eigen::Matrix<double, 6, 6> twist_covariance_;
 
   double getYaw() const { return yawFromQuaternion(orientation_W_B); }
-  void getEulerAngles(Eigen::Vector3d* euler_angles) const { getEulerAnglesFromQuaternion(orientation_W_B, euler_angles); }
+  void getEulerAngles(Eigen::Vector3d* euler_angles) const {
+    getEulerAnglesFromQuaternion(orientation_W_B, euler_angles);
+  }
   double getYawRate() const { return angular_velocity_B.z(); }
   /// v_W = R_W_B v_B
   Eigen::Vector3d getVelocityWorld() const { return orientation_W_B * velocity_B; }
@@ -227,7 +252,7 @@ struct EigenOdometry {
 };
 
 // Eigen-aligned containers, named as in mav_comm: <Type>Vector and <Type>Deque.
-#define MAV_MSGS_MAKE_ALIGNED_CONTAINERS(EIGEN_TYPE)                                          \
+#define MAV_MSGS_MAKE_ALIGNED_CONTAINERS(EIGEN_TYPE)                                        \
   typedef std::vector<EIGEN_TYPE, Eigen::aligned_allocator<EIGEN_TYPE>> EIGEN_TYPE##Vector; \
   typedef std::deque<EIGEN_TYPE, Eigen::aligned_allocator<EIGEN_TYPE>> EIGEN_TYPE##Deque;
 

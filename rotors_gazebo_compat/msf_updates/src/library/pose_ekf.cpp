@@ -21,12 +21,18 @@ std::string InitialUncertainty::Validate() const {
 
 const char* ToString(PoseStatus status) {
   switch (status) {
-    case PoseStatus::kStoredForInit: return "stored for initialisation";
-    case PoseStatus::kApplied: return "applied";
-    case PoseStatus::kPending: return "pending (newer than the IMU)";
-    case PoseStatus::kRejectedOutlier: return "rejected as an outlier";
-    case PoseStatus::kTooOld: return "older than the state buffer";
-    case PoseStatus::kTooSoon: return "closer than pose_measurement_minimum_dt to the previous one";
+    case PoseStatus::kStoredForInit:
+      return "stored for initialisation";
+    case PoseStatus::kApplied:
+      return "applied";
+    case PoseStatus::kPending:
+      return "pending (newer than the IMU)";
+    case PoseStatus::kRejectedOutlier:
+      return "rejected as an outlier";
+    case PoseStatus::kTooOld:
+      return "older than the state buffer";
+    case PoseStatus::kTooSoon:
+      return "closer than pose_measurement_minimum_dt to the previous one";
   }
   return "?";
 }
@@ -116,13 +122,12 @@ PoseStatus PoseEkf::AddPose(PoseMeasurement z) {
 }
 
 std::size_t PoseEkf::Nearest(double t_s) const {
-  const auto later = std::lower_bound(buffer_.begin(), buffer_.end(), t_s,
-                                      [](const Entry& e, double t) { return e.x.t_s < t; });
+  const auto later =
+      std::lower_bound(buffer_.begin(), buffer_.end(), t_s, [](const Entry& e, double t) { return e.x.t_s < t; });
   if (later == buffer_.begin()) return 0;
   if (later == buffer_.end()) return buffer_.size() - 1;
   const auto earlier = std::prev(later);
-  return static_cast<std::size_t>(
-      (t_s - earlier->x.t_s <= later->x.t_s - t_s ? earlier : later) - buffer_.begin());
+  return static_cast<std::size_t>((t_s - earlier->x.t_s <= later->x.t_s - t_s ? earlier : later) - buffer_.begin());
 }
 
 PoseStatus PoseEkf::Fuse(const PoseMeasurement& z) {

@@ -13,7 +13,8 @@ std::string PoseSensorParams::Validate() const {
   else if (!q_ic.coeffs().allFinite() || std::abs(q_ic.norm() - 1.0) > 1e-3)
     why << "pose_sensor/init/q_ic (w, x, y, z) = (" << q_ic.w() << ", " << q_ic.x() << ", " << q_ic.y() << ", "
         << q_ic.z() << ") must be a unit quaternion";
-  else if (!(scale > 0.0) || !std::isfinite(scale)) why << "pose_sensor/pose_initial_scale = " << scale << " must be > 0";
+  else if (!(scale > 0.0) || !std::isfinite(scale))
+    why << "pose_sensor/pose_initial_scale = " << scale << " must be > 0";
   else if (!(pose_noise_meas_p > 0.0) || !std::isfinite(pose_noise_meas_p))
     why << "pose_sensor/pose_noise_meas_p = " << pose_noise_meas_p << " must be > 0 m";
   else if (!(pose_noise_meas_q > 0.0) || !std::isfinite(pose_noise_meas_q))

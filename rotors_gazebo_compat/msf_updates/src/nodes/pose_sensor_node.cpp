@@ -130,8 +130,9 @@ class PoseSensorNode {
     pose.mah_threshold = p.Get("pose_sensor/mah_threshold", pose.mah_threshold);
     // What this estimator does not do (yet) is refused by name, not ignored.
     if (!p.Get("pose_sensor/pose_measurement_world_sensor", true))
-      Refuse("pose_sensor/pose_measurement_world_sensor: false (a sensor measuring the world in its own frame, "
-             "PTAM style) is not supported; set it to true");
+      Refuse(
+          "pose_sensor/pose_measurement_world_sensor: false (a sensor measuring the world in its own frame, "
+          "PTAM style) is not supported; set it to true");
     if (!p.Get("pose_sensor/pose_absolute_measurements", true))
       Refuse("pose_sensor/pose_absolute_measurements: false (relative pose updates) is not supported; set it to true");
     for (const char* aux : {"scale", "p_ic", "q_ic", "p_wv", "q_wv"}) {
@@ -144,11 +145,12 @@ class PoseSensorNode {
     p.WarnUnread({"core", "pose_sensor"});
 
     ekf_ = std::make_unique<PoseEkf>(core, pose, init, buffer_s);
-    ROS_INFO("[msf] pose_sensor: p_ic (%.3f, %.3f, %.3f), q_ic (w %.4f, %.4f, %.4f, %.4f), pose_delay %.3f s, "
-             "Mahalanobis gate %s; call %s to initialise",
-             pose.p_ic.x(), pose.p_ic.y(), pose.p_ic.z(), pose.q_ic.w(), pose.q_ic.x(), pose.q_ic.y(), pose.q_ic.z(),
-             pose.pose_delay_s, pose.enable_mah_outlier_rejection ? "on" : "off",
-             pnh_.resolveName("pose_sensor/initialize_msf_scale").c_str());
+    ROS_INFO(
+        "[msf] pose_sensor: p_ic (%.3f, %.3f, %.3f), q_ic (w %.4f, %.4f, %.4f, %.4f), pose_delay %.3f s, "
+        "Mahalanobis gate %s; call %s to initialise",
+        pose.p_ic.x(), pose.p_ic.y(), pose.p_ic.z(), pose.q_ic.w(), pose.q_ic.x(), pose.q_ic.y(), pose.q_ic.z(),
+        pose.pose_delay_s, pose.enable_mah_outlier_rejection ? "on" : "off",
+        pnh_.resolveName("pose_sensor/initialize_msf_scale").c_str());
 
     const ros::TransportHints hints = tcp_no_delay ? ros::TransportHints().tcpNoDelay() : ros::TransportHints();
     subs_.push_back(nh_.subscribe("msf_core/imu_state_input", 100, &PoseSensorNode::OnImu, this, hints));
@@ -173,7 +175,8 @@ class PoseSensorNode {
     const auto& w = msg->angular_velocity;
     const auto& a = msg->linear_acceleration;
     if (!AllFinite({w.x, w.y, w.z, a.x, a.y, a.z})) {
-      if (bad_imu_warning_.Ready()) ROS_WARN("[msf] IMU message at t = %.3f s has non-finite values; dropped", msg->header.stamp.toSec());
+      if (bad_imu_warning_.Ready())
+        ROS_WARN("[msf] IMU message at t = %.3f s has non-finite values; dropped", msg->header.stamp.toSec());
       return;
     }
     ImuReading u;
@@ -182,8 +185,8 @@ class PoseSensorNode {
     u.a_m_I = Eigen::Vector3d(a.x, a.y, a.z);
     if (!ekf_->AddImu(u)) {
       if (!ekf_->Initialized())
-        if (not_initialised_warning_.Ready()) ROS_WARN("[msf] not initialised: call %s",
-                          pnh_.resolveName("pose_sensor/initialize_msf_scale").c_str());
+        if (not_initialised_warning_.Ready())
+          ROS_WARN("[msf] not initialised: call %s", pnh_.resolveName("pose_sensor/initialize_msf_scale").c_str());
       return;
     }
     PublishState(msg->header.stamp);
@@ -213,8 +216,11 @@ class PoseSensorNode {
     z.p_m_W = Eigen::Vector3d(p.x, p.y, p.z);
     z.q_m_WC = Eigen::Quaterniond(q.w, q.x, q.y, q.z);
     if (!z.p_m_W.allFinite() || !z.q_m_WC.coeffs().allFinite() || std::abs(z.q_m_WC.norm() - 1.0) > 1e-2) {
-      if (bad_pose_warning_.Ready()) ROS_WARN("[msf] pose at t = %.3f s has a non-finite position or a non-unit quaternion "
-                        "(norm %.3f); dropped", z.t_s, z.q_m_WC.norm());
+      if (bad_pose_warning_.Ready())
+        ROS_WARN(
+            "[msf] pose at t = %.3f s has a non-finite position or a non-unit quaternion "
+            "(norm %.3f); dropped",
+            z.t_s, z.q_m_WC.norm());
       return;
     }
     z.q_m_WC.normalize();
@@ -237,8 +243,9 @@ class PoseSensorNode {
         pose_after_update_pub_.publish(out);
       }
     } else if ((status == PoseStatus::kTooOld && z.t_s >= init_time_s_) || status == PoseStatus::kRejectedOutlier) {
-      if (refused_pose_warning_.Ready()) ROS_WARN("[msf] pose at t = %.3f s %s (Mahalanobis distance %.1f)", z.t_s, ToString(status),
-                        ekf_->LastMahalanobis());
+      if (refused_pose_warning_.Ready())
+        ROS_WARN("[msf] pose at t = %.3f s %s (Mahalanobis distance %.1f)", z.t_s, ToString(status),
+                 ekf_->LastMahalanobis());
     }
   }
 
@@ -328,10 +335,8 @@ class PoseSensorNode {
     const std::string why = ekf_->InitializeScale(req.scale);
     if (why.empty()) init_time_s_ = ekf_->State().t_s;
     res.result = why.empty() ? "Initialized scale" : "Not initialized: " + why;
-    if (why.empty())
-      ROS_INFO("[msf] initialised with scale %.3f", req.scale);
-    else
-      ROS_WARN("[msf] initialize_msf_scale: %s", why.c_str());
+    if (why.empty()) ROS_INFO("[msf] initialised with scale %.3f", req.scale);
+    else ROS_WARN("[msf] initialize_msf_scale: %s", why.c_str());
     return true;
   }
 
@@ -339,10 +344,8 @@ class PoseSensorNode {
     const std::string why = ekf_->InitializeHeight(req.height);
     if (why.empty()) init_time_s_ = ekf_->State().t_s;
     res.result = why.empty() ? "Initialized by known height" : "Not initialized: " + why;
-    if (why.empty())
-      ROS_INFO("[msf] initialised at height %.3f m (scale %.3f)", req.height, ekf_->PoseParams().scale);
-    else
-      ROS_WARN("[msf] initialize_msf_height: %s", why.c_str());
+    if (why.empty()) ROS_INFO("[msf] initialised at height %.3f m (scale %.3f)", req.height, ekf_->PoseParams().scale);
+    else ROS_WARN("[msf] initialize_msf_height: %s", why.c_str());
     return true;
   }
 

@@ -13,20 +13,20 @@ namespace rotors_gazebo_plugins {
 
 /// Defaults are the ADIS16448 values of RotorS (reference section 4.4).
 struct ImuNoiseParams {
-  double gyroscope_noise_density = 2.0 * 35.0 / 3600.0 / 180.0 * M_PI;        ///< [rad/s/sqrt(Hz)]
-  double gyroscope_random_walk = 2.0 * 4.0 / 3600.0 / 180.0 * M_PI;           ///< [rad/s^2/sqrt(Hz)]
-  double gyroscope_bias_correlation_time_s = 1.0e3;                           ///< [s]
-  double gyroscope_turn_on_bias_sigma = 0.5 / 180.0 * M_PI;                   ///< [rad/s]
-  double accelerometer_noise_density = 2.0 * 2.0e-3;                          ///< [m/s^2/sqrt(Hz)]
-  double accelerometer_random_walk = 2.0 * 3.0e-3;                            ///< [m/s^3/sqrt(Hz)]
-  double accelerometer_bias_correlation_time_s = 300.0;                       ///< [s]
-  double accelerometer_turn_on_bias_sigma = 20.0e-3 * 9.8;                    ///< [m/s^2]
+  double gyroscope_noise_density = 2.0 * 35.0 / 3600.0 / 180.0 * M_PI;  ///< [rad/s/sqrt(Hz)]
+  double gyroscope_random_walk = 2.0 * 4.0 / 3600.0 / 180.0 * M_PI;     ///< [rad/s^2/sqrt(Hz)]
+  double gyroscope_bias_correlation_time_s = 1.0e3;                     ///< [s]
+  double gyroscope_turn_on_bias_sigma = 0.5 / 180.0 * M_PI;             ///< [rad/s]
+  double accelerometer_noise_density = 2.0 * 2.0e-3;                    ///< [m/s^2/sqrt(Hz)]
+  double accelerometer_random_walk = 2.0 * 3.0e-3;                      ///< [m/s^3/sqrt(Hz)]
+  double accelerometer_bias_correlation_time_s = 300.0;                 ///< [s]
+  double accelerometer_turn_on_bias_sigma = 20.0e-3 * 9.8;              ///< [m/s^2]
   std::string Validate() const;
 };
 
 struct ImuSample {
-  Eigen::Vector3d angular_velocity_I;   ///< [rad/s]
-  Eigen::Vector3d linear_acceleration_I;///< [m/s^2] specific force
+  Eigen::Vector3d angular_velocity_I;     ///< [rad/s]
+  Eigen::Vector3d linear_acceleration_I;  ///< [m/s^2] specific force
 };
 
 class ImuNoiseModel {

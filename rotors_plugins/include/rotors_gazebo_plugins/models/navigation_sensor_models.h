@@ -23,10 +23,10 @@ struct GeodeticOrigin {
 Eigen::Vector3d GeodeticFromWorld(const GeodeticOrigin& origin, const Eigen::Vector3d& p_W);
 
 struct GpsParams {
-  double hor_pos_std_dev_m = 3.0;      ///< horPosStdDev
-  double ver_pos_std_dev_m = 6.0;      ///< verPosStdDev
-  double hor_vel_std_dev_m_s = 0.1;    ///< horVelStdDev
-  double ver_vel_std_dev_m_s = 0.1;    ///< verVelStdDev
+  double hor_pos_std_dev_m = 3.0;    ///< horPosStdDev
+  double ver_pos_std_dev_m = 6.0;    ///< verPosStdDev
+  double hor_vel_std_dev_m_s = 0.1;  ///< horVelStdDev
+  double ver_vel_std_dev_m_s = 0.1;  ///< verVelStdDev
   std::string Validate() const;
 };
 
@@ -49,8 +49,8 @@ class GpsModel {
 };
 
 struct MagnetometerParams {
-  Eigen::Vector3d reference_NED_T{2.1493e-5, 8.15e-7, 4.2795e-5};  ///< refMagNorth, refMagEast, refMagDown [T]
-  Eigen::Vector3d noise_normal_T = Eigen::Vector3d::Zero();        ///< noiseNormal: sigma per axis [T]
+  Eigen::Vector3d reference_NED_T{2.1493e-5, 8.15e-7, 4.2795e-5};          ///< refMagNorth, refMagEast, refMagDown [T]
+  Eigen::Vector3d noise_normal_T = Eigen::Vector3d::Zero();                ///< noiseNormal: sigma per axis [T]
   Eigen::Vector3d noise_uniform_initial_bias_T = Eigen::Vector3d::Zero();  ///< noiseUniformInitialBias [T]
   std::string Validate() const;
   /// The reference field in the ENU world frame: (east, north, -down).

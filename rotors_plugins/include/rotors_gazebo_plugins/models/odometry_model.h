@@ -12,11 +12,11 @@
 namespace rotors_gazebo_plugins {
 
 struct OdometryNoiseParams {
-  Eigen::Vector3d normal_position_m = Eigen::Vector3d::Zero();         ///< sigma (noiseNormalPosition)
-  Eigen::Vector3d normal_quaternion_rad = Eigen::Vector3d::Zero();     ///< sigma of the small-angle error
+  Eigen::Vector3d normal_position_m = Eigen::Vector3d::Zero();      ///< sigma (noiseNormalPosition)
+  Eigen::Vector3d normal_quaternion_rad = Eigen::Vector3d::Zero();  ///< sigma of the small-angle error
   Eigen::Vector3d normal_linear_velocity_m_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal_angular_velocity_rad_s = Eigen::Vector3d::Zero();
-  Eigen::Vector3d uniform_position_m = Eigen::Vector3d::Zero();        ///< symmetric bound (noiseUniformPosition)
+  Eigen::Vector3d uniform_position_m = Eigen::Vector3d::Zero();  ///< symmetric bound (noiseUniformPosition)
   Eigen::Vector3d uniform_quaternion_rad = Eigen::Vector3d::Zero();
   Eigen::Vector3d uniform_linear_velocity_m_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d uniform_angular_velocity_rad_s = Eigen::Vector3d::Zero();
@@ -24,10 +24,10 @@ struct OdometryNoiseParams {
 };
 
 struct OdometryMeasurement {
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();                  ///< sensor position in the parent frame
-  Eigen::Quaterniond q_WS = Eigen::Quaterniond::Identity();       ///< sensor attitude
-  Eigen::Vector3d v_S = Eigen::Vector3d::Zero();                  ///< linear velocity, sensor frame
-  Eigen::Vector3d omega_S = Eigen::Vector3d::Zero();              ///< angular velocity, sensor frame
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();             ///< sensor position in the parent frame
+  Eigen::Quaterniond q_WS = Eigen::Quaterniond::Identity();  ///< sensor attitude
+  Eigen::Vector3d v_S = Eigen::Vector3d::Zero();             ///< linear velocity, sensor frame
+  Eigen::Vector3d omega_S = Eigen::Vector3d::Zero();         ///< angular velocity, sensor frame
 };
 
 class OdometryNoise {

@@ -11,24 +11,24 @@
 namespace rotors_gazebo_plugins {
 
 struct RotorParams {
-  double motor_constant = 8.54858e-6;       ///< C_T [N/(rad/s)^2]  (SDF motorConstant)
-  double moment_constant = 0.016;           ///< C_M [m]            (momentConstant)
-  double rotor_drag_coefficient = 1.0e-4;   ///< C_D [N s/m per rad/s] (rotorDragCoefficient)
+  double motor_constant = 8.54858e-6;          ///< C_T [N/(rad/s)^2]  (SDF motorConstant)
+  double moment_constant = 0.016;              ///< C_M [m]            (momentConstant)
+  double rotor_drag_coefficient = 1.0e-4;      ///< C_D [N s/m per rad/s] (rotorDragCoefficient)
   double rolling_moment_coefficient = 1.0e-6;  ///< C_R [N s per rad/s] (rollingMomentCoefficient)
-  double time_constant_up_s = 1.0 / 80.0;   ///< (timeConstantUp)
-  double time_constant_down_s = 1.0 / 40.0; ///< (timeConstantDown)
-  double max_rot_velocity = 838.0;          ///< [rad/s] (maxRotVelocity)
-  int turning_direction = -1;               ///< epsilon: +1 ccw, -1 cw (turningDirection)
+  double time_constant_up_s = 1.0 / 80.0;      ///< (timeConstantUp)
+  double time_constant_down_s = 1.0 / 40.0;    ///< (timeConstantDown)
+  double max_rot_velocity = 838.0;             ///< [rad/s] (maxRotVelocity)
+  int turning_direction = -1;                  ///< epsilon: +1 ccw, -1 cw (turningDirection)
   /// Empty when valid, else one line naming the bad value and the fix.
   std::string Validate() const;
 };
 
 /// Wrench of one rotor, all in the rotor frame R (z = rotor axis), applied at the rotor hub.
 struct RotorWrench {
-  Eigen::Vector3d thrust_R = Eigen::Vector3d::Zero();         ///< F_T, eq. 1
-  Eigen::Vector3d drag_R = Eigen::Vector3d::Zero();           ///< F_D, eq. 2
-  Eigen::Vector3d rolling_moment_R = Eigen::Vector3d::Zero(); ///< M_R, eq. 3
-  Eigen::Vector3d reaction_moment_R = Eigen::Vector3d::Zero();///< M_D, eq. 4
+  Eigen::Vector3d thrust_R = Eigen::Vector3d::Zero();           ///< F_T, eq. 1
+  Eigen::Vector3d drag_R = Eigen::Vector3d::Zero();             ///< F_D, eq. 2
+  Eigen::Vector3d rolling_moment_R = Eigen::Vector3d::Zero();   ///< M_R, eq. 3
+  Eigen::Vector3d reaction_moment_R = Eigen::Vector3d::Zero();  ///< M_D, eq. 4
 };
 
 class RotorModel {

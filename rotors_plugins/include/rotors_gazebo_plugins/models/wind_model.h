@@ -10,15 +10,15 @@
 namespace rotors_gazebo_plugins {
 
 struct WindParams {
-  double wind_speed_mean_m_s = 0.0;        ///< windSpeedMean
-  double wind_speed_variance = 0.0;        ///< windSpeedVariance [(m/s)^2]
+  double wind_speed_mean_m_s = 0.0;  ///< windSpeedMean
+  double wind_speed_variance = 0.0;  ///< windSpeedVariance [(m/s)^2]
   Eigen::Vector3d wind_direction = Eigen::Vector3d::UnitX();
-  double wind_force_mean_n = 0.0;          ///< windForceMean
-  double wind_force_variance = 0.0;        ///< [N^2]
+  double wind_force_mean_n = 0.0;    ///< windForceMean
+  double wind_force_variance = 0.0;  ///< [N^2]
   double wind_gust_start_s = 10.0;
   double wind_gust_duration_s = 0.0;
   double wind_gust_force_mean_n = 0.0;
-  double wind_gust_force_variance = 0.0;   ///< [N^2]
+  double wind_gust_force_variance = 0.0;  ///< [N^2]
   Eigen::Vector3d wind_gust_direction = Eigen::Vector3d::UnitY();
   std::string Validate() const;
 };

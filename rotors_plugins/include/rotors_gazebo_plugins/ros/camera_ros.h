@@ -25,9 +25,9 @@ struct CameraRosParams {
   std::string robot_namespace;  ///< <robotNamespace>, else the model's name (the spawn namespace)
   std::string camera_name;      ///< <cameraName>
   std::string image_topic = "image_raw", info_topic = "camera_info";
-  std::string frame_name;       ///< <frameName>; empty: the plugin names the optical frame
-  double update_rate_hz = 0.0;  ///< <updateRate>; 0: every sensor update
-  double hack_baseline_m = 0.0; ///< <hackBaseline>: P[3] = -f b of the second camera
+  std::string frame_name;        ///< <frameName>; empty: the plugin names the optical frame
+  double update_rate_hz = 0.0;   ///< <updateRate>; 0: every sensor update
+  double hack_baseline_m = 0.0;  ///< <hackBaseline>: P[3] = -f b of the second camera
   // openni_kinect
   std::string depth_topic = "depth/image_raw", depth_info_topic = "depth/camera_info";
   std::string points_topic = "depth/points", disparity_topic;

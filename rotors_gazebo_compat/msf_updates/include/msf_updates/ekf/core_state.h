@@ -30,12 +30,12 @@ struct ImuReading {
 
 struct CoreState {
   double t_s = 0.0;
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();   ///< [m] IMU position in world
-  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();   ///< [m/s] IMU velocity in world
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();             ///< [m] IMU position in world
+  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();             ///< [m/s] IMU velocity in world
   Eigen::Quaterniond q_WI = Eigen::Quaterniond::Identity();  ///< IMU attitude: v_W = R(q_WI) v_I
-  Eigen::Vector3d b_w = Eigen::Vector3d::Zero();   ///< [rad/s] gyroscope bias
-  Eigen::Vector3d b_a = Eigen::Vector3d::Zero();   ///< [m/s^2] accelerometer bias
-  Matrix15d P = Matrix15d::Zero();                 ///< error-state covariance
+  Eigen::Vector3d b_w = Eigen::Vector3d::Zero();             ///< [rad/s] gyroscope bias
+  Eigen::Vector3d b_a = Eigen::Vector3d::Zero();             ///< [m/s^2] accelerometer bias
+  Matrix15d P = Matrix15d::Zero();                           ///< error-state covariance
 };
 
 /// Throws std::invalid_argument with `why` (a parameter struct's Validate()) unless it is empty.

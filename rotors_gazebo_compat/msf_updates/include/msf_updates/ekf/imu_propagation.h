@@ -13,12 +13,12 @@ namespace msf_updates {
 
 /// MSF's core noise parameters (`core/` namespace). Densities of continuous white noise.
 struct CoreNoiseParams {
-  double core_noise_acc = 0.002;       ///< sigma_a  [m/s^2/sqrt(Hz)]
-  double core_noise_accbias = 5e-8;    ///< sigma_ba [m/s^3/sqrt(Hz)]
-  double core_noise_gyr = 0.0004;      ///< sigma_w  [rad/s/sqrt(Hz)]
-  double core_noise_gyrbias = 3e-6;    ///< sigma_bw [rad/s^2/sqrt(Hz)]
-  bool core_fixed_bias = false;        ///< biases are neither propagated nor estimated
-  double gravity_m_s2 = 9.81;          ///< |g|; MSF hard-codes 9.81 (ours: core/core_gravity)
+  double core_noise_acc = 0.002;     ///< sigma_a  [m/s^2/sqrt(Hz)]
+  double core_noise_accbias = 5e-8;  ///< sigma_ba [m/s^3/sqrt(Hz)]
+  double core_noise_gyr = 0.0004;    ///< sigma_w  [rad/s/sqrt(Hz)]
+  double core_noise_gyrbias = 3e-6;  ///< sigma_bw [rad/s^2/sqrt(Hz)]
+  bool core_fixed_bias = false;      ///< biases are neither propagated nor estimated
+  double gravity_m_s2 = 9.81;        ///< |g|; MSF hard-codes 9.81 (ours: core/core_gravity)
   /// Empty when valid, else one line naming the bad value.
   std::string Validate() const;
 };

@@ -15,16 +15,16 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 struct PoseSensorParams {
-  Eigen::Vector3d p_ic = Eigen::Vector3d::Zero();                 ///< [m] sensor position in the IMU frame
-  Eigen::Quaterniond q_ic = Eigen::Quaterniond::Identity();        ///< sensor attitude in the IMU frame
-  double scale = 1.0;                   ///< L (pose_initial_scale, or set by the init services)
-  double pose_noise_meas_p = 0.01;      ///< [m] used if pose_use_fixed_covariance (or the message has none)
-  double pose_noise_meas_q = 0.01;      ///< [rad]
+  Eigen::Vector3d p_ic = Eigen::Vector3d::Zero();            ///< [m] sensor position in the IMU frame
+  Eigen::Quaterniond q_ic = Eigen::Quaterniond::Identity();  ///< sensor attitude in the IMU frame
+  double scale = 1.0;                                        ///< L (pose_initial_scale, or set by the init services)
+  double pose_noise_meas_p = 0.01;  ///< [m] used if pose_use_fixed_covariance (or the message has none)
+  double pose_noise_meas_q = 0.01;  ///< [rad]
   bool pose_use_fixed_covariance = false;
-  double pose_delay_s = 0.02;           ///< measurement time = header stamp - pose_delay
+  double pose_delay_s = 0.02;                   ///< measurement time = header stamp - pose_delay
   double pose_measurement_minimum_dt_s = 0.05;  ///< later measurements closer than this are dropped
   bool enable_mah_outlier_rejection = false;
-  double mah_threshold = 5.0;           ///< on the Mahalanobis distance sqrt(r^T S^-1 r)
+  double mah_threshold = 5.0;  ///< on the Mahalanobis distance sqrt(r^T S^-1 r)
   std::string Validate() const;
   /// diag(pose_noise_meas_p^2 x3, pose_noise_meas_q^2 x3)
   Eigen::Matrix<double, 6, 6> FixedCovariance() const;
