@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test demo demo-msf bench clean
+.PHONY: setup build test lint demo demo-msf bench clean
 
 setup:
 	@bash scripts/setup.sh
@@ -10,6 +10,9 @@ build: setup
 
 test: build
 	@bash scripts/run_tests.sh
+
+lint: setup
+	@bash scripts/lint.sh
 
 demo: build
 	@bash scripts/demo.sh

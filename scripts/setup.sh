@@ -14,7 +14,7 @@ apt_packages=(
   libtrajectory-msgs-dev libstd-srvs-dev python3-nav-msgs python3-trajectory-msgs
   python3-std-srvs imagemagick libstb-dev libassimp-dev libvisualization-msgs-dev python3-visualization-msgs
   libstereo-msgs-dev python3-stereo-msgs libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  python3-evdev python3-sensor-msgs
+  python3-evdev python3-sensor-msgs clang-format
 )
 missing=()
 for p in "${apt_packages[@]}"; do

@@ -66,7 +66,7 @@ def fly_determinism_launch(ros: RosGraph, tag: str, controller_delay_s: float) -
     try:
         assert ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         # the set point is latched and the simulation unpaused at once: a late controller must hold the clock
-        ros.rospy(f"""
+        ros.rospy("""
             from geometry_msgs.msg import PoseStamped
             from rosgraph_msgs.msg import Clock
             from std_srvs.srv import Empty

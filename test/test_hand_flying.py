@@ -119,7 +119,7 @@ def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
         os.close(slave)
     log = proc.log_path.read_text()
     assert "keys: arrows roll/pitch" in log, log[-3000:]
-    rec = json.loads(next(l for l in out.splitlines() if l.startswith("RESULT="))[len("RESULT="):])
+    rec = json.loads(next(line for line in out.splitlines() if line.startswith("RESULT="))[len("RESULT="):])
     odom, cmd = np.array(rec["odom"]), np.array(rec["cmd"])
 
     def at(series, t):

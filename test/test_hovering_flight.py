@@ -1,6 +1,5 @@
 """End to end, as the book's sections 3.3 and 3.6: the firefly hovering example with logging,
 evaluated with hovering_eval. Runs in lockstep, faster than real time."""
-import math
 import subprocess
 import sys
 from pathlib import Path

@@ -60,7 +60,7 @@ def test_wind_force_accelerates_a_free_body_as_f_over_m(ros: RosGraph, tmp_path:
     """Force-on-link mode: 2 N along +y on a 1 kg box in free fall: y(t) = 1/2 (F/m) t^2."""
     start_server(ros, "-u", "--rtf", "1")
     urdf = tmp_path / "kite.urdf"
-    urdf.write_text(f"""<robot name="kite"><link name="kite/base_link"><inertial><mass value="1"/>
+    urdf.write_text("""<robot name="kite"><link name="kite/base_link"><inertial><mass value="1"/>
       <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
       <gazebo><plugin name="wind_plugin" filename="librotors_gazebo_wind_plugin.so">
         <robotNamespace>kite</robotNamespace><linkName>kite/base_link</linkName><xyzOffset>0 0 0</xyzOffset>

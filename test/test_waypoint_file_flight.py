@@ -1,7 +1,6 @@
 """mav_with_waypoint_publisher.launch with a waypoint file; bad trajectories are ignored with a
 warning; gui:=true without a display is one line and the simulation carries on."""
 import math
-import os
 from pathlib import Path
 
 import pytest

@@ -10,7 +10,7 @@ topic of a type the evaluation cannot use is one line naming the topic and the t
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional
 
 import numpy as np
 from rosbags.rosbag1 import Reader, ReaderError

@@ -145,7 +145,7 @@ def write_report(spec: SweepSpec, rows: List[Dict[str, Any]], out_dir: Path, wal
     for r in failed:
         params = ", ".join(f"{n}={r.get(n)}" for n in names)
         lines += [f"- flight {r['index']} (`{r['id']}`, seed {r['seed']}{', ' + params if params else ''}): "
-                  f"{r['reason']}", "", "  ```", *("  " + l for l in (r.get("log_tail") or "").splitlines()[-8:]),
+                  f"{r['reason']}", "", "  ```", *("  " + line for line in (r.get("log_tail") or "").splitlines()[-8:]),
                   "  ```"]
     path = out_dir / "report.md"
     path.write_text("\n".join(lines) + "\n")
