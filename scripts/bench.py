@@ -6,13 +6,14 @@ import csv
 import json
 import os
 import signal
-import socket
 import statistics
 import subprocess
 import sys
 import time
 from pathlib import Path
 from typing import Dict, List
+
+from rotors_evaluation.ros_master import start_own_master
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "bench"
@@ -30,11 +31,9 @@ def engine_only(urdf: Path, with_ros: bool, runs: int = 5) -> Dict:
     cmd = [str(bench), world, str(urdf), "firefly", "0.001", "20", "543.3"] + (["--ros"] if with_ros else [])
     env, master = dict(os.environ), None
     if with_ros:
-        port = free_port()
+        OUT.mkdir(parents=True, exist_ok=True)
+        master, port = start_own_master(env, OUT / "rosmaster.log")
         env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
-        master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-                                  stderr=subprocess.DEVNULL, start_new_session=True)
-        time.sleep(1.5)
     try:
         results = [json.loads(sh(cmd, env=env).splitlines()[-1]) for _ in range(runs)]
     finally:
@@ -69,12 +68,6 @@ def rotorpy_hover_wall_s() -> float:
     out = subprocess.run([str(venv / "bin" / "python"), "-c", ROTORPY_HOVER], capture_output=True, text=True,
                          check=True, cwd=OUT).stdout
     return float(out.split()[-1])
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 CLOCK_WATCH = """
@@ -123,9 +116,11 @@ class Graph:
     """A private ROS master running `launch_cmd`; stopped with Ctrl-C semantics on exit."""
 
     def __init__(self, launch_args: List[str]):
-        self.port = free_port()
-        self.env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{self.port}", ROS_HOME=str(OUT / "ros"))
+        self.env = dict(os.environ, ROS_HOME=str(OUT / "ros"))
         self.env.pop("DISPLAY", None)
+        (OUT / "ros").mkdir(parents=True, exist_ok=True)
+        self.master, self.port = start_own_master(self.env, OUT / "ros" / "rosmaster.log")
+        self.env["ROS_MASTER_URI"] = f"http://127.0.0.1:{self.port}"
         self.proc = subprocess.Popen(["roslaunch", "-p", str(self.port), *launch_args], env=self.env,
                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
 
@@ -139,8 +134,9 @@ class Graph:
         return self
 
     def __exit__(self, *exc) -> None:
-        os.killpg(self.proc.pid, signal.SIGINT)
-        self.proc.wait(timeout=60)
+        for proc in (self.proc, self.master):
+            os.killpg(proc.pid, signal.SIGINT)
+            proc.wait(timeout=60)
 
 
 def closed_loop(lockstep: bool) -> Dict:
@@ -148,9 +144,9 @@ def closed_loop(lockstep: bool) -> Dict:
                 f"lockstep:={'true' if lockstep else 'false'}"]) as g:
         rtf = g.python(CLOCK_WATCH)
         info = sh(["rosnode", "info", "/gazebo"], env=g.env)
-        pid = next(l.split()[1] for l in info.splitlines() if l.startswith("Pid:"))
-        rss_kb = int(next(l for l in Path(f"/proc/{pid}/status").read_text().splitlines()
-                          if l.startswith("VmHWM")).split()[1])
+        pid = next(line.split()[1] for line in info.splitlines() if line.startswith("Pid:"))
+        rss_kb = int(next(line for line in Path(f"/proc/{pid}/status").read_text().splitlines()
+                          if line.startswith("VmHWM")).split()[1])
         return {"real_time_factor": rtf, "sim_peak_rss_mb": rss_kb / 1024}
 
 

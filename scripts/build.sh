@@ -18,7 +18,13 @@ cd "$ws"
 args=(-DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON -DPYTHON_EXECUTABLE="$root/build/venv/bin/python3")
 jobs="-j$(nproc)"
 if [ ! -f "$ws/build/CMakeCache.txt" ]; then
-  # On a fresh workspace CMake must run twice, or Python tests miss generated messages.
-  catkin_make "${args[@]}" "$jobs" >/dev/null 2>&1 || true
+  # On a fresh workspace CMake must run twice, or Python tests miss generated messages. The first
+  # pass is logged; when it fails, its errors are shown and the build stops.
+  echo "[build] fresh workspace: first pass (log: $ws/first_pass.log)"
+  if ! catkin_make "${args[@]}" "$jobs" > "$ws/first_pass.log" 2>&1; then
+    grep -E -B2 -A6 "error|Error" "$ws/first_pass.log" | tail -n 60 >&2 || tail -n 60 "$ws/first_pass.log" >&2
+    echo "[build] the first pass failed; the whole log is $ws/first_pass.log" >&2
+    exit 1
+  fi
 fi
 catkin_make "${args[@]}" "$jobs" "$@"

@@ -20,8 +20,10 @@ if [ "$variant" = msf ]; then
   launch_args=(random_seed:=3)
 fi
 rm -rf "$out" && mkdir -p "$out"
-port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1])')
-export ROS_MASTER_URI="http://127.0.0.1:$port" ROS_HOME="$out"
+export ROS_HOME="$out"
+# a master on a port verified to be its own (another run may pick the same free port meanwhile)
+read -r port master_pid < <(python3 -m rotors_evaluation.ros_master "$out/rosmaster.log")
+export ROS_MASTER_URI="http://127.0.0.1:$port"
 unset DISPLAY
 sim_seconds=${DEMO_SIM_SECONDS:-25}
 if [ "$variant" = msf ]; then
@@ -33,10 +35,19 @@ echo "[demo] roslaunch rotors_gazebo $launch_file enable_logging:=true gui:=fals
 roslaunch -p "$port" rotors_gazebo "$launch_file" enable_logging:=true gui:=false \
   lockstep:=true real_time_factor:=10 "${launch_args[@]}" > "$out/roslaunch.log" 2>&1 &
 launch_pid=$!
-cleanup() { kill -INT "$launch_pid" 2>/dev/null || true; wait "$launch_pid" 2>/dev/null || true; }
+cleanup() {
+  kill -INT "$launch_pid" 2>/dev/null || true; wait "$launch_pid" 2>/dev/null || true
+  kill -INT "$master_pid" 2>/dev/null || true
+}
 trap cleanup EXIT
 
-until rosnode list >/dev/null 2>&1; do sleep 0.2; done
+# the simulator comes up within seconds; 120 s is a hang (a crash ends roslaunch earlier)
+for _ in $(seq 600); do
+  rosnode list 2>/dev/null | grep -qx /gazebo && break
+  kill -0 "$launch_pid" 2>/dev/null || { echo "[demo] roslaunch ended early; see $out/roslaunch.log" >&2; tail -n 20 "$out/roslaunch.log" >&2; exit 1; }
+  sleep 0.2
+done
+rosnode list 2>/dev/null | grep -qx /gazebo || { echo "[demo] the simulator did not start within 120 s; see $out/roslaunch.log" >&2; exit 1; }
 python3 - "$sim_seconds" "$out" <<'PY'
 import sys, time
 import rospy

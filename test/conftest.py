@@ -3,38 +3,34 @@
 import json
 import os
 import signal
-import socket
 import subprocess
 import sys
 import textwrap
 import time
 from pathlib import Path
-from typing import Dict, Iterator, List, Optional
+from typing import Dict, Iterator, List
 
 import pytest
+from rotors_evaluation.ros_master import start_own_master
 
 REPO = Path(__file__).resolve().parents[1]
 WS = REPO / "build" / "ws"
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 class RosGraph:
     """A private ROS master plus the processes a test starts against it."""
 
     def __init__(self, tmp_path: Path):
-        self.port = free_port()
         self.env = dict(os.environ)
-        self.env["ROS_MASTER_URI"] = f"http://127.0.0.1:{self.port}"
         self.env["ROS_HOME"] = str(tmp_path / "ros_home")
         self.env["ROS_LOG_DIR"] = str(tmp_path / "ros_log")
         self.tmp_path = tmp_path
         self.procs: List[subprocess.Popen] = []
-        self.start(["rosmaster", "--core", "-p", str(self.port)], "master")
+        # the master is started on a port verified to be its own (runs may overlap)
+        master, self.port = start_own_master(self.env, tmp_path / "master.log")
+        master.log_path = tmp_path / "master.log"  # type: ignore[attr-defined]
+        self.procs.append(master)
+        self.env["ROS_MASTER_URI"] = f"http://127.0.0.1:{self.port}"
         self.wait_for(lambda: self.run(["rosparam", "set", "/use_sim_time", "true"], check=False).returncode == 0, 20)
 
     def start(self, cmd: List[str], name: str) -> subprocess.Popen:

@@ -13,7 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REPO, free_port
+from conftest import REPO
+from rotors_evaluation.ros_master import unused_port
 
 SWEEP = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts" / "sweep.py"
 # the book's deliberate controller mass/gravity mismatch leaves the hover 0.0398 m high (test_hovering_flight)
@@ -140,7 +141,7 @@ def test_local_ray_sweep_records_the_injected_crash_evaluates_the_rest_and_resum
 
 def test_the_same_sweep_runs_on_a_two_node_ray_cluster(tmp_path: Path):
     ray = str(Path(sys.executable).parent / "ray")
-    port = free_port()
+    port = unused_port()  # `ray start` fails when the port is taken meanwhile (check=True)
     env = dict(os.environ, RAY_USAGE_STATS_ENABLED="0")
     env.pop("DISPLAY", None)
     common = ["--num-cpus=1", "--node-ip-address=127.0.0.1", "--disable-usage-stats"]

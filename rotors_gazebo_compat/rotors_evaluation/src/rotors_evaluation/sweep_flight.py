@@ -14,13 +14,13 @@ import sys
 import threading
 import time
 import traceback
-import xmlrpc.client
 from pathlib import Path
 from typing import Any, Dict, List, Optional
 
 import yaml
 from xml.sax.saxutils import quoteattr
 
+from rotors_evaluation.ros_master import MasterStartError, start_own_master
 from rotors_evaluation.sweep_spec import FORCED_ARGS
 
 LOG_TAIL_LINES = 15
@@ -41,34 +41,6 @@ while True:
 
 class FlightFailed(Exception):
     pass
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _start_own_master(env: Dict[str, str], log_dir: Path) -> (subprocess.Popen, int):
-    """A rosmaster on a free port, verified to be ours (its getPid is our child's pid): when another
-    flight took the port between choosing and binding, our master exits and we try another port."""
-    for _ in range(8):
-        port = _free_port()
-        log = open(log_dir / "rosmaster.log", "a")
-        proc = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=log, stderr=subprocess.STDOUT,
-                                preexec_fn=_default_signals)
-        master = xmlrpc.client.ServerProxy(f"http://127.0.0.1:{port}")
-        deadline = time.monotonic() + 20
-        while time.monotonic() < deadline and proc.poll() is None:
-            try:
-                code, _, pid = master.getPid("/sweep")
-                if code == 1 and pid == proc.pid:
-                    return proc, port
-                break  # somebody else's master answers on this port
-            except (OSError, xmlrpc.client.Error):
-                time.sleep(0.1)
-        _stop(proc, 5)
-    raise FlightFailed("could not start a ROS master of its own (8 ports tried)")
 
 
 def _stop(proc: Optional[subprocess.Popen], grace_s: float, sig=signal.SIGINT) -> None:
@@ -198,7 +170,10 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
     env["ROS_HOME"] = str(flight_dir)
     env["ROS_LOG_DIR"] = str(flight_dir / "log")
     (flight_dir / "log").mkdir(exist_ok=True)
-    master, port = _start_own_master(env, flight_dir)
+    try:
+        master, port = start_own_master(env, flight_dir / "rosmaster.log", preexec_fn=_default_signals)
+    except MasterStartError as e:
+        raise FlightFailed(str(e)) from e
     env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
     launch = watch = None
     log_path = flight_dir / "roslaunch.log"
