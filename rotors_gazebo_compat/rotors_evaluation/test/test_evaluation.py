@@ -1,7 +1,6 @@
 """The evaluation scripts on synthetic bags whose RMS, settling time and collision time are known
 exactly, run as plain Python scripts (no ROS needed), plus their one-line errors on bad input."""
 import json
-import math
 import subprocess
 import sys
 from pathlib import Path
@@ -80,9 +79,16 @@ def test_compressed_bag_and_rosbag_record_topic_names(tmp_path: Path):
 
 def test_original_rotors_bag_without_mav_prefix(tmp_path: Path):
     bag = hover_bag(tmp_path, name="old.bag", prefix="/", old_motor_topic=True)
-    res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "firefly", "-m", "/motors")
+    res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "firefly", "-m", "/motors", "--json", "-")
     assert res.returncode == 0, res.stderr
     assert "Position RMS error: 0.050 m" in res.stdout
+    assert json.loads(res.stdout[res.stdout.index("{"):])["topics"]["motors"] == "motors"
+    # the MotorSpeed messages are read: 4,000 samples of six rotors at 543 rad/s
+    from rotors_evaluation.bag_data import load_flight
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory",
+                       "/wrench", "/motors")
+    assert data.motor_speeds is not None and data.motor_speeds.values.shape == (4000, 6)
+    assert (data.motor_speeds.values == 543.0).all()
 
 
 def test_compare_tabulates_several_bags(tmp_path: Path):
