@@ -1,8 +1,6 @@
 """The simulator's ROS face: /clock, pause/unpause/reset services, spawn/delete, model states
 (topic and get_model_state),
 and one-line errors for bad input."""
-import subprocess
-import time
 from pathlib import Path
 
 from conftest import RosGraph, package_path
@@ -102,7 +100,7 @@ def test_bad_model_is_one_line_error_and_server_keeps_running(ros: RosGraph, tmp
       <gazebo><plugin name="p" filename="librotors_gazebo_motor_model.so"/></gazebo></robot>""")
     res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(bad), "-model", "bad"], check=False)
     assert res.returncode == 1
-    lines = [l for l in res.stderr.splitlines() if l.strip()]
+    lines = [line for line in res.stderr.splitlines() if line.strip()]
     assert len(lines) == 1, res.stderr
     assert "link 'bad/arm' has no <inertial>" in lines[0]
     plugin = tmp_path / "plugin.urdf"
@@ -112,6 +110,18 @@ def test_bad_model_is_one_line_error_and_server_keeps_running(ros: RosGraph, tmp
                   check=False)
     assert res.returncode == 1
     assert "plugin 'ghost' (librotors_gazebo_ghost.so)" in res.stderr and "not found" in res.stderr
+    # a firefly whose first motor lost its <motorConstant> is refused (no silent default)
+    firefly = ros.run([str(package_path("rotors_description") / "scripts" / "rotors_xacro"),
+                       str(package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"),
+                       "mav_name:=firefly", "namespace:=firefly"]).stdout
+    first_constant = firefly.index("<motorConstant>")
+    broken = tmp_path / "no_motor_constant.urdf"
+    broken.write_text(firefly[:first_constant] + firefly[firefly.index("</motorConstant>") + len("</motorConstant>"):])
+    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(broken), "-model", "firefly"],
+                  check=False)
+    lines = [line for line in res.stderr.splitlines() if line.strip()]
+    assert res.returncode == 1 and len(lines) == 1, res.stderr
+    assert "missing required parameter <motorConstant>" in lines[0], lines[0]
     assert server.poll() is None  # the simulator carries on
     clock = ros.run(["rostopic", "echo", "-n", "1", "/clock"]).stdout
     assert "secs" in clock
@@ -124,7 +134,7 @@ def test_unparsable_world_exits_with_one_line(ros: RosGraph, tmp_path: Path):
     world.write_text("<sdf version='1.6'><world name='w'><physics type='ode'><max_step_size>x</max_step_size>")
     res = ros.run(["rosrun", "rotors_core", "rotors_sim_server", str(world)], check=False, timeout=30)
     assert res.returncode == 1
-    errors = [l for l in (res.stdout + res.stderr).splitlines() if "error" in l.lower()]
+    errors = [line for line in (res.stdout + res.stderr).splitlines() if "error" in line.lower()]
     assert len(errors) == 1 and "broken.world" in errors[0], res.stdout + res.stderr
     res = ros.run(["rosrun", "rotors_core", "rotors_sim_server", str(tmp_path / "missing.world")], check=False)
     assert res.returncode == 1 and "missing.world" in res.stderr

@@ -44,9 +44,9 @@ def test_vehicle_hovers_at_the_offset_its_parameters_predict(ros: RosGraph, mav:
     finally:
         stop_launch(proc)
     assert s["z"] == pytest.approx(1.0 + dz, abs=0.01), (s, dz)
-    # Horizontal offsets come from mismatches the upstream parameters carry (iris: yaml arm geometry
-    # differs from its xacro; neo11: the yaml ignores the 5 deg rotor tilt; asymmetric quadrotor: the
-    # rotor masses move the CoG) and no integral action: the hover is steady, near the set point.
+    # Horizontal offsets come from mismatches the upstream parameters carry (neo11: the yaml ignores
+    # the 5 deg rotor tilt; asymmetric quadrotor: the rotor masses move the CoG; the base-link inertia
+    # everywhere, see urdf_overrides.yaml) and no integral action: the hover is steady, near the set point.
     assert math.hypot(s["x"], s["y"]) < 0.15, s
     assert math.dist((s["x"], s["y"], s["z"]), (later["x"], later["y"], later["z"])) < 0.005, (s, later)
     assert math.hypot(s["qx"], s["qy"]) < 0.05, s

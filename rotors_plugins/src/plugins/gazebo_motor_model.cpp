@@ -33,22 +33,23 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
                            "rollingMomentCoefficient", "maxRotVelocity", "motorConstant", "momentConstant",
                            "timeConstantUp", "timeConstantDown", "rotorVelocitySlowdownSim"});
     namespace_ = ReadRobotNamespace(sdf);
-    std::string joint_name, link_name, direction = "cw", motor_type = "velocity", speed_topic = "motor_speed";
+    std::string joint_name, link_name, direction, motor_type = "velocity", speed_topic = "motor_speed";
     RequireParam(sdf, "jointName", &joint_name);
     RequireParam(sdf, "linkName", &link_name);
-    ReadParam(sdf, "motorNumber", &motor_number_);
-    ReadParam(sdf, "turningDirection", &direction);
+    // the rotor's physics has no defaults: a missing constant would silently be another vehicle's
+    RequireParam(sdf, "motorNumber", &motor_number_);
+    RequireParam(sdf, "turningDirection", &direction);
     ReadParam(sdf, "motorType", &motor_type);
     ReadParam(sdf, "motorSpeedPubTopic", &speed_topic);
     RotorParams p;
-    ReadParam(sdf, "rotorDragCoefficient", &p.rotor_drag_coefficient);
-    ReadParam(sdf, "rollingMomentCoefficient", &p.rolling_moment_coefficient);
-    ReadParam(sdf, "maxRotVelocity", &p.max_rot_velocity);
-    ReadParam(sdf, "motorConstant", &p.motor_constant);
-    ReadParam(sdf, "momentConstant", &p.moment_constant);
-    ReadParam(sdf, "timeConstantUp", &p.time_constant_up_s);
-    ReadParam(sdf, "timeConstantDown", &p.time_constant_down_s);
-    ReadParam(sdf, "rotorVelocitySlowdownSim", &slowdown_);
+    RequireParam(sdf, "rotorDragCoefficient", &p.rotor_drag_coefficient);
+    RequireParam(sdf, "rollingMomentCoefficient", &p.rolling_moment_coefficient);
+    RequireParam(sdf, "maxRotVelocity", &p.max_rot_velocity);
+    RequireParam(sdf, "motorConstant", &p.motor_constant);
+    RequireParam(sdf, "momentConstant", &p.moment_constant);
+    RequireParam(sdf, "timeConstantUp", &p.time_constant_up_s);
+    RequireParam(sdf, "timeConstantDown", &p.time_constant_down_s);
+    ReadParam(sdf, "rotorVelocitySlowdownSim", &slowdown_);  // visual only
     if (direction == "ccw") {
       p.turning_direction = 1;
     } else if (direction == "cw") {

@@ -186,3 +186,73 @@ def run_xacro(xacro_cmd: Path, model: Path, mav_name: str) -> str:
         lines = (res.stderr or res.stdout).strip().splitlines()
         raise VehicleParamsError(f"xacro failed on {model}: {lines[-1] if lines else 'exit ' + str(res.returncode)}")
     return res.stdout
+
+
+# ---- checking a controller yaml against the URDF (one source of truth) ------------------------
+RELATIVE_TOLERANCE = 1e-3        # masses, inertias, rotor constants, gravity
+ROTOR_POSITION_TOLERANCE_M = 5e-3  # rotor hub in the xy plane (a centre of mass a few mm off is fine)
+ROTOR_SPEED_TOLERANCE = 1e-6     # max_rot_velocity [rad/s]
+DEFAULT_CONTROLLER_GRAVITY = 9.81  # what the controller nodes assume when the yaml gives none
+
+
+def _differs(a: float, b: float, rel: float = RELATIVE_TOLERANCE) -> bool:
+    return abs(a - b) > rel * max(abs(a), abs(b), 1e-12)
+
+
+def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_s2: float,
+                      overrides: Dict[str, str]) -> List[str]:
+    """The parameters where the controller yaml `vehicle` (the layout of resource/<mav>.yaml) and the
+    parsed URDF disagree, one line each naming the vehicle and the parameter; `overrides` maps the
+    names that may differ (mass, inertia, gravity, rotor_configuration/<i>/<field>) to the reason.
+    A named override whose values agree is reported too, so the list stays honest."""
+    urdf = vehicle_yaml(body, world_gravity_m_s2)
+    found: List[Tuple[str, str]] = []  # (parameter, description)
+
+    def check(name: str, yaml_value: float, urdf_value: float, differs: bool) -> None:
+        if differs:
+            found.append((name, f"{yaml_value:g} in {mav}.yaml, {urdf_value:g} in the URDF"))
+        elif name in overrides:
+            found.append((name, f"named override, but both give {urdf_value:g}: remove it"))
+
+    check("mass", float(vehicle["mass"]), urdf["mass"], _differs(float(vehicle["mass"]), urdf["mass"]))
+    J_yaml, J_urdf = vehicle["inertia"], urdf["inertia"]
+    scale = max(abs(J_urdf[k]) for k in ("xx", "yy", "zz"))
+    inertia_differs = [k for k in J_urdf if abs(float(J_yaml.get(k, 0.0)) - J_urdf[k]) > RELATIVE_TOLERANCE * scale
+                       and (k in ("xy", "xz", "yz") or _differs(float(J_yaml.get(k, 0.0)), J_urdf[k]))]
+    if inertia_differs or "inertia" in overrides:
+        k = inertia_differs[0] if inertia_differs else "xx"
+        check("inertia", float(J_yaml.get(k, 0.0)), J_urdf[k], bool(inertia_differs))
+    g_yaml = float(vehicle.get("gravity", DEFAULT_CONTROLLER_GRAVITY))
+    check("gravity", g_yaml, world_gravity_m_s2, _differs(g_yaml, world_gravity_m_s2))
+
+    rotors_yaml = {str(k): v for k, v in vehicle["rotor_configuration"].items()}
+    if sorted(rotors_yaml) != sorted(urdf["rotor_configuration"]):
+        found.append(("rotor_configuration", f"rotors {sorted(rotors_yaml)} in {mav}.yaml, "
+                                             f"{sorted(urdf['rotor_configuration'])} in the URDF"))
+    for i, u in urdf["rotor_configuration"].items():
+        r = rotors_yaml.get(i)
+        if r is None:
+            continue
+        base = f"rotor_configuration/{i}/"
+        p_yaml = float(r["arm_length"]) * np.array([math.cos(float(r["angle"])), math.sin(float(r["angle"]))])
+        p_urdf = u["arm_length"] * np.array([math.cos(u["angle"]), math.sin(u["angle"])])
+        distance = float(np.linalg.norm(p_yaml - p_urdf))
+        if distance > ROTOR_POSITION_TOLERANCE_M:
+            found.append((base + "position", f"angle {float(r['angle']):.4f} rad, arm {float(r['arm_length']):.4f} m "
+                                             f"in {mav}.yaml, {u['angle']:.4f} rad, {u['arm_length']:.4f} m in the URDF "
+                                             f"({distance * 1000:.1f} mm apart)"))
+        elif base + "position" in overrides:
+            found.append((base + "position", "named override, but the positions agree: remove it"))
+        for field_name in ("rotor_force_constant", "rotor_moment_constant"):
+            check(base + field_name, float(r[field_name]), u[field_name], _differs(float(r[field_name]), u[field_name]))
+        check(base + "direction", int(r["direction"]), u["direction"], int(r["direction"]) != u["direction"])
+        if "max_rot_velocity" in r:
+            check(base + "max_rot_velocity", float(r["max_rot_velocity"]), u["max_rot_velocity"],
+                  abs(float(r["max_rot_velocity"]) - u["max_rot_velocity"]) > ROTOR_SPEED_TOLERANCE)
+    lines = []
+    for name, text in found:
+        if name in overrides and not text.startswith("named override"):
+            continue
+        hint = "" if text.startswith("named override") else " (not a named override)"
+        lines.append(f"{mav}: {name}: {text}{hint}")
+    return lines
