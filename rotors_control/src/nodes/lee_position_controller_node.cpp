@@ -38,7 +38,7 @@ class LeePositionControllerNode {
                                 ? "motor_number must be >= 0"
                                 : controller_.SetRotorSpeedFactor(msg->motor_number, msg->speed_factor);
     if (!why.empty()) {
-      ROS_ERROR("[lee_position_controller] motor_failure not applied: %s", why.c_str());
+      ROS_ERROR_THROTTLE(1.0, "[lee_position_controller] motor_failure not applied: %s", why.c_str());
       return;
     }
     ROS_WARN("[lee_position_controller] motor %d at %.2f of its command: allocation updated", msg->motor_number,
@@ -49,8 +49,8 @@ class LeePositionControllerNode {
     const std::string why = CheckUnitQuaternion(msg->pose.orientation);
     const auto& p = msg->pose.position;
     if (!why.empty() || !std::isfinite(p.x + p.y + p.z)) {
-      ROS_WARN("[lee_position_controller] ignoring command/pose: %s",
-               why.empty() ? "position has NaN or inf" : why.c_str());
+      ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring command/pose: %s",
+                        why.empty() ? "position has NaN or inf" : why.c_str());
       return;
     }
     pending_.clear();
@@ -63,19 +63,21 @@ class LeePositionControllerNode {
 
   void OnTrajectory(const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& msg) {
     if (msg->points.empty()) {
-      ROS_WARN("[lee_position_controller] Got MultiDOFJointTrajectory message, but message has no points; ignored");
+      ROS_WARN_THROTTLE(1.0,
+                        "[lee_position_controller] Got MultiDOFJointTrajectory message, but message has no points; "
+                        "ignored");
       return;
     }
     std::deque<std::pair<double, TrajectoryPoint>> points;
     for (size_t i = 0; i < msg->points.size(); ++i) {
       const auto& pt = msg->points[i];
       if (pt.transforms.empty()) {
-        ROS_WARN("[lee_position_controller] ignoring trajectory: point %zu has no transform", i);
+        ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: point %zu has no transform", i);
         return;
       }
       const std::string why = CheckUnitQuaternion(pt.transforms[0].rotation);
       if (!why.empty()) {
-        ROS_WARN("[lee_position_controller] ignoring trajectory: point %zu: %s", i, why.c_str());
+        ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: point %zu: %s", i, why.c_str());
         return;
       }
       mav_msgs::EigenTrajectoryPoint eigen_point;
@@ -87,10 +89,19 @@ class LeePositionControllerNode {
       p.yaw_rad = eigen_point.getYaw();
       p.yaw_rate_rad_s = eigen_point.getYawRate();
       if (!p.IsFinite()) {
-        ROS_WARN("[lee_position_controller] ignoring trajectory: point %zu has NaN or inf", i);
+        ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: point %zu has NaN or inf", i);
         return;
       }
-      points.emplace_back(pt.time_from_start.toSec(), p);
+      // time_from_start: >= 0 and not decreasing, within a day (a timer cannot wait longer than int32 seconds)
+      const double t_s = pt.time_from_start.toSec();
+      if (!(t_s >= 0.0 && t_s <= kMaxTimeFromStart_s && (points.empty() || t_s >= points.back().first))) {
+        ROS_WARN_THROTTLE(1.0,
+                          "[lee_position_controller] ignoring trajectory: point %zu has time_from_start %.3f s; it "
+                          "must be in [0, %.0f] s and not below the point before",
+                          i, t_s, kMaxTimeFromStart_s);
+        return;
+      }
+      points.emplace_back(t_s, p);
     }
     pending_ = std::move(points);
     timer_.stop();
@@ -110,9 +121,15 @@ class LeePositionControllerNode {
   }
 
   void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
+    const std::string why = CheckOdometry(*msg);
+    if (!why.empty()) {
+      ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring odometry: %s (no command sent)", why.c_str());
+      return;
+    }
     motor_pub_.publish(ActuatorsMsg(controller_.RotorSpeeds(StateFromOdometry(*msg)), msg->header.stamp));
   }
 
+  static constexpr double kMaxTimeFromStart_s = 86400.0;
   ros::NodeHandle nh_;
   LeePositionController controller_;
   std::deque<std::pair<double, TrajectoryPoint>> pending_;
@@ -127,11 +144,13 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "lee_position_controller_node");
   ros::NodeHandle nh, private_nh("~");
   rotors_control::LeePositionControllerParameters params;
-  const std::string why = rotors_control::LoadLeeParameters(private_nh, &params);
+  rotors_control::ParameterReader reader(private_nh);
+  const std::string why = rotors_control::LoadLeeParameters(reader, &params);
   if (!why.empty()) {
     ROS_FATAL("[lee_position_controller] %s", why.c_str());
     return 1;
   }
+  rotors_control::ReportParameters(reader, "lee_position_controller");
   ROS_INFO("[lee_position_controller] saturation: max_tilt_angle %s, thrust %s",
            params.max_tilt_angle_rad > 0.0 ? (std::to_string(params.max_tilt_angle_rad) + " rad").c_str()
                                            : "not limited (no max_tilt_angle)",

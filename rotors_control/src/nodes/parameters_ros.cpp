@@ -1,76 +1,117 @@
 #include "rotors_control/parameters_ros.h"
 
+#include <sstream>
+
 namespace rotors_control {
 
 namespace {
-std::string Require(const ros::NodeHandle& nh, const std::string& name, double* value) {
-  if (!nh.getParam(name, *value)) return "missing parameter " + nh.resolveName(name) + " (load the vehicle yaml)";
-  return {};
-}
+const char kVehicleHint[] = "load the vehicle yaml, resource/<mav>.yaml";
+const char kGainHint[] = "load the controller yaml, e.g. resource/lee_controller_<mav>.yaml";
 }  // namespace
 
-std::string LoadVehicleParameters(const ros::NodeHandle& nh, VehicleParameters* v) {
-  std::string why = Require(nh, "mass", &v->mass_kg);
+std::string ParameterReader::Require(const std::string& name, double* value, const std::string& hint) {
+  asked_.insert(nh_.resolveName(name));
+  if (!nh_.getParam(name, *value)) {
+    if (nh_.hasParam(name)) return "parameter " + nh_.resolveName(name) + " must be a number";
+    return "missing parameter " + nh_.resolveName(name) + " (" + hint + ")";
+  }
+  return {};
+}
+
+std::string ParameterReader::Optional(const std::string& name, double* value, const std::string& meaning) {
+  asked_.insert(nh_.resolveName(name));
+  if (nh_.getParam(name, *value)) return {};
+  if (nh_.hasParam(name)) return "parameter " + nh_.resolveName(name) + " must be a number";
+  std::ostringstream line;
+  line << nh_.resolveName(name) << " not given: " << *value << " (" << meaning << ")";
+  defaults_.push_back(line.str());
+  return {};
+}
+
+std::string ParameterReader::RequireVector(const std::string& name, Eigen::Vector3d* value, const std::string& hint) {
+  const char* axes[3] = {"x", "y", "z"};
+  if (!nh_.hasParam(name)) {
+    for (const char* axis : axes) asked_.insert(nh_.resolveName(name + "/" + axis));
+    return "missing parameter " + nh_.resolveName(name) + " (" + hint + ")";
+  }
+  for (int i = 0; i < 3; ++i) {
+    asked_.insert(nh_.resolveName(name + "/" + axes[i]));
+    if (!nh_.getParam(name + "/" + axes[i], (*value)[i]))
+      return "parameter " + nh_.resolveName(name) + " needs numbers x, y and z";
+  }
+  return {};
+}
+
+std::vector<std::string> ParameterReader::UnknownKeys() const {
+  std::vector<std::string> all, unknown;
+  if (!nh_.getParamNames(all)) return unknown;
+  const std::string prefix = nh_.getNamespace() + "/";
+  for (const std::string& name : all)
+    if (name.compare(0, prefix.size(), prefix) == 0 && !asked_.count(name)) unknown.push_back(name);
+  return unknown;
+}
+
+std::string LoadVehicleParameters(ParameterReader& reader, VehicleParameters* v) {
+  std::string why = reader.Require("mass", &v->mass_kg, kVehicleHint);
   if (!why.empty()) return why;
-  nh.param("gravity", v->gravity_m_s2, v->gravity_m_s2);
+  v->gravity_m_s2 = 9.81;
+  why = reader.Optional("gravity", &v->gravity_m_s2, "RotorS' value; the world's may differ, as in the book's example");
+  if (!why.empty()) return why;
   const char* keys[3][3] = {{"inertia/xx", "inertia/xy", "inertia/xz"},
                             {"inertia/xy", "inertia/yy", "inertia/yz"},
                             {"inertia/xz", "inertia/yz", "inertia/zz"}};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       double value = 0.0;
-      if (i == j) {
-        why = Require(nh, keys[i][j], &value);
-        if (!why.empty()) return why;
-      } else {
-        nh.param(keys[i][j], value, 0.0);
-      }
+      why = i == j ? reader.Require(keys[i][j], &value, kVehicleHint)
+                   : reader.Optional(keys[i][j], &value, "a principal-axes body");
+      if (!why.empty()) return why;
       v->inertia_kg_m2(i, j) = value;
     }
   v->rotors.clear();
-  for (int i = 0; nh.hasParam("rotor_configuration/" + std::to_string(i)); ++i) {
+  for (int i = 0; reader.Has("rotor_configuration/" + std::to_string(i)); ++i) {
     const std::string base = "rotor_configuration/" + std::to_string(i) + "/";
     Rotor r;
     for (const auto& field : {std::make_pair("angle", &r.angle_rad), std::make_pair("arm_length", &r.arm_length_m),
                               std::make_pair("rotor_force_constant", &r.rotor_force_constant),
                               std::make_pair("rotor_moment_constant", &r.rotor_moment_constant)}) {
-      why = Require(nh, base + field.first, field.second);
+      why = reader.Require(base + field.first, field.second, kVehicleHint);
       if (!why.empty()) return why;
     }
     double direction = 0.0;
-    why = Require(nh, base + "direction", &direction);
+    why = reader.Require(base + "direction", &direction, kVehicleHint);
     if (!why.empty()) return why;
     r.direction = static_cast<int>(std::lround(direction));
-    nh.param(base + "max_rot_velocity", r.max_rot_velocity_rad_s, 0.0);  // ours, optional
+    why = reader.Optional(base + "max_rot_velocity", &r.max_rot_velocity_rad_s, "rotor speed not limited");
+    if (!why.empty()) return why;
     v->rotors.push_back(r);
   }
   if (v->rotors.empty())
-    return "missing parameter " + nh.resolveName("rotor_configuration") + " (load the vehicle yaml)";
+    return "missing parameter " + reader.Resolve("rotor_configuration") + " (" + kVehicleHint + ")";
   return v->Validate();
 }
 
-std::string LoadGain(const ros::NodeHandle& nh, const std::string& name, Eigen::Vector3d* gain) {
-  if (!nh.hasParam(name)) return {};
-  const char* axes[3] = {"x", "y", "z"};
-  for (int i = 0; i < 3; ++i) {
-    if (!nh.getParam(name + "/" + axes[i], (*gain)[i]))
-      return "parameter " + nh.resolveName(name) + " needs numbers x, y and z";
-  }
-  return {};
+std::string LoadAttitudeGains(ParameterReader& reader, AttitudeGains* gains) {
+  std::string why = reader.RequireVector("attitude_gain", &gains->attitude_gain, kGainHint);
+  return why.empty() ? reader.RequireVector("angular_rate_gain", &gains->angular_rate_gain, kGainHint) : why;
 }
 
-std::string LoadAttitudeGains(const ros::NodeHandle& nh, AttitudeGains* gains) {
-  std::string why = LoadGain(nh, "attitude_gain", &gains->attitude_gain);
-  return why.empty() ? LoadGain(nh, "angular_rate_gain", &gains->angular_rate_gain) : why;
+std::string LoadLeeParameters(ParameterReader& reader, LeePositionControllerParameters* p) {
+  std::string why = reader.RequireVector("position_gain", &p->position_gain, kGainHint);
+  if (why.empty()) why = reader.RequireVector("velocity_gain", &p->velocity_gain, kGainHint);
+  if (why.empty()) why = LoadAttitudeGains(reader, &p->attitude);
+  if (why.empty()) why = LoadVehicleParameters(reader, &p->vehicle);
+  if (why.empty()) why = reader.Optional("max_tilt_angle", &p->max_tilt_angle_rad, "no tilt limit");
+  return why.empty() ? p->Validate() : why;
 }
 
-std::string LoadLeeParameters(const ros::NodeHandle& nh, LeePositionControllerParameters* p) {
-  for (const std::string& why :
-       {LoadGain(nh, "position_gain", &p->position_gain), LoadGain(nh, "velocity_gain", &p->velocity_gain),
-        LoadAttitudeGains(nh, &p->attitude), LoadVehicleParameters(nh, &p->vehicle)})
-    if (!why.empty()) return why;
-  nh.param("max_tilt_angle", p->max_tilt_angle_rad, p->max_tilt_angle_rad);  // ours, optional
-  return p->Validate();
+void ReportParameters(const ParameterReader& reader, const std::string& tag) {
+  for (const std::string& line : reader.Defaults()) ROS_INFO("[%s] %s", tag.c_str(), line.c_str());
+  const std::vector<std::string> unknown = reader.UnknownKeys();
+  if (unknown.empty()) return;
+  std::string names;
+  for (const std::string& name : unknown) names += (names.empty() ? "" : ", ") + name;
+  ROS_WARN("[%s] unknown parameter(s), not used: %s (a typo?)", tag.c_str(), names.c_str());
 }
 
 }  // namespace rotors_control

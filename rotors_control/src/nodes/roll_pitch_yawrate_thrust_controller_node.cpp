@@ -57,6 +57,12 @@ class AttitudeLevelControllerNode {
     controller_.SetRateThrust({w.x, w.y, w.z}, m->thrust.z);
   }
   void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
+    const std::string why = CheckOdometry(*msg);
+    if (!why.empty()) {
+      ROS_WARN_THROTTLE(1.0, "[roll_pitch_yawrate_thrust_controller] ignoring odometry: %s (no command sent)",
+                        why.c_str());
+      return;
+    }
     motor_pub_.publish(ActuatorsMsg(controller_.RotorSpeeds(StateFromOdometry(*msg)), msg->header.stamp));
   }
 
@@ -71,12 +77,14 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "roll_pitch_yawrate_thrust_controller_node");
   ros::NodeHandle nh, private_nh("~");
   rotors_control::AttitudeControllerParameters params;
-  std::string why = rotors_control::LoadAttitudeGains(private_nh, &params.attitude);
-  if (why.empty()) why = rotors_control::LoadVehicleParameters(private_nh, &params.vehicle);
+  rotors_control::ParameterReader reader(private_nh);
+  std::string why = rotors_control::LoadAttitudeGains(reader, &params.attitude);
+  if (why.empty()) why = rotors_control::LoadVehicleParameters(reader, &params.vehicle);
   if (!why.empty()) {
     ROS_FATAL("[roll_pitch_yawrate_thrust_controller] %s", why.c_str());
     return 1;
   }
+  rotors_control::ReportParameters(reader, "roll_pitch_yawrate_thrust_controller");
   try {
     rotors_control::AttitudeLevelControllerNode node(nh, params);
     ros::spin();

@@ -32,6 +32,17 @@ inline std::string CheckUnitQuaternion(const geometry_msgs::Quaternion& q) {
   return {};
 }
 
+/// "" if the odometry can drive a controller (finite, unit quaternion), else the reason.
+inline std::string CheckOdometry(const nav_msgs::Odometry& msg) {
+  const auto& p = msg.pose.pose.position;
+  const auto& v = msg.twist.twist.linear;
+  const auto& w = msg.twist.twist.angular;
+  if (!std::isfinite(p.x + p.y + p.z)) return "position has NaN or inf";
+  if (!std::isfinite(v.x + v.y + v.z)) return "linear velocity has NaN or inf";
+  if (!std::isfinite(w.x + w.y + w.z)) return "angular velocity has NaN or inf";
+  return CheckUnitQuaternion(msg.pose.pose.orientation);
+}
+
 inline mav_msgs::Actuators ActuatorsMsg(const Eigen::VectorXd& omega, const ros::Time& stamp) {
   mav_msgs::Actuators msg;
   msg.header.stamp = stamp;
