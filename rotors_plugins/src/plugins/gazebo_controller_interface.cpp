@@ -3,11 +3,18 @@
 // 4.3, without its ROS round trip). /<ns>/gazebo/command/motor_speed, which RotorS users drive
 // directly, is accepted the same way. A command of the wrong length or with NaN, inf or negative
 // speeds is rejected with a throttled error; the last valid command (or zero) stays in force.
+// commandTimeout (ours, default 2 s of sim time; 0 = never): when no valid command came for that
+// long while the motors run (the controller died), the motors stop, as an ESC that lost its signal,
+// and one line says so; the next valid command starts them again.
+#include <cctype>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include <mav_msgs/Actuators.h>
 
+#include "rotors_core/error.h"
+#include "rotors_core/event.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
@@ -35,13 +42,21 @@ std::string CheckMotorCommand(const std::vector<double>& speeds, int rotor_count
 class GazeboControllerInterface : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "commandMotorSpeedSubTopic", "motorSpeedCommandPubTopic"});
+    CheckKnownParams(sdf,
+                     {"robotNamespace", "commandMotorSpeedSubTopic", "motorSpeedCommandPubTopic", "commandTimeout"});
     namespace_ = ReadRobotNamespace(sdf);
     std::string command_topic = "command/motor_speed", direct_topic = "gazebo/command/motor_speed";
     ReadParam(sdf, "commandMotorSpeedSubTopic", &command_topic);
     ReadParam(sdf, "motorSpeedCommandPubTopic", &direct_topic);
+    ReadParam(sdf, "commandTimeout", &command_timeout_s_);
+    if (!(command_timeout_s_ >= 0.0))
+      throw rotors_sim::SimError("commandTimeout = " + std::to_string(command_timeout_s_) +
+                                 " must be >= 0 s (0: hold the last command forever)");
     model_name_ = model->GetName();
     bus_ = VehicleBus::For(namespace_);
+    if (command_timeout_s_ > 0.0)
+      update_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
+          [this](const rotors_sim::common::UpdateInfo& info) { CheckCommandAge(info.simTime.Double()); });
     node_ = MakeNode(namespace_);
     if (!node_) return;
     subs_.push_back(node_->subscribe(command_topic, 1, &GazeboControllerInterface::OnCommand, this,
@@ -50,31 +65,70 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
                                      ros::TransportHints().tcpNoDelay()));
   }
 
-  void Reset() override { bus_->motor_command_rad_s.clear(); }
+  void Reset() override {
+    bus_->motor_command_rad_s.clear();
+    last_command_s_ = now_s_ = 0.0;
+    timed_out_ = false;
+  }
 
  private:
   void OnCommand(const mav_msgs::ActuatorsConstPtr& msg) {
     const std::string why = CheckMotorCommand(msg->angular_velocities, bus_->rotor_count);
     if (!why.empty()) {
-      // throttled per reason: a new kind of bad command is always reported
+      // at most one line per second of wall time per kind of fault (the reason without its numbers),
+      // counting the rejections it did not show
+      std::string kind;
+      for (char c : why)
+        if (!std::isdigit(static_cast<unsigned char>(c))) kind += c;
+      Throttle& throttle = throttles_[kind];
       const ros::WallTime now = ros::WallTime::now();
-      if (why != last_reason_ || (now - last_report_).toSec() > 1.0) {
-        ROS_ERROR("[controller_interface] model '%s': rejected motor command: %s; keeping the last valid one",
-                  model_name_.c_str(), why.c_str());
-        last_reason_ = why;
-        last_report_ = now;
+      if ((now - throttle.last_report).toSec() > 1.0) {
+        const std::string more = throttle.unreported > 0 ? " (and " + std::to_string(throttle.unreported) +
+                                                               " more like it since the last line)"
+                                                         : "";
+        ROS_ERROR("[controller_interface] model '%s': rejected motor command: %s; keeping the last valid one%s",
+                  model_name_.c_str(), why.c_str(), more.c_str());
+        throttle.last_report = now;
+        throttle.unreported = 0;
+      } else {
+        ++throttle.unreported;
       }
       return;
     }
     bus_->motor_command_rad_s = msg->angular_velocities;
+    last_command_s_ = now_s_;
+    if (timed_out_) {
+      ROS_INFO("[controller_interface] model '%s': motor commands again at t = %.3f s", model_name_.c_str(), now_s_);
+      timed_out_ = false;
+    }
+  }
+
+  void CheckCommandAge(double t_s) {
+    if (t_s < now_s_) last_command_s_ = t_s;  // the clock went back (reset_simulation)
+    now_s_ = t_s;
+    if (timed_out_ || bus_->motor_command_rad_s.empty()) return;
+    if (t_s - last_command_s_ <= command_timeout_s_) return;
+    ROS_ERROR(
+        "[controller_interface] model '%s': no motor command for %.2f s (commandTimeout; is the controller "
+        "running?): motors stopped at t = %.3f s",
+        model_name_.c_str(), t_s - last_command_s_, t_s);
+    bus_->motor_command_rad_s.assign(bus_->motor_command_rad_s.size(), 0.0);
+    timed_out_ = true;
   }
 
   std::string namespace_, model_name_;
   std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
   std::vector<ros::Subscriber> subs_;
-  std::string last_reason_;
-  ros::WallTime last_report_;
+  struct Throttle {
+    ros::WallTime last_report;
+    int unreported = 0;
+  };
+  std::map<std::string, Throttle> throttles_;
+  double command_timeout_s_ = 2.0;
+  double now_s_ = 0.0, last_command_s_ = 0.0;  ///< sim time [s]
+  bool timed_out_ = false;
+  rotors_sim::event::ConnectionPtr update_;
 };
 
 }  // namespace rotors_gazebo_plugins
