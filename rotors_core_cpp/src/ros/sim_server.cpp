@@ -1,5 +1,7 @@
 #include "rotors_core/ros/sim_server.h"
 
+#include <cmath>
+
 #include <ros/callback_queue.h>
 
 #include <csignal>
@@ -134,17 +136,31 @@ bool SimServer::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Re
   return true;
 }
 
+namespace {
+/// A caller's string as it goes into a one-line error: at most 80 characters.
+std::string Abbreviated(const std::string& text, size_t max_chars = 80) {
+  if (text.size() <= max_chars) return text;
+  return text.substr(0, max_chars) + "... (" + std::to_string(text.size() - max_chars) + " more characters)";
+}
+}  // namespace
+
 bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnModel::Response& res) {
-  if (!req.reference_frame.empty() && req.reference_frame != "world" && req.reference_frame != "map") {
+  const auto& p = req.initial_pose;
+  std::string refused;
+  if (!req.reference_frame.empty() && req.reference_frame != "world" && req.reference_frame != "map")
+    refused = "reference_frame '" + Abbreviated(req.reference_frame) + "' is not supported; use 'world'";
+  else if (!std::isfinite(p.position.x + p.position.y + p.position.z + p.orientation.w + p.orientation.x +
+                          p.orientation.y + p.orientation.z))
+    refused = "initial_pose has NaN or inf";
+  if (!refused.empty()) {
     res.success = false;
-    res.status_message = "reference_frame '" + req.reference_frame + "' is not supported; use 'world'";
-    ROS_ERROR("[rotors_sim] spawn '%s': %s", req.model_name.c_str(), res.status_message.c_str());
+    res.status_message = refused;
+    ROS_ERROR_THROTTLE(1.0, "[rotors_sim] spawn '%s': %s", Abbreviated(req.model_name).c_str(), refused.c_str());
     return true;
   }
   SpawnRequest spawn;
   spawn.xml = req.model_xml;
   spawn.model_name = req.model_name;
-  const auto& p = req.initial_pose;
   spawn.X_WM = physics::Pose3d(p.position.x, p.position.y, p.position.z, p.orientation.w, p.orientation.x,
                                p.orientation.y, p.orientation.z);
   if (p.orientation.w == 0 && p.orientation.x == 0 && p.orientation.y == 0 && p.orientation.z == 0)
@@ -160,8 +176,8 @@ bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::Spaw
     if (model->IsStatic()) PublishWorldMarkers();
   } catch (const std::exception& e) {
     res.success = false;
-    res.status_message = e.what();
-    ROS_ERROR("[rotors_sim] spawn failed: %s", e.what());
+    res.status_message = Abbreviated(e.what(), 300);
+    ROS_ERROR_THROTTLE(1.0, "[rotors_sim] spawn failed: %s", res.status_message.c_str());
   }
   return true;
 }

@@ -61,7 +61,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
     res.success = why.str().empty();
     if (!res.success) {
       res.message = why.str();
-      ROS_ERROR("[multirotor_base] set_motor_failure refused: %s", res.message.c_str());
+      ROS_ERROR_THROTTLE(1.0, "[multirotor_base] set_motor_failure refused: %s", res.message.c_str());
       return true;
     }
     const double now_s = world_->SimTime().Double();
