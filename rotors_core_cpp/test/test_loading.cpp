@@ -52,9 +52,8 @@ TEST(Loading, FixedJointsAreLumpedAndZeroRangeJointsWelded) {
   EXPECT_EQ(imu->Body(), base->Body());
   EXPECT_NE(rotor->Body(), base->Body());
   // the body carries base + IMU mass
-  dMass m;
-  dBodyGetMass(base->Body(), &m);
-  EXPECT_NEAR(m.mass, 1.515, 1e-12);
+  EXPECT_NEAR(base->BodyMass(), 1.515, 1e-12);
+  EXPECT_NEAR(imu->BodyMass(), 1.515, 1e-12);
   EXPECT_NEAR(imu->WorldPose().Pos().X(), 1.05, 1e-12);
   EXPECT_NEAR(imu->WorldPose().Pos().Z(), 3.02, 1e-12);
   EXPECT_NEAR(rotor->WorldPose().Pos().Y(), 2.1, 1e-12);

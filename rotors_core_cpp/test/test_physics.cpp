@@ -101,7 +101,7 @@ TEST(Physics, ConstantBodyTorqueFollowsEulerEquationWithGyroscopicTerm) {
   auto model = SpawnBox(g.world, "body", 0.0, 1.5, Jd);
   auto link = model->GetLink("body/base_link");
   const Eigen::Vector3d omega0_B(1.0, 2.0, 3.0), tau_B(0.01, -0.02, 0.03);
-  dBodySetAngularVel(link->Body(), omega0_B.x(), omega0_B.y(), omega0_B.z());
+  link->SetWorldAngularVel({omega0_B.x(), omega0_B.y(), omega0_B.z()});  // spawned unrotated: B = W
   const Eigen::Matrix3d J = Jd.asDiagonal();
   auto connection = g.world->Events().world_update_begin.Connect([&](const common::UpdateInfo&) {
     link->AddRelativeTorque({tau_B.x(), tau_B.y(), tau_B.z()});

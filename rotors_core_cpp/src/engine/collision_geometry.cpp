@@ -96,12 +96,8 @@ CreatedGeom CreateGeom(dSpaceID space, const geometry::Shape& s, const ignition:
       if (s.box_size_m == ignition::math::Vector3d::Zero) return out;  // <empty/>
       out.geom = dCreateBox(space, s.box_size_m.X(), s.box_size_m.Y(), s.box_size_m.Z());
       break;
-    case Shape::Type::kCylinder:
-      out.geom = dCreateCylinder(space, s.radius_m, s.length_m);
-      break;
-    case Shape::Type::kSphere:
-      out.geom = dCreateSphere(space, s.radius_m);
-      break;
+    case Shape::Type::kCylinder: out.geom = dCreateCylinder(space, s.radius_m, s.length_m); break;
+    case Shape::Type::kSphere: out.geom = dCreateSphere(space, s.radius_m); break;
     case Shape::Type::kPlane:
       if (on_body) throw SimError(where + ": a plane can only belong to a static model");
       out.geom = dCreatePlane(space, 0, 0, 1, 0);  // placed by the caller (dGeomPlaneSetParams)

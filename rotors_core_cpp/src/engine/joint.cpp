@@ -2,6 +2,7 @@
 
 #include "rotors_core/physics/link.h"
 #include "ode_convert.h"
+#include "ode_handles.h"
 
 namespace rotors_sim {
 namespace physics {
@@ -10,28 +11,28 @@ Joint::Joint(std::string name, Type type, LinkPtr parent, LinkPtr child)
     : name_(std::move(name)), type_(type), parent_(std::move(parent)), child_(std::move(child)) {}
 
 Joint::~Joint() {
-  if (joint_) dJointDestroy(joint_);
+  if (joint_) dJointDestroy(Ode(joint_));
 }
 
-void Joint::CreateOdeJoint(dWorldID world, const Vector3d& anchor_W, const Vector3d& axis_W, double lower,
-                           double upper) {
+void Joint::CreateSolverJoint(SolverWorldHandle* world, const Vector3d& anchor_W, const Vector3d& axis_W, double lower,
+                              double upper) {
   axis_C_ = child_->WorldPose().Rot().RotateVectorReverse(axis_W);
   if (type_ == Type::kWelded) return;
-  dBodyID child_body = child_->Body();
-  dBodyID parent_body = parent_ ? parent_->Body() : nullptr;
+  dBodyID child_body = Ode(child_->Body());
+  dBodyID parent_body = parent_ ? Ode(parent_->Body()) : nullptr;
   if (type_ == Type::kRevolute) {
-    joint_ = dJointCreateHinge(world, nullptr);
-    dJointAttach(joint_, child_body, parent_body);
-    dJointSetHingeAnchor(joint_, anchor_W.X(), anchor_W.Y(), anchor_W.Z());
-    dJointSetHingeAxis(joint_, axis_W.X(), axis_W.Y(), axis_W.Z());
-    if (lower > -1e15) dJointSetHingeParam(joint_, dParamLoStop, lower);
-    if (upper < 1e15) dJointSetHingeParam(joint_, dParamHiStop, upper);
+    joint_ = Handle(dJointCreateHinge(Ode(world), nullptr));
+    dJointAttach(Ode(joint_), child_body, parent_body);
+    dJointSetHingeAnchor(Ode(joint_), anchor_W.X(), anchor_W.Y(), anchor_W.Z());
+    dJointSetHingeAxis(Ode(joint_), axis_W.X(), axis_W.Y(), axis_W.Z());
+    if (lower > -1e15) dJointSetHingeParam(Ode(joint_), dParamLoStop, lower);
+    if (upper < 1e15) dJointSetHingeParam(Ode(joint_), dParamHiStop, upper);
   } else {
-    joint_ = dJointCreateSlider(world, nullptr);
-    dJointAttach(joint_, child_body, parent_body);
-    dJointSetSliderAxis(joint_, axis_W.X(), axis_W.Y(), axis_W.Z());
-    if (lower > -1e15) dJointSetSliderParam(joint_, dParamLoStop, lower);
-    if (upper < 1e15) dJointSetSliderParam(joint_, dParamHiStop, upper);
+    joint_ = Handle(dJointCreateSlider(Ode(world), nullptr));
+    dJointAttach(Ode(joint_), child_body, parent_body);
+    dJointSetSliderAxis(Ode(joint_), axis_W.X(), axis_W.Y(), axis_W.Z());
+    if (lower > -1e15) dJointSetSliderParam(Ode(joint_), dParamLoStop, lower);
+    if (upper < 1e15) dJointSetSliderParam(Ode(joint_), dParamHiStop, upper);
   }
 }
 
@@ -39,17 +40,17 @@ Vector3d Joint::GlobalAxis(unsigned int /*index*/) const { return child_->WorldP
 
 double Joint::Position(unsigned int /*index*/) const {
   if (!joint_) return 0.0;
-  return type_ == Type::kRevolute ? dJointGetHingeAngle(joint_) : dJointGetSliderPosition(joint_);
+  return type_ == Type::kRevolute ? dJointGetHingeAngle(Ode(joint_)) : dJointGetSliderPosition(Ode(joint_));
 }
 
 double Joint::GetVelocity(unsigned int /*index*/) const {
   if (!joint_) return 0.0;
-  return type_ == Type::kRevolute ? dJointGetHingeAngleRate(joint_) : dJointGetSliderPositionRate(joint_);
+  return type_ == Type::kRevolute ? dJointGetHingeAngleRate(Ode(joint_)) : dJointGetSliderPositionRate(Ode(joint_));
 }
 
 void Joint::SetVelocity(unsigned int /*index*/, double velocity) {
   if (!joint_) return;
-  dBodyID child = child_->Body();
+  dBodyID child = Ode(child_->Body());
   const Vector3d axis_W = GlobalAxis(0);
   const Vector3d omega_parent_W = parent_ ? parent_->WorldAngularVel() : Vector3d::Zero;
   const Vector3d p_child_W = ode_convert::Vec(dBodyGetPosition(child));
@@ -57,7 +58,7 @@ void Joint::SetVelocity(unsigned int /*index*/, double velocity) {
   Vector3d v_child_W = Vector3d::Zero;
   if (parent_ && parent_->Body()) {
     dVector3 v;
-    dBodyGetPointVel(parent_->Body(), p_child_W.X(), p_child_W.Y(), p_child_W.Z(), v);
+    dBodyGetPointVel(Ode(parent_->Body()), p_child_W.X(), p_child_W.Y(), p_child_W.Z(), v);
     v_child_W = ode_convert::Vec(v);
   }
   if (type_ == Type::kRevolute) {
@@ -66,7 +67,7 @@ void Joint::SetVelocity(unsigned int /*index*/, double velocity) {
     dBodySetAngularVel(child, omega_W.X(), omega_W.Y(), omega_W.Z());
     // the child's CoG may be off the axis: v += qdot * axis x (p - anchor)
     dVector3 anchor;
-    dJointGetHingeAnchor(joint_, anchor);
+    dJointGetHingeAnchor(Ode(joint_), anchor);
     v_child_W += (axis_W * velocity).Cross(p_child_W - ode_convert::Vec(anchor));
   } else {
     dBodySetAngularVel(child, omega_parent_W.X(), omega_parent_W.Y(), omega_parent_W.Z());
@@ -78,9 +79,9 @@ void Joint::SetVelocity(unsigned int /*index*/, double velocity) {
 void Joint::SetForce(unsigned int /*index*/, double effort) {
   if (!joint_) return;
   if (type_ == Type::kRevolute) {
-    dJointAddHingeTorque(joint_, effort);
+    dJointAddHingeTorque(Ode(joint_), effort);
   } else {
-    dJointAddSliderForce(joint_, effort);
+    dJointAddSliderForce(Ode(joint_), effort);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "rotors_core/physics/link.h"
 
 #include "ode_convert.h"
+#include "ode_handles.h"
 #include "pose_math.h"
 
 namespace rotors_sim {
@@ -11,7 +12,7 @@ using ode_convert::Vec;
 Link::Link(std::string name, Model* model, const Inertial& inertial)
     : name_(std::move(name)), model_(model), inertial_(inertial) {}
 
-void Link::AttachToBody(dBodyID body, const Pose3d& X_BL, bool welded) {
+void Link::AttachToBody(BodyHandle* body, const Pose3d& X_BL, bool welded) {
   body_ = body;
   X_BL_ = X_BL;
   welded_ = welded;
@@ -21,7 +22,7 @@ void Link::AttachToBody(dBodyID body, const Pose3d& X_BL, bool welded) {
 Pose3d Link::WorldPose() const {
   if (!body_) return X_WL_static_;
   if (!pose_valid_) {
-    X_WL_cache_ = Compose(ode_convert::BodyPose(body_), X_BL_);
+    X_WL_cache_ = Compose(ode_convert::BodyPose(Ode(body_)), X_BL_);
     pose_valid_ = true;
   }
   return X_WL_cache_;
@@ -41,13 +42,15 @@ Vector3d PointVelocity(dBodyID body, const Vector3d& p_W) {
 }
 }  // namespace
 
-Vector3d Link::WorldLinearVel() const { return body_ ? PointVelocity(body_, WorldPose().Pos()) : Vector3d::Zero; }
+Vector3d Link::WorldLinearVel() const { return body_ ? PointVelocity(Ode(body_), WorldPose().Pos()) : Vector3d::Zero; }
 
-Vector3d Link::WorldCoGLinearVel() const { return body_ ? PointVelocity(body_, WorldCoGPose().Pos()) : Vector3d::Zero; }
+Vector3d Link::WorldCoGLinearVel() const {
+  return body_ ? PointVelocity(Ode(body_), WorldCoGPose().Pos()) : Vector3d::Zero;
+}
 
 Vector3d Link::RelativeLinearVel() const { return WorldPose().Rot().RotateVectorReverse(WorldLinearVel()); }
 
-Vector3d Link::WorldAngularVel() const { return body_ ? Vec(dBodyGetAngularVel(body_)) : Vector3d::Zero; }
+Vector3d Link::WorldAngularVel() const { return body_ ? Vec(dBodyGetAngularVel(Ode(body_))) : Vector3d::Zero; }
 
 Vector3d Link::RelativeAngularVel() const { return WorldPose().Rot().RotateVectorReverse(WorldAngularVel()); }
 
@@ -62,7 +65,7 @@ void Link::AddRelativeForce(const Vector3d& force_L) { AddForce(WorldPose().Rot(
 
 void Link::AddForceAtWorldPosition(const Vector3d& force_W, const Vector3d& p_W) {
   if (!body_) return;
-  dBodyAddForceAtPos(body_, force_W.X(), force_W.Y(), force_W.Z(), p_W.X(), p_W.Y(), p_W.Z());
+  dBodyAddForceAtPos(Ode(body_), force_W.X(), force_W.Y(), force_W.Z(), p_W.X(), p_W.Y(), p_W.Z());
 }
 
 void Link::AddForceAtRelativePosition(const Vector3d& force_W, const Vector3d& p_L) {
@@ -72,7 +75,7 @@ void Link::AddForceAtRelativePosition(const Vector3d& force_W, const Vector3d& p
 
 void Link::AddTorque(const Vector3d& torque_W) {
   if (!body_) return;
-  dBodyAddTorque(body_, torque_W.X(), torque_W.Y(), torque_W.Z());
+  dBodyAddTorque(Ode(body_), torque_W.X(), torque_W.Y(), torque_W.Z());
 }
 
 void Link::AddRelativeTorque(const Vector3d& torque_L) { AddTorque(WorldPose().Rot().RotateVector(torque_L)); }
@@ -92,6 +95,18 @@ void Link::UpdateAccelerationAfterStep(double dt_s) {
 void Link::ClearAcceleration() {
   a_W_ = Vector3d::Zero;
   alpha_W_ = Vector3d::Zero;
+}
+
+void Link::SetWorldAngularVel(const Vector3d& omega_W) {
+  if (!body_) return;
+  dBodySetAngularVel(Ode(body_), omega_W.X(), omega_W.Y(), omega_W.Z());
+}
+
+double Link::BodyMass() const {
+  if (!body_) return 0.0;
+  dMass m;
+  dBodyGetMass(Ode(body_), &m);
+  return m.mass;
 }
 
 }  // namespace physics

@@ -6,6 +6,7 @@
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
 #include "ode_convert.h"
+#include "ode_handles.h"
 #include "pose_math.h"
 
 namespace rotors_sim {
@@ -22,10 +23,10 @@ void Model::Fini() {
   sensors_.clear();
   for (auto& link : links_) link->ClearJoints();
   joints_.clear();
-  for (auto& g : geoms_) dGeomDestroy(g.first);
+  for (auto& g : geoms_) dGeomDestroy(Ode(g.first));
   geoms_.clear();  // after the geoms: the mesh data they point into
   visuals_.clear();
-  for (auto& b : bodies_) dBodyDestroy(b.body);
+  for (auto& b : bodies_) dBodyDestroy(Ode(b.body));
   bodies_.clear();
   links_.clear();
 }
@@ -61,10 +62,10 @@ Vector3d Model::WorldAngularVel() const {
 
 void Model::SetWorldPose(const Pose3d& X_WM) {
   for (const auto& b : bodies_) {
-    ode_convert::SetBodyPose(b.body, Compose(X_WM, b.X_MB));
-    dBodySetLinearVel(b.body, 0, 0, 0);
-    dBodySetAngularVel(b.body, 0, 0, 0);
-    dBodyEnable(b.body);
+    ode_convert::SetBodyPose(Ode(b.body), Compose(X_WM, b.X_MB));
+    dBodySetLinearVel(Ode(b.body), 0, 0, 0);
+    dBodySetAngularVel(Ode(b.body), 0, 0, 0);
+    dBodyEnable(Ode(b.body));
   }
   for (const auto& link : links_) {
     link->InvalidatePose();
@@ -72,10 +73,10 @@ void Model::SetWorldPose(const Pose3d& X_WM) {
   }
 }
 
-Model::GeomInfo* Model::AddGeom(dGeomID geom, Link* link, const std::string& scoped_name,
+Model::GeomInfo* Model::AddGeom(GeomHandle* geom, Link* link, const std::string& scoped_name,
                                 const SurfaceParams& surface) {
   auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name, surface, nullptr});
-  dGeomSetData(geom, info.get());
+  dGeomSetData(Ode(geom), info.get());
   geoms_.emplace_back(geom, std::move(info));
   return geoms_.back().second.get();
 }

@@ -27,6 +27,7 @@
 #include "collision_geometry.h"
 #include "sdf_console.h"
 #include "ode_convert.h"
+#include "ode_handles.h"
 #include "pose_math.h"
 
 namespace rotors_sim {
@@ -77,11 +78,8 @@ JointSpec ClassifyJoint(const sdf::Joint& joint, const std::string& where) {
   JointSpec spec{&joint, physics::Joint::Type::kWelded};
   const sdf::JointAxis* axis = joint.Axis(0);
   switch (joint.Type()) {
-    case sdf::JointType::FIXED:
-      return spec;
-    case sdf::JointType::CONTINUOUS:
-      spec.type = physics::Joint::Type::kRevolute;
-      return spec;
+    case sdf::JointType::FIXED: return spec;
+    case sdf::JointType::CONTINUOUS: spec.type = physics::Joint::Type::kRevolute; return spec;
     case sdf::JointType::REVOLUTE:
     case sdf::JointType::PRISMATIC:
       spec.type =
@@ -93,8 +91,7 @@ JointSpec ClassifyJoint(const sdf::Joint& joint, const std::string& where) {
       // A zero-range joint (RotorS mounts sensors this way) is rigid: weld it.
       if (spec.upper - spec.lower <= 1e-12) spec.type = physics::Joint::Type::kWelded;
       return spec;
-    default:
-      throw SimError(where + ": joint type is not supported (use fixed, continuous, revolute or prismatic)");
+    default: throw SimError(where + ": joint type is not supported (use fixed, continuous, revolute or prismatic)");
   }
 }
 
@@ -135,17 +132,18 @@ void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& mode
     sdf::Errors errors = collision->SemanticPose().Resolve(X_LC, sdf_link.Name());
     if (!errors.empty()) throw SimError(where + ": " + errors.front().Message());
     const Pose3d X_WC = Compose(X_WL, X_LC);
-    CreatedGeom created = CreateGeom(world->OdeSpace(), shape, X_WC, link->Body() != nullptr, where);
+    CreatedGeom created = CreateGeom(Ode(world->Space()), shape, X_WC, link->Body() != nullptr, where);
     dGeomID geom = created.geom;
     if (!geom) continue;
-    model->AddGeom(geom, link.get(), scoped, surface)->keep_alive = created.keep_alive;  // owned by the model
+    model->AddGeom(physics::Handle(geom), link.get(), scoped, surface)->keep_alive =
+        created.keep_alive;  // owned by the model
     if (dGeomGetClass(geom) == dPlaneClass) {
       const Vector3d n_W = X_WC.Rot().RotateVector(shape.plane_normal).Normalized();
       dGeomPlaneSetParams(geom, n_W.X(), n_W.Y(), n_W.Z(), n_W.Dot(X_WC.Pos()));
     } else if (shape.type == geometry::Shape::Type::kOcTree) {
       // placed at creation
     } else if (link->Body()) {
-      dGeomSetBody(geom, link->Body());
+      dGeomSetBody(geom, Ode(link->Body()));
       const Pose3d X_BG = Compose(Compose(link->PoseInBody(), X_LC), created.X_CG);
       dGeomSetOffsetPosition(geom, X_BG.Pos().X(), X_BG.Pos().Y(), X_BG.Pos().Z());
       dQuaternion q;
@@ -352,10 +350,10 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
       }
       const Pose3d X_MB =
           Compose(X_MO, Pose3d(ode_convert::FromEigen(total.CoG()), ignition::math::Quaterniond::Identity));
-      dBodyID body = dBodyCreate(world->OdeWorld());
+      dBodyID body = dBodyCreate(Ode(world->SolverWorld()));
       dBodySetMass(body, &mass);
       ode_convert::SetBodyPose(body, Compose(X_WM, X_MB));
-      model->AddBody(body, X_MB);
+      model->AddBody(physics::Handle(body), X_MB);
       bodies[o] = {body, X_MB};
     }
     for (const auto& link_name : order) {
@@ -364,7 +362,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
         continue;
       }
       const auto& b = bodies[owner[link_name]];
-      links[link_name]->AttachToBody(b.first, Compose(Inverse(b.second), X_ML[link_name]),
+      links[link_name]->AttachToBody(physics::Handle(b.first), Compose(Inverse(b.second), X_ML[link_name]),
                                      owner[link_name] != link_name);
     }
 
@@ -382,7 +380,8 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
         if (!errors.empty()) throw SimError(where + ": cannot resolve its axis: " + errors.front().Message());
       }
       if (!sdf_model.Static())
-        joint->CreateOdeJoint(world->OdeWorld(), X_WJ.Pos(), X_WM.Rot().RotateVector(axis_M), spec.lower, spec.upper);
+        joint->CreateSolverJoint(world->SolverWorld(), X_WJ.Pos(), X_WM.Rot().RotateVector(axis_M), spec.lower,
+                                 spec.upper);
       parent->AddChildJoint(joint);
       child->AddParentJoint(joint);
       model->AddJoint(joint);

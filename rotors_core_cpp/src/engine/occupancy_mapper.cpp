@@ -7,6 +7,7 @@
 #include <octomap/OcTree.h>
 
 #include "octree_geom.h"
+#include "ode_handles.h"
 #include "rotors_core/error.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
@@ -40,7 +41,7 @@ void ProbeCallback(void* data, dGeomID o1, dGeomID o2) {
 class Mapper {
  public:
   Mapper(const physics::World& world, octomap::OcTree* tree, const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi)
-      : space_(world.OdeSpace()), tree_(tree), lo_(lo), hi_(hi), cube_(dCreateBox(nullptr, 1, 1, 1)) {}
+      : space_(Ode(world.Space())), tree_(tree), lo_(lo), hi_(hi), cube_(dCreateBox(nullptr, 1, 1, 1)) {}
   ~Mapper() { dGeomDestroy(cube_); }
 
   /// The block of cells [start, start + size) per axis (clipped to the request).

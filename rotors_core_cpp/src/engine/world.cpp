@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
+#include <deque>
 #include <cmath>
 #include <mutex>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/plugin.h"
 #include "ode_convert.h"
+#include "ode_handles.h"
 
 namespace rotors_sim {
 namespace physics {
@@ -66,25 +68,27 @@ WorldPtr World::Create(const std::string& name, const PhysicsParams& params) {
 
 World::World(std::string name, const PhysicsParams& params) : name_(std::move(name)), params_(params) {
   InitOdeOnce();
-  ode_world_ = dWorldCreate();
-  dWorldSetGravity(ode_world_, params_.gravity_W.X(), params_.gravity_W.Y(), params_.gravity_W.Z());
-  dWorldSetERP(ode_world_, params_.erp);
-  dWorldSetCFM(ode_world_, params_.cfm);
-  dWorldSetQuickStepNumIterations(ode_world_, params_.quick_iterations);
-  dWorldSetQuickStepW(ode_world_, params_.sor);
-  dWorldSetContactMaxCorrectingVel(ode_world_, params_.contact_max_correcting_vel_m_s);
-  dWorldSetContactSurfaceLayer(ode_world_, params_.contact_surface_layer_m);
-  dWorldSetAutoDisableFlag(ode_world_, 0);
-  ode_space_ = dHashSpaceCreate(nullptr);
-  contact_group_ = dJointGroupCreate(0);
+  dWorldID ode_world = dWorldCreate();
+  solver_world_ = Handle(ode_world);
+  pending_ = std::make_unique<PendingContacts>();
+  dWorldSetGravity(ode_world, params_.gravity_W.X(), params_.gravity_W.Y(), params_.gravity_W.Z());
+  dWorldSetERP(ode_world, params_.erp);
+  dWorldSetCFM(ode_world, params_.cfm);
+  dWorldSetQuickStepNumIterations(ode_world, params_.quick_iterations);
+  dWorldSetQuickStepW(ode_world, params_.sor);
+  dWorldSetContactMaxCorrectingVel(ode_world, params_.contact_max_correcting_vel_m_s);
+  dWorldSetContactSurfaceLayer(ode_world, params_.contact_surface_layer_m);
+  dWorldSetAutoDisableFlag(ode_world, 0);
+  space_ = Handle(dHashSpaceCreate(nullptr));
+  contact_group_ = Handle(dJointGroupCreate(0));
   wall_start_ = WallNow();
 }
 
 World::~World() {
   Fini();
-  dJointGroupDestroy(contact_group_);
-  dSpaceDestroy(ode_space_);
-  dWorldDestroy(ode_world_);
+  dJointGroupDestroy(Ode(contact_group_));
+  dSpaceDestroy(Ode(space_));
+  dWorldDestroy(Ode(solver_world_));
 }
 
 void World::Fini() {
@@ -136,12 +140,12 @@ void World::Step(unsigned int steps) {
       for (const auto& link : model->GetLinks()) link->RecordVelocityBeforeStep();
     Collide();
     if (params_.quick_solver) {
-      dWorldQuickStep(ode_world_, dt);
+      dWorldQuickStep(Ode(solver_world_), dt);
     } else {
-      dWorldStep(ode_world_, dt);
+      dWorldStep(Ode(solver_world_), dt);
     }
     CollectContacts();
-    dJointGroupEmpty(contact_group_);
+    dJointGroupEmpty(Ode(contact_group_));
     for (const auto& model : models_)
       for (const auto& link : model->GetLinks()) {
         link->InvalidatePose();
@@ -173,7 +177,20 @@ void World::ResetSimulation() {
   ResetWorld();
 }
 
-void World::NearCallback(void* data, dGeomID g1, dGeomID g2) {
+struct World::PendingContacts {
+  struct Entry {
+    Contact contact;
+    dJointFeedback feedback;  // filled by the solver during the step
+  };
+  std::deque<Entry> entries;
+};
+
+/// The solver's near callback: contact joints between two geoms that may touch.
+struct WorldCollision {
+  static void Near(void* data, dGeomID g1, dGeomID g2);
+};
+
+void WorldCollision::Near(void* data, dGeomID g1, dGeomID g2) {
   auto* world = static_cast<World*>(data);
   auto* info1 = static_cast<Model::GeomInfo*>(dGeomGetData(g1));
   auto* info2 = static_cast<Model::GeomInfo*>(dGeomGetData(g2));
@@ -198,10 +215,10 @@ void World::NearCallback(void* data, dGeomID g1, dGeomID g2) {
     c.surface.soft_cfm = constraint.cfm;
     c.surface.slip1 = constraint.slip1;
     c.surface.slip2 = constraint.slip2;
-    dJointID joint = dJointCreateContact(world->ode_world_, world->contact_group_, &c);
+    dJointID joint = dJointCreateContact(Ode(world->solver_world_), Ode(world->contact_group_), &c);
     dJointAttach(joint, b1, b2);
-    world->pending_contacts_.emplace_back();
-    PendingContact& pending = world->pending_contacts_.back();
+    world->pending_->entries.emplace_back();
+    World::PendingContacts::Entry& pending = world->pending_->entries.back();
     pending.contact.collision1 = info1->scoped_name;
     pending.contact.collision2 = info2->scoped_name;
     pending.contact.link1 = info1->link;
@@ -214,14 +231,14 @@ void World::NearCallback(void* data, dGeomID g1, dGeomID g2) {
 }
 
 void World::Collide() {
-  pending_contacts_.clear();
-  dSpaceCollide(ode_space_, this, &World::NearCallback);
+  pending_->entries.clear();
+  dSpaceCollide(Ode(space_), this, &WorldCollision::Near);
 }
 
 void World::CollectContacts() {
   contacts_.clear();
-  contacts_.reserve(pending_contacts_.size());
-  for (auto& pending : pending_contacts_) {
+  contacts_.reserve(pending_->entries.size());
+  for (auto& pending : pending_->entries) {
     Contact c = pending.contact;
     c.force1_W = ode_convert::Vec(pending.feedback.f1);
     c.torque1_W = ode_convert::Vec(pending.feedback.t1);

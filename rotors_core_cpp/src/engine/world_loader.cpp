@@ -25,9 +25,6 @@
 namespace rotors_sim {
 namespace {
 
-// RotorS' worlds load its ROS bridge; here every plugin talks ROS itself, so it has no job.
-const char* kRosInterfacePlugin = "librotors_gazebo_ros_interface_plugin.so";
-
 template <typename T>
 T Child(const sdf::ElementPtr& element, const std::vector<std::string>& path, T fallback) {
   sdf::ElementPtr e = element;
@@ -79,7 +76,8 @@ geometry::Lighting ReadLighting(const sdf::World& world) {
   return lighting;
 }
 
-physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const std::string& source) {
+physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const std::string& source,
+                        const WorldLoadOptions& options) {
   for (const auto& e : errors) {
     if (IsCheckedByTheEngine(e)) continue;
     sensors::CameraSensor::CheckAll(root.Element());  // names a bad camera better than sdformat does
@@ -107,9 +105,9 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
       event::ScopedCurrentEvents scope(&world->Events());
       for (sdf::ElementPtr p = element->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
         const std::string filename = p->Get<std::string>("filename");
-        if (filename == kRosInterfacePlugin) {
-          std::cerr << "[rotors_sim] world '" << source << "': " << filename
-                    << " is not needed (plugins publish on ROS directly); skipped\n";
+        const auto skipped = options.skipped_plugins.find(filename);
+        if (skipped != options.skipped_plugins.end()) {
+          std::cerr << "[rotors_sim] world '" << source << "': " << filename << " skipped: " << skipped->second << "\n";
           continue;
         }
         try {
@@ -139,16 +137,17 @@ sdf::ParserConfig Config() {
 
 }  // namespace
 
-physics::WorldPtr WorldLoader::LoadFile(const std::string& path) {
+physics::WorldPtr WorldLoader::LoadFile(const std::string& path, const WorldLoadOptions& options) {
   sdf::Root root;
   sdf::Errors errors = root.Load(path, Config());
-  return Build(root, errors, path);
+  return Build(root, errors, path, options);
 }
 
-physics::WorldPtr WorldLoader::LoadString(const std::string& sdf_text, const std::string& source_name) {
+physics::WorldPtr WorldLoader::LoadString(const std::string& sdf_text, const std::string& source_name,
+                                          const WorldLoadOptions& options) {
   sdf::Root root;
   sdf::Errors errors = root.LoadSdfString(sdf_text, Config());
-  return Build(root, errors, source_name);
+  return Build(root, errors, source_name, options);
 }
 
 }  // namespace rotors_sim

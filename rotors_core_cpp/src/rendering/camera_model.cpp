@@ -18,12 +18,9 @@ int BytesPerPixel(PixelFormat format) { return format == PixelFormat::kL8 ? 1 : 
 
 std::string RosEncoding(PixelFormat format) {
   switch (format) {
-    case PixelFormat::kL8:
-      return "mono8";
-    case PixelFormat::kR8G8B8:
-      return "rgb8";
-    case PixelFormat::kB8G8R8:
-      return "bgr8";
+    case PixelFormat::kL8: return "mono8";
+    case PixelFormat::kR8G8B8: return "rgb8";
+    case PixelFormat::kB8G8R8: return "bgr8";
   }
   return "mono8";
 }

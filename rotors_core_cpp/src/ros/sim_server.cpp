@@ -24,7 +24,10 @@ void SimServer::RequestStop() { g_stop_requested = 1; }
 
 SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimServerOptions& options)
     : nh_(nh), private_nh_(private_nh), user_paused_(options.paused) {
-  world_ = WorldLoader::LoadFile(options.world_file);
+  WorldLoadOptions load;
+  // RotorS' worlds load its ROS bridge plugin; here every plugin talks ROS itself
+  load.skipped_plugins["librotors_gazebo_ros_interface_plugin.so"] = "not needed, plugins publish on ROS directly";
+  world_ = WorldLoader::LoadFile(options.world_file, load);
   if (options.real_time_factor >= 0.0) world_->SetRealTimeFactor(options.real_time_factor);
   pacer_.SetRealTimeFactor(world_->Physics().real_time_factor);
   pacer_.Restart(world_->SimTime());

@@ -92,8 +92,7 @@ bool DrawShape(const Shape& shape, const ignition::math::Pose3d& X_WV, visualiza
           }
       return true;
     }
-    case Shape::Type::kOcTree:
-      return false;  // OcTreeCubes
+    case Shape::Type::kOcTree: return false;  // OcTreeCubes
   }
   return false;
 }

@@ -1,12 +1,11 @@
 // A joint between two links (gazebo::physics::Joint): revolute/continuous hinges and prismatic
-// sliders are ODE joints; fixed and zero-range joints weld the child to the parent body.
+// sliders are solver joints; fixed and zero-range joints weld the child to the parent body.
 #pragma once
 
 #include <string>
 
-#include <ode/ode.h>
-
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/physics/solver_handles.h"
 
 namespace rotors_sim {
 namespace physics {
@@ -30,7 +29,7 @@ class Joint {
     (void)index;
     return axis_C_;
   }
-  /// Joint position [rad or m] (hinge angle wrapped to (-pi, pi] by ODE).
+  /// Joint position [rad or m] (hinge angle wrapped to (-pi, pi]).
   double Position(unsigned int index = 0) const;
   /// Joint rate of the child relative to the parent [rad/s or m/s].
   double GetVelocity(unsigned int index) const;
@@ -41,14 +40,15 @@ class Joint {
   void SetForce(unsigned int index, double effort);
 
   // --- Engine side ---
-  void CreateOdeJoint(dWorldID world, const Vector3d& anchor_W, const Vector3d& axis_W, double lower, double upper);
+  void CreateSolverJoint(SolverWorldHandle* world, const Vector3d& anchor_W, const Vector3d& axis_W, double lower,
+                         double upper);
 
  private:
   std::string name_;
   Type type_;
   LinkPtr parent_, child_;
   Vector3d axis_C_{0, 0, 1};
-  dJointID joint_ = nullptr;
+  JointHandle* joint_ = nullptr;
 };
 
 }  // namespace physics

@@ -1,15 +1,14 @@
 // A rigid link (gazebo::physics::Link). Links joined by fixed or zero-range joints are welded:
-// they ride on the ODE body of their parent and add their mass to it, but keep their own name,
+// they ride on the rigid body of their parent and add their mass to it, but keep their own name,
 // frame, pose, velocity, acceleration and force application point.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include <ode/ode.h>
-
 #include "rotors_core/physics/inertial.h"
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/physics/solver_handles.h"
 
 namespace rotors_sim {
 namespace physics {
@@ -46,14 +45,20 @@ class Link {
   void AddTorque(const Vector3d& torque_W);          ///< [N m] world frame
   void AddRelativeTorque(const Vector3d& torque_L);  ///< [N m] link frame
 
+  // --- State changes (the rigid body the link rides on; ignored on static links) ---
+  void SetWorldAngularVel(const Vector3d& omega_W);  ///< [rad/s] world frame
+  /// [kg] mass of the rigid body the link rides on: its own and that of the links welded to it.
+  double BodyMass() const;
+  /// The rigid body the link rides on (nullptr if static); welded links share their parent's.
+  BodyHandle* Body() const { return body_; }
+
   const std::vector<JointPtr>& GetParentJoints() const { return parent_joints_; }
   const std::vector<JointPtr>& GetChildJoints() const { return child_joints_; }
 
   // --- Engine side ---
-  /// Attach to an ODE body; X_BL is the link frame in the body frame.
-  void AttachToBody(dBodyID body, const Pose3d& X_BL, bool welded);
+  /// Attach to a rigid body; X_BL is the link frame in the body frame.
+  void AttachToBody(BodyHandle* body, const Pose3d& X_BL, bool welded);
   void SetStaticPose(const Pose3d& X_WL) { X_WL_static_ = X_WL; }
-  dBodyID Body() const { return body_; }
   const Pose3d& PoseInBody() const { return X_BL_; }
   void AddParentJoint(const JointPtr& j) { parent_joints_.push_back(j); }
   void AddChildJoint(const JointPtr& j) { child_joints_.push_back(j); }
@@ -65,15 +70,15 @@ class Link {
   void RecordVelocityBeforeStep();
   void UpdateAccelerationAfterStep(double dt_s);
   void ClearAcceleration();
-  /// The ODE body moved (a step, a reset): the cached world pose is stale.
+  /// The body moved (a step, a reset): the cached world pose is stale.
   void InvalidatePose() { pose_valid_ = false; }
 
  private:
   std::string name_;
   Model* model_;
   Inertial inertial_;
-  dBodyID body_ = nullptr;
-  Pose3d X_BL_;         ///< link frame in the ODE body frame
+  BodyHandle* body_ = nullptr;
+  Pose3d X_BL_;         ///< link frame in the body frame
   Pose3d X_WL_static_;  ///< pose of a static link
   bool welded_ = false;
   // WorldPose() is asked for several times per step by the engine and the plugins; it is

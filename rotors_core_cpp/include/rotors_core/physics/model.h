@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include <ode/ode.h>
 #include <sdf/Element.hh>
 
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/physics/solver_handles.h"
 #include "rotors_core/physics/surface.h"
 #include "rotors_core/geometry/visual.h"
 #include "rotors_core/sensors/sensor.h"
@@ -48,17 +48,17 @@ class Model {
   void SetSDF(sdf::ElementPtr sdf) { sdf_ = std::move(sdf); }
   void AddLink(const LinkPtr& link) { links_.push_back(link); }
   void AddJoint(const JointPtr& joint) { joints_.push_back(joint); }
-  void AddBody(dBodyID body, const Pose3d& X_MB) { bodies_.push_back({body, X_MB}); }
-  /// Registers a collision geom; its dGeomGetData() is the returned GeomInfo.
+  void AddBody(BodyHandle* body, const Pose3d& X_MB) { bodies_.push_back({body, X_MB}); }
+  /// Registers a collision geom; the solver keeps the returned GeomInfo as the geom's data.
   struct GeomInfo {
     Link* link;
     std::string scoped_name;  ///< "model::link::collision"
     SurfaceParams surface;
-    std::shared_ptr<void> keep_alive;  ///< ODE mesh/heightfield data the geom points into
+    std::shared_ptr<void> keep_alive;  ///< solver mesh/heightfield data the geom points into
   };
-  GeomInfo* AddGeom(dGeomID geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface = {});
+  GeomInfo* AddGeom(GeomHandle* geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface = {});
   /// Collision geoms with their info (for whoever queries the world's geometry).
-  const std::vector<std::pair<dGeomID, std::unique_ptr<GeomInfo>>>& Geoms() const { return geoms_; }
+  const std::vector<std::pair<GeomHandle*, std::unique_ptr<GeomInfo>>>& Geoms() const { return geoms_; }
   void AddVisual(geometry::Visual visual) { visuals_.push_back(std::move(visual)); }
   const std::vector<geometry::Visual>& Visuals() const { return visuals_; }
   void SetInitialPose(const Pose3d& X_WM) { X_WM_initial_ = X_WM; }
@@ -68,12 +68,12 @@ class Model {
   void AddSensorPlugin(std::unique_ptr<SensorPlugin> plugin);
   const std::vector<sensors::SensorPtr>& Sensors() const { return sensors_; }
   void ResetPlugins();
-  /// Unloads plugins (breaking their ModelPtr cycles) and frees the ODE bodies, joints and geoms.
+  /// Unloads plugins (breaking their ModelPtr cycles) and frees the solver's bodies, joints and geoms.
   void Fini();
 
  private:
   struct BodyRecord {
-    dBodyID body;
+    BodyHandle* body;
     Pose3d X_MB;  ///< body frame in the model frame at spawn
   };
   std::string name_;
@@ -83,7 +83,7 @@ class Model {
   Link_V links_;
   Joint_V joints_;
   std::vector<BodyRecord> bodies_;
-  std::vector<std::pair<dGeomID, std::unique_ptr<GeomInfo>>> geoms_;
+  std::vector<std::pair<GeomHandle*, std::unique_ptr<GeomInfo>>> geoms_;
   std::vector<geometry::Visual> visuals_;
   Pose3d X_WM_initial_;
   std::vector<std::unique_ptr<ModelPlugin>> plugins_;

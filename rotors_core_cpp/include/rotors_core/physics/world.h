@@ -1,18 +1,16 @@
-// The world: ODE dynamics and contacts, models, world plugins, sim time and the update events
+// The world: rigid-body dynamics (ODE inside) and contacts, models, world plugins, sim time and the update events
 // (gazebo::physics::World). It knows nothing about ROS or multirotors.
 #pragma once
 
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <ode/ode.h>
 
 #include "rotors_core/common.h"
 #include "rotors_core/event.h"
 #include "rotors_core/geometry/visual.h"
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/physics/solver_handles.h"
 
 namespace rotors_sim {
 class WorldPlugin;
@@ -98,14 +96,14 @@ class World : public std::enable_shared_from_this<World> {
   event::WorldEvents& Events() { return events_; }
 
   // --- Engine side (used by builders) ---
-  dWorldID OdeWorld() const { return ode_world_; }
-  dSpaceID OdeSpace() const { return ode_space_; }
+  SolverWorldHandle* SolverWorld() const { return solver_world_; }
+  SpaceHandle* Space() const { return space_; }
   void AddModel(const ModelPtr& model);
   void AddPlugin(std::unique_ptr<WorldPlugin> plugin);
 
  private:
   World(std::string name, const PhysicsParams& params);
-  static void NearCallback(void* data, dGeomID g1, dGeomID g2);
+  friend struct WorldCollision;  // the solver's near callback (world.cpp)
   void Collide();
   void CollectContacts();
 
@@ -113,9 +111,9 @@ class World : public std::enable_shared_from_this<World> {
   PhysicsParams params_;
   SphericalCoordinates origin_;
   geometry::Lighting lighting_;
-  dWorldID ode_world_ = nullptr;
-  dSpaceID ode_space_ = nullptr;
-  dJointGroupID contact_group_ = nullptr;
+  SolverWorldHandle* solver_world_ = nullptr;
+  SpaceHandle* space_ = nullptr;
+  ContactGroupHandle* contact_group_ = nullptr;
   std::vector<ModelPtr> models_;
   std::vector<std::unique_ptr<WorldPlugin>> plugins_;
   common::Time sim_time_;
@@ -125,11 +123,8 @@ class World : public std::enable_shared_from_this<World> {
   std::string pause_reason_;
   event::WorldEvents events_;
   std::vector<Contact> contacts_;
-  struct PendingContact {
-    Contact contact;
-    dJointFeedback feedback;
-  };
-  std::deque<PendingContact> pending_contacts_;
+  struct PendingContacts;  // this step's contacts with the solver's force feedback (world.cpp)
+  std::unique_ptr<PendingContacts> pending_;
   common::Time wall_start_;
 };
 
