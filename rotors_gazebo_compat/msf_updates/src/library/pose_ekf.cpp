@@ -21,18 +21,12 @@ std::string InitialUncertainty::Validate() const {
 
 const char* ToString(PoseStatus status) {
   switch (status) {
-    case PoseStatus::kStoredForInit:
-      return "stored for initialisation";
-    case PoseStatus::kApplied:
-      return "applied";
-    case PoseStatus::kPending:
-      return "pending (newer than the IMU)";
-    case PoseStatus::kRejectedOutlier:
-      return "rejected as an outlier";
-    case PoseStatus::kTooOld:
-      return "older than the state buffer";
-    case PoseStatus::kTooSoon:
-      return "closer than pose_measurement_minimum_dt to the previous one";
+    case PoseStatus::kStoredForInit: return "stored for initialisation";
+    case PoseStatus::kApplied: return "applied";
+    case PoseStatus::kPending: return "pending (newer than the IMU)";
+    case PoseStatus::kRejectedOutlier: return "rejected as an outlier";
+    case PoseStatus::kTooOld: return "older than the state buffer";
+    case PoseStatus::kTooSoon: return "closer than pose_measurement_minimum_dt to the previous one";
   }
   return "?";
 }
