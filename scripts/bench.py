@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Dict, List
 
 from rotors_evaluation.ros_master import start_own_master
+from rotors_evaluation.sweep_flight import CLOCK_WATCH as CLOCK_PRINTER  # prints sim time at 10 Hz
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "bench"
@@ -268,8 +269,82 @@ def sweep_flights_per_hour(workers: int) -> Dict:
     return {"flights": ok, "wall_s": wall_s, "flights_per_hour": 3600.0 * ok / wall_s}
 
 
+SOAK_HOVER = r"""
+import rospy
+from nav_msgs.msg import Odometry
+rospy.init_node('bench_soak_hover', anonymous=True, disable_signals=True)
+z = [rospy.wait_for_message(f'/firefly{i}/ground_truth/odometry', Odometry, timeout=30).pose.pose.position.z
+     for i in range(1, 10)]
+"""
+
+
+def _proc_rss_cpu(pid: int) -> (float, float):
+    """Resident set [MB] and CPU time (user + system) [s] of a process."""
+    rss_kb = int(next(line for line in Path(f"/proc/{pid}/status").read_text().splitlines()
+                      if line.startswith("VmRSS")).split()[1])
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return rss_kb / 1024.0, (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def soak(sim_s: float = 3600.0, sample_every_s: float = 60.0) -> Dict:
+    """The 9-firefly swarm in lockstep for `sim_s` of sim time: the simulator's RSS and CPU seconds
+    per sim second, sampled every `sample_every_s`, compared between the first and the last tenth."""
+    with Graph(["rotors_gazebo", "firefly_swarm_hovering_example.launch", "gui:=false", "lockstep:=true",
+                "real_time_factor:=0"]) as g:
+        watch = subprocess.Popen([sys.executable, "-c", CLOCK_PRINTER], env=g.env, stdout=subprocess.PIPE,
+                                 stderr=subprocess.DEVNULL, text=True, start_new_session=True)
+        try:
+            pid = None
+            samples = []  # (sim s, wall s, rss MB, cpu s)
+            next_mark, w0 = sample_every_s, time.monotonic()
+            stalled_since, last_t = time.monotonic(), -1.0
+            for line in watch.stdout:
+                t = float(line)
+                if t > last_t:
+                    stalled_since, last_t = time.monotonic(), t
+                elif time.monotonic() - stalled_since > 120:
+                    raise RuntimeError(f"soak: sim time stuck at {t:.1f} s for 120 s")
+                if pid is None and t >= 0:
+                    info = sh(["rosnode", "info", "/gazebo"], env=g.env)
+                    pid = int(next(x.split()[1] for x in info.splitlines() if x.startswith("Pid:")))
+                if pid is not None and t >= next_mark:
+                    samples.append((t, time.monotonic() - w0, *_proc_rss_cpu(pid)))
+                    next_mark += sample_every_s
+                if t >= sim_s:
+                    break
+            hover = g.python(SOAK_HOVER + "\nprint(max(abs(v - 1.04) for v in z))")
+        finally:
+            os.killpg(watch.pid, signal.SIGKILL)
+            watch.wait()
+    tenth = max(1, len(samples) // 10)
+
+    def cpu_per_sim_s(window):
+        return (window[-1][3] - window[0][3]) / (window[-1][0] - window[0][0])
+    first, last = samples[:tenth + 1], samples[-tenth - 1:]
+    return {"sim_s": samples[-1][0], "wall_s": samples[-1][1], "samples": len(samples),
+            "rss_mb_first": first[0][2], "rss_mb_last": last[-1][2], "rss_mb_max": max(x[2] for x in samples),
+            "cpu_ms_per_sim_s_first": 1000 * cpu_per_sim_s(first), "cpu_ms_per_sim_s_last": 1000 * cpu_per_sim_s(last),
+            "hover_error_m_at_end": hover}
+
+
+def soak_rows(k: Dict) -> List:
+    return [("soak: 9 fireflies, lockstep, simulator RSS first / last / max",
+             f"{k['rss_mb_first']:.0f} / {k['rss_mb_last']:.0f} / {k['rss_mb_max']:.0f} MB over {k['sim_s']:.0f} s sim "
+             f"({k['wall_s'] / 60:.0f} min wall)", "flat"),
+            ("soak: simulator CPU per sim second, first / last tenth",
+             f"{k['cpu_ms_per_sim_s_first']:.0f} / {k['cpu_ms_per_sim_s_last']:.0f} ms", "flat"),
+            ("soak: the nine fireflies' largest hover error at the end", f"{k['hover_error_m_at_end'] * 1000:.1f} mm",
+             "")]
+
+
 def main() -> int:
     OUT.mkdir(parents=True, exist_ok=True)
+    if "--soak-only" in sys.argv:  # make bench runs it too; this runs it alone
+        k = soak(float(os.environ.get("SOAK_SIM_S", "3600")))
+        for r in soak_rows(k):
+            print(f"{r[0]}  {r[1]}  {r[2]}")
+        print(json.dumps(k))
+        return 0
     urdf = OUT / "firefly.urdf"
     urdf.write_text(sh(["xacro", sh(["rospack", "find", "rotors_description"]).strip() +
                         "/urdf/mav_generic_odometry_sensor.gazebo", "mav_name:=firefly", "namespace:=firefly"]))
@@ -287,6 +362,7 @@ def main() -> int:
     flight_steps = {world: statistics.median(waypoint_flight_steps_per_s(world) for _ in range(3))
                     for world in ("basic", "powerplant")}
     sweeps = {n: sweep_flights_per_hour(n) for n in (1, 2)}
+    soaked = soak()
     res = {
         "engine_steps_per_s_1ms_no_ros": eng["steps_per_s"],
         "engine_plugins": eng["plugins"],
@@ -304,6 +380,7 @@ def main() -> int:
         "vi_sensor_closed_loop_rtf_paced": vi_paced,
         "vi_sensor_closed_loop_rtf_as_fast_as_possible": vi_fast,
         "sweep_firefly_lee_gains_x_wind": sweeps,
+        "soak_9_fireflies_lockstep": soaked,
         "not_measured": [],
     }
     rows = [("engine, firefly with all plugins, 1 ms step, no ROS", f"{res['engine_steps_per_s_1ms_no_ros']:,.0f} steps/s",
@@ -341,6 +418,7 @@ def main() -> int:
     rows += [(f"sweep.py, shipped firefly sweep (16 x 20 s hovering flights), local Ray, {n} worker{'s' if n > 1 else ''}",
               f"{r['flights_per_hour']:,.0f} flights/h ({r['flights']} in {r['wall_s']:.0f} s)", "")
              for n, r in sweeps.items()]
+    rows += soak_rows(soaked)
     w = [max(len(r[i]) for r in rows) for i in range(3)]
     print(f"{'measurement'.ljust(w[0])}  {'median'.ljust(w[1])}  target")
     for r in rows:

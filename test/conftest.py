@@ -17,6 +17,26 @@ REPO = Path(__file__).resolve().parents[1]
 WS = REPO / "build" / "ws"
 
 
+# Process helpers for rospy client code (RosGraph.rospy): a node's pid from the master, whether a
+# pid lives (not a zombie), its CPU seconds.
+NODE_PROCESS_HELPERS = """
+import os, rosgraph, xmlrpc.client
+def node_pid(name):
+    uri = rosgraph.Master('/pytest_client').lookupNode(name)
+    return xmlrpc.client.ServerProxy(uri).getPid('/pytest_client')[2]
+def _stat_fields(pid):
+    return open('/proc/%d/stat' % pid).read().rsplit(')', 1)[1].split()
+def alive(pid):
+    try:
+        return _stat_fields(pid)[0] != 'Z'
+    except OSError:
+        return False
+def cpu_seconds(pid):
+    fields = _stat_fields(pid)
+    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+"""
+
+
 class RosGraph:
     """A private ROS master plus the processes a test starts against it."""
 

@@ -18,11 +18,11 @@ import subprocess
 import textwrap
 from pathlib import Path
 
-from conftest import RosGraph, launch, stop_launch, wait_sim_time
+from conftest import NODE_PROCESS_HELPERS, RosGraph, launch, stop_launch, wait_sim_time
 
 # rospy helpers shared by the scenarios (run in the client process after rospy.init_node)
 CLIENT = """
-import math, os, signal, subprocess, time, rosgraph, xmlrpc.client
+import math, os, signal, subprocess, time
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
@@ -44,17 +44,6 @@ def wait_clock(t_s, limit_s=120):
             raise SystemExit('sim time stuck at %.2f s (waiting for %.2f s)' % (state['clock'], t_s))
         time.sleep(0.01)
     return state['clock']
-def node_pid(name):
-    uri = rosgraph.Master('/fault_test').lookupNode(name)
-    return xmlrpc.client.ServerProxy(uri).getPid('/fault_test')[2]
-def cpu_seconds(pid):
-    fields = open('/proc/%d/stat' % pid).read().rsplit(')', 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
-def alive(pid):
-    try:
-        return open('/proc/%d/stat' % pid).read().rsplit(')', 1)[1].split()[0] != 'Z'
-    except OSError:
-        return False
 def restart_controller():
     return subprocess.Popen(['rosrun', 'rotors_control', 'lee_position_controller_node', '__ns:=/firefly',
                              '__name:=lee_position_controller_node', 'odometry:=odometry_sensor1/odometry'],
@@ -73,7 +62,7 @@ def distance(a, b):
 
 
 def client(ros: RosGraph, scenario: str, timeout: float = 240) -> dict:
-    return ros.rospy(CLIENT + textwrap.dedent(scenario), timeout=timeout)
+    return ros.rospy(NODE_PROCESS_HELPERS + CLIENT + textwrap.dedent(scenario), timeout=timeout)
 
 
 def test_controller_killed_without_lockstep_recovers_if_back_soon_else_the_fall_is_reported(ros: RosGraph,

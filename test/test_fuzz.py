@@ -18,10 +18,10 @@ not an input), /rosout (ROS' log aggregation), the Empty services pause/unpause/
 their effects are tested in test_faults.py) and roscpp's get_loggers/set_logger_level."""
 from pathlib import Path
 
-from conftest import RosGraph, launch, stop_launch, wait_sim_time
+from conftest import NODE_PROCESS_HELPERS, RosGraph, launch, stop_launch, wait_sim_time
 
 FUZZ = r'''
-import importlib, math, random, rosgraph, rosservice, xmlrpc.client
+import importlib, math, random, rosgraph, rosservice
 from struct import error as struct_error
 import genpy
 from nav_msgs.msg import Odometry
@@ -34,7 +34,7 @@ INT_RANGES = {'int8': (-2**7, 2**7 - 1), 'uint8': (0, 2**8 - 1), 'byte': (-2**7,
               'int16': (-2**15, 2**15 - 1), 'uint16': (0, 2**16 - 1), 'int32': (-2**31, 2**31 - 1),
               'uint32': (0, 2**32 - 1), 'int64': (-2**63, 2**63 - 1), 'uint64': (0, 2**64 - 1)}
 STRINGS = ['', 'no_such_frame', 'x' * 10000, '\u00e9\u00e8 world']
-MASTER = rosgraph.Master('/fuzz')
+MASTER = rosgraph.Master('/pytest_client')
 LOG = open(LOG_PATH, errors='replace')
 
 def msg_class(type_name):
@@ -92,20 +92,13 @@ def send_set_point():
     cmd.pose.orientation.w = 1.0
     set_point.publish(cmd)
 
-def pid(node):
-    return xmlrpc.client.ServerProxy(MASTER.lookupNode(node)).getPid('/fuzz')[2]
-def alive(p):
-    try:
-        return open('/proc/%d/stat' % p).read().rsplit(')', 1)[1].split()[0] != 'Z'
-    except OSError:
-        return False
 def log_lines():
     return len(LOG.readlines())
 
 while state['p'] is None:
     time.sleep(0.05)
 hover = state['p']
-nodes = {n: pid(n) for n in WATCHED}
+nodes = {n: node_pid(n) for n in WATCHED}
 _, subscribers, services = MASTER.getSystemState()
 types = dict(MASTER.getTopicTypes())
 SKIP_TOPICS = {'/clock', '/rosout'}
@@ -198,7 +191,7 @@ def test_fuzzing_every_input_of_the_hovering_example(ros: RosGraph):
     try:
         wait_sim_time(ros, 10.0)
         prelude = f"LOG_PATH = {str(Path(proc.log_path))!r}\nWATCHED = {WATCHED!r}\n"
-        res = ros.rospy(prelude + FUZZ, timeout=900)
+        res = ros.rospy(prelude + NODE_PROCESS_HELPERS + FUZZ, timeout=900)
     finally:
         stop_launch(proc)
     rows = res["rows"]
