@@ -61,7 +61,7 @@ def test_a_yaml_that_disagrees_with_its_xacro_is_named(tmp_path: Path):
         "0.2150 m in the URDF (16.4 mm apart) (not a named override)",
     ]
     # the command-line check says the same and fails
-    bad = tmp_path / "firefly.yaml"
+    bad = tmp_path / "firefly.yaml"  # named as the shipped one, so the lines are the same
     bad.write_text(yaml.safe_dump(firefly))
     res = subprocess.run(["rosrun", "rotors_gazebo", "vehicle_params", "--mav_name", "firefly", "--check",
                           "--yaml", str(bad)], capture_output=True, text=True)

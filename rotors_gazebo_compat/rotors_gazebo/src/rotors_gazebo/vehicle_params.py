@@ -200,17 +200,19 @@ def _differs(a: float, b: float, rel: float = RELATIVE_TOLERANCE) -> bool:
 
 
 def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_s2: float,
-                      overrides: Dict[str, str]) -> List[str]:
+                      overrides: Dict[str, str], yaml_name: str = "") -> List[str]:
     """The parameters where the controller yaml `vehicle` (the layout of resource/<mav>.yaml) and the
     parsed URDF disagree, one line each naming the vehicle and the parameter; `overrides` maps the
     names that may differ (mass, inertia, gravity, rotor_configuration/<i>/<field>) to the reason.
-    A named override whose values agree is reported too, so the list stays honest."""
+    A named override whose values agree is reported too, so the list stays honest. `yaml_name` is how
+    the lines name the yaml (default <mav>.yaml)."""
+    yaml_name = yaml_name or f"{mav}.yaml"
     urdf = vehicle_yaml(body, world_gravity_m_s2)
     found: List[Tuple[str, str]] = []  # (parameter, description)
 
     def check(name: str, yaml_value: float, urdf_value: float, differs: bool) -> None:
         if differs:
-            found.append((name, f"{yaml_value:g} in {mav}.yaml, {urdf_value:g} in the URDF"))
+            found.append((name, f"{yaml_value:g} in {yaml_name}, {urdf_value:g} in the URDF"))
         elif name in overrides:
             found.append((name, f"named override, but both give {urdf_value:g}: remove it"))
 
@@ -227,7 +229,7 @@ def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_
 
     rotors_yaml = {str(k): v for k, v in vehicle["rotor_configuration"].items()}
     if sorted(rotors_yaml) != sorted(urdf["rotor_configuration"]):
-        found.append(("rotor_configuration", f"rotors {sorted(rotors_yaml)} in {mav}.yaml, "
+        found.append(("rotor_configuration", f"rotors {sorted(rotors_yaml)} in {yaml_name}, "
                                              f"{sorted(urdf['rotor_configuration'])} in the URDF"))
     for i, u in urdf["rotor_configuration"].items():
         r = rotors_yaml.get(i)
@@ -239,7 +241,7 @@ def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_
         distance = float(np.linalg.norm(p_yaml - p_urdf))
         if distance > ROTOR_POSITION_TOLERANCE_M:
             found.append((base + "position", f"angle {float(r['angle']):.4f} rad, arm {float(r['arm_length']):.4f} m "
-                                             f"in {mav}.yaml, {u['angle']:.4f} rad, {u['arm_length']:.4f} m in the URDF "
+                                             f"in {yaml_name}, {u['angle']:.4f} rad, {u['arm_length']:.4f} m in the URDF "
                                              f"({distance * 1000:.1f} mm apart)"))
         elif base + "position" in overrides:
             found.append((base + "position", "named override, but the positions agree: remove it"))
