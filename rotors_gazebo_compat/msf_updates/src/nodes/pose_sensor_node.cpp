@@ -5,6 +5,7 @@
 // ~pose_sensor/initialize_msf_height; parameters under ~core/ and ~pose_sensor/ with MSF's names.
 #include <cmath>
 #include <set>
+#include <sstream>
 
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
@@ -28,12 +29,25 @@ namespace {
 class ParamReader {
  public:
   explicit ParamReader(const ros::NodeHandle& private_nh) : nh_(private_nh) {}
+  /// MSF's parameters all have defaults (as upstream); one that is absent is announced with the
+  /// value used (ReportDefaults), as the project's parameter policy asks.
   template <typename T>
   T Get(const std::string& key, const T& fallback) {
     read_.insert(nh_.resolveName(key));
     T value = fallback;
-    nh_.param(key, value, fallback);
+    if (!nh_.getParam(key, value)) {
+      std::ostringstream line;
+      line << key << " = " << std::boolalpha << fallback;
+      defaults_.push_back(line.str());
+      value = fallback;
+    }
     return value;
+  }
+  void ReportDefaults() const {
+    if (defaults_.empty()) return;
+    std::string list;
+    for (const std::string& d : defaults_) list += (list.empty() ? "" : ", ") + d;
+    ROS_INFO("[msf] not given, defaults used: %s", list.c_str());
   }
   void WarnUnread(const std::vector<std::string>& namespaces) const {
     std::vector<std::string> names;
@@ -50,6 +64,7 @@ class ParamReader {
  private:
   ros::NodeHandle nh_;
   std::set<std::string> read_;
+  std::vector<std::string> defaults_;
 };
 
 /// Throttles a warning on wall time (ROS_WARN_THROTTLE uses ros::Time, which stands still before
@@ -143,6 +158,7 @@ class PoseSensorNode {
       p.Get(std::string("pose_sensor/pose_noise_") + aux, 0.0);  // process noise of a fixed state: unused
     }
     p.WarnUnread({"core", "pose_sensor"});
+    p.ReportDefaults();
 
     ekf_ = std::make_unique<PoseEkf>(core, pose, init, buffer_s);
     ROS_INFO(
