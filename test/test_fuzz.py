@@ -1,5 +1,6 @@
-"""Fuzzing: every topic and service the simulator and the nodes of the book's hovering example
-subscribe to or serve receives, for a bounded time each, random invalid and extreme messages, built
+"""Fuzzing: every topic and service the simulator and the nodes of the book's hovering example (plus
+the estimator, the attitude controller and the joystick mapping, running beside it) subscribe to or
+serve receives, for a bounded time each, random invalid and extreme messages, built
 from the message definition itself:
 
 - invalid (1 s at 100 Hz per topic): every float NaN or +-inf, arrays empty, of one element or
@@ -18,7 +19,7 @@ not an input), /rosout (ROS' log aggregation), the Empty services pause/unpause/
 their effects are tested in test_faults.py) and roscpp's get_loggers/set_logger_level."""
 from pathlib import Path
 
-from conftest import NODE_PROCESS_HELPERS, RosGraph, launch, stop_launch, wait_sim_time
+from conftest import NODE_PROCESS_HELPERS, RosGraph, stop_launch, wait_sim_time
 
 FUZZ = r'''
 import importlib, math, random, rosgraph, rosservice
@@ -181,13 +182,38 @@ result['rows'] = rows
 result['samples'] = state['samples']
 '''
 
-WATCHED = ["/gazebo", "/firefly/lee_position_controller_node", "/firefly/robot_state_publisher"]
+WATCHED = ["/gazebo", "/firefly/lee_position_controller_node", "/firefly/robot_state_publisher", "/bystanders/msf",
+           "/bystanders/roll_pitch_yawrate_thrust_controller_node", "/bystanders/rotors_joy_interface"]
+
+# The hovering example, plus the project's other input-taking nodes outside its control loop
+# ("bystanders": the estimator, the attitude controller and the joystick mapping), so that their
+# inputs are fuzzed too without steering the MAV.
+FUZZ_LAUNCH = """<launch>
+  <include file="$(find rotors_gazebo)/launch/mav_hovering_example.launch">
+    <arg name="real_time_factor" value="1"/>
+    <arg name="gui" value="false"/>
+  </include>
+  <group ns="bystanders">
+    <node name="msf" pkg="msf_updates" type="pose_sensor" clear_params="true" output="screen">
+      <rosparam command="load" file="$(find rotors_gazebo)/resource/msf_simulator.yaml"/>
+    </node>
+    <node name="roll_pitch_yawrate_thrust_controller_node" pkg="rotors_control"
+          type="roll_pitch_yawrate_thrust_controller_node" output="screen">
+      <rosparam command="load" file="$(find rotors_gazebo)/resource/roll_pitch_yawrate_thrust_controller_firefly.yaml"/>
+      <rosparam command="load" file="$(find rotors_gazebo)/resource/firefly.yaml"/>
+    </node>
+    <node name="rotors_joy_interface" pkg="rotors_joy_interface" type="rotors_joy_interface" output="screen"/>
+  </group>
+</launch>
+"""
 # Debian's robot_state_publisher (not ours) logs one line per invalid JointState; it must not crash.
 NOT_RATE_LIMITED_UPSTREAM = {"/firefly/joint_states"}
 
 
-def test_fuzzing_every_input_of_the_hovering_example(ros: RosGraph):
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "real_time_factor:=1")
+def test_fuzzing_every_input_of_the_hovering_example(ros: RosGraph, tmp_path: Path):
+    launch_file = tmp_path / "fuzz.launch"
+    launch_file.write_text(FUZZ_LAUNCH)
+    proc = ros.start(["roslaunch", "-p", str(ros.port), str(launch_file)], "launch")
     try:
         wait_sim_time(ros, 10.0)
         prelude = f"LOG_PATH = {str(Path(proc.log_path))!r}\nWATCHED = {WATCHED!r}\n"
@@ -209,7 +235,9 @@ def test_fuzzing_every_input_of_the_hovering_example(ros: RosGraph):
     for expected in ("/firefly/command/motor_speed", "/firefly/gazebo/command/motor_speed",
                      "/firefly/command/trajectory", "/firefly/command/pose", "/firefly/odometry_sensor1/odometry",
                      "/firefly/motor_failure", "/gazebo/spawn_urdf_model", "/gazebo/delete_model",
-                     "/firefly/set_motor_failure"):
+                     "/firefly/set_motor_failure", "/bystanders/msf_core/imu_state_input",
+                     "/bystanders/msf_updates/pose_with_covariance_input", "/bystanders/command/roll_pitch_yawrate_thrust",
+                     "/bystanders/joy", "/bystanders/msf/pose_sensor/initialize_msf_scale"):
         assert expected in names, f"{expected} was not fuzzed: {sorted(names)}"
     for r in rows:
         assert r["crashed"] == [], f"{r['name']}: {r['crashed']} crashed"

@@ -352,7 +352,7 @@ class PoseSensorNode {
     if (why.empty()) init_time_s_ = ekf_->State().t_s;
     res.result = why.empty() ? "Initialized scale" : "Not initialized: " + why;
     if (why.empty()) ROS_INFO("[msf] initialised with scale %.3f", req.scale);
-    else ROS_WARN("[msf] initialize_msf_scale: %s", why.c_str());
+    else if (refused_init_warning_.Ready()) ROS_WARN("[msf] initialize_msf_scale: %s", why.c_str());
     return true;
   }
 
@@ -361,7 +361,7 @@ class PoseSensorNode {
     if (why.empty()) init_time_s_ = ekf_->State().t_s;
     res.result = why.empty() ? "Initialized by known height" : "Not initialized: " + why;
     if (why.empty()) ROS_INFO("[msf] initialised at height %.3f m (scale %.3f)", req.height, ekf_->PoseParams().scale);
-    else ROS_WARN("[msf] initialize_msf_height: %s", why.c_str());
+    else if (refused_init_warning_.Ready()) ROS_WARN("[msf] initialize_msf_height: %s", why.c_str());
     return true;
   }
 
@@ -371,8 +371,9 @@ class PoseSensorNode {
   std::vector<ros::Subscriber> subs_;
   ros::Publisher odometry_pub_, pose_pub_, pose_after_update_pub_, state_pub_, cov_pub_;
   ros::ServiceServer init_scale_srv_, init_height_srv_;
-  WallThrottle bad_imu_warning_{1.0}, bad_pose_warning_{1.0}, refused_pose_warning_{1.0}, not_initialised_warning_{5.0};
-  double init_time_s_ = 0.0;  ///< poses captured before initialisation are old news, not worth a warning
+  WallThrottle bad_imu_warning_{1.0}, bad_pose_warning_{1.0}, refused_pose_warning_{1.0}, not_initialised_warning_{5.0},
+      refused_init_warning_{1.0};  // the response carries every refusal; the log gets one a second
+  double init_time_s_ = 0.0;       ///< poses captured before initialisation are old news, not worth a warning
   tf2_ros::TransformBroadcaster tf_broadcaster_;
 };
 
