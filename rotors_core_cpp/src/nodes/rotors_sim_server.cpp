@@ -6,7 +6,11 @@
 //   --skip-broken-sensors  a camera that cannot be built is left out (one line says why) instead
 //                          of failing its model
 //   --lockstep-lenient   wait only for connected participants, mute silent ones (earlier versions)
-// Private parameters ~world_name, ~paused and ~real_time_factor do the same.
+// Private parameters ~world_name, ~paused and ~real_time_factor do the same. Further parameters:
+//   ~state_publish_rate   [Hz sim] TF, joint_states, model_states (100)
+//   ~state_max_wall_rate  [Hz wall] and at most this often (100; <= 0: no limit)
+//   ~clock_max_wall_rate  [Hz wall] /clock to other processes at most this often (1000; <= 0: every step)
+// The simulator also hosts nodelets (/gazebo/load_nodelet; see rotors_core/ros/nodelet_host.h).
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -41,6 +45,8 @@ int main(int argc, char** argv) {
   private_nh.param("paused", options.paused, options.paused);
   private_nh.param("real_time_factor", options.real_time_factor, options.real_time_factor);
   private_nh.param("state_publish_rate", options.state_publish_rate_hz, options.state_publish_rate_hz);
+  private_nh.param("state_max_wall_rate", options.state_max_wall_rate_hz, options.state_max_wall_rate_hz);
+  private_nh.param("clock_max_wall_rate", options.clock_max_wall_rate_hz, options.clock_max_wall_rate_hz);
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "-u") {

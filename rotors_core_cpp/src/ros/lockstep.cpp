@@ -67,6 +67,7 @@ ros::Subscriber Lockstep::Subscribe(Participant* p) {
 
 void Lockstep::Resubscribe() {
   for (auto& p : participants_) {
+    if (p.local) continue;  // answers are counted, not subscribed
     ros::Subscriber fresh = Subscribe(&p);  // appended behind the plugins' subscriptions
     p.sub.shutdown();
     p.sub = fresh;
@@ -97,7 +98,31 @@ size_t RemoteSubscribers(const std::string& topic) {
   return n;
 }
 
+void Lockstep::RefreshLocal(Participant* p) {
+  // a hosted participant is set up within one callback on this thread: once its answer publication
+  // exists here, its input subscription does too
+  const bool local = static_cast<bool>(ros::TopicManager::instance()->lookupPublication(p->topics.answer_topic));
+  if (local == p->local) return;
+  p->local = local;
+  if (local) {
+    p->sub.shutdown();  // a watcher of another type would make every answer serialized
+  } else {
+    p->sub = Subscribe(p);  // unloaded: it may come back as a node
+  }
+}
+
+bool Lockstep::LocalAnswered(Participant* p, const ros::Time& stamp) {
+  ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(p->topics.answer_topic);
+  if (!pub || pub->getSequence() == p->answer_seq) return false;
+  p->answer_seq = pub->getSequence();
+  p->answered = true;
+  p->warming_up = false;
+  if (stamp > p->last_stamp) p->last_stamp = stamp;
+  return true;
+}
+
 bool Lockstep::ConnectedNow(const Participant& p) const {
+  if (p.local) return static_cast<bool>(ros::TopicManager::instance()->lookupPublication(p.topics.answer_topic));
   if (p.sub.getNumPublishers() == 0) return false;
   if (p.topics.input_topic.empty()) return true;
   // once present, a participant leaves through its answer topic; the input is checked on arrival
@@ -132,6 +157,7 @@ std::string Lockstep::HoldReason(double sim_time_s) {
   const bool may_ping = ros::WallTime::now() >= next_ping_;
   std::string reason;
   for (auto& p : participants_) {
+    RefreshLocal(&p);
     if (!(p.gone && !may_ping)) UpdatePresence(&p, sim_time_s);
     if (p.present && ros::WallTime::now() - p.present_since >= ros::WallDuration(options_.settle_s)) continue;
     if (p.present) {
@@ -160,12 +186,18 @@ uint32_t Lockstep::FlushInput(const Participant& p) {
 }
 
 void Lockstep::BeforeStep() {
-  for (auto& p : participants_) p.input_seq = FlushInput(p);
+  for (auto& p : participants_) {
+    p.input_seq = FlushInput(p);
+    if (!p.local) continue;
+    ros::PublicationPtr answer = ros::TopicManager::instance()->lookupPublication(p.topics.answer_topic);
+    if (answer) p.answer_seq = answer->getSequence();
+  }
 }
 
 bool Lockstep::Required(const Participant& p) const {
   if (!p.input_published) return false;
-  if (options_.mode == LockstepOptions::Mode::kLenient) return !p.muted && p.sub.getNumPublishers() > 0;
+  if (options_.mode == LockstepOptions::Mode::kLenient)
+    return !p.muted && (p.local || p.sub.getNumPublishers() > 0);
   return p.present && !p.warming_up;
 }
 
@@ -177,8 +209,10 @@ bool Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue,
   const bool hold = options_.mode == LockstepOptions::Mode::kHold;
   while (ros::ok() && !stop()) {
     bool all = true;
-    for (const auto& p : participants_)
+    for (auto& p : participants_) {
+      if (p.local) LocalAnswered(&p, stamp);
       if (Required(p) && p.last_stamp < stamp) all = false;
+    }
     if (all) break;
     queue->callAvailable(ros::WallDuration(0.0005));
     const ros::WallTime now = ros::WallTime::now();

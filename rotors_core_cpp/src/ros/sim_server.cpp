@@ -23,7 +23,10 @@ volatile std::sig_atomic_t g_stop_requested = 0;
 void SimServer::RequestStop() { g_stop_requested = 1; }
 
 SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimServerOptions& options)
-    : nh_(nh), private_nh_(private_nh), user_paused_(options.paused) {
+    : nh_(nh),
+      private_nh_(private_nh),
+      user_paused_(options.paused),
+      clock_limit_(options.clock_max_wall_rate_hz) {
   WorldLoadOptions load;
   // RotorS' worlds load its ROS bridge plugin; here every plugin talks ROS itself
   load.skipped_plugins["librotors_gazebo_ros_interface_plugin.so"] = "not needed, plugins publish on ROS directly";
@@ -31,7 +34,8 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   if (options.real_time_factor >= 0.0) world_->SetRealTimeFactor(options.real_time_factor);
   pacer_.SetRealTimeFactor(world_->Physics().real_time_factor);
   pacer_.Restart(world_->SimTime());
-  state_publisher_ = std::make_unique<StatePublisher>(nh_, options.state_publish_rate_hz);
+  state_publisher_ =
+      std::make_unique<StatePublisher>(nh_, options.state_publish_rate_hz, options.state_max_wall_rate_hz);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   world_markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("/world/markers", 1, true);
   lockstep_ = std::make_unique<Lockstep>(nh_, options.lockstep_participants, options.lockstep);
@@ -44,11 +48,12 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   services_.push_back(private_nh_.advertiseService("spawn_sdf_model", &SimServer::OnSpawn, this));
   services_.push_back(private_nh_.advertiseService("delete_model", &SimServer::OnDelete, this));
   services_.push_back(private_nh_.advertiseService("get_model_state", &SimServer::OnGetModelState, this));
+  nodelets_ = std::make_unique<NodeletHost>(private_nh_, ros::getGlobalCallbackQueue());
   ROS_INFO("[rotors_sim] world '%s' loaded from %s: step %.4f s, real-time factor %g%s, %s", world_->Name().c_str(),
            options.world_file.c_str(), world_->Physics().max_step_size_s, world_->Physics().real_time_factor,
            world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "",
            user_paused_ ? "paused" : "running");
-  PublishClock();
+  PublishClock(true);
   PublishWorldMarkers();
 }
 
@@ -63,17 +68,18 @@ void SimServer::PublishWorldMarkers() {
 
 SimServer::~SimServer() {
   services_.clear();
+  nodelets_.reset();
   if (world_) {
     ROS_INFO("[rotors_sim] stopped at t = %.3f s", world_->SimTime().Double());
     world_->Fini();
   }
 }
 
-void SimServer::PublishClock() {
+void SimServer::PublishClock(bool force) {
   rosgraph_msgs::Clock clock;
   clock.clock.fromNSec(world_->SimTime().Nanoseconds());
   if (ros::Time::isSimTime()) ros::Time::setNow(clock.clock);
-  clock_pub_.publish(clock);
+  if (force || clock_limit_.Due()) clock_pub_.publish(clock);
 }
 
 void SimServer::StepOnce() {
@@ -108,7 +114,7 @@ void SimServer::Run() {
     }
     queue->callAvailable(ros::WallDuration(0.05));
     // late subscribers (rostopic, rviz) still learn the frozen time and poses while paused
-    PublishClock();
+    PublishClock(true);
     state_publisher_->Update(*world_, true);
   }
 }
@@ -134,7 +140,7 @@ bool SimServer::OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Respons
 bool SimServer::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_->ResetSimulation();
   pacer_.Restart(world_->SimTime());
-  PublishClock();
+  PublishClock(true);
   state_publisher_->Update(*world_, true);
   return true;
 }

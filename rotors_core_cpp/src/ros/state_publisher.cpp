@@ -13,15 +13,15 @@
 
 namespace rotors_sim {
 
-StatePublisher::StatePublisher(ros::NodeHandle nh, double rate_hz)
-    : nh_(nh), period_s_(rate_hz > 0 ? 1.0 / rate_hz : 0.0) {
+StatePublisher::StatePublisher(ros::NodeHandle nh, double rate_hz, double max_wall_rate_hz)
+    : nh_(nh), period_s_(rate_hz > 0 ? 1.0 / rate_hz : 0.0), wall_limit_(max_wall_rate_hz) {
   model_states_pub_ = nh_.advertise<gazebo_msgs::ModelStates>("/gazebo/model_states", 1);
   link_states_pub_ = nh_.advertise<gazebo_msgs::LinkStates>("/gazebo/link_states", 1);
 }
 
 void StatePublisher::Update(const physics::World& world, bool force) {
   const double t = world.SimTime().Double();
-  if (!force && t - last_publish_s_ < period_s_ - 1e-9) return;
+  if (!force && (t - last_publish_s_ < period_s_ - 1e-9 || !wall_limit_.Due())) return;
   last_publish_s_ = t;
   ros::Time stamp;
   stamp.fromNSec(world.SimTime().Nanoseconds());

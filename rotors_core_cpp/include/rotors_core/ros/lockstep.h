@@ -17,6 +17,10 @@
 //   e.g. after kill -9) pauses the simulation with one line; it resumes when the participant is
 //   back. Its first input after (re)connecting is waited for briefly: a participant that cannot
 //   answer yet (an estimator before initialisation) is not waited for until its first answer.
+// - A participant hosted in this process (a nodelet, see NodeletHost) runs on the simulation thread
+//   and answers while the simulator serves callbacks; it is recognised by its answer publication
+//   being in this process, and its answer by that publication's sequence number, so that nothing
+//   but the plugins and the nodelet touch its messages (they travel as shared pointers, unserialized).
 // Mode kLenient keeps the behaviour of earlier versions: only connected participants are waited
 // for, and one that stays silent past the timeout is not waited for until it answers again.
 #pragma once
@@ -80,7 +84,13 @@ class Lockstep {
     bool gone = false;             ///< declared gone by a failed ping; present again once its node answers pings
     uint32_t input_seq = 0;        ///< input publication's sequence number before the step
     bool input_published = false;  ///< the last step published its input
+    bool local = false;            ///< its answer is published in this process (a hosted nodelet)
+    uint32_t answer_seq = 0;       ///< local: the answer publication's sequence number before the step
   };
+  /// Notices a participant that is (or no longer is) hosted in this process.
+  void RefreshLocal(Participant* p);
+  /// local: true (and records the answer) when its answer publication counted a message this step.
+  bool LocalAnswered(Participant* p, const ros::Time& stamp);
   /// Sends what the plugins published in the step (roscpp would do it in its poll thread) and
   /// returns the input publication's sequence number (0 when it does not exist yet).
   static uint32_t FlushInput(const Participant& p);

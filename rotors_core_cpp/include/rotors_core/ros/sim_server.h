@@ -14,6 +14,7 @@
 
 #include "rotors_core/physics/physics_types.h"
 #include "rotors_core/ros/lockstep.h"
+#include "rotors_core/ros/nodelet_host.h"
 #include "rotors_core/ros/real_time_pacer.h"
 #include "rotors_core/ros/state_publisher.h"
 
@@ -24,6 +25,10 @@ struct SimServerOptions {
   bool paused = false;
   double real_time_factor = -1.0;                          ///< < 0: the world's own; 0: as fast as possible
   double state_publish_rate_hz = 100.0;                    ///< [Hz sim time] TF, joint_states, model_states
+  double state_max_wall_rate_hz = 100.0;                   ///< [Hz wall] and at most this often (<= 0: no limit)
+  /// [Hz wall] /clock to other processes at most this often (<= 0: every step); this process's own
+  /// nodes (plugins, nodelets) see every step's time
+  double clock_max_wall_rate_hz = 1000.0;
   std::vector<LockstepParticipant> lockstep_participants;  ///< see Lockstep; empty: free running
   LockstepOptions lockstep;
 };
@@ -43,7 +48,8 @@ class SimServer {
 
  private:
   void StepOnce();
-  void PublishClock();
+  /// Sets this process's time; publishes /clock when `force` or the wall-time limit allows.
+  void PublishClock(bool force = false);
   /// Paused by a user (pause_physics, -u) or held by lockstep; tells the world (and its plugins)
   /// on every change. True when the world may step.
   bool UpdateRunState();
@@ -62,9 +68,11 @@ class SimServer {
   std::unique_ptr<StatePublisher> state_publisher_;
   std::unique_ptr<Lockstep> lockstep_;
   ros::Publisher clock_pub_;
+  WallRateLimit clock_limit_;
   ros::Publisher world_markers_pub_;  ///< latched /world/markers: static models for rviz
   void PublishWorldMarkers();
   std::vector<ros::ServiceServer> services_;
+  std::unique_ptr<NodeletHost> nodelets_;  ///< nodes run in this process (in_process:=true)
 };
 
 }  // namespace rotors_sim
