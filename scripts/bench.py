@@ -25,6 +25,18 @@ def sh(cmd: List[str], **kw) -> str:
     return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw).stdout
 
 
+def bench_urdf(lump_rotors: bool) -> Path:
+    """The firefly with its odometry sensor; the motors hold the hover command for the whole run, so
+    the controller interface's commandTimeout is off (there is no controller to send commands)."""
+    text = sh(["xacro", sh(["rospack", "find", "rotors_description"]).strip() + "/urdf/mav_generic_odometry_sensor.gazebo",
+               "mav_name:=firefly", "namespace:=firefly", f"lump_rotors:={'true' if lump_rotors else 'false'}"])
+    held = text.replace("<commandTimeout>2.0</commandTimeout>", "<commandTimeout>0</commandTimeout>")
+    assert held != text, "the firefly's controller interface has no <commandTimeout>2.0</commandTimeout> any more"
+    path = OUT / f"firefly_{'lumped' if lump_rotors else 'hinged'}.urdf"
+    path.write_text(held)
+    return path
+
+
 def engine_only(urdf: Path, with_ros: bool, runs: int = 5) -> Dict:
     """In-process engine benchmark; with_ros: plugins publish (a private master runs meanwhile)."""
     world = sh(["rospack", "find", "rotors_gazebo"]).strip() + "/worlds/basic.world"
@@ -356,9 +368,7 @@ def main() -> int:
             print(f"{r[0]}  {r[1]}  {r[2]}")
         print(json.dumps(k))
         return 0
-    urdf = OUT / "firefly.urdf"
-    urdf.write_text(sh(["xacro", sh(["rospack", "find", "rotors_description"]).strip() +
-                        "/urdf/mav_generic_odometry_sensor.gazebo", "mav_name:=firefly", "namespace:=firefly"]))
+    urdf = bench_urdf(lump_rotors=True)
     eng = engine_only(urdf, with_ros=False)
     eng_ros = engine_only(urdf, with_ros=True)
     rotorpy_s = rotorpy_hover_wall_s()

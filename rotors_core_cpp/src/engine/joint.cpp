@@ -1,8 +1,13 @@
 #include "rotors_core/physics/joint.h"
 
 #include "rotors_core/physics/link.h"
+
+#include <cmath>
+
+#include "rotors_core/physics/model.h"
 #include "ode_convert.h"
 #include "ode_handles.h"
+#include "pose_math.h"
 
 namespace rotors_sim {
 namespace physics {
@@ -39,16 +44,22 @@ void Joint::CreateSolverJoint(SolverWorldHandle* world, const Vector3d& anchor_W
 Vector3d Joint::GlobalAxis(unsigned int /*index*/) const { return child_->WorldPose().Rot().RotateVector(axis_C_); }
 
 double Joint::Position(unsigned int /*index*/) const {
+  if (type_ == Type::kKinematic) return q_;
   if (!joint_) return 0.0;
   return type_ == Type::kRevolute ? dJointGetHingeAngle(Ode(joint_)) : dJointGetSliderPosition(Ode(joint_));
 }
 
 double Joint::GetVelocity(unsigned int /*index*/) const {
+  if (type_ == Type::kKinematic) return qdot_;
   if (!joint_) return 0.0;
   return type_ == Type::kRevolute ? dJointGetHingeAngleRate(Ode(joint_)) : dJointGetSliderPositionRate(Ode(joint_));
 }
 
 void Joint::SetVelocity(unsigned int /*index*/, double velocity) {
+  if (type_ == Type::kKinematic) {
+    qdot_ = velocity;
+    return;
+  }
   if (!joint_) return;
   dBodyID child = Ode(child_->Body());
   const Vector3d axis_W = GlobalAxis(0);
@@ -77,11 +88,58 @@ void Joint::SetVelocity(unsigned int /*index*/, double velocity) {
 }
 
 void Joint::SetForce(unsigned int /*index*/, double effort) {
-  if (!joint_) return;
+  if (!joint_) return;  // kinematic: a torque between two links of one body does not move it
   if (type_ == Type::kRevolute) {
     dJointAddHingeTorque(Ode(joint_), effort);
   } else {
     dJointAddSliderForce(Ode(joint_), effort);
+  }
+}
+
+void Joint::MakeKinematic(const Pose3d& X_PC0, const Vector3d& axis_C, double spin_inertia) {
+  X_PC0_ = X_PC0;
+  axis_C_ = axis_C.Normalized();
+  spin_inertia_ = spin_inertia;
+  ResetKinematic();
+}
+
+void Joint::ResetKinematic() {
+  if (type_ != Type::kKinematic) return;
+  q_ = qdot_ = qdot_applied_ = 0.0;
+  PlaceChild();
+}
+
+void Joint::ApplySpinMoment(double dt_s) {
+  if (spin_inertia_ > 0.0 && dt_s > 0.0) {
+    const Vector3d a_W = GlobalAxis(0);
+    // h = J_a qdot a: the child's spin momentum, carried by the body
+    const Vector3d h_W = a_W * (spin_inertia_ * qdot_);
+    const double qddot = (qdot_ - qdot_applied_) / dt_s;
+    // M = -dh/dt = -(omega_B x h) - J_a qddot a
+    parent_->AddTorque(-parent_->WorldAngularVel().Cross(h_W) - a_W * (spin_inertia_ * qddot));
+  }
+  qdot_applied_ = qdot_;
+}
+
+void Joint::AdvanceKinematic(double dt_s) {
+  q_ = std::remainder(q_ + qdot_ * dt_s, 2.0 * M_PI);  // (-pi, pi], as a hinge angle
+  PlaceChild();
+}
+
+void Joint::PlaceChild() {
+  // X_BC = X_BP X_PC0 R(a, q): the child turns about its own origin (the joint frame)
+  const Pose3d X_PC = Compose(X_PC0_, Pose3d(Vector3d::Zero, ignition::math::Quaterniond(axis_C_, q_)));
+  const Pose3d X_BC = Compose(parent_->PoseInBody(), X_PC);
+  child_->MoveOnBody(X_BC, axis_C_ * qdot_);
+  Model* model = child_->GetModel();
+  if (!model) return;
+  for (const auto& g : model->Geoms()) {
+    if (g.second->link != child_.get()) continue;
+    const Pose3d X_BG = Compose(X_BC, g.second->X_LG);
+    dGeomSetOffsetPosition(Ode(g.first), X_BG.Pos().X(), X_BG.Pos().Y(), X_BG.Pos().Z());
+    dQuaternion q;
+    ode_convert::ToOde(X_BG.Rot(), q);
+    dGeomSetOffsetQuaternion(Ode(g.first), q);
   }
 }
 

@@ -50,7 +50,12 @@ Vector3d Link::WorldCoGLinearVel() const {
 
 Vector3d Link::RelativeLinearVel() const { return WorldPose().Rot().RotateVectorReverse(WorldLinearVel()); }
 
-Vector3d Link::WorldAngularVel() const { return body_ ? Vec(dBodyGetAngularVel(Ode(body_))) : Vector3d::Zero; }
+Vector3d Link::WorldAngularVel() const {
+  if (!body_) return Vector3d::Zero;
+  const Vector3d omega_B_W = Vec(dBodyGetAngularVel(Ode(body_)));
+  if (omega_rel_L_ == Vector3d::Zero) return omega_B_W;
+  return omega_B_W + WorldPose().Rot().RotateVector(omega_rel_L_);
+}
 
 Vector3d Link::RelativeAngularVel() const { return WorldPose().Rot().RotateVectorReverse(WorldAngularVel()); }
 

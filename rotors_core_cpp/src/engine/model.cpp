@@ -22,6 +22,7 @@ void Model::Fini() {
   sensor_plugins_.clear();
   sensors_.clear();
   for (auto& link : links_) link->ClearJoints();
+  kinematic_joints_.clear();
   joints_.clear();
   for (auto& g : geoms_) dGeomDestroy(Ode(g.first));
   geoms_.clear();  // after the geoms: the mesh data they point into
@@ -60,7 +61,13 @@ Vector3d Model::WorldAngularVel() const {
   return link ? link->WorldAngularVel() : Vector3d::Zero;
 }
 
+void Model::AddJoint(const JointPtr& joint) {
+  joints_.push_back(joint);
+  if (joint->IsKinematic()) kinematic_joints_.push_back(joint);
+}
+
 void Model::SetWorldPose(const Pose3d& X_WM) {
+  for (const auto& joint : kinematic_joints_) joint->ResetKinematic();
   for (const auto& b : bodies_) {
     ode_convert::SetBodyPose(Ode(b.body), Compose(X_WM, b.X_MB));
     dBodySetLinearVel(Ode(b.body), 0, 0, 0);

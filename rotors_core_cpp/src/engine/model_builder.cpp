@@ -2,6 +2,7 @@
 
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <sdf/Collision.hh>
@@ -74,6 +75,26 @@ struct JointSpec {
   double lower = -1e16, upper = 1e16;
 };
 
+/// Joints the model names in <kinematic_joint> (a model-level element; in a URDF a <gazebo> block
+/// without reference): see physics::Joint.
+std::set<std::string> KinematicJointNames(const sdf::Model& sdf_model, const std::string& model_name) {
+  std::set<std::string> names;
+  sdf::ElementPtr e = sdf_model.Element();
+  if (!e) return names;
+  for (sdf::ElementPtr k = e->GetFirstElement(); k; k = k->GetNextElement()) {
+    if (k->GetName() != "kinematic_joint") continue;
+    const std::string name = k->Get<std::string>();  // the element's text
+    const sdf::Joint* joint = sdf_model.JointByName(name);
+    if (!joint)
+      throw SimError("model '" + model_name + "': <kinematic_joint>" + name + "</kinematic_joint> names no joint of it");
+    if (joint->Type() != sdf::JointType::CONTINUOUS && joint->Type() != sdf::JointType::REVOLUTE)
+      throw SimError("model '" + model_name + "': <kinematic_joint> " + name +
+                     " is not a revolute or continuous joint (only those can be driven kinematically)");
+    names.insert(name);
+  }
+  return names;
+}
+
 JointSpec ClassifyJoint(const sdf::Joint& joint, const std::string& where) {
   JointSpec spec{&joint, physics::Joint::Type::kWelded};
   const sdf::JointAxis* axis = joint.Axis(0);
@@ -135,8 +156,9 @@ void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& mode
     CreatedGeom created = CreateGeom(Ode(world->Space()), shape, X_WC, link->Body() != nullptr, where);
     dGeomID geom = created.geom;
     if (!geom) continue;
-    model->AddGeom(physics::Handle(geom), link.get(), scoped, surface)->keep_alive =
-        created.keep_alive;  // owned by the model
+    physics::Model::GeomInfo* info = model->AddGeom(physics::Handle(geom), link.get(), scoped, surface);
+    info->keep_alive = created.keep_alive;  // owned by the model
+    info->X_LG = Compose(X_LC, created.X_CG);
     if (dGeomGetClass(geom) == dPlaneClass) {
       const Vector3d n_W = X_WC.Rot().RotateVector(shape.plane_normal).Normalized();
       dGeomPlaneSetParams(geom, n_W.X(), n_W.Y(), n_W.Z(), n_W.Dot(X_WC.Pos()));
@@ -281,6 +303,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
     std::map<std::string, std::string> owner;  // link -> link that owns its ODE body
     std::vector<JointSpec> joints;
     std::map<std::string, std::string> parent_of;
+    const std::set<std::string> kinematic = KinematicJointNames(sdf_model, name);
     for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i)
       owner[sdf_model.LinkByIndex(i)->Name()] = sdf_model.LinkByIndex(i)->Name();
     for (uint64_t i = 0; i < sdf_model.JointCount(); ++i) {
@@ -291,11 +314,13 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
       if (!owner.count(j->ParentLinkName()) || !owner.count(j->ChildLinkName()))
         throw SimError(where + ": parent or child link is missing");
       joints.push_back(ClassifyJoint(*j, where));
+      if (kinematic.count(j->Name())) joints.back().type = physics::Joint::Type::kKinematic;
       parent_of[j->ChildLinkName()] = j->ParentLinkName();
     }
+    // welded and kinematic children ride on their parent's body
     for (size_t pass = 0; pass < owner.size(); ++pass)
       for (const auto& spec : joints)
-        if (spec.type == physics::Joint::Type::kWelded)
+        if (spec.type == physics::Joint::Type::kWelded || spec.type == physics::Joint::Type::kKinematic)
           owner[spec.sdf->ChildLinkName()] = owner[spec.sdf->ParentLinkName()];
 
     // --- link poses and inertials ---
@@ -379,9 +404,18 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
         sdf::Errors errors = j.Axis(0)->ResolveXyz(axis_M, "__model__");
         if (!errors.empty()) throw SimError(where + ": cannot resolve its axis: " + errors.front().Message());
       }
-      if (!sdf_model.Static())
+      if (spec.type == physics::Joint::Type::kKinematic && !sdf_model.Static()) {
+        const Pose3d X_PC0 = Compose(Inverse(X_ML[j.ParentLinkName()]), X_ML[j.ChildLinkName()]);
+        const Vector3d axis_C = X_ML[j.ChildLinkName()].Rot().RotateVectorReverse(axis_M).Normalized();
+        // J_a = a^T J_cog a + m (|c|^2 - (c . a)^2): the child's inertia about the axis through its origin
+        const physics::Inertial& in = child->GetInertial();
+        const Eigen::Vector3d a = ode_convert::ToEigen(axis_C), c = in.CoG();
+        const double J_a = a.dot(in.MOI() * a) + in.Mass() * (c.squaredNorm() - c.dot(a) * c.dot(a));
+        joint->MakeKinematic(X_PC0, axis_C, J_a);
+      } else if (!sdf_model.Static()) {
         joint->CreateSolverJoint(world->SolverWorld(), X_WJ.Pos(), X_WM.Rot().RotateVector(axis_M), spec.lower,
                                  spec.upper);
+      }
       parent->AddChildJoint(joint);
       child->AddParentJoint(joint);
       model->AddJoint(joint);

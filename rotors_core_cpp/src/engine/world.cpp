@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "rotors_core/error.h"
+#include "rotors_core/physics/joint.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/plugin.h"
@@ -136,8 +137,10 @@ void World::Step(unsigned int steps) {
   for (unsigned int i = 0; i < steps; ++i) {
     common::UpdateInfo info{name_, sim_time_, WallNow() - wall_start_};
     events_.world_update_begin(info);
-    for (const auto& model : models_)
+    for (const auto& model : models_) {
       for (const auto& link : model->GetLinks()) link->RecordVelocityBeforeStep();
+      for (const auto& joint : model->KinematicJoints()) joint->ApplySpinMoment(dt);
+    }
     Collide();
     if (params_.quick_solver) {
       dWorldQuickStep(Ode(solver_world_), dt);
@@ -146,6 +149,8 @@ void World::Step(unsigned int steps) {
     }
     CollectContacts();
     dJointGroupEmpty(Ode(contact_group_));
+    for (const auto& model : models_)
+      for (const auto& joint : model->KinematicJoints()) joint->AdvanceKinematic(dt);
     for (const auto& model : models_)
       for (const auto& link : model->GetLinks()) {
         link->InvalidatePose();

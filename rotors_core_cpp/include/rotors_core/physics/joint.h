@@ -1,5 +1,13 @@
 // A joint between two links (gazebo::physics::Joint): revolute/continuous hinges and prismatic
 // sliders are solver joints; fixed and zero-range joints weld the child to the parent body.
+//
+// A kinematic joint (a revolute joint the model names in <kinematic_joint>, e.g. a rotor's) is no
+// solver joint: its child rides on the parent's rigid body (mass and inertia lumped at the joint's
+// zero position), its rate is what SetVelocity sets and its position integrates that rate. The
+// child's pose, angular velocity and collision geoms follow the joint. The child's spin momentum
+// h = J_a qdot a (J_a: its inertia about the axis) is carried by the body through the moment
+// M = -dh/dt = -(omega_B x h) - J_a qddot a (Euler's equation of a spinning rotor), so the body
+// feels the gyroscopic coupling that a separate solver body would give, without a solver joint.
 #pragma once
 
 #include <string>
@@ -12,7 +20,7 @@ namespace physics {
 
 class Joint {
  public:
-  enum class Type { kRevolute, kPrismatic, kWelded };
+  enum class Type { kRevolute, kPrismatic, kWelded, kKinematic };
 
   Joint(std::string name, Type type, LinkPtr parent, LinkPtr child);
   ~Joint();
@@ -39,7 +47,19 @@ class Joint {
   /// Adds a joint torque/force for the coming step [N m or N].
   void SetForce(unsigned int index, double effort);
 
+  bool IsKinematic() const { return type_ == Type::kKinematic; }
+
   // --- Engine side ---
+  /// Kinematic joint: X_PC0 is the child frame in the parent link frame at q = 0 (the joint
+  /// frame, as in URDF), axis_C the axis in the child frame, spin_inertia the child's inertia about
+  /// the axis through its origin [kg m^2]. The child must already ride on the parent's body.
+  void MakeKinematic(const Pose3d& X_PC0, const Vector3d& axis_C, double spin_inertia);
+  /// Kinematic: applies this step's spin moment to the body (before the solver step).
+  void ApplySpinMoment(double dt_s);
+  /// Kinematic: integrates the position over the step, moves the child and its geoms.
+  void AdvanceKinematic(double dt_s);
+  /// Kinematic: back to q = 0 at rest (model reset).
+  void ResetKinematic();
   void CreateSolverJoint(SolverWorldHandle* world, const Vector3d& anchor_W, const Vector3d& axis_W, double lower,
                          double upper);
 
@@ -49,6 +69,13 @@ class Joint {
   LinkPtr parent_, child_;
   Vector3d axis_C_{0, 0, 1};
   JointHandle* joint_ = nullptr;
+  // kinematic joints
+  void PlaceChild();
+  Pose3d X_PC0_;
+  double spin_inertia_ = 0.0;   ///< [kg m^2] J_a
+  double q_ = 0.0;              ///< [rad]
+  double qdot_ = 0.0;           ///< [rad/s]
+  double qdot_applied_ = 0.0;   ///< [rad/s] the rate of the last spin moment (for qddot)
 };
 
 }  // namespace physics

@@ -59,6 +59,13 @@ class Link {
   /// Attach to a rigid body; X_BL is the link frame in the body frame.
   void AttachToBody(BodyHandle* body, const Pose3d& X_BL, bool welded);
   void SetStaticPose(const Pose3d& X_WL) { X_WL_static_ = X_WL; }
+  /// A link on a kinematic joint moves on its body: new X_BL and its angular velocity relative to
+  /// the body [rad/s, link frame].
+  void MoveOnBody(const Pose3d& X_BL, const Vector3d& omega_rel_L) {
+    X_BL_ = X_BL;
+    omega_rel_L_ = omega_rel_L;
+    pose_valid_ = false;
+  }
   const Pose3d& PoseInBody() const { return X_BL_; }
   void AddParentJoint(const JointPtr& j) { parent_joints_.push_back(j); }
   void AddChildJoint(const JointPtr& j) { child_joints_.push_back(j); }
@@ -86,6 +93,7 @@ class Link {
   mutable Pose3d X_WL_cache_;
   mutable bool pose_valid_ = false;
   Vector3d v_W_prev_, omega_W_prev_, a_W_, alpha_W_;
+  Vector3d omega_rel_L_ = Vector3d::Zero;  ///< angular velocity relative to the body (kinematic joint)
   std::vector<JointPtr> parent_joints_, child_joints_;
 };
 

@@ -47,7 +47,9 @@ class Model {
   // --- Engine side ---
   void SetSDF(sdf::ElementPtr sdf) { sdf_ = std::move(sdf); }
   void AddLink(const LinkPtr& link) { links_.push_back(link); }
-  void AddJoint(const JointPtr& joint) { joints_.push_back(joint); }
+  void AddJoint(const JointPtr& joint);
+  /// Joints driven kinematically (see Joint); the world advances them every step.
+  const Joint_V& KinematicJoints() const { return kinematic_joints_; }
   void AddBody(BodyHandle* body, const Pose3d& X_MB) { bodies_.push_back({body, X_MB}); }
   /// Registers a collision geom; the solver keeps the returned GeomInfo as the geom's data.
   struct GeomInfo {
@@ -55,6 +57,7 @@ class Model {
     std::string scoped_name;  ///< "model::link::collision"
     SurfaceParams surface;
     std::shared_ptr<void> keep_alive;  ///< solver mesh/heightfield data the geom points into
+    Pose3d X_LG;                       ///< the geom in its link frame (geoms on a body)
   };
   GeomInfo* AddGeom(GeomHandle* geom, Link* link, const std::string& scoped_name, const SurfaceParams& surface = {});
   /// Collision geoms with their info (for whoever queries the world's geometry).
@@ -82,6 +85,7 @@ class Model {
   sdf::ElementPtr sdf_;
   Link_V links_;
   Joint_V joints_;
+  Joint_V kinematic_joints_;
   std::vector<BodyRecord> bodies_;
   std::vector<std::pair<GeomHandle*, std::unique_ptr<GeomInfo>>> geoms_;
   std::vector<geometry::Visual> visuals_;
