@@ -207,8 +207,9 @@ def estimator_cost_us() -> Dict:
     return {"imu_propagation_us": float(out[0]), "delayed_pose_update_us": float(out[1])}
 
 
-def swarm_launch(n: int) -> Path:
-    """A launch file with n fireflies on a grid, each with its own Lee controller, all in lockstep."""
+def swarm_launch(n: int, in_process: bool = False) -> Path:
+    """A launch file with n fireflies on a grid, each with its own Lee controller, all in lockstep;
+    in_process: the controllers run in the simulator's process."""
     names = [f"firefly{i + 1}" for i in range(n)]
     blocks = []
     for i, name in enumerate(names):
@@ -218,7 +219,8 @@ def swarm_launch(n: int) -> Path:
       <arg name="model" value="$(find rotors_description)/urdf/mav_generic_odometry_sensor.gazebo"/>
       <arg name="x" value="{(i % 5) * 2.0}"/><arg name="y" value="{(i // 5) * 2.0}"/>
     </include>
-    <node name="lee_position_controller_node" pkg="rotors_control" type="lee_position_controller_node">
+    <node name="lee_position_controller_node" pkg="rotors_control" type="lee_position_controller_node"
+          args="{'--in-simulator' if in_process else ''}">
       <rosparam command="load" file="$(find rotors_gazebo)/resource/lee_controller_firefly.yaml"/>
       <rosparam command="load" file="$(find rotors_gazebo)/resource/firefly.yaml"/>
       <remap from="odometry" to="odometry_sensor1/odometry"/>
@@ -234,7 +236,7 @@ def swarm_launch(n: int) -> Path:
   </include>
 {''.join(blocks)}</launch>
 """
-    path = OUT / f"swarm_{n}.launch"
+    path = OUT / f"swarm_{n}{'_in_process' if in_process else ''}.launch"
     path.write_text(text)
     return path
 
@@ -265,8 +267,8 @@ print((t() - s0) / (time.monotonic() - w0))
 """
 
 
-def swarm_rtf(n: int) -> float:
-    with Graph([str(swarm_launch(n))]) as g:
+def swarm_rtf(n: int, in_process: bool = False) -> float:
+    with Graph([str(swarm_launch(n, in_process))]) as g:
         return g.python(SWARM_WATCH, str(n))
 
 

@@ -52,6 +52,8 @@ Lockstep::Lockstep(ros::NodeHandle nh, const std::vector<LockstepParticipant>& p
   for (size_t i = 0; i < participants.size(); ++i) {
     Participant& p = participants_[i];
     p.topics = participants[i];
+    p.input_pub = PublicationCache(p.topics.input_topic);
+    p.answer_pub = PublicationCache(p.topics.answer_topic);
     p.sub = Subscribe(&p);
     ROS_INFO("[rotors_sim] lockstep (%s): each step waits for an answer on %s%s%s",
              options_.mode == LockstepOptions::Mode::kHold ? "hold" : "lenient", p.topics.answer_topic.c_str(),
@@ -101,7 +103,7 @@ size_t RemoteSubscribers(const std::string& topic) {
 void Lockstep::RefreshLocal(Participant* p) {
   // a hosted participant is set up within one callback on this thread: once its answer publication
   // exists here, its input subscription does too
-  const bool local = static_cast<bool>(ros::TopicManager::instance()->lookupPublication(p->topics.answer_topic));
+  const bool local = static_cast<bool>(p->answer_pub.Get());
   if (local == p->local) return;
   p->local = local;
   if (local) {
@@ -112,7 +114,7 @@ void Lockstep::RefreshLocal(Participant* p) {
 }
 
 bool Lockstep::LocalAnswered(Participant* p, const ros::Time& stamp) {
-  ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(p->topics.answer_topic);
+  const ros::PublicationPtr& pub = p->answer_pub.Get();
   if (!pub || pub->getSequence() == p->answer_seq) return false;
   p->answer_seq = pub->getSequence();
   p->answered = true;
@@ -122,7 +124,7 @@ bool Lockstep::LocalAnswered(Participant* p, const ros::Time& stamp) {
 }
 
 bool Lockstep::ConnectedNow(const Participant& p) const {
-  if (p.local) return static_cast<bool>(ros::TopicManager::instance()->lookupPublication(p.topics.answer_topic));
+  if (p.local) return p.answer_pub.Get() != nullptr;
   if (p.sub.getNumPublishers() == 0) return false;
   if (p.topics.input_topic.empty()) return true;
   // once present, a participant leaves through its answer topic; the input is checked on arrival
@@ -177,9 +179,9 @@ std::string Lockstep::HoldReason(double sim_time_s) {
   return reason;
 }
 
-uint32_t Lockstep::FlushInput(const Participant& p) {
-  if (p.topics.input_topic.empty()) return 0;
-  ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(p.topics.input_topic);
+uint32_t Lockstep::FlushInput(Participant* p) {
+  if (p->topics.input_topic.empty()) return 0;
+  const ros::PublicationPtr& pub = p->input_pub.Get();
   if (!pub) return 0;
   pub->processPublishQueue();  // numbers and sends queued messages now, in this thread
   return pub->getSequence();
@@ -187,9 +189,9 @@ uint32_t Lockstep::FlushInput(const Participant& p) {
 
 void Lockstep::BeforeStep() {
   for (auto& p : participants_) {
-    p.input_seq = FlushInput(p);
+    p.input_seq = FlushInput(&p);
     if (!p.local) continue;
-    ros::PublicationPtr answer = ros::TopicManager::instance()->lookupPublication(p.topics.answer_topic);
+    const ros::PublicationPtr& answer = p.answer_pub.Get();
     if (answer) p.answer_seq = answer->getSequence();
   }
 }
@@ -202,7 +204,7 @@ bool Lockstep::Required(const Participant& p) const {
 }
 
 bool Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop) {
-  for (auto& p : participants_) p.input_published = p.topics.input_topic.empty() || FlushInput(p) != p.input_seq;
+  for (auto& p : participants_) p.input_published = p.topics.input_topic.empty() || FlushInput(&p) != p.input_seq;
   const ros::WallTime start = ros::WallTime::now();
   ros::WallTime next_check = start + ros::WallDuration(options_.silence_timeout_s);
   ros::WallTime next_report = start + ros::WallDuration(options_.report_period_s);

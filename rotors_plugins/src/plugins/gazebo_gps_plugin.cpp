@@ -6,6 +6,7 @@
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/NavSatFix.h>
 
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -75,7 +76,7 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
   std::unique_ptr<GpsModel> model_;
   sensor_msgs::NavSatFix fix_;
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher gps_pub_, ground_speed_pub_;
+  rotors_sim::ListenedPublisher gps_pub_, ground_speed_pub_;  // no topic search per step
   rotors_sim::event::ConnectionPtr connection_;
 };
 

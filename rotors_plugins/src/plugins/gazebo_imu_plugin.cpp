@@ -7,6 +7,7 @@
 #include <rotors_comm/ImuBias.h>
 #include <sensor_msgs/Imu.h>
 
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
@@ -101,7 +102,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::World* world_ = nullptr;
   sensor_msgs::Imu msg_;
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher pub_, bias_pub_;
+  rotors_sim::ListenedPublisher pub_, bias_pub_;  // no topic search per step
   rotors_sim::event::ConnectionPtr connection_;
 };
 

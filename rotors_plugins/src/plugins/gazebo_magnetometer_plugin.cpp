@@ -4,6 +4,7 @@
 // world correctly (RotorS used N, E, D as x, y, z).
 #include <sensor_msgs/MagneticField.h>
 
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -55,7 +56,7 @@ class GazeboMagnetometerPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::World* world_ = nullptr;
   sensor_msgs::MagneticField msg_;
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher pub_;
+  rotors_sim::ListenedPublisher pub_;  // no topic search per step
   rotors_sim::event::ConnectionPtr connection_;
 };
 

@@ -4,6 +4,7 @@
 // scales the command the motor follows.
 #include <std_msgs/Float32.h>
 
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/joint.h"
@@ -119,7 +120,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
   rotors_sim::physics::LinkPtr link_, parent_link_;
   std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher speed_pub_;
+  rotors_sim::ListenedPublisher speed_pub_;  // no topic search per step
   rotors_sim::event::ConnectionPtr connection_;
 };
 

@@ -12,6 +12,7 @@
 #include <rotors_comm/MotorFailure.h>
 #include <rotors_comm/SetMotorFailure.h>
 
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
@@ -110,7 +111,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
   };
   std::vector<Announcement> pending_;  ///< faults set but not yet announced
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher pub_, failure_pub_;
+  rotors_sim::ListenedPublisher pub_, failure_pub_;  // no topic search per step
   ros::ServiceServer failure_srv_;
   rotors_sim::event::ConnectionPtr connection_;
 };

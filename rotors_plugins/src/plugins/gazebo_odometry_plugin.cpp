@@ -14,6 +14,7 @@
 #include <ros/package.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
@@ -219,7 +220,7 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher pose_pub_, pose_cov_pub_, position_pub_, transform_pub_, odometry_pub_;
+  rotors_sim::ListenedPublisher pose_pub_, pose_cov_pub_, position_pub_, transform_pub_, odometry_pub_;  // no topic search per step
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
   rotors_sim::event::ConnectionPtr connection_;
 };

@@ -3,6 +3,7 @@
 // plus N(0, pressureVariance).
 #include <sensor_msgs/FluidPressure.h>
 
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -50,7 +51,7 @@ class GazeboPressurePlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::World* world_ = nullptr;
   sensor_msgs::FluidPressure msg_;
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher pub_;
+  rotors_sim::ListenedPublisher pub_;  // no topic search per step
   rotors_sim::event::ConnectionPtr connection_;
 };
 

@@ -13,6 +13,7 @@
 
 #include <optional>
 
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/event.h"
@@ -158,7 +159,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::World* world_ = nullptr;
   std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
-  ros::Publisher force_pub_, speed_pub_;
+  rotors_sim::ListenedPublisher force_pub_, speed_pub_;  // no topic search per step
   ros::Subscriber speed_sub_;
   rotors_sim::event::ConnectionPtr connection_;
 };

@@ -33,6 +33,8 @@
 #include <ros/ros.h>
 #include <topic_tools/shape_shifter.h>
 
+#include "rotors_core/ros/listened_publisher.h"
+
 namespace rotors_sim {
 
 struct LockstepParticipant {
@@ -84,6 +86,8 @@ class Lockstep {
     bool gone = false;             ///< declared gone by a failed ping; present again once its node answers pings
     uint32_t input_seq = 0;        ///< input publication's sequence number before the step
     bool input_published = false;  ///< the last step published its input
+    mutable PublicationCache input_pub;   ///< the simulator's publication of its input
+    mutable PublicationCache answer_pub;  ///< its answer's publication in this process (a hosted nodelet)
     bool local = false;            ///< its answer is published in this process (a hosted nodelet)
     uint32_t answer_seq = 0;       ///< local: the answer publication's sequence number before the step
   };
@@ -93,7 +97,7 @@ class Lockstep {
   bool LocalAnswered(Participant* p, const ros::Time& stamp);
   /// Sends what the plugins published in the step (roscpp would do it in its poll thread) and
   /// returns the input publication's sequence number (0 when it does not exist yet).
-  static uint32_t FlushInput(const Participant& p);
+  static uint32_t FlushInput(Participant* p);
   void OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstPtr& msg);
   bool ConnectedNow(const Participant& p) const;
   bool UpdatePresence(Participant* p, double sim_time_s);
