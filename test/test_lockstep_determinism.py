@@ -7,9 +7,10 @@ from rosbags.rosbag1 import Reader
 from conftest import REPO, RosGraph, send_hover_pose, stop_launch, wait_sim_time
 
 
-def fly_once(ros: RosGraph, tag: str) -> Path:
+def fly_once(ros: RosGraph, tag: str, *launch_args: str) -> Path:
+    """Hovers at (0, 0, 1) for 6 s of sim time in lockstep; the bag it wrote."""
     proc = ros.start(["roslaunch", "-p", str(ros.port), str(REPO / "test/launch/lockstep_determinism.launch"),
-                      f"log_file:={tag}"], f"launch_{tag}")
+                      f"log_file:={tag}", *launch_args], f"launch_{tag}")
     try:
         ready = ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         assert ready, Path(proc.log_path).read_text()[-2000:]

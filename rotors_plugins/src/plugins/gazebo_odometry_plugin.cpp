@@ -4,8 +4,6 @@
 // unknownDelay is added as seconds, an empty queue is never read, and the seed can be set.
 #include <deque>
 
-#include <boost/make_shared.hpp>
-
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/PointStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
@@ -194,18 +192,17 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     if (transform_pub_.getNumSubscribers() > 0) transform_pub_.publish(tf);
     if (tf_) tf_->sendTransform(tf);
     if (odometry_pub_.getNumSubscribers() > 0) {
-      // a shared pointer: subscribers in this process (a controller nodelet, the bag) get it unserialized
-      auto msg = boost::make_shared<nav_msgs::Odometry>();
-      msg->header = header;
-      msg->child_frame_id = child_frame_;
-      msg->pose.pose = pose;
+      nav_msgs::Odometry msg;
+      msg.header = header;
+      msg.child_frame_id = child_frame_;
+      msg.pose.pose = pose;
       const auto pose_cov = noise_->PoseCovariance();
-      std::copy(pose_cov.begin(), pose_cov.end(), msg->pose.covariance.begin());
-      msg->twist.twist.linear = ToVector3Msg(m.v_S);  // body (child) frame, as RotorS
-      msg->twist.twist.angular = ToVector3Msg(m.omega_S);
+      std::copy(pose_cov.begin(), pose_cov.end(), msg.pose.covariance.begin());
+      msg.twist.twist.linear = ToVector3Msg(m.v_S);  // body (child) frame, as RotorS
+      msg.twist.twist.angular = ToVector3Msg(m.omega_S);
       const auto twist_cov = noise_->TwistCovariance();
-      std::copy(twist_cov.begin(), twist_cov.end(), msg->twist.covariance.begin());
-      odometry_pub_.publish(msg);
+      std::copy(twist_cov.begin(), twist_cov.end(), msg.twist.covariance.begin());
+      odometry_pub_.publish(msg);  // as a shared copy (ListenedPublisher): a controller nodelet gets it at once
     }
   }
 

@@ -4,11 +4,17 @@
 // simulator's time. PublicationCache keeps the publication itself (looked up again only when roscpp
 // drops it); ListenedPublisher is a ros::Publisher whose subscriber count costs no search and whose
 // publish() does nothing, without a search, when nobody listens (unless it latches).
+//
+// ListenedPublisher also publishes a shared copy of the message: roscpp hands a shared pointer to
+// subscribers in this process at once (the bag plugin, a controller nodelet), while a message
+// given by value reaches them only when roscpp's poll thread gets to it, i.e. some steps later when
+// the simulation runs fast: what they receive, and when, would depend on thread timing.
 #pragma once
 
 #include <string>
 #include <utility>
 
+#include <boost/make_shared.hpp>
 #include <ros/publication.h>
 #include <ros/ros.h>
 #include <ros/topic_manager.h>
@@ -43,6 +49,10 @@ class ListenedPublisher {
   }
   template <class M>
   void publish(const M& message) {
+    if (publisher_.isLatched() || getNumSubscribers() > 0) publisher_.publish(boost::make_shared<M>(message));
+  }
+  template <class M>
+  void publish(const boost::shared_ptr<M>& message) {
     if (publisher_.isLatched() || getNumSubscribers() > 0) publisher_.publish(message);
   }
   std::string getTopic() const { return publisher_.getTopic(); }
