@@ -83,16 +83,24 @@ def rotorpy_hover_wall_s() -> float:
     return float(out.split()[-1])
 
 
+# Sim seconds per wall second between two sim times (default 5 and 25 s), from one /clock
+# subscription read at 200 Hz wall (no busy loop, no re-subscribing: fast runs stay measurable).
 CLOCK_WATCH = """
 import sys, time, rospy
 from rosgraph_msgs.msg import Clock
 rospy.init_node('bench_clock', anonymous=True, disable_signals=True)
-t = lambda: rospy.wait_for_message('/clock', Clock, timeout=30).clock.to_sec()
+sim = {'t': -1.0}
+clock = rospy.Subscriber('/clock', Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
+def wait_until(t_sim, limit_s=300.0):
+    deadline = time.monotonic() + limit_s
+    while sim['t'] < t_sim:
+        if time.monotonic() > deadline: sys.exit(f'sim time stuck at {sim["t"]:.2f} s, waiting for {t_sim} s')
+        time.sleep(0.005)
+    return time.monotonic(), sim['t']
 begin, end = (float(a) for a in sys.argv[1:3]) if len(sys.argv) > 2 else (5.0, 25.0)
-while t() < begin: pass
-w0, s0 = time.monotonic(), t()
-while t() < end: pass
-print((t() - s0) / (time.monotonic() - w0))
+w0, s0 = wait_until(begin)
+w1, s1 = wait_until(end)
+print((s1 - s0) / (w1 - w0))
 """
 
 
@@ -157,10 +165,12 @@ class Graph:
                 proc.wait(timeout=30)
 
 
-def closed_loop(lockstep: bool) -> Dict:
+def closed_loop(lockstep: bool, in_process: bool = False) -> Dict:
+    """The hovering example as fast as possible (sim + Lee controller + hovering_example +
+    robot_state_publisher); the controller in its own process or in the simulator's."""
     with Graph(["rotors_gazebo", "mav_hovering_example.launch", "gui:=false", "real_time_factor:=0",
-                f"lockstep:={'true' if lockstep else 'false'}"]) as g:
-        rtf = g.python(CLOCK_WATCH)
+                f"lockstep:={'true' if lockstep else 'false'}", f"in_process:={'true' if in_process else 'false'}"]) as g:
+        rtf = g.python(CLOCK_WATCH, "5", "605" if in_process else "105")
         info = sh(["rosnode", "info", "/gazebo"], env=g.env)
         pid = next(line.split()[1] for line in info.splitlines() if line.startswith("Pid:"))
         rss_kb = int(next(line for line in Path(f"/proc/{pid}/status").read_text().splitlines()
@@ -258,18 +268,74 @@ for i, p in enumerate(pubs):
     m = PoseStamped(); m.pose.position.x = (i % 5) * 2.0; m.pose.position.y = (i // 5) * 2.0
     m.pose.position.z = 1.0; m.pose.orientation.w = 1.0; p.publish(m)
 time.sleep(2.0)
+sim = {'t': -1.0}
+clock = rospy.Subscriber('/clock', Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
 rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-t = lambda: rospy.wait_for_message('/clock', Clock, timeout=30).clock.to_sec()
-while t() < 2.0: pass
-w0, s0 = time.monotonic(), t()
-while t() < 12.0: pass
-print((t() - s0) / (time.monotonic() - w0))
+def wait_until(t_sim, limit_s=300.0):
+    deadline = time.monotonic() + limit_s
+    while sim['t'] < t_sim:
+        if time.monotonic() > deadline: sys.exit(f'sim time stuck at {sim["t"]:.2f} s, waiting for {t_sim} s')
+        time.sleep(0.005)
+    return time.monotonic(), sim['t']
+w0, s0 = wait_until(2.0)
+w1, s1 = wait_until(float(sys.argv[2]))
+print((s1 - s0) / (w1 - w0))
 """
 
 
+AIRBORNE_WATCH = """
+import sys, time, threading, rospy
+from nav_msgs.msg import Odometry
+rospy.init_node('bench_airborne', anonymous=True, disable_signals=True)
+up = threading.Event()
+seen = {}
+def on_odometry(m):
+    if m.pose.pose.position.z > 0.2 and not up.is_set():
+        seen.update(wall=time.monotonic(), sim=m.header.stamp.to_sec())
+        up.set()
+sub = rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, on_odometry, queue_size=1)
+print('ready', flush=True)
+print(seen['wall'], seen['sim']) if up.wait(120) else print('nan nan')
+sys.stdout.flush()
+"""
+
+
+def launch_to_airborne(in_process: bool) -> Dict:
+    """Wall seconds from starting `roslaunch rotors_gazebo mav_hovering_example.launch` (paced at real
+    time, as users run it; the master already up) until the firefly's ground truth is 0.2 m above
+    the ground; the example itself waits 5 s of sim time before it sends the set point."""
+    env = dict(os.environ, ROS_HOME=str(OUT / "ros"))
+    env.pop("DISPLAY", None)
+    master, port = start_own_master(env, OUT / "ros" / "rosmaster.log")
+    env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
+    watch = subprocess.Popen([sys.executable, "-c", AIRBORNE_WATCH], env=env, stdout=subprocess.PIPE, text=True,
+                             stderr=subprocess.DEVNULL, start_new_session=True)
+    launch = None
+    try:
+        assert watch.stdout.readline().strip() == "ready"
+        t0 = time.monotonic()
+        launch = subprocess.Popen(["roslaunch", "-p", str(port), "rotors_gazebo", "mav_hovering_example.launch",
+                                   "gui:=false", f"in_process:={'true' if in_process else 'false'}"], env=env,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+        wall, sim = (float(x) for x in watch.stdout.readline().split())
+        return {"wall_s": wall - t0, "sim_s": sim}
+    finally:
+        for proc in (watch, launch, master):
+            if proc and proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGINT)
+                try:
+                    proc.wait(timeout=30)
+                except subprocess.TimeoutExpired:
+                    os.killpg(proc.pid, signal.SIGKILL)
+                    proc.wait()
+
+
 def swarm_rtf(n: int, in_process: bool = False) -> float:
+    """Sim seconds per wall second from 2 s of sim time on: 10 s, or in process (fast) 60 s and
+    300 s for one firefly, so that the window lasts long enough on the wall clock to be measured."""
+    end = 2.0 + ((300.0 if n == 1 else 60.0) if in_process else 10.0)
     with Graph([str(swarm_launch(n, in_process))]) as g:
-        return g.python(SWARM_WATCH, str(n))
+        return g.python(SWARM_WATCH, str(n), str(end))
 
 
 def sweep_flights_per_hour(workers: int) -> Dict:

@@ -5,7 +5,7 @@
 namespace rotors_sim {
 
 NodeletHost::NodeletHost(ros::NodeHandle manager_nh, ros::CallbackQueueInterface* queue)
-    : queue_(queue), class_loader_("nodelet", "nodelet::Nodelet") {
+    : queue_(queue) {
   services_.push_back(manager_nh.advertiseService("load_nodelet", &NodeletHost::OnLoad, this));
   services_.push_back(manager_nh.advertiseService("unload_nodelet", &NodeletHost::OnUnload, this));
   services_.push_back(manager_nh.advertiseService("list", &NodeletHost::OnList, this));
@@ -23,7 +23,8 @@ std::string NodeletHost::Load(const std::string& name, const std::string& type, 
   if (nodelets_.count(name)) return "a nodelet named " + name + " is loaded already";
   boost::shared_ptr<nodelet::Nodelet> instance;
   try {
-    instance = class_loader_.createInstance(type);
+    if (!class_loader_) class_loader_ = std::make_unique<pluginlib::ClassLoader<nodelet::Nodelet>>("nodelet", "nodelet::Nodelet");
+    instance = class_loader_->createInstance(type);
   } catch (const pluginlib::PluginlibException& e) {
     return "no nodelet type '" + type + "' (" + std::string(e.what()).substr(0, 200) +
            "); `rospack plugins --attrib=plugin nodelet` lists the packages that export some";
