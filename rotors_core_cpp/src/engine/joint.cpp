@@ -41,7 +41,7 @@ void Joint::CreateSolverJoint(SolverWorldHandle* world, const Vector3d& anchor_W
   }
 }
 
-Vector3d Joint::GlobalAxis(unsigned int /*index*/) const { return child_->WorldPose().Rot().RotateVector(axis_C_); }
+Vector3d Joint::GlobalAxis(unsigned int /*index*/) const { return Rotate(child_->WorldPose().Rot(), axis_C_); }
 
 double Joint::Position(unsigned int /*index*/) const {
   if (type_ == Type::kKinematic) return q_;

@@ -1,5 +1,7 @@
 #include "rotors_core/physics/link.h"
 
+#include "rotors_core/physics/model.h"
+
 #include "ode_convert.h"
 #include "ode_handles.h"
 #include "pose_math.h"
@@ -30,7 +32,7 @@ Pose3d Link::WorldPose() const {
 
 Pose3d Link::WorldCoGPose() const {
   const Pose3d X_WL = WorldPose();
-  return {X_WL.Pos() + X_WL.Rot().RotateVector(ode_convert::FromEigen(inertial_.CoG())), X_WL.Rot()};
+  return {X_WL.Pos() + Rotate(X_WL.Rot(), ode_convert::FromEigen(inertial_.CoG())), X_WL.Rot()};
 }
 
 namespace {
@@ -48,25 +50,39 @@ Vector3d Link::WorldCoGLinearVel() const {
   return body_ ? PointVelocity(Ode(body_), WorldCoGPose().Pos()) : Vector3d::Zero;
 }
 
-Vector3d Link::RelativeLinearVel() const { return WorldPose().Rot().RotateVectorReverse(WorldLinearVel()); }
+Vector3d Link::RelativeLinearVel() const { return RotateReverse(WorldPose().Rot(), WorldLinearVel()); }
 
 Vector3d Link::WorldAngularVel() const {
   if (!body_) return Vector3d::Zero;
   const Vector3d omega_B_W = Vec(dBodyGetAngularVel(Ode(body_)));
   if (omega_rel_L_ == Vector3d::Zero) return omega_B_W;
-  return omega_B_W + WorldPose().Rot().RotateVector(omega_rel_L_);
+  return omega_B_W + Rotate(WorldPose().Rot(), omega_rel_L_);
 }
 
-Vector3d Link::RelativeAngularVel() const { return WorldPose().Rot().RotateVectorReverse(WorldAngularVel()); }
+Vector3d Link::RelativeAngularVel() const { return RotateReverse(WorldPose().Rot(), WorldAngularVel()); }
 
-Vector3d Link::WorldLinearAccel() const { return a_W_; }
-Vector3d Link::RelativeLinearAccel() const { return WorldPose().Rot().RotateVectorReverse(a_W_); }
-Vector3d Link::WorldAngularAccel() const { return alpha_W_; }
-Vector3d Link::RelativeAngularAccel() const { return WorldPose().Rot().RotateVectorReverse(alpha_W_); }
+// a = (v_k - v_{k-1}) / dt of the link origin, from the body's state before the step (kept by the
+// model): includes contact and joint constraint forces, as an IMU feels them. Computed when asked
+// (an IMU asks for one link; differencing every link every step cost a quarter of a step).
+Vector3d Link::WorldLinearAccel() const {
+  const Model::BodyStateBefore* before = body_ ? model_->StateBeforeStep(body_) : nullptr;
+  if (!before) return Vector3d::Zero;
+  // the link origin's velocity before the step: v_B + omega x R_WB r_B, with the body's state then
+  const Vector3d r_B = X_BL_.Pos();
+  const Vector3d v_before = before->v_W + before->omega_W.Cross(Rotate(before->q_WB, r_B));
+  return (WorldLinearVel() - v_before) / before->dt_s;
+}
+Vector3d Link::RelativeLinearAccel() const { return RotateReverse(WorldPose().Rot(), WorldLinearAccel()); }
+Vector3d Link::WorldAngularAccel() const {  ///< of the body it rides on
+  const Model::BodyStateBefore* before = body_ ? model_->StateBeforeStep(body_) : nullptr;
+  if (!before) return Vector3d::Zero;
+  return (Vec(dBodyGetAngularVel(Ode(body_))) - before->omega_W) / before->dt_s;
+}
+Vector3d Link::RelativeAngularAccel() const { return RotateReverse(WorldPose().Rot(), WorldAngularAccel()); }
 
 void Link::AddForce(const Vector3d& force_W) { AddForceAtWorldPosition(force_W, WorldCoGPose().Pos()); }
 
-void Link::AddRelativeForce(const Vector3d& force_L) { AddForce(WorldPose().Rot().RotateVector(force_L)); }
+void Link::AddRelativeForce(const Vector3d& force_L) { AddForce(Rotate(WorldPose().Rot(), force_L)); }
 
 void Link::AddForceAtWorldPosition(const Vector3d& force_W, const Vector3d& p_W) {
   if (!body_) return;
@@ -75,7 +91,7 @@ void Link::AddForceAtWorldPosition(const Vector3d& force_W, const Vector3d& p_W)
 
 void Link::AddForceAtRelativePosition(const Vector3d& force_W, const Vector3d& p_L) {
   const Pose3d X_WL = WorldPose();
-  AddForceAtWorldPosition(force_W, X_WL.Pos() + X_WL.Rot().RotateVector(p_L));
+  AddForceAtWorldPosition(force_W, X_WL.Pos() + Rotate(X_WL.Rot(), p_L));
 }
 
 void Link::AddTorque(const Vector3d& torque_W) {
@@ -83,24 +99,7 @@ void Link::AddTorque(const Vector3d& torque_W) {
   dBodyAddTorque(Ode(body_), torque_W.X(), torque_W.Y(), torque_W.Z());
 }
 
-void Link::AddRelativeTorque(const Vector3d& torque_L) { AddTorque(WorldPose().Rot().RotateVector(torque_L)); }
-
-void Link::RecordVelocityBeforeStep() {
-  v_W_prev_ = WorldLinearVel();
-  omega_W_prev_ = WorldAngularVel();
-}
-
-void Link::UpdateAccelerationAfterStep(double dt_s) {
-  if (!body_ || dt_s <= 0.0) return;
-  // a = (v_k - v_{k-1}) / dt : includes contact and joint constraint forces, as an IMU feels them
-  a_W_ = (WorldLinearVel() - v_W_prev_) / dt_s;
-  alpha_W_ = (WorldAngularVel() - omega_W_prev_) / dt_s;
-}
-
-void Link::ClearAcceleration() {
-  a_W_ = Vector3d::Zero;
-  alpha_W_ = Vector3d::Zero;
-}
+void Link::AddRelativeTorque(const Vector3d& torque_L) { AddTorque(Rotate(WorldPose().Rot(), torque_L)); }
 
 void Link::SetWorldAngularVel(const Vector3d& omega_W) {
   if (!body_) return;

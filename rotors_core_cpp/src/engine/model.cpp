@@ -61,6 +61,22 @@ Vector3d Model::WorldAngularVel() const {
   return link ? link->WorldAngularVel() : Vector3d::Zero;
 }
 
+void Model::RecordBodiesBeforeStep(double dt_s) {
+  for (auto& b : bodies_) {
+    dBodyID body = Ode(b.body);
+    b.before.v_W = ode_convert::Vec(dBodyGetLinearVel(body));
+    b.before.omega_W = ode_convert::Vec(dBodyGetAngularVel(body));
+    b.before.q_WB = ode_convert::Quat(dBodyGetQuaternion(body));
+    b.before.dt_s = dt_s;
+  }
+}
+
+const Model::BodyStateBefore* Model::StateBeforeStep(const BodyHandle* body) const {
+  for (const auto& b : bodies_)
+    if (b.body == body) return b.before.dt_s > 0.0 ? &b.before : nullptr;
+  return nullptr;
+}
+
 void Model::AddJoint(const JointPtr& joint) {
   joints_.push_back(joint);
   if (joint->IsKinematic()) kinematic_joints_.push_back(joint);
@@ -74,10 +90,8 @@ void Model::SetWorldPose(const Pose3d& X_WM) {
     dBodySetAngularVel(Ode(b.body), 0, 0, 0);
     dBodyEnable(Ode(b.body));
   }
-  for (const auto& link : links_) {
-    link->InvalidatePose();
-    link->ClearAcceleration();
-  }
+  for (auto& b : bodies_) b.before.dt_s = 0.0;  // at rest: no acceleration until the next step
+  for (const auto& link : links_) link->InvalidatePose();
 }
 
 Model::GeomInfo* Model::AddGeom(GeomHandle* geom, Link* link, const std::string& scoped_name,

@@ -138,7 +138,7 @@ void World::Step(unsigned int steps) {
     common::UpdateInfo info{name_, sim_time_, WallNow() - wall_start_};
     events_.world_update_begin(info);
     for (const auto& model : models_) {
-      for (const auto& link : model->GetLinks()) link->RecordVelocityBeforeStep();
+      model->RecordBodiesBeforeStep(dt);
       for (const auto& joint : model->KinematicJoints()) joint->ApplySpinMoment(dt);
     }
     Collide();
@@ -152,10 +152,7 @@ void World::Step(unsigned int steps) {
     for (const auto& model : models_)
       for (const auto& joint : model->KinematicJoints()) joint->AdvanceKinematic(dt);
     for (const auto& model : models_)
-      for (const auto& link : model->GetLinks()) {
-        link->InvalidatePose();
-        link->UpdateAccelerationAfterStep(dt);
-      }
+      for (const auto& link : model->GetLinks()) link->InvalidatePose();
     sim_time_ = sim_time_ + dt_time;
     ++iterations_;
     events_.world_update_end();

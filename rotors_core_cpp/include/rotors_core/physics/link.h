@@ -32,9 +32,9 @@ class Link {
   Vector3d RelativeLinearVel() const;     ///< [m/s] link origin, link frame
   Vector3d WorldAngularVel() const;       ///< [rad/s] world frame
   Vector3d RelativeAngularVel() const;    ///< [rad/s] link frame
-  Vector3d WorldLinearAccel() const;      ///< [m/s^2] link origin, world frame (from the last step)
+  Vector3d WorldLinearAccel() const;      ///< [m/s^2] link origin, world frame (over the last step)
   Vector3d RelativeLinearAccel() const;   ///< [m/s^2] link origin, link frame
-  Vector3d WorldAngularAccel() const;     ///< [rad/s^2] world frame
+  Vector3d WorldAngularAccel() const;     ///< [rad/s^2] world frame, of the body the link rides on
   Vector3d RelativeAngularAccel() const;  ///< [rad/s^2] link frame
 
   // --- Forces for the coming step (ignored on static links) ---
@@ -73,10 +73,6 @@ class Link {
     parent_joints_.clear();
     child_joints_.clear();
   }
-  /// Called by the world before and after each step to difference velocities.
-  void RecordVelocityBeforeStep();
-  void UpdateAccelerationAfterStep(double dt_s);
-  void ClearAcceleration();
   /// The body moved (a step, a reset): the cached world pose is stale.
   void InvalidatePose() { pose_valid_ = false; }
 
@@ -92,7 +88,6 @@ class Link {
   // computed once after each change of the body's pose.
   mutable Pose3d X_WL_cache_;
   mutable bool pose_valid_ = false;
-  Vector3d v_W_prev_, omega_W_prev_, a_W_, alpha_W_;
   Vector3d omega_rel_L_ = Vector3d::Zero;  ///< angular velocity relative to the body (kinematic joint)
   std::vector<JointPtr> parent_joints_, child_joints_;
 };

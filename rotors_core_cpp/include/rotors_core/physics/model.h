@@ -50,7 +50,17 @@ class Model {
   void AddJoint(const JointPtr& joint);
   /// Joints driven kinematically (see Joint); the world advances them every step.
   const Joint_V& KinematicJoints() const { return kinematic_joints_; }
-  void AddBody(BodyHandle* body, const Pose3d& X_MB) { bodies_.push_back({body, X_MB}); }
+  void AddBody(BodyHandle* body, const Pose3d& X_MB) { bodies_.push_back({body, X_MB, {}}); }
+  /// A body's state before the last step (links difference their velocities with it).
+  struct BodyStateBefore {
+    Vector3d v_W, omega_W;  ///< [m/s] of the body origin (its CoG), [rad/s]
+    Quaterniond q_WB;
+    double dt_s = 0.0;  ///< the step; 0: no step since spawn or reset
+  };
+  /// Called by the world right before each step.
+  void RecordBodiesBeforeStep(double dt_s);
+  /// nullptr when the body has not stepped since spawn or the last reset.
+  const BodyStateBefore* StateBeforeStep(const BodyHandle* body) const;
   /// Registers a collision geom; the solver keeps the returned GeomInfo as the geom's data.
   struct GeomInfo {
     Link* link;
@@ -78,6 +88,7 @@ class Model {
   struct BodyRecord {
     BodyHandle* body;
     Pose3d X_MB;  ///< body frame in the model frame at spawn
+    BodyStateBefore before;
   };
   std::string name_;
   World* world_;
