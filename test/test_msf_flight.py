@@ -99,6 +99,25 @@ def test_firefly_hovers_on_the_estimate_and_the_filter_is_consistent(ros: RosGra
     assert rows[1][0] == bag.name and float(rows[1][1]) < 0.1 and float(rows[1][4]) < 0.03, out.stdout
 
 
+def test_estimator_and_controller_in_the_simulators_process(ros: RosGraph):
+    """in_process:=true: the estimator (nodelet's load command) and the Lee controller (--in-simulator)
+    run inside the simulator; the same hover on the estimate and a consistent filter."""
+    bag, topics, _, log, _ = fly_msf(ros, 46.0, "in_process:=true")
+    assert "/firefly/msf (msf_updates/PoseSensorNodelet) runs in the simulator's process" in log, log[-3000:]
+    assert "(rotors_control/LeePositionControllerNodelet) runs in the simulator's process" in log
+    assert "/firefly/msf_core/odometry" in topics and "Initialized scale" in log
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
+    wp = data.waypoints[0]
+    assert np.allclose(wp.position, [0, 0, 1]) and 10.0 <= wp.t < 10.5
+    rms = rms_error(data.position.window(35.0, 45.0), wp.position + STATIC_OFFSET)
+    r = evaluate_estimator(bag, "firefly", begin=INIT_TIME + 5.0, end=INIT_TIME + 30.0)
+    print(f"in process: hover RMS beyond the static offset {rms:.3f} m; {r}")
+    assert rms <= 0.05
+    assert r.position_rms < 0.03 and r.attitude_rms_deg < 1.0
+    assert NEES_BOUNDS_95[0] <= r.nees_mean <= NEES_BOUNDS_95[1], r.nees_mean
+    assert r.nees_fraction_inside_95 >= 0.85, r.nees_fraction_inside_95
+
+
 def test_estimator_survives_a_pose_outage_and_reconverges(ros: RosGraph, tmp_path: Path):
     # outage map: dark for 0.6 m <= x < 1.4 m (0.1 m per pixel, centred on the origin)
     image = np.full((100, 100), 255, dtype=np.uint8)
