@@ -185,7 +185,7 @@ SpinningRotorRun SpinRotorFor(bool kinematic, double seconds, bool hold_rate = t
     return Eigen::Vector3d(R * J * R.inverse() * omega + J_a * qdot * a_W);
   };
   joint->SetVelocity(0, qdot);
-  g.world->Step(1);  // the rotor spins up (a kinematic joint's reaction turns the body a little)
+  g.world->Step(1);                       // the rotor spins up (a kinematic joint's reaction turns the body a little)
   base->SetWorldAngularVel({0.5, 0, 0});  // the initial condition, by fiat
   joint->SetVelocity(0, qdot);            // a hinged rotor body follows its parent's new rate
   SpinningRotorRun run;

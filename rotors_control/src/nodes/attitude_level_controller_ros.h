@@ -33,8 +33,8 @@ class AttitudeLevelControllerRos {
     subs_.push_back(nh.subscribe("command/roll_pitch_yawrate_thrust", 1, &AttitudeLevelControllerRos::OnRpyt, this));
     subs_.push_back(nh.subscribe("command/attitude_thrust", 1, &AttitudeLevelControllerRos::OnAttitude, this));
     subs_.push_back(nh.subscribe("command/rate_thrust", 1, &AttitudeLevelControllerRos::OnRate, this));
-    subs_.push_back(nh.subscribe("odometry", 1, &AttitudeLevelControllerRos::OnOdometry, this,
-                                 ros::TransportHints().tcpNoDelay()));
+    subs_.push_back(
+        nh.subscribe("odometry", 1, &AttitudeLevelControllerRos::OnOdometry, this, ros::TransportHints().tcpNoDelay()));
   }
 
  private:

@@ -4,5 +4,5 @@
 
 int main(int argc, char** argv) {
   return rotors_control::RunControllerNode<rotors_control::LeePositionControllerRos>(argc, argv,
-                                                                                      "lee_position_controller_node");
+                                                                                     "lee_position_controller_node");
 }

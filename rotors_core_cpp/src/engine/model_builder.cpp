@@ -86,7 +86,8 @@ std::set<std::string> KinematicJointNames(const sdf::Model& sdf_model, const std
     const std::string name = k->Get<std::string>();  // the element's text
     const sdf::Joint* joint = sdf_model.JointByName(name);
     if (!joint)
-      throw SimError("model '" + model_name + "': <kinematic_joint>" + name + "</kinematic_joint> names no joint of it");
+      throw SimError("model '" + model_name + "': <kinematic_joint>" + name +
+                     "</kinematic_joint> names no joint of it");
     if (joint->Type() != sdf::JointType::CONTINUOUS && joint->Type() != sdf::JointType::REVOLUTE)
       throw SimError("model '" + model_name + "': <kinematic_joint> " + name +
                      " is not a revolute or continuous joint (only those can be driven kinematically)");

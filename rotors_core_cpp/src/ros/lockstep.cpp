@@ -69,7 +69,7 @@ ros::Subscriber Lockstep::Subscribe(Participant* p) {
 
 void Lockstep::Resubscribe() {
   for (auto& p : participants_) {
-    if (p.local) continue;  // answers are counted, not subscribed
+    if (p.local) continue;                  // answers are counted, not subscribed
     ros::Subscriber fresh = Subscribe(&p);  // appended behind the plugins' subscriptions
     p.sub.shutdown();
     p.sub = fresh;
@@ -198,8 +198,7 @@ void Lockstep::BeforeStep() {
 
 bool Lockstep::Required(const Participant& p) const {
   if (!p.input_published) return false;
-  if (options_.mode == LockstepOptions::Mode::kLenient)
-    return !p.muted && (p.local || p.sub.getNumPublishers() > 0);
+  if (options_.mode == LockstepOptions::Mode::kLenient) return !p.muted && (p.local || p.sub.getNumPublishers() > 0);
   return p.present && !p.warming_up;
 }
 

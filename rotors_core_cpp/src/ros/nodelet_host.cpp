@@ -4,8 +4,7 @@
 
 namespace rotors_sim {
 
-NodeletHost::NodeletHost(ros::NodeHandle manager_nh, ros::CallbackQueueInterface* queue)
-    : queue_(queue) {
+NodeletHost::NodeletHost(ros::NodeHandle manager_nh, ros::CallbackQueueInterface* queue) : queue_(queue) {
   services_.push_back(manager_nh.advertiseService("load_nodelet", &NodeletHost::OnLoad, this));
   services_.push_back(manager_nh.advertiseService("unload_nodelet", &NodeletHost::OnUnload, this));
   services_.push_back(manager_nh.advertiseService("list", &NodeletHost::OnList, this));
@@ -19,11 +18,13 @@ NodeletHost::~NodeletHost() {
 
 std::string NodeletHost::Load(const std::string& name, const std::string& type, const nodelet::M_string& remappings,
                               const nodelet::V_string& argv) {
-  if (name.empty() || name[0] != '/') return "the name '" + name + "' is not a full node name (e.g. /firefly/controller)";
+  if (name.empty() || name[0] != '/')
+    return "the name '" + name + "' is not a full node name (e.g. /firefly/controller)";
   if (nodelets_.count(name)) return "a nodelet named " + name + " is loaded already";
   boost::shared_ptr<nodelet::Nodelet> instance;
   try {
-    if (!class_loader_) class_loader_ = std::make_unique<pluginlib::ClassLoader<nodelet::Nodelet>>("nodelet", "nodelet::Nodelet");
+    if (!class_loader_)
+      class_loader_ = std::make_unique<pluginlib::ClassLoader<nodelet::Nodelet>>("nodelet", "nodelet::Nodelet");
     instance = class_loader_->createInstance(type);
   } catch (const pluginlib::PluginlibException& e) {
     return "no nodelet type '" + type + "' (" + std::string(e.what()).substr(0, 200) +
@@ -63,8 +64,7 @@ bool NodeletHost::OnLoad(nodelet::NodeletLoad::Request& req, nodelet::NodeletLoa
     ROS_ERROR("[rotors_sim] load_nodelet %s (%s) refused: %s", req.name.c_str(), req.type.c_str(), why.c_str());
     return true;
   }
-  ROS_INFO("[rotors_sim] %s (%s) runs in the simulator's process, on its thread%s", req.name.c_str(),
-           req.type.c_str(),
+  ROS_INFO("[rotors_sim] %s (%s) runs in the simulator's process, on its thread%s", req.name.c_str(), req.type.c_str(),
            req.bond_id.empty() ? "" : " (no bond is kept: it stays loaded until unload_nodelet or the end)");
   return true;
 }

@@ -23,10 +23,7 @@ volatile std::sig_atomic_t g_stop_requested = 0;
 void SimServer::RequestStop() { g_stop_requested = 1; }
 
 SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimServerOptions& options)
-    : nh_(nh),
-      private_nh_(private_nh),
-      user_paused_(options.paused),
-      clock_limit_(options.clock_max_wall_rate_hz) {
+    : nh_(nh), private_nh_(private_nh), user_paused_(options.paused), clock_limit_(options.clock_max_wall_rate_hz) {
   WorldLoadOptions load;
   // RotorS' worlds load its ROS bridge plugin; here every plugin talks ROS itself
   load.skipped_plugins["librotors_gazebo_ros_interface_plugin.so"] = "not needed, plugins publish on ROS directly";

@@ -76,7 +76,8 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
   std::unique_ptr<GpsModel> model_;
   sensor_msgs::NavSatFix fix_;
   std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher gps_pub_, ground_speed_pub_;  // no topic search per step
+  // ListenedPublisher: no search through every topic per step
+  rotors_sim::ListenedPublisher gps_pub_, ground_speed_pub_;
   rotors_sim::event::ConnectionPtr connection_;
 };
 

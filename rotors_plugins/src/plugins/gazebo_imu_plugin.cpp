@@ -102,7 +102,8 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::World* world_ = nullptr;
   sensor_msgs::Imu msg_;
   std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher pub_, bias_pub_;  // no topic search per step
+  // ListenedPublisher: no search through every topic per step
+  rotors_sim::ListenedPublisher pub_, bias_pub_;
   rotors_sim::event::ConnectionPtr connection_;
 };
 

@@ -120,7 +120,8 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
   rotors_sim::physics::LinkPtr link_, parent_link_;
   std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher speed_pub_;  // no topic search per step
+  // ListenedPublisher: no search through every topic per step
+  rotors_sim::ListenedPublisher speed_pub_;
   rotors_sim::event::ConnectionPtr connection_;
 };
 

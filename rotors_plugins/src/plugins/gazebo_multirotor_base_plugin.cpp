@@ -111,7 +111,8 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
   };
   std::vector<Announcement> pending_;  ///< faults set but not yet announced
   std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher pub_, failure_pub_;  // no topic search per step
+  // ListenedPublisher: no search through every topic per step
+  rotors_sim::ListenedPublisher pub_, failure_pub_;
   ros::ServiceServer failure_srv_;
   rotors_sim::event::ConnectionPtr connection_;
 };

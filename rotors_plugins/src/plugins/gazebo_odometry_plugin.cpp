@@ -217,7 +217,8 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher pose_pub_, pose_cov_pub_, position_pub_, transform_pub_, odometry_pub_;  // no topic search per step
+  // ListenedPublisher: no search through every topic per step
+  rotors_sim::ListenedPublisher pose_pub_, pose_cov_pub_, position_pub_, transform_pub_, odometry_pub_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
   rotors_sim::event::ConnectionPtr connection_;
 };

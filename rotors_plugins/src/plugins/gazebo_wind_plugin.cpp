@@ -159,7 +159,8 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
   rotors_sim::physics::World* world_ = nullptr;
   std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher force_pub_, speed_pub_;  // no topic search per step
+  // ListenedPublisher: no search through every topic per step
+  rotors_sim::ListenedPublisher force_pub_, speed_pub_;
   ros::Subscriber speed_sub_;
   rotors_sim::event::ConnectionPtr connection_;
 };

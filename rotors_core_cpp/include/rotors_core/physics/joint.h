@@ -72,10 +72,10 @@ class Joint {
   // kinematic joints
   void PlaceChild();
   Pose3d X_PC0_;
-  double spin_inertia_ = 0.0;   ///< [kg m^2] J_a
-  double q_ = 0.0;              ///< [rad]
-  double qdot_ = 0.0;           ///< [rad/s]
-  double qdot_applied_ = 0.0;   ///< [rad/s] the rate of the last spin moment (for qddot)
+  double spin_inertia_ = 0.0;  ///< [kg m^2] J_a
+  double q_ = 0.0;             ///< [rad]
+  double qdot_ = 0.0;          ///< [rad/s]
+  double qdot_applied_ = 0.0;  ///< [rad/s] the rate of the last spin moment (for qddot)
 };
 
 }  // namespace physics

@@ -80,16 +80,16 @@ class Lockstep {
     bool present = false;  ///< as of the last check
     ros::WallTime present_since;
     bool ever_present = false;
-    bool answered = false;         ///< answered since it (re)connected
-    bool warming_up = false;       ///< missed its first input; not waited for until it answers
-    bool muted = false;            ///< kLenient: silent past the timeout
-    bool gone = false;             ///< declared gone by a failed ping; present again once its node answers pings
-    uint32_t input_seq = 0;        ///< input publication's sequence number before the step
-    bool input_published = false;  ///< the last step published its input
+    bool answered = false;                ///< answered since it (re)connected
+    bool warming_up = false;              ///< missed its first input; not waited for until it answers
+    bool muted = false;                   ///< kLenient: silent past the timeout
+    bool gone = false;                    ///< declared gone by a failed ping; present again once its node answers pings
+    uint32_t input_seq = 0;               ///< input publication's sequence number before the step
+    bool input_published = false;         ///< the last step published its input
     mutable PublicationCache input_pub;   ///< the simulator's publication of its input
     mutable PublicationCache answer_pub;  ///< its answer's publication in this process (a hosted nodelet)
-    bool local = false;            ///< its answer is published in this process (a hosted nodelet)
-    uint32_t answer_seq = 0;       ///< local: the answer publication's sequence number before the step
+    bool local = false;                   ///< its answer is published in this process (a hosted nodelet)
+    uint32_t answer_seq = 0;              ///< local: the answer publication's sequence number before the step
   };
   /// Notices a participant that is (or no longer is) hosted in this process.
   void RefreshLocal(Participant* p);

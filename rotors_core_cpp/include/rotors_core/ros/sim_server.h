@@ -23,9 +23,9 @@ namespace rotors_sim {
 struct SimServerOptions {
   std::string world_file;
   bool paused = false;
-  double real_time_factor = -1.0;                          ///< < 0: the world's own; 0: as fast as possible
-  double state_publish_rate_hz = 100.0;                    ///< [Hz sim time] TF, joint_states, model_states
-  double state_max_wall_rate_hz = 100.0;                   ///< [Hz wall] and at most this often (<= 0: no limit)
+  double real_time_factor = -1.0;         ///< < 0: the world's own; 0: as fast as possible
+  double state_publish_rate_hz = 100.0;   ///< [Hz sim time] TF, joint_states, model_states
+  double state_max_wall_rate_hz = 100.0;  ///< [Hz wall] and at most this often (<= 0: no limit)
   /// [Hz wall] /clock to other processes at most this often (<= 0: every step); this process's own
   /// nodes (plugins, nodelets) see every step's time
   double clock_max_wall_rate_hz = 1000.0;
