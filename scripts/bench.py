@@ -84,20 +84,27 @@ def rotorpy_hover_wall_s() -> float:
     return float(out.split()[-1])
 
 
-# Sim seconds per wall second between two sim times (default 5 and 25 s), from one /clock
-# subscription read at 200 Hz wall (no busy loop, no re-subscribing: fast runs stay measurable).
-CLOCK_WATCH = """
+# The watchers' common part: one /clock subscription for the whole run, polled every POLL_S of wall
+# time (no busy loop, no re-subscribing: fast runs stay measurable); wait_until(t) returns the wall
+# and sim time at which sim time t was seen.
+SIM_CLOCK = """
 import sys, time, rospy
 from rosgraph_msgs.msg import Clock
-rospy.init_node('bench_clock', anonymous=True, disable_signals=True)
 sim = {'t': -1.0}
-clock = rospy.Subscriber('/clock', Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
-def wait_until(t_sim, limit_s=300.0):
+def wait_until(t_sim, limit_s=300.0, poll_s=0.005):
     deadline = time.monotonic() + limit_s
     while sim['t'] < t_sim:
         if time.monotonic() > deadline: sys.exit(f'sim time stuck at {sim["t"]:.2f} s, waiting for {t_sim} s')
-        time.sleep(0.005)
+        time.sleep(poll_s)
     return time.monotonic(), sim['t']
+def follow_clock():
+    return rospy.Subscriber('/clock', Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
+"""
+
+# Sim seconds per wall second between two sim times (default 5 and 25 s).
+CLOCK_WATCH = SIM_CLOCK + """
+rospy.init_node('bench_clock', anonymous=True, disable_signals=True)
+clock = follow_clock()
 begin, end = (float(a) for a in sys.argv[1:3]) if len(sys.argv) > 2 else (5.0, 25.0)
 w0, s0 = wait_until(begin)
 w1, s1 = wait_until(end)
@@ -107,9 +114,7 @@ print((s1 - s0) / (w1 - w0))
 
 # As CLOCK_WATCH, while subscribed to the VI-sensor's stereo images (so that they are rendered and
 # sent); also prints the stereo pairs received per second of sim time.
-VI_WATCH = """
-import sys, time, rospy
-from rosgraph_msgs.msg import Clock
+VI_WATCH = SIM_CLOCK + """
 rospy.init_node('bench_vi', anonymous=True, disable_signals=True)
 count = {'left': 0, 'right': 0}
 def counter(side):
@@ -117,20 +122,12 @@ def counter(side):
     return cb
 # AnyMsg: received whole but not deserialised, so the watcher's Python costs little
 subs = [rospy.Subscriber(f'/firefly/vi_sensor/{s}/image_raw', rospy.AnyMsg, counter(s), queue_size=5) for s in count]
-sim = {'t': -1.0}
-# one /clock subscription for the whole run, read at 20 Hz wall time (no busy loop, no re-subscribing)
-clock = rospy.Subscriber('/clock', Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
-def wait_until(t_sim, limit_s=120.0):
-    deadline = time.monotonic() + limit_s
-    while sim['t'] < t_sim:
-        if time.monotonic() > deadline: sys.exit(f'sim time stuck at {sim["t"]:.2f} s, waiting for {t_sim} s')
-        time.sleep(0.05)
-begin, end = 8.0, 28.0
-wait_until(begin)
-w0, s0, n0 = time.monotonic(), sim['t'], count['right']
-wait_until(end)
-s1, n1 = sim['t'], count['right']
-print((n1 - n0) / (s1 - s0), (s1 - s0) / (time.monotonic() - w0))
+clock = follow_clock()
+w0, s0 = wait_until(8.0, limit_s=120.0, poll_s=0.05)
+n0 = count['right']
+w1, s1 = wait_until(28.0, limit_s=120.0, poll_s=0.05)
+n1 = count['right']
+print((n1 - n0) / (s1 - s0), (s1 - s0) / (w1 - w0))
 """
 
 
@@ -254,7 +251,7 @@ def swarm_launch(n: int, in_process: bool = False) -> Path:
     return path
 
 
-SWARM_WATCH = """
+SWARM_WATCH = SIM_CLOCK + """
 import sys, time, rospy
 from geometry_msgs.msg import PoseStamped
 from rosgraph_msgs.msg import Clock
@@ -271,15 +268,8 @@ for i, p in enumerate(pubs):
     m = PoseStamped(); m.pose.position.x = (i % 5) * 2.0; m.pose.position.y = (i // 5) * 2.0
     m.pose.position.z = 1.0; m.pose.orientation.w = 1.0; p.publish(m)
 time.sleep(2.0)
-sim = {'t': -1.0}
-clock = rospy.Subscriber('/clock', Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
+clock = follow_clock()
 rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-def wait_until(t_sim, limit_s=300.0):
-    deadline = time.monotonic() + limit_s
-    while sim['t'] < t_sim:
-        if time.monotonic() > deadline: sys.exit(f'sim time stuck at {sim["t"]:.2f} s, waiting for {t_sim} s')
-        time.sleep(0.005)
-    return time.monotonic(), sim['t']
 w0, s0 = wait_until(2.0)
 w1, s1 = wait_until(float(sys.argv[2]))
 print((s1 - s0) / (w1 - w0))

@@ -54,7 +54,7 @@ std::vector<std::string> ParameterReader::UnknownKeys() const {
 std::string LoadVehicleParameters(ParameterReader& reader, VehicleParameters* v) {
   std::string why = reader.Require("mass", &v->mass_kg, kVehicleHint);
   if (!why.empty()) return why;
-  v->gravity_m_s2 = 9.81;
+  v->gravity_m_s2 = VehicleParameters{}.gravity_m_s2;  // the one default, whatever *v held
   why = reader.Optional("gravity", &v->gravity_m_s2, "RotorS' value; the world's may differ, as in the book's example");
   if (!why.empty()) return why;
   const char* keys[3][3] = {{"inertia/xx", "inertia/xy", "inertia/xz"},
