@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rotors_core/error.h"
+
 namespace rotors_sim {
 
 NodeletHost::NodeletHost(ros::NodeHandle manager_nh, ros::CallbackQueueInterface* queue) : queue_(queue) {
@@ -61,7 +63,8 @@ bool NodeletHost::OnLoad(nodelet::NodeletLoad::Request& req, nodelet::NodeletLoa
   }
   res.success = why.empty();
   if (!res.success) {
-    ROS_ERROR("[rotors_sim] load_nodelet %s (%s) refused: %s", req.name.c_str(), req.type.c_str(), why.c_str());
+    ROS_ERROR_THROTTLE(1.0, "[rotors_sim] load_nodelet %s (%s) refused: %s", Abbreviated(req.name).c_str(),
+                       Abbreviated(req.type).c_str(), Abbreviated(why, 300).c_str());
     return true;
   }
   ROS_INFO("[rotors_sim] %s (%s) runs in the simulator's process, on its thread%s", req.name.c_str(), req.type.c_str(),
@@ -71,7 +74,9 @@ bool NodeletHost::OnLoad(nodelet::NodeletLoad::Request& req, nodelet::NodeletLoa
 
 bool NodeletHost::OnUnload(nodelet::NodeletUnload::Request& req, nodelet::NodeletUnload::Response& res) {
   res.success = Unload(req.name);
-  if (!res.success) ROS_ERROR("[rotors_sim] unload_nodelet: no nodelet named '%s' is loaded", req.name.c_str());
+  if (!res.success)
+    ROS_ERROR_THROTTLE(1.0, "[rotors_sim] unload_nodelet: no nodelet named '%s' is loaded",
+                       Abbreviated(req.name).c_str());
   return true;
 }
 

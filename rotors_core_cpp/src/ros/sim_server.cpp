@@ -46,6 +46,9 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   services_.push_back(private_nh_.advertiseService("delete_model", &SimServer::OnDelete, this));
   services_.push_back(private_nh_.advertiseService("get_model_state", &SimServer::OnGetModelState, this));
   nodelets_ = std::make_unique<NodeletHost>(private_nh_, ros::getGlobalCallbackQueue());
+  clock_flush_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), [this](const ros::WallTimerEvent&) {
+    if (world_->SimTime().Nanoseconds() != clock_published_ns_) PublishClock(true);
+  });
   ROS_INFO("[rotors_sim] world '%s' loaded from %s: step %.4f s, real-time factor %g%s, %s", world_->Name().c_str(),
            options.world_file.c_str(), world_->Physics().max_step_size_s, world_->Physics().real_time_factor,
            world_->Physics().real_time_factor == 0.0 ? " (as fast as possible)" : "",
@@ -76,7 +79,9 @@ void SimServer::PublishClock(bool force) {
   rosgraph_msgs::Clock clock;
   clock.clock.fromNSec(world_->SimTime().Nanoseconds());
   if (ros::Time::isSimTime()) ros::Time::setNow(clock.clock);
-  if (force || clock_limit_.Due()) clock_pub_.publish(clock);
+  if (!force && !clock_limit_.Due()) return;
+  clock_pub_.publish(clock);
+  clock_published_ns_ = world_->SimTime().Nanoseconds();
 }
 
 void SimServer::StepOnce() {
@@ -141,14 +146,6 @@ bool SimServer::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Re
   state_publisher_->Update(*world_, true);
   return true;
 }
-
-namespace {
-/// A caller's string as it goes into a one-line error: at most 80 characters.
-std::string Abbreviated(const std::string& text, size_t max_chars = 80) {
-  if (text.size() <= max_chars) return text;
-  return text.substr(0, max_chars) + "... (" + std::to_string(text.size() - max_chars) + " more characters)";
-}
-}  // namespace
 
 bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnModel::Response& res) {
   const auto& p = req.initial_pose;

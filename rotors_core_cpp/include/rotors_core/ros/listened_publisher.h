@@ -49,16 +49,25 @@ class ListenedPublisher {
   }
   template <class M>
   void publish(const M& message) {
-    if (publisher_.isLatched() || getNumSubscribers() > 0) publisher_.publish(boost::make_shared<M>(message));
+    if (Listened()) publisher_.publish(boost::make_shared<M>(message));
   }
   template <class M>
   void publish(const boost::shared_ptr<M>& message) {
-    if (publisher_.isLatched() || getNumSubscribers() > 0) publisher_.publish(message);
+    if (Listened()) publisher_.publish(message);
   }
   std::string getTopic() const { return publisher_.getTopic(); }
+
   explicit operator bool() const { return static_cast<bool>(publisher_); }
 
  private:
+  /// True when publish() must go through roscpp. Otherwise the message is counted as roscpp counts
+  /// one nobody hears (lockstep tells from the count that a step published its input).
+  bool Listened() {
+    if (publisher_.isLatched() || getNumSubscribers() > 0) return true;
+    if (const ros::PublicationPtr& p = cache_.Get()) p->incrementSequence();
+    return false;
+  }
+
   ros::Publisher publisher_;
   PublicationCache cache_;
 };

@@ -69,6 +69,10 @@ class SimServer {
   std::unique_ptr<Lockstep> lockstep_;
   ros::Publisher clock_pub_;
   WallRateLimit clock_limit_;
+  int64_t clock_published_ns_ = -1;  ///< the last time /clock carried
+  /// Publishes the time a step left unpublished (the wall-time limit) once the simulation stands
+  /// still, e.g. while lockstep waits for a controller: others see where it stopped.
+  ros::WallTimer clock_flush_timer_;
   ros::Publisher world_markers_pub_;  ///< latched /world/markers: static models for rviz
   void PublishWorldMarkers();
   std::vector<ros::ServiceServer> services_;
