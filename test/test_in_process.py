@@ -7,7 +7,7 @@ from rosbags.rosbag1 import Reader
 from rosbags.typesys import Stores, get_typestore
 
 from conftest import RosGraph
-from test_lockstep_determinism import fly_once, messages
+from test_lockstep_determinism import assert_identical_flights, fly_once, messages
 
 
 def without_seq(msgs, topic: str = "firefly/command/motor_speed"):
@@ -19,12 +19,7 @@ def without_seq(msgs, topic: str = "firefly/command/motor_speed"):
 def test_in_process_controller_flies_the_same_flight_bit_for_bit(ros: RosGraph):
     separate = without_seq(messages(fly_once(ros, "separate"), 5.5))
     in_process = without_seq(messages(fly_once(ros, "in_process", "in_process:=true"), 5.5))
-    assert len(separate) > 3000
-    topics = {m[0] for m in separate}
-    assert {"firefly/command/motor_speed", "firefly/ground_truth/pose", "firefly/imu"} <= topics
-    assert len(in_process) == len(separate)
-    diff = [i for i, (x, y) in enumerate(zip(separate, in_process)) if x != y]
-    assert not diff, f"{len(diff)} messages differ, first: {separate[diff[0]][:2]} vs {in_process[diff[0]][:2]}"
+    assert_identical_flights(separate, in_process)
 
 
 def positions(bag, topic: str = "firefly/ground_truth/pose") -> np.ndarray:

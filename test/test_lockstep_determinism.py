@@ -43,12 +43,15 @@ def messages(bag: Path, until_s: float):
     return sorted(out)
 
 
-def test_two_lockstep_runs_write_identical_bags(ros: RosGraph):
-    a = messages(fly_once(ros, "run_a"), 5.5)
-    b = messages(fly_once(ros, "run_b"), 5.5)
+def assert_identical_flights(a, b) -> None:
+    """Two message lists of fly_once flights: a real flight's topics, the same messages bit for bit."""
     assert len(a) > 3000
     topics = {m[0] for m in a}
     assert {"firefly/imu", "firefly/command/motor_speed", "firefly/ground_truth/pose"} <= topics
     assert len(a) == len(b)
     diff = [i for i, (x, y) in enumerate(zip(a, b)) if x != y]
     assert not diff, f"{len(diff)} messages differ, first: {a[diff[0]][:2]} vs {b[diff[0]][:2]}"
+
+
+def test_two_lockstep_runs_write_identical_bags(ros: RosGraph):
+    assert_identical_flights(messages(fly_once(ros, "run_a"), 5.5), messages(fly_once(ros, "run_b"), 5.5))
