@@ -88,8 +88,7 @@ void Lockstep::OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstP
 
 /// Subscribers of one of this node's topics in other nodes (the plugins' own subscriptions, e.g.
 /// the bag plugin's, do not make a participant present).
-size_t RemoteSubscribers(const std::string& topic) {
-  ros::PublicationPtr pub = ros::TopicManager::instance()->lookupPublication(topic);
+size_t RemoteSubscribers(const ros::PublicationPtr& pub) {
   if (!pub) return 0;
   XmlRpc::XmlRpcValue links;
   links.setSize(0);  // getInfo appends one [id, destination node, ...] per link
@@ -128,7 +127,7 @@ bool Lockstep::ConnectedNow(const Participant& p) const {
   if (p.sub.getNumPublishers() == 0) return false;
   if (p.topics.input_topic.empty()) return true;
   // once present, a participant leaves through its answer topic; the input is checked on arrival
-  return p.present || RemoteSubscribers(p.topics.input_topic) > 0;
+  return p.present || RemoteSubscribers(p.input_pub.Get()) > 0;
 }
 
 /// Updates p->present; true when it changed. A participant declared gone comes back only when a
