@@ -10,6 +10,7 @@
 #include <sdf/Visual.hh>
 
 #include "rotors_core/sensors/camera_sensor.h"
+#include "rotors_core/sensors/ray_sensor.h"
 #include <sdf/Joint.hh>
 #include <sdf/JointAxis.hh>
 #include <sdf/Link.hh>
@@ -237,10 +238,13 @@ void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model,
       sensors::SensorPtr sensor;
       // the type as written (sdformat renames "depth" to "depth_camera")
       const std::string type = s.Element() ? s.Element()->Get<std::string>("type") : s.TypeStr();
-      if (sensors::CameraSensor::IsCameraType(type)) {
+      const bool camera = sensors::CameraSensor::IsCameraType(type), ray = sensors::RaySensor::IsRayType(type);
+      if (camera || ray) {
         try {
-          sensor = std::make_shared<sensors::CameraSensor>(s.Name(), type, model->GetLink(sdf_link.Name()), X_LS,
-                                                           s.UpdateRate(), s.Element());
+          const physics::LinkPtr link = model->GetLink(sdf_link.Name());
+          if (camera)
+            sensor = std::make_shared<sensors::CameraSensor>(s.Name(), type, link, X_LS, s.UpdateRate(), s.Element());
+          else sensor = std::make_shared<sensors::RaySensor>(s.Name(), type, link, X_LS, s.UpdateRate(), s.Element());
         } catch (const SimError& e) {
           if (!g_skip_broken_sensors) throw SimError("model '" + model->GetName() + "', " + e.what());
           std::cerr << "[rotors_sim] model '" << model->GetName() << "': left out (--skip-broken-sensors): " << e.what()
@@ -280,7 +284,9 @@ physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const Spaw
   sdf::Errors errors = root.LoadSdfString(request.xml);
   for (const auto& e : errors) {
     if (IsCheckedByTheEngine(e)) continue;
-    sensors::CameraSensor::CheckAll(root.Element());  // names a bad camera better than sdformat does
+    // name a bad camera or laser better than sdformat does
+    sensors::CameraSensor::CheckAll(root.Element());
+    sensors::RaySensor::CheckAll(root.Element());
     throw SimError("model '" + label + "': the description does not parse: " + Describe(e));
   }
   const sdf::Model* sdf_model = root.Model();

@@ -19,6 +19,7 @@ std::string Sensor::ParentName() const { return parent_->GetName(); }
 physics::Pose3d Sensor::WorldPose() const { return Compose(parent_->WorldPose(), X_LS_); }
 
 void Sensor::Update(const common::Time& sim_time) {
+  OnStep(sim_time);
   const double t = sim_time.Double();
   if (has_updated_ && update_rate_hz_ > 0.0 && t < next_due_s_ - 1e-9) return;
   // The next update is due one period after this one was due (not after it happened), so that

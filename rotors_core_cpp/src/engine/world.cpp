@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "rotors_core/error.h"
+#include "rotors_core/raycast/ray_scene.h"
 #include "rotors_core/physics/joint.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -85,8 +86,14 @@ World::World(std::string name, const PhysicsParams& params) : name_(std::move(na
   wall_start_ = WallNow();
 }
 
+raycast::RayScene& World::Rays() {
+  if (!rays_) rays_ = std::make_unique<raycast::RayScene>(*this);
+  return *rays_;
+}
+
 World::~World() {
   Fini();
+  rays_.reset();
   dJointGroupDestroy(Ode(contact_group_));
   dSpaceDestroy(Ode(space_));
   dWorldDestroy(Ode(solver_world_));

@@ -1,6 +1,7 @@
 #include "rotors_core/world_loader.h"
 
 #include "rotors_core/sensors/camera_sensor.h"
+#include "rotors_core/sensors/ray_sensor.h"
 #include "sdf_console.h"
 
 #include <cstdlib>
@@ -80,7 +81,9 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
                         const WorldLoadOptions& options) {
   for (const auto& e : errors) {
     if (IsCheckedByTheEngine(e)) continue;
-    sensors::CameraSensor::CheckAll(root.Element());  // names a bad camera better than sdformat does
+    // name a bad camera or laser better than sdformat does
+    sensors::CameraSensor::CheckAll(root.Element());
+    sensors::RaySensor::CheckAll(root.Element());
     throw SimError("world '" + source + "' does not parse: " + Describe(e));
   }
   if (root.WorldCount() == 0) throw SimError("world '" + source + "' holds no <world> element");

@@ -14,6 +14,9 @@
 
 namespace rotors_sim {
 class WorldPlugin;
+namespace raycast {
+class RayScene;
+}
 namespace physics {
 
 /// Physics settings of a world (SDF <physics>, ODE solver block).
@@ -94,6 +97,8 @@ class World : public std::enable_shared_from_this<World> {
   /// shared pointers to their world and model; call this before dropping the last WorldPtr).
   void Fini();
   event::WorldEvents& Events() { return events_; }
+  /// The world's visuals as a ray-casting scene (made at the first call), for laser sensors.
+  raycast::RayScene& Rays();
 
   // --- Engine side (used by builders) ---
   SolverWorldHandle* SolverWorld() const { return solver_world_; }
@@ -126,6 +131,7 @@ class World : public std::enable_shared_from_this<World> {
   struct PendingContacts;  // this step's contacts with the solver's force feedback (world.cpp)
   std::unique_ptr<PendingContacts> pending_;
   common::Time wall_start_;
+  std::unique_ptr<raycast::RayScene> rays_;
 };
 
 }  // namespace physics

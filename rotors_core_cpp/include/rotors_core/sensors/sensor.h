@@ -29,17 +29,23 @@ class Sensor {
   common::Time LastUpdateTime() const { return last_update_; }
   event::ConnectionPtr ConnectUpdated(std::function<void()> cb) { return updated_.Connect(std::move(cb)); }
 
-  /// Engine side: fires Updated when an update is due (every 1/rate of sim time on average).
+  /// Engine side, every step: OnStep, then, when an update is due (every 1/rate of sim time on
+  /// average), OnUpdate and Updated.
   void Update(const common::Time& sim_time);
   void Reset() {
     last_update_ = common::Time();
     has_updated_ = false;
     next_due_s_ = 0.0;
+    OnReset();
   }
 
  protected:
+  /// Called at every physics step, before the update (if one is due).
+  virtual void OnStep(const common::Time& /*sim_time*/) {}
   /// Called at each update, before Updated fires.
   virtual void OnUpdate(const common::Time& /*sim_time*/) {}
+  /// Called by Reset().
+  virtual void OnReset() {}
 
  private:
   std::string name_, type_;

@@ -1,0 +1,282 @@
+#include "rotors_core/raycast/ray_scene.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <Eigen/Geometry>
+
+#include "rotors_core/error.h"
+#include "rotors_core/geometry/visual.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/rendering/tessellation.h"
+
+namespace rotors_sim {
+namespace raycast {
+namespace {
+
+using geometry::Shape;
+using Affine = Eigen::Matrix<double, 3, 4>;
+
+Eigen::Isometry3d ToEigen(const ignition::math::Pose3d& X) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
+  return T;
+}
+
+/// Slices of a cylinder's triangles: the chord is r (1 - cos(pi / 512)) = 1.9e-5 r inside the
+/// circle, 0.002 mm for a 0.1 m radius.
+constexpr int kCylinderSlices = 512;
+
+/// One visual placed in the world: an instance of its shape's scene.
+struct Instance {
+  const geometry::Visual* visual = nullptr;
+  Eigen::Matrix4d S = Eigen::Matrix4d::Identity();  ///< shape frame -> visual frame (scale, plane tilt)
+  Eigen::Matrix<float, 3, 4> T_WShape = Eigen::Matrix<float, 3, 4>::Zero();
+  Eigen::Matrix3d normal_to_W = Eigen::Matrix3d::Identity();  ///< inverse transpose of T_WShape's linear part
+  RTCGeometry geometry = nullptr;
+  bool placed = false;
+};
+
+struct CastContext {
+  RTCIntersectContext base;  // first member: Embree hands back a pointer to it
+  const std::vector<Instance>* instances;
+  const physics::Link* ignore;
+};
+
+/// Embree filter: a hit on a visual of the ignored link does not count.
+void SkipIgnoredLink(const RTCFilterFunctionNArguments* args) {
+  const auto* context = reinterpret_cast<const CastContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned id = RTCHitN_instID(args->hit, args->N, i, 0);
+    if (id < context->instances->size() && (*context->instances)[id].visual->link == context->ignore)
+      args->valid[i] = 0;
+  }
+}
+
+}  // namespace
+
+struct RayScene::Impl {
+  const physics::World* world = nullptr;
+  RTCDevice device = nullptr;
+  RTCScene top = nullptr;
+  std::map<const void*, RTCScene> shapes;  // by source object (a unit shape's tag, a mesh, ...)
+  std::vector<std::shared_ptr<const void>> keep_alive;
+  std::vector<Instance> instances;  // index = Embree geometry ID in `top`
+  std::vector<const physics::Model*> models_seen;
+  uint64_t synced_iteration = ~0ull;
+  size_t triangles = 0;
+
+  RTCScene NewShapeScene() {
+    RTCScene scene = rtcNewScene(device);
+    // the filter that skips the caster's own link runs on hits inside instanced scenes
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    return scene;
+  }
+  RTCScene TriangleScene(const rendering::TriangleSoup& soup);
+  RTCScene SphereScene();
+  RTCScene ShapeScene(const Shape& shape, Eigen::Matrix4d* S);
+  void Rebuild();
+  bool Place(Instance* instance);
+};
+
+RTCScene RayScene::Impl::TriangleScene(const rendering::TriangleSoup& soup) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  const size_t vertices = soup.VertexCount(), count = soup.TriangleCount();
+  auto* p = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices));
+  std::copy(soup.positions_m.begin(), soup.positions_m.end(), p);
+  auto* index = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
+  for (size_t i = 0; i < 3 * count; ++i) index[i] = soup.indices.empty() ? static_cast<unsigned>(i) : soup.indices[i];
+  rtcCommitGeometry(g);
+  RTCScene scene = NewShapeScene();
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  rtcAttachGeometry(scene, g);
+  rtcReleaseGeometry(g);
+  rtcCommitScene(scene);
+  triangles += count;
+  return scene;
+}
+
+RTCScene RayScene::Impl::SphereScene() {
+  // an exact sphere (Embree's sphere primitive), radius 1 m at the origin
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+  v[0] = v[1] = v[2] = 0.0f;
+  v[3] = 1.0f;
+  rtcCommitGeometry(g);
+  RTCScene scene = NewShapeScene();
+  rtcAttachGeometry(scene, g);
+  rtcReleaseGeometry(g);
+  rtcCommitScene(scene);
+  return scene;
+}
+
+/// The scene of a shape and the matrix S that takes it to the visual frame (the renderer's unit
+/// shapes and scales: the laser sees what the cameras see).
+RTCScene RayScene::Impl::ShapeScene(const Shape& shape, Eigen::Matrix4d* S) {
+  static const int kBox = 0, kSphere = 0, kCylinder = 0, kSquare = 0;
+  S->setIdentity();
+  const void* key = nullptr;
+  std::shared_ptr<const void> source;
+  switch (shape.type) {
+    case Shape::Type::kBox:
+      *S = Eigen::Vector4d(shape.box_size_m.X(), shape.box_size_m.Y(), shape.box_size_m.Z(), 1).asDiagonal();
+      key = &kBox;
+      break;
+    case Shape::Type::kSphere:
+      *S = Eigen::Vector4d(shape.radius_m, shape.radius_m, shape.radius_m, 1).asDiagonal();
+      key = &kSphere;
+      break;
+    case Shape::Type::kCylinder:
+      *S = Eigen::Vector4d(shape.radius_m, shape.radius_m, shape.length_m, 1).asDiagonal();
+      key = &kCylinder;
+      break;
+    case Shape::Type::kPlane: {
+      const Eigen::Vector3d n(shape.plane_normal.X(), shape.plane_normal.Y(), shape.plane_normal.Z());
+      S->topLeftCorner<3, 3>() =
+          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n.normalized()).toRotationMatrix() *
+          Eigen::Vector3d(shape.plane_size_m.X(), shape.plane_size_m.Y(), 1).asDiagonal();
+      key = &kSquare;
+      break;
+    }
+    case Shape::Type::kMesh: key = shape.mesh.get(), source = shape.mesh; break;
+    case Shape::Type::kHeightmap: key = shape.heightfield.get(), source = shape.heightfield; break;
+    case Shape::Type::kOcTree: key = shape.octree.get(), source = shape.octree; break;
+  }
+  if (!key) return nullptr;
+  auto it = shapes.find(key);
+  if (it != shapes.end()) return it->second;
+  RTCScene scene = nullptr;
+  switch (shape.type) {
+    case Shape::Type::kBox: scene = TriangleScene(rendering::UnitBox()); break;
+    case Shape::Type::kSphere: scene = SphereScene(); break;
+    case Shape::Type::kCylinder: scene = TriangleScene(rendering::UnitCylinder(kCylinderSlices)); break;
+    case Shape::Type::kPlane: scene = TriangleScene(rendering::UnitSquare()); break;
+    case Shape::Type::kMesh: scene = TriangleScene(rendering::FromMesh(*shape.mesh)); break;
+    case Shape::Type::kHeightmap: scene = TriangleScene(rendering::FromHeightField(*shape.heightfield)); break;
+    case Shape::Type::kOcTree: scene = TriangleScene(rendering::FromOcTree(*shape.octree)); break;
+  }
+  if (source) keep_alive.push_back(source);
+  shapes.emplace(key, scene);
+  return scene;
+}
+
+void RayScene::Impl::Rebuild() {
+  if (top) rtcReleaseScene(top);
+  instances.clear();
+  top = rtcNewScene(device);
+  rtcSetSceneFlags(top, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+  rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_LOW);  // rebuilt whenever something moves
+  models_seen.clear();
+  for (const physics::ModelPtr& model : world->Models()) {
+    models_seen.push_back(model.get());
+    for (const geometry::Visual& visual : model->Visuals()) {
+      Instance instance;
+      instance.visual = &visual;
+      RTCScene shape = ShapeScene(visual.shape, &instance.S);
+      if (!shape || !visual.link) continue;
+      instance.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(instance.geometry, shape);
+      rtcSetGeometryTimeStepCount(instance.geometry, 1);
+      rtcAttachGeometryByID(top, instance.geometry, static_cast<unsigned>(instances.size()));
+      rtcReleaseGeometry(instance.geometry);  // the scene holds it
+      instances.push_back(instance);
+    }
+  }
+}
+
+/// Moves an instance to its link's pose now; true if it moved.
+bool RayScene::Impl::Place(Instance* instance) {
+  const geometry::Visual& v = *instance->visual;
+  const Eigen::Matrix4d T = ToEigen(v.X_LV + v.link->WorldPose()).matrix() * instance->S;
+  const Eigen::Matrix<float, 3, 4> T_f = T.topRows<3>().cast<float>();
+  if (instance->placed && T_f == instance->T_WShape) return false;
+  instance->placed = true;
+  instance->T_WShape = T_f;
+  instance->normal_to_W = T.topLeftCorner<3, 3>().inverse().transpose();
+  rtcSetGeometryTransform(instance->geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, T_f.data());
+  rtcCommitGeometry(instance->geometry);
+  return true;
+}
+
+RayScene::RayScene(const physics::World& world) : impl_(new Impl) {
+  impl_->world = &world;
+  impl_->device = rtcNewDevice("threads=1");  // casts run on the caller's thread; builds are small
+  if (!impl_->device)
+    throw SimError("ray caster: Embree cannot make a device (error " + std::to_string(rtcGetDeviceError(nullptr)) +
+                   ")");
+}
+
+RayScene::~RayScene() {
+  if (impl_->top) rtcReleaseScene(impl_->top);
+  for (auto& [key, scene] : impl_->shapes) rtcReleaseScene(scene);
+  rtcReleaseDevice(impl_->device);
+}
+
+void RayScene::Sync() {
+  Impl& r = *impl_;
+  const auto& models = r.world->Models();
+  bool same_models = r.top && models.size() == r.models_seen.size();
+  for (size_t i = 0; same_models && i < models.size(); ++i) same_models = models[i].get() == r.models_seen[i];
+  if (same_models && r.synced_iteration == r.world->Iterations()) return;
+  bool moved = false;
+  if (!same_models) {
+    r.Rebuild();  // new instances are unplaced: Place() below sets every one
+    moved = true;
+  }
+  for (Instance& instance : r.instances) moved |= r.Place(&instance);
+  if (moved) rtcCommitScene(r.top);
+  r.synced_iteration = r.world->Iterations();
+}
+
+RayHit RayScene::Cast(const Eigen::Vector3d& origin_W, const Eigen::Vector3d& dir_W, double near_m, double far_m,
+                      const physics::Link* ignore) const {
+  const Impl& r = *impl_;
+  RayHit result;
+  if (!r.top) return result;
+  CastContext context;
+  rtcInitIntersectContext(&context.base);
+  context.instances = &r.instances;
+  context.ignore = ignore;
+  if (ignore) context.base.filter = SkipIgnoredLink;
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(origin_W.x());
+  rh.ray.org_y = static_cast<float>(origin_W.y());
+  rh.ray.org_z = static_cast<float>(origin_W.z());
+  rh.ray.dir_x = static_cast<float>(dir_W.x());
+  rh.ray.dir_y = static_cast<float>(dir_W.y());
+  rh.ray.dir_z = static_cast<float>(dir_W.z());
+  rh.ray.tnear = static_cast<float>(near_m);
+  rh.ray.tfar = static_cast<float>(far_m);
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(r.top, &context.base, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.instID[0] >= r.instances.size()) return result;
+  const Instance& instance = r.instances[rh.hit.instID[0]];
+  result.distance_m = rh.ray.tfar;
+  // Embree reports an instanced hit's normal in the shape's frame
+  Eigen::Vector3d n = instance.normal_to_W * Eigen::Vector3d(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  n.normalize();
+  result.normal_W = n.dot(dir_W) > 0 ? Eigen::Vector3d(-n) : n;
+  result.link = instance.visual->link;
+  return result;
+}
+
+size_t RayScene::InstanceCount() const { return impl_->instances.size(); }
+size_t RayScene::TriangleCount() const { return impl_->triangles; }
+void* RayScene::EmbreeScene() const { return impl_->top; }
+
+}  // namespace raycast
+}  // namespace rotors_sim
