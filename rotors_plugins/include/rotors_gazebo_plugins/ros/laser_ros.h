@@ -1,0 +1,79 @@
+// What the laser plugins share: a ray sensor's scan as sensor_msgs (LaserScan, velodyne's
+// PointCloud2, the block laser's PointCloud, Range), and LaserPlugin, the base that reads the
+// common parameters, checks the sensor and publishes each new scan once.
+#pragma once
+
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+#include <sdf/Element.hh>
+#include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/Range.h>
+
+#include "rotors_core/plugin.h"
+#include "rotors_core/sensors/ray_sensor.h"
+
+namespace rotors_gazebo_plugins {
+
+using rotors_sim::sensors::RayScan;
+using rotors_sim::sensors::RayScanSpec;
+
+/// REP 117 LaserScan of a one-row scan: angle_min/max/increment from the beams, time_increment
+/// the column period of a sweep (0 for an instantaneous scan), ranges as the sensor keeps them.
+void ToLaserScanMsg(const RayScan& scan, const RayScanSpec& spec, double scan_time_s, bool over_time,
+                    sensor_msgs::LaserScan* msg);
+
+/// velodyne_pointcloud's point layout (PointXYZIRT): x y z float32 at 0 4 8, intensity float32 at
+/// 16, ring uint16 at 20, time float32 at 24 (s since the header stamp), 32 bytes a point.
+struct VelodyneCloudOptions {
+  double min_range_m = 0.0, max_range_m = 1e9;  ///< returns outside are dropped (NaN if organised)
+  double min_intensity = -1e300;
+  bool organize = false;  ///< height = rings, width = columns, NaN where there is no return
+};
+void ToVelodyneCloudMsg(const RayScan& scan, const RayScanSpec& spec, const VelodyneCloudOptions& options,
+                        sensor_msgs::PointCloud2* msg);
+
+/// gazebo_ros_block_laser's sensor_msgs/PointCloud: every return as a point, channel "intensity".
+void ToBlockCloudMsg(const RayScan& scan, const RayScanSpec& spec, sensor_msgs::PointCloud* msg);
+
+/// The nearest return of the whole beam cone (Note 9: an ultrasonic sensor measures the shortest
+/// distance in its cone): -inf if any beam is closer than min range, +inf if none returns.
+float NearestReturn(const RayScan& scan);
+
+/// Adds N(0, sigma) to every finite range (a plugin's own <gaussianNoise>).
+void AddRangeNoise(double sigma_m, std::mt19937_64* rng, RayScan* scan);
+
+/// The base of the laser plugins: checks that the sensor is a ray sensor, reads robotNamespace
+/// (default: the model's name), topicName, frameName (default: the sensor's link), updateRate and
+/// the plugin's own parameters, and calls Publish for each new scan (at most updateRate).
+class LaserPlugin : public rotors_sim::SensorPlugin {
+ public:
+  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) final;
+
+ protected:
+  /// The plugin's own parameters (besides the common ones) and its default topic.
+  virtual std::vector<std::string> OwnParams() const { return {}; }
+  virtual std::string DefaultTopic() const = 0;
+  /// Reads the own parameters and checks the sensor; throws SimError with the problem.
+  virtual void Configure(const sdf::ElementPtr& /*sdf*/) {}
+  /// Advertises on node_ (topic_).
+  virtual void Advertise() = 0;
+  virtual void Publish(const RayScan& scan, const ros::Time& stamp) = 0;
+
+  rotors_sim::sensors::RaySensorPtr sensor_;
+  std::shared_ptr<ros::NodeHandle> node_;
+  std::string topic_, frame_;
+  std::mt19937_64 rng_;  ///< for the plugin's own noise, seeded by model, sensor and plugin name
+
+ private:
+  double update_rate_hz_ = 0.0, last_published_s_ = -1.0;
+  uint64_t published_scans_ = 0;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+}  // namespace rotors_gazebo_plugins

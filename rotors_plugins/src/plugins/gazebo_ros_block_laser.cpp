@@ -1,0 +1,35 @@
+// libgazebo_ros_block_laser.so (gazebo_ros' block laser): every return of a 2D or 3D scan as
+// sensor_msgs/PointCloud (channel "intensity") in the sensor frame, on <robotNamespace>/<topicName>
+// (default "points"); <gaussianNoise> [m] adds range noise of its own.
+#include "rotors_gazebo_plugins/ros/laser_ros.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboRosBlockLaser : public LaserPlugin {
+ protected:
+  std::vector<std::string> OwnParams() const override { return {"gaussianNoise"}; }
+  std::string DefaultTopic() const override { return "points"; }
+  void Configure(const sdf::ElementPtr& sdf) override {
+    ReadParam(sdf, "gaussianNoise", &noise_m_);
+    if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
+  }
+  void Advertise() override { pub_ = node_->advertise<sensor_msgs::PointCloud>(topic_, 4); }
+  void Publish(const RayScan& scan, const ros::Time& stamp) override {
+    RayScan noisy = scan;
+    AddRangeNoise(noise_m_, &rng_, &noisy);
+    sensor_msgs::PointCloudPtr msg(new sensor_msgs::PointCloud);
+    ToBlockCloudMsg(noisy, sensor_->Spec(), msg.get());
+    msg->header.stamp = stamp;
+    msg->header.frame_id = frame_;
+    pub_.publish(msg);
+  }
+
+ private:
+  double noise_m_ = 0.0;
+  ros::Publisher pub_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+RSIM_REGISTER_SENSOR_PLUGIN(rotors_gazebo_plugins::GazeboRosBlockLaser)

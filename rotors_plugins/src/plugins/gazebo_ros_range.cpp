@@ -1,0 +1,55 @@
+// libgazebo_ros_range.so (gazebo_ros' range plugin): the nearest return of all the beams of a
+// <sensor type="ray"> as sensor_msgs/Range, the way an ultrasonic or infrared sensor measures the
+// shortest distance in its cone (the seed's Note 9). Parameters: <radiation> ultrasound (default)
+// or infrared, <fov> [rad] written to field_of_view (the cone is the sensor's beams),
+// <gaussianNoise> [m]; topic <robotNamespace>/<topicName> (default "range").
+#include <cmath>
+
+#include "rotors_core/error.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/laser_ros.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboRosRange : public LaserPlugin {
+ protected:
+  std::vector<std::string> OwnParams() const override { return {"radiation", "fov", "gaussianNoise"}; }
+  std::string DefaultTopic() const override { return "range"; }
+  void Configure(const sdf::ElementPtr& sdf) override {
+    std::string radiation = "ultrasound";
+    ReadParam(sdf, "radiation", &radiation);
+    if (radiation != "ultrasound" && radiation != "infrared")
+      throw rotors_sim::SimError("<radiation> '" + radiation + "' must be ultrasound or infrared");
+    msg_.radiation_type = radiation == "ultrasound" ? sensor_msgs::Range::ULTRASOUND : sensor_msgs::Range::INFRARED;
+    double fov_rad = 0.05;
+    ReadParam(sdf, "fov", &fov_rad);
+    if (!(fov_rad >= 0.0 && fov_rad < M_PI)) throw rotors_sim::SimError("<fov> must be in [0, pi) rad");
+    ReadParam(sdf, "gaussianNoise", &noise_m_);
+    if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
+    msg_.field_of_view = static_cast<float>(fov_rad);
+    msg_.min_range = static_cast<float>(sensor_->Spec().range_min_m);
+    msg_.max_range = static_cast<float>(sensor_->Spec().range_max_m);
+  }
+  void Advertise() override { pub_ = node_->advertise<sensor_msgs::Range>(topic_, 4); }
+  void Publish(const RayScan& scan, const ros::Time& stamp) override {
+    float range = NearestReturn(scan);
+    if (std::isfinite(range) && noise_m_ > 0.0) {
+      std::normal_distribution<double> noise(0.0, noise_m_);
+      range = std::min(msg_.max_range, std::max(msg_.min_range, static_cast<float>(range + noise(rng_))));
+    }
+    sensor_msgs::RangePtr msg(new sensor_msgs::Range(msg_));
+    msg->range = range;
+    msg->header.stamp = stamp;
+    msg->header.frame_id = frame_;
+    pub_.publish(msg);
+  }
+
+ private:
+  sensor_msgs::Range msg_;
+  double noise_m_ = 0.0;
+  ros::Publisher pub_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+RSIM_REGISTER_SENSOR_PLUGIN(rotors_gazebo_plugins::GazeboRosRange)

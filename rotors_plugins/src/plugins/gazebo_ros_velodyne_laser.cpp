@@ -1,0 +1,58 @@
+// libgazebo_ros_velodyne_laser.so and libgazebo_ros_velodyne_gpu_laser.so (velodyne_simulator's
+// plugins): a spinning lidar's sweep as sensor_msgs/PointCloud2 with velodyne_pointcloud's fields
+// x y z intensity ring time, on <robotNamespace>/<topicName> (default "points"), frame <frameName>.
+// Parameters as velodyne_simulator names them: <min_range>, <max_range> [m] (returns outside are
+// dropped), <gaussianNoise> [m], <min_intensity>, <organize_cloud> (rings x columns, NaN where no
+// return). The sweep is cast over time (each column from the pose at its time, `time` = seconds
+// since the header stamp, the sweep's start) unless <instantaneous_scan> is true.
+#include "rotors_core/error.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/laser_ros.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboRosVelodyneLaser : public LaserPlugin {
+ protected:
+  std::vector<std::string> OwnParams() const override {
+    return {"min_range", "max_range", "gaussianNoise", "min_intensity", "organize_cloud", "instantaneous_scan"};
+  }
+  std::string DefaultTopic() const override { return "points"; }
+  void Configure(const sdf::ElementPtr& sdf) override {
+    ReadParam(sdf, "min_range", &options_.min_range_m);
+    ReadParam(sdf, "max_range", &options_.max_range_m);
+    ReadParam(sdf, "min_intensity", &options_.min_intensity);
+    ReadParam(sdf, "organize_cloud", &options_.organize);
+    ReadParam(sdf, "gaussianNoise", &noise_m_);
+    if (!(options_.min_range_m >= 0.0) || !(options_.max_range_m > options_.min_range_m))
+      throw rotors_sim::SimError("<min_range> " + std::to_string(options_.min_range_m) + " m must be >= 0 and below " +
+                                 "<max_range> " + std::to_string(options_.max_range_m) + " m");
+    if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
+    bool instantaneous = false;
+    ReadParam(sdf, "instantaneous_scan", &instantaneous);
+    sensor_->SetScanOverTime(!instantaneous);
+  }
+  void Advertise() override { pub_ = node_->advertise<sensor_msgs::PointCloud2>(topic_, 4); }
+  void Publish(const RayScan& scan, const ros::Time& stamp) override {
+    if (pub_.getNumSubscribers() == 0) return;
+    sensor_msgs::PointCloud2Ptr msg(new sensor_msgs::PointCloud2);
+    if (noise_m_ > 0.0) {
+      RayScan noisy = scan;
+      AddRangeNoise(noise_m_, &rng_, &noisy);
+      ToVelodyneCloudMsg(noisy, sensor_->Spec(), options_, msg.get());
+    } else {
+      ToVelodyneCloudMsg(scan, sensor_->Spec(), options_, msg.get());
+    }
+    msg->header.stamp = stamp;
+    msg->header.frame_id = frame_;
+    pub_.publish(msg);
+  }
+
+ private:
+  VelodyneCloudOptions options_;
+  double noise_m_ = 0.0;
+  ros::Publisher pub_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+RSIM_REGISTER_SENSOR_PLUGIN(rotors_gazebo_plugins::GazeboRosVelodyneLaser)

@@ -1,0 +1,132 @@
+"""End to end: lasers on a flying MAV (mav_hovering_example_with_lidar.launch, lockstep, as fast as
+possible). A VLP-16 in the power plant: the cloud's layout is velodyne_pointcloud's, it comes at
+10 Hz of sim time, and its points, put in the world with the ground-truth pose, lie on the plant's
+OctoMap cells. The downward rangefinder over the basic world reads the height of the sensor; the
+Hokuyo publishes REP 117 LaserScans."""
+import math
+from pathlib import Path
+
+import pytest
+from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+
+PLANT = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource" / "power_plant.bt"
+LIDAR_ABOVE_BASE_M = 0.15  # lidar_xyz's default
+
+
+def test_vlp16_cloud_in_the_power_plant_lies_on_the_plant(ros: RosGraph, tmp_path: Path):
+    points_file = tmp_path / "points.txt"
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example_with_lidar.launch", "lockstep:=true",
+                  "real_time_factor:=0")
+    try:
+        wait_sim_time(ros, 1.0)
+        result = ros.rospy(f"""
+            import numpy as np
+            from nav_msgs.msg import Odometry
+            from sensor_msgs.msg import PointCloud2, PointField
+            from sensor_msgs import point_cloud2
+            def rotation(q):  # unit quaternion -> R_WB
+                w, x, y, z = q.w, q.x, q.y, q.z
+                return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                                 [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                                 [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+            poses = []
+            rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, lambda m: poses.append(m), queue_size=1000)
+            clouds = []
+            rospy.Subscriber('/firefly/velodyne_points', PointCloud2, lambda m: clouds.append(m), queue_size=100)
+            deadline = time.monotonic() + 120
+            while len(clouds) < 40 and time.monotonic() < deadline:
+                time.sleep(0.05)
+            c = clouds[-1]
+            result['fields'] = [(f.name, f.offset, f.datatype, f.count) for f in c.fields]
+            result['point_step'] = c.point_step
+            result['frame'] = c.header.frame_id
+            stamps = [m.header.stamp.to_sec() for m in clouds]
+            result['period'] = float(np.median(np.diff(stamps)))
+            rows = []
+            rings, times = set(), []
+            for cloud in clouds[-5:]:
+                t = cloud.header.stamp.to_sec()
+                odom = min(poses, key=lambda m: abs(m.header.stamp.to_sec() - t))
+                p, q = odom.pose.pose.position, odom.pose.pose.orientation
+                R = rotation(q)
+                pts = np.array(list(point_cloud2.read_points(cloud, ('x', 'y', 'z', 'ring', 'time'))))
+                rings.update(int(r) for r in pts[:, 3])
+                times.extend([float(pts[:, 4].min()), float(pts[:, 4].max())])
+                sensor = np.array([p.x, p.y, p.z]) + R @ np.array([0, 0, {LIDAR_ABOVE_BASE_M}])
+                rows.append(pts[:, :3] @ R.T + sensor)
+            result['points_per_cloud'] = len(rows[-1])
+            result['rings'] = sorted(rings)
+            result['time_span'] = [min(times), max(times)]
+            np.savetxt('{points_file}', np.vstack(rows), fmt='%.5f')
+        """, timeout=200)
+    finally:
+        stop_launch(proc)
+    # velodyne_pointcloud's PointXYZIRT: x y z float32, intensity float32 at 16, ring uint16 at 20, time at 24
+    assert result["fields"] == [["x", 0, 7, 1], ["y", 4, 7, 1], ["z", 8, 7, 1], ["intensity", 16, 7, 1],
+                                ["ring", 20, 4, 1], ["time", 24, 7, 1]]
+    assert result["point_step"] == 32 and result["frame"] == "firefly/velodyne_link"
+    assert math.isclose(result["period"], 0.1, abs_tol=1e-6), result["period"]
+    assert result["rings"] == list(range(16))
+    lo, hi = result["time_span"]
+    assert lo >= 0.0 and 0.09 < hi < 0.1  # each column's time within the 100 ms sweep
+    # the plant is spawned 0.25 m lower than its .bt (powerplant.world): move the points up by that
+    out = ros.run(["rosrun", "rotors_core", "rotors_octomap_distance", str(PLANT), str(points_file), "0", "0", "0.25"])
+    print(f"VLP-16 in the power plant, {result['points_per_cloud']} points per sweep; distance of 5 sweeps' points "
+          f"to the nearest occupied OctoMap cell: {out.stdout.strip()}")
+    figures = dict(kv.rsplit(" ", 1) if kv.startswith("without") else kv.split(" ", 1)
+                   for kv in out.stdout.strip().split(", "))
+    assert int(figures["points"]) > 5 * 10000
+    assert float(figures["p99"].split()[0]) < 0.03  # sensor noise 8 mm
+    assert int(figures["without an occupied cell within 1.0 m"]) == 0
+
+
+def test_rangefinder_reads_the_height_and_the_hokuyo_publishes_laser_scans(ros: RosGraph):
+    results = {}
+    for lidar in ("rangefinder", "hokuyo"):
+        proc = launch(ros, "rotors_gazebo", "mav_hovering_example_with_lidar.launch", "lockstep:=true",
+                      "real_time_factor:=0", "world_name:=basic", f"enable_lidar:={lidar}", name=lidar)
+        try:
+            wait_sim_time(ros, 8.0)  # hovering at 1 m since 5 s
+            results[lidar] = ros.rospy("""
+                from nav_msgs.msg import Odometry
+                from sensor_msgs.msg import LaserScan, Range
+                if rospy.has_param('/firefly/robot_description') and 'hokuyo' in rospy.get_param(
+                        '/firefly/robot_description'):
+                    scans = []
+                    rospy.Subscriber('/firefly/scan', LaserScan, lambda m: scans.append(m))
+                    while len(scans) < 5:
+                        time.sleep(0.05)
+                    s = scans[-1]
+                    result['scan'] = [s.angle_min, s.angle_max, s.angle_increment, len(s.ranges), s.range_min,
+                                      s.range_max, s.header.frame_id]
+                    result['finite'] = sum(1 for r in s.ranges if r == r and abs(r) != float('inf'))
+                    # the mean over four periods (40 Hz on 10 ms steps: 30 and 20 ms alternate)
+                    result['period'] = (scans[-1].header.stamp - scans[-5].header.stamp).to_sec() / 4
+                else:
+                    readings = []
+                    rospy.Subscriber('/firefly/lidar', Range, lambda m: readings.append(m))
+                    while len(readings) < 20:
+                        time.sleep(0.05)
+                    z = rospy.wait_for_message('/firefly/ground_truth/odometry', Odometry).pose.pose.position.z
+                    r = readings[-20:]
+                    result['ranges'] = [m.range for m in r]
+                    result['limits'] = [r[-1].min_range, r[-1].max_range, r[-1].radiation_type]
+                    result['z'] = z
+                    result['period'] = (r[-1].header.stamp - r[-2].header.stamp).to_sec()
+            """)
+        finally:
+            stop_launch(proc)
+    rf = results["rangefinder"]
+    mean = sum(rf["ranges"]) / len(rf["ranges"])
+    # the beam starts 5 cm below the base link and looks straight down at the ground (z = 0)
+    print(f"rangefinder at base z = {rf['z']:.3f} m: mean range {mean:.4f} m over 20 readings (sigma 0.01 m)")
+    assert abs(mean - (rf["z"] - 0.05)) < 0.01
+    assert rf["limits"] == pytest.approx([0.06, 25.0, 1]) and math.isclose(rf["period"], 0.05, abs_tol=1e-6)
+    hk = results["hokuyo"]
+    angle_min, angle_max, increment, n, range_min, range_max, frame = hk["scan"]
+    assert n == 1081 and math.isclose(angle_min, -0.75 * math.pi, rel_tol=1e-6)
+    assert math.isclose(angle_min + (n - 1) * increment, angle_max, abs_tol=1e-5)
+    assert (range_min, range_max) == pytest.approx((0.1, 30.0)) and frame == "firefly/hokuyo_link"
+    assert math.isclose(hk["period"], 0.025, abs_tol=1e-6)
+    # level at 1 m over an empty plane: no beam of a horizontal scan returns (REP 117: +inf)
+    assert hk["finite"] == 0
