@@ -98,3 +98,50 @@ def test_wind_speed_from_a_topic(ros: RosGraph, tmp_path: Path):
         stop_launch(proc)
     assert got == [3.0, -1.0, 3.0, -1.0]  # NaN input ignored: the last valid wind stays
     assert "ignoring a wind speed with NaN or inf" in Path(proc.log_path).read_text()
+
+
+def test_the_airspeed_sensor_reads_the_wind_plugins_wind_minus_the_velocity(ros: RosGraph, tmp_path: Path):
+    """The book's wind sensor (section 4, eq. 19): with the wind plugin blowing 3 m/s along x on a
+    hovering MAV, air_speed is R_WB^T (v_wind - v) of the plugin's published wind and the ground truth."""
+    proc = fly(ros, tmp_path, "mav_hovering_example.launch", real_time_factor="0",
+               xacro_args="enable_wind:=true wind_speed_mean:=3 enable_airspeed:=true random_seed:=1")
+    try:
+        wait_sim_time(ros, 6.0)
+        result = ros.rospy("""
+            import numpy as np
+            from geometry_msgs.msg import Vector3Stamped
+            from nav_msgs.msg import Odometry
+            from rotors_comm.msg import WindSpeed
+            got = {'air': {}, 'odom': {}, 'wind': {}}
+            stamp = lambda m: m.header.stamp.to_nsec()
+            rospy.Subscriber('/firefly/air_speed', Vector3Stamped, lambda m: got['air'].__setitem__(stamp(m), m))
+            rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, lambda m: got['odom'].__setitem__(stamp(m), m))
+            rospy.Subscriber('/firefly/wind_speed', WindSpeed, lambda m: got['wind'].__setitem__(stamp(m), m))
+            time.sleep(3.0)
+            worst, n = 0.0, 0
+            for t, air in list(got['air'].items()):
+                if t not in got['odom'] or t not in got['wind']:
+                    continue
+                o, w = got['odom'][t].pose.pose, got['wind'][t].velocity
+                q = o.orientation
+                R = np.array([[1 - 2 * (q.y**2 + q.z**2), 2 * (q.x * q.y - q.w * q.z), 2 * (q.x * q.z + q.w * q.y)],
+                              [2 * (q.x * q.y + q.w * q.z), 1 - 2 * (q.x**2 + q.z**2), 2 * (q.y * q.z - q.w * q.x)],
+                              [2 * (q.x * q.z - q.w * q.y), 2 * (q.y * q.z + q.w * q.x), 1 - 2 * (q.x**2 + q.y**2)]])
+                # odometry's twist is in the body frame (RotorS' odometry); the world velocity is R v_B
+                tw = got['odom'][t].twist.twist.linear
+                v_W = R @ np.array([tw.x, tw.y, tw.z])
+                expected = R.T @ (np.array([w.x, w.y, w.z]) - v_W)
+                worst = max(worst, float(np.abs(expected - np.array([air.vector.x, air.vector.y, air.vector.z])).max()))
+                n += 1
+            result['n'] = n
+            result['worst'] = worst
+            last = got['air'][max(got['air'])].vector
+            result['last'] = [last.x, last.y, last.z]
+        """)
+    finally:
+        stop_launch(proc)
+    print(f"air_speed against R^T (v_wind - v) of the wind plugin and ground truth: {result['n']} stamps, largest "
+          f"difference {result['worst']:.2e} m/s; last reading {result['last']}")
+    assert result["n"] > 100
+    assert result["worst"] < 1e-6
+    assert abs(result["last"][0] - 3.0) < 0.3  # hovering in a 3 m/s wind along x

@@ -1,0 +1,77 @@
+// librotors_gazebo_airspeed_plugin.so (ours): the book's wind sensor (section 4, eq. 19, Note 10) as
+// geometry_msgs/Vector3Stamped on <ns>/<airspeedTopic> (default "air_speed"): v_air = v_wind - v of
+// <linkName> in its own frame, the wind being what the wind plugin blows on this vehicle (its bus).
+// <pitotAxis> (body axis, e.g. "1 0 0") makes it a pitot tube: only that component, along that
+// axis. <noiseStdDev> [m/s], <randomEngineSeed>, <updateRate> [Hz] (0: every step).
+#include <Eigen/Geometry>
+#include <geometry_msgs/Vector3Stamped.h>
+
+#include "rotors_core/event.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin.h"
+#include "rotors_core/ros/listened_publisher.h"
+#include "rotors_gazebo_plugins/models/airspeed_model.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/camera_ros.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
+ public:
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+    CheckKnownParams(sdf, {"robotNamespace", "linkName", "airspeedTopic", "noiseStdDev", "pitotAxis",
+                           "randomEngineSeed", "updateRate"});
+    const std::string ns = ReadRobotNamespace(sdf);
+    std::string link_name, topic = "air_speed";
+    RequireParam(sdf, "linkName", &link_name);
+    ReadParam(sdf, "airspeedTopic", &topic);
+    AirspeedParams p;
+    ReadParam(sdf, "noiseStdDev", &p.noise_stddev_m_s);
+    ReadVector(sdf, "pitotAxis", &p.pitot_axis_B);
+    double rate_hz = 0.0;
+    ReadParam(sdf, "updateRate", &rate_hz);
+    if (!(rate_hz >= 0.0)) throw rotors_sim::SimError("updateRate must be >= 0 Hz");
+    ThrowIfInvalid(p.Validate());
+    model_ = std::make_unique<AirspeedModel>(p, ReadSeed(sdf));
+    link_ = RequireLink(model, link_name);
+    world_ = model->GetWorldRaw();
+    bus_ = VehicleBus::For(ns);
+    limiter_ = RateLimiter(rate_hz);
+    msg_.header.frame_id = link_name;
+    node_ = MakeNode(ns);
+    if (!node_) return;
+    pub_ = node_->advertise<geometry_msgs::Vector3Stamped>(topic, 10);
+    connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
+  }
+
+ private:
+  void OnUpdate() {
+    const double t = world_->SimTime().Double();
+    if (!limiter_.Due(t)) return;
+    const auto X_WB = link_->WorldPose();
+    const auto q = X_WB.Rot();
+    const Eigen::Matrix3d R_WB = Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z()).toRotationMatrix();
+    const auto v = link_->WorldLinearVel();
+    msg_.header.stamp = ToRos(world_->SimTime());
+    msg_.vector = ToVector3Msg(model_->Measure(R_WB, Eigen::Vector3d(v.X(), v.Y(), v.Z()), bus_->wind_velocity_W));
+    pub_.publish(msg_);
+  }
+
+  std::unique_ptr<AirspeedModel> model_;
+  rotors_sim::physics::LinkPtr link_;
+  rotors_sim::physics::World* world_ = nullptr;
+  std::shared_ptr<VehicleBus> bus_;
+  RateLimiter limiter_{0.0};
+  geometry_msgs::Vector3Stamped msg_;
+  std::shared_ptr<ros::NodeHandle> node_;
+  rotors_sim::ListenedPublisher pub_;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+GZ_REGISTER_MODEL_PLUGIN(rotors_gazebo_plugins::GazeboAirspeedPlugin)
