@@ -131,6 +131,20 @@ print((n1 - n0) / (s1 - s0), (s1 - s0) / (w1 - w0))
 """
 
 
+# As CLOCK_WATCH between sim times 3 and 23 s, while subscribed to a lidar's cloud (argv[1]), so that
+# every sweep is turned into a message and sent; prints the clouds per sim second and sim s per wall s.
+LIDAR_WATCH = SIM_CLOCK + """
+rospy.init_node('bench_lidar', anonymous=True, disable_signals=True)
+count = {'clouds': 0}
+sub = rospy.Subscriber(sys.argv[1], rospy.AnyMsg, lambda m: count.update(clouds=count['clouds'] + 1), queue_size=5)
+clock = follow_clock()
+w0, s0 = wait_until(3.0, limit_s=120.0)
+n0 = count['clouds']
+w1, s1 = wait_until(23.0, limit_s=300.0)
+print((count['clouds'] - n0) / (s1 - s0), (s1 - s0) / (w1 - w0))
+"""
+
+
 class Graph:
     """A private ROS master running `launch_cmd`; stopped with Ctrl-C semantics on exit."""
 
@@ -210,6 +224,27 @@ def camera_fps(world: str) -> Dict:
     out = sh([str(WS / "devel" / "lib" / "rotors_core" / "rotors_camera_bench"), str(package / "worlds" / f"{world}.world"),
               "200"], env=env)
     return json.loads(out.strip().splitlines()[-1])
+
+
+def ray_caster() -> Dict:
+    """rotors_ray_bench in the power plant: the caster's rays per second against a bare Embree loop over
+    the same rays and scene, and a VLP-16 / OS1-64 stepping with the world (no ROS, no controller)."""
+    package = Path(sh(["rospack", "find", "rotors_gazebo"]).strip())
+    env = dict(os.environ, GAZEBO_MODEL_PATH=str(package / "models"))
+    out = sh([str(WS / "devel" / "lib" / "rotors_core" / "rotors_ray_bench"),
+              str(package / "worlds" / "powerplant.world"), "20"], env=env)
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def lidar_closed_loop(lidar: str, in_process: bool) -> Dict:
+    """The hovering example with a lidar in the power plant (mav_hovering_example_with_lidar.launch),
+    lockstep, as fast as possible, its cloud subscribed: sim s per wall s and clouds per sim s."""
+    topic = {"vlp16": "/firefly/velodyne_points", "os1_64": "/firefly/os1/points"}[lidar]
+    with Graph(["rotors_gazebo", "mav_hovering_example_with_lidar.launch", "gui:=false", "lockstep:=true",
+                "real_time_factor:=0", f"enable_lidar:={lidar}", f"in_process:={'true' if in_process else 'false'}"]) as g:
+        out = subprocess.run([sys.executable, "-c", LIDAR_WATCH, topic], env=g.env, capture_output=True, text=True,
+                             timeout=600, check=True).stdout.split()
+        return {"clouds_per_sim_s": float(out[-2]), "real_time_factor": float(out[-1])}
 
 
 def estimator_cost_us() -> Dict:
@@ -426,7 +461,7 @@ GYM_PYBULLET_DRONES = ("gym-pybullet-drones: not measured. It is not on PyPI (it
                        "(3.2.7), but the peer is its drone environment and DSL PID controller, not the physics library")
 
 SECTIONS = ("engine", "peers", "closed_loop", "swarm", "startup", "estimator", "waypoints", "cameras", "vi_sensor",
-            "sweep", "soak")
+            "lasers", "sweep", "soak")
 
 
 def median_of(runs: int, measure) -> Dict:
@@ -544,6 +579,24 @@ def main() -> int:
         rows += [("hovering example with the VI-sensor (stereo at 30 Hz), lockstep, paced at real time",
                   f"{vi_paced:.2f} x real time", ">= 1"),
                  ("the same, as fast as possible", f"{vi_fast:.2f} x real time", ">= 2")]
+    if "lasers" in only:
+        caster = ray_caster()
+        loops = {(lidar, ip): lidar_closed_loop(lidar, ip) for lidar in ("vlp16", "os1_64") for ip in (True, False)}
+        res.update(ray_caster_power_plant=caster,
+                   lidar_closed_loop={f"{lidar}{'_in_process' if ip else ''}": r for (lidar, ip), r in loops.items()})
+        rows += [("ray caster in the power plant (VLP-16 beams from 5 places, one thread)",
+                  f"{caster['caster_rays_per_s'] / 1e6:.1f} M rays/s", ""),
+                 ("  Embree's own figure, same rays and scene (bare rtcIntersect1 loop)",
+                  f"{caster['embree_rays_per_s'] / 1e6:.1f} M rays/s ({caster['caster_over_embree']:.0%} reached)", ""),
+                 ("  the power plant with a VLP-16 / an OS1-64 sweeping, no ROS, no controller",
+                  f"{caster['world_with_vlp16_sim_s_per_wall_s']:.1f} / {caster['world_with_os1_64_sim_s_per_wall_s']:.1f}"
+                  " x real time", "")]
+        for lidar, label, target in (("vlp16", "VLP-16 (16 x 1800, 10 Hz)", ">= 20"),
+                                     ("os1_64", "OS1-64 (64 x 1024, 10 Hz)", ">= 5")):
+            r_in, r_own = loops[(lidar, True)], loops[(lidar, False)]
+            rows += [(f"closed loop in the power plant with a {label}, lockstep, cloud subscribed: controller in "
+                      "process / own process", f"{r_in['real_time_factor']:.1f} / {r_own['real_time_factor']:.1f} x "
+                      f"real time ({r_in['clouds_per_sim_s']:.1f} clouds per sim s)", target)]
     if "sweep" in only:
         sweeps = {n: sweep_flights_per_hour(n) for n in (1, 2)}
         res["sweep_firefly_lee_gains_x_wind"] = sweeps

@@ -44,7 +44,7 @@ TEST(LaserMessages, VelodyneCloudHasPointXYZIRTsLayoutAndOnlyReturns) {
   RayScan scan;
   TwoRingScan(&spec, &scan);
   sensor_msgs::PointCloud2 msg;
-  ToVelodyneCloudMsg(scan, spec, VelodyneCloudOptions(), &msg);
+  ToVelodyneCloudMsg(scan, spec, spec.Directions_S(), VelodyneCloudOptions(), &msg);
   using sensor_msgs::PointField;
   const std::vector<std::tuple<std::string, uint32_t, uint8_t>> expected = {
       {"x", 0, PointField::FLOAT32},          {"y", 4, PointField::FLOAT32},     {"z", 8, PointField::FLOAT32},
@@ -83,7 +83,7 @@ TEST(LaserMessages, VelodyneCloudHasPointXYZIRTsLayoutAndOnlyReturns) {
   VelodyneCloudOptions organised;
   organised.organize = true;
   organised.max_range_m = 7.0;  // the plugin's own max drops the 7.5 m return
-  ToVelodyneCloudMsg(scan, spec, organised, &msg);
+  ToVelodyneCloudMsg(scan, spec, spec.Directions_S(), organised, &msg);
   EXPECT_EQ(msg.height, 2u);
   EXPECT_EQ(msg.width, 4u);
   EXPECT_FALSE(msg.is_dense);
@@ -120,7 +120,7 @@ TEST(LaserMessages, BlockLaserCloudHoldsEveryReturnWithItsIntensity) {
   RayScan scan;
   TwoRingScan(&spec, &scan);
   sensor_msgs::PointCloud msg;
-  ToBlockCloudMsg(scan, spec, &msg);
+  ToBlockCloudMsg(scan, spec, spec.Directions_S(), &msg);
   ASSERT_EQ(msg.points.size(), 6u);
   ASSERT_EQ(msg.channels.size(), 1u);
   EXPECT_EQ(msg.channels[0].name, "intensity");

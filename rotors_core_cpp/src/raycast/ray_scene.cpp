@@ -69,6 +69,8 @@ struct RayScene::Impl {
   std::vector<std::shared_ptr<const void>> keep_alive;
   std::vector<Instance> instances;  // index = Embree geometry ID in `top`
   std::vector<const physics::Model*> models_seen;
+  std::map<const physics::Link*, uint32_t> mask_bits;  // links whose visuals have a mask bit of their own
+  bool masks_changed = false;
   uint64_t synced_iteration = ~0ull;
   size_t triangles = 0;
 
@@ -186,6 +188,9 @@ void RayScene::Impl::Rebuild() {
       instance.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
       rtcSetGeometryInstancedScene(instance.geometry, shape);
       rtcSetGeometryTimeStepCount(instance.geometry, 1);
+      // bit 0: every visual; a link that a caster skips has a bit of its own instead
+      const auto bit = mask_bits.find(visual.link);
+      rtcSetGeometryMask(instance.geometry, bit == mask_bits.end() ? 1u : bit->second);
       rtcAttachGeometryByID(top, instance.geometry, static_cast<unsigned>(instances.size()));
       rtcReleaseGeometry(instance.geometry);  // the scene holds it
       instances.push_back(instance);
@@ -226,9 +231,10 @@ void RayScene::Sync() {
   const auto& models = r.world->Models();
   bool same_models = r.top && models.size() == r.models_seen.size();
   for (size_t i = 0; same_models && i < models.size(); ++i) same_models = models[i].get() == r.models_seen[i];
-  if (same_models && r.synced_iteration == r.world->Iterations()) return;
+  if (same_models && !r.masks_changed && r.synced_iteration == r.world->Iterations()) return;
   bool moved = false;
-  if (!same_models) {
+  if (!same_models || r.masks_changed) {
+    r.masks_changed = false;
     r.Rebuild();  // new instances are unplaced: Place() below sets every one
     moved = true;
   }
@@ -237,8 +243,19 @@ void RayScene::Sync() {
   r.synced_iteration = r.world->Iterations();
 }
 
+uint32_t RayScene::SkipMask(const physics::Link* link) {
+  Impl& r = *impl_;
+  auto it = r.mask_bits.find(link);
+  if (it == r.mask_bits.end()) {
+    if (r.mask_bits.size() >= 31) return kAllVisuals;
+    it = r.mask_bits.emplace(link, 2u << r.mask_bits.size()).first;
+    r.masks_changed = true;  // the link's instances take their bit at the next Sync
+  }
+  return kAllVisuals & ~it->second;
+}
+
 RayHit RayScene::Cast(const Eigen::Vector3d& origin_W, const Eigen::Vector3d& dir_W, double near_m, double far_m,
-                      const physics::Link* ignore) const {
+                      const physics::Link* ignore, uint32_t ray_mask) const {
   const Impl& r = *impl_;
   RayHit result;
   if (!r.top) return result;
@@ -246,7 +263,7 @@ RayHit RayScene::Cast(const Eigen::Vector3d& origin_W, const Eigen::Vector3d& di
   rtcInitIntersectContext(&context.base);
   context.instances = &r.instances;
   context.ignore = ignore;
-  if (ignore) context.base.filter = SkipIgnoredLink;
+  if (ignore && ray_mask == kAllVisuals) context.base.filter = SkipIgnoredLink;
   RTCRayHit rh;
   rh.ray.org_x = static_cast<float>(origin_W.x());
   rh.ray.org_y = static_cast<float>(origin_W.y());
@@ -257,7 +274,7 @@ RayHit RayScene::Cast(const Eigen::Vector3d& origin_W, const Eigen::Vector3d& di
   rh.ray.tnear = static_cast<float>(near_m);
   rh.ray.tfar = static_cast<float>(far_m);
   rh.ray.time = 0.0f;
-  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.mask = ray_mask;
   rh.ray.id = 0;
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;

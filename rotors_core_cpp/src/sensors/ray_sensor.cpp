@@ -123,6 +123,14 @@ Eigen::Vector3d RayScanSpec::Direction_S(int i, int j) const {
   return Eigen::Vector3d(std::cos(v) * std::cos(h), std::cos(v) * std::sin(h), std::sin(v));
 }
 
+std::vector<Eigen::Vector3d> RayScanSpec::Directions_S() const {
+  std::vector<Eigen::Vector3d> d;
+  d.reserve(BeamCount());
+  for (int j = 0; j < vertical_count; ++j)
+    for (int i = 0; i < horizontal_count; ++i) d.push_back(Direction_S(i, j));
+  return d;
+}
+
 RaySensor::RaySensor(std::string name, std::string type, physics::LinkPtr parent, const physics::Pose3d& pose_in_link,
                      double update_rate_hz, const sdf::ElementPtr& sdf)
     : Sensor(std::move(name), std::move(type), std::move(parent), pose_in_link, update_rate_hz) {
@@ -134,6 +142,7 @@ RaySensor::RaySensor(std::string name, std::string type, physics::LinkPtr parent
     throw SimError(label + ": " + e.what());
   }
   seed_ = std::hash<std::string>()(ParentLink()->GetModel()->GetName() + "::" + Name());
+  d_S_ = spec_.Directions_S();
 }
 
 void RaySensor::CheckAll(const sdf::ElementPtr& element, const std::string& model) {
@@ -178,12 +187,12 @@ void RaySensor::StartScan(const common::Time& start) {
 }
 
 void RaySensor::CastColumn(int i, const Eigen::Isometry3d& T_WS, double time_s) {
-  const raycast::RayScene& rays = ParentLink()->GetModel()->GetWorldRaw()->Rays();
+  raycast::RayScene& rays = ParentLink()->GetModel()->GetWorldRaw()->Rays();
   const physics::Link* own = ParentLink().get();  // the sensor's housing is not in its view
   for (int j = 0; j < spec_.vertical_count; ++j) {
-    const Eigen::Vector3d d_W = T_WS.linear() * spec_.Direction_S(i, j);
-    const raycast::RayHit hit = rays.Cast(T_WS.translation(), d_W, 0.0, spec_.range_max_m, own);
     const size_t k = static_cast<size_t>(j) * spec_.horizontal_count + i;
+    const Eigen::Vector3d d_W = T_WS.linear() * d_S_[k];
+    const raycast::RayHit hit = rays.Cast(T_WS.translation(), d_W, 0.0, spec_.range_max_m, own, skip_own_mask_);
     building_.ranges_m[k] = Measure(hit.distance_m);
     building_.intensities[k] = hit.Hit() ? static_cast<float>(255.0 * std::abs(hit.normal_W.dot(d_W))) : 0.0f;
   }
@@ -201,10 +210,16 @@ void RaySensor::FinishScan() {
 
 bool RaySensor::SweepsOverTime() const { return over_time_ && UpdateRate() > 0.0; }
 
+void RaySensor::SyncScene() {
+  raycast::RayScene& rays = ParentLink()->GetModel()->GetWorldRaw()->Rays();
+  if (skip_own_mask_ == raycast::RayScene::kAllVisuals) skip_own_mask_ = rays.SkipMask(ParentLink().get());
+  rays.Sync();
+}
+
 void RaySensor::OnStep(const common::Time& sim_time) {
   const physics::Pose3d X_WS = WorldPose();
   if (SweepsOverTime() && scanning_) {
-    ParentLink()->GetModel()->GetWorldRaw()->Rays().Sync();
+    SyncScene();
     // the columns due since the last step, each from the pose at its own time
     const double t = sim_time.Double(), t_prev = previous_step_time_.Double(), t0 = building_.start.Double();
     const double column_period_s = 1.0 / (UpdateRate() * spec_.horizontal_count);
@@ -220,7 +235,7 @@ void RaySensor::OnStep(const common::Time& sim_time) {
 }
 
 void RaySensor::OnUpdate(const common::Time& sim_time) {
-  ParentLink()->GetModel()->GetWorldRaw()->Rays().Sync();
+  SyncScene();
   const Eigen::Isometry3d T_WS = ToEigen(WorldPose());
   if (SweepsOverTime()) {
     if (scanning_) {

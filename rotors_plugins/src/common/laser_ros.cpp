@@ -50,8 +50,8 @@ sensor_msgs::PointField Field(const std::string& name, uint32_t offset, uint8_t 
 }
 }  // namespace
 
-void ToVelodyneCloudMsg(const RayScan& scan, const RayScanSpec& spec, const VelodyneCloudOptions& options,
-                        sensor_msgs::PointCloud2* msg) {
+void ToVelodyneCloudMsg(const RayScan& scan, const RayScanSpec& spec, const std::vector<Eigen::Vector3d>& d_S,
+                        const VelodyneCloudOptions& options, sensor_msgs::PointCloud2* msg) {
   using sensor_msgs::PointField;
   msg->fields = {Field("x", offsetof(VelodynePoint, x), PointField::FLOAT32),
                  Field("y", offsetof(VelodynePoint, y), PointField::FLOAT32),
@@ -74,7 +74,7 @@ void ToVelodyneCloudMsg(const RayScan& scan, const RayScanSpec& spec, const Velo
                         intensity >= options.min_intensity;
       if (!keep && !options.organize) continue;
       VelodynePoint p{};
-      const Eigen::Vector3d p_S = keep ? Eigen::Vector3d(r * spec.Direction_S(i, j)) : Eigen::Vector3d::Constant(nan);
+      const Eigen::Vector3d p_S = keep ? Eigen::Vector3d(r * d_S[k]) : Eigen::Vector3d::Constant(nan);
       p.x = static_cast<float>(p_S.x());
       p.y = static_cast<float>(p_S.y());
       p.z = static_cast<float>(p_S.z());
@@ -91,7 +91,8 @@ void ToVelodyneCloudMsg(const RayScan& scan, const RayScanSpec& spec, const Velo
   if (!points.empty()) std::memcpy(msg->data.data(), points.data(), msg->data.size());
 }
 
-void ToBlockCloudMsg(const RayScan& scan, const RayScanSpec& spec, sensor_msgs::PointCloud* msg) {
+void ToBlockCloudMsg(const RayScan& scan, const RayScanSpec& spec, const std::vector<Eigen::Vector3d>& d_S,
+                     sensor_msgs::PointCloud* msg) {
   msg->points.clear();
   msg->channels.assign(1, sensor_msgs::ChannelFloat32());
   msg->channels[0].name = "intensity";
@@ -99,7 +100,7 @@ void ToBlockCloudMsg(const RayScan& scan, const RayScanSpec& spec, sensor_msgs::
     for (int i = 0; i < spec.horizontal_count; ++i) {
       const size_t k = static_cast<size_t>(j) * spec.horizontal_count + i;
       if (!std::isfinite(scan.ranges_m[k])) continue;
-      const Eigen::Vector3d p = scan.ranges_m[k] * spec.Direction_S(i, j);
+      const Eigen::Vector3d p = scan.ranges_m[k] * d_S[k];
       geometry_msgs::Point32 point;
       point.x = static_cast<float>(p.x());
       point.y = static_cast<float>(p.y());

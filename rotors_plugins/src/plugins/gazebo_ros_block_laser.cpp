@@ -19,7 +19,7 @@ class GazeboRosBlockLaser : public LaserPlugin {
     RayScan noisy = scan;
     AddRangeNoise(noise_m_, &rng_, &noisy);
     sensor_msgs::PointCloudPtr msg(new sensor_msgs::PointCloud);
-    ToBlockCloudMsg(noisy, sensor_->Spec(), msg.get());
+    ToBlockCloudMsg(noisy, sensor_->Spec(), sensor_->BeamDirections_S(), msg.get());
     msg->header.stamp = stamp;
     msg->header.frame_id = frame_;
     pub_.publish(msg);

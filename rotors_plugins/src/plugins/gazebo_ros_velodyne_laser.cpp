@@ -38,9 +38,9 @@ class GazeboRosVelodyneLaser : public LaserPlugin {
     if (noise_m_ > 0.0) {
       RayScan noisy = scan;
       AddRangeNoise(noise_m_, &rng_, &noisy);
-      ToVelodyneCloudMsg(noisy, sensor_->Spec(), options_, msg.get());
+      ToVelodyneCloudMsg(noisy, sensor_->Spec(), sensor_->BeamDirections_S(), options_, msg.get());
     } else {
-      ToVelodyneCloudMsg(scan, sensor_->Spec(), options_, msg.get());
+      ToVelodyneCloudMsg(scan, sensor_->Spec(), sensor_->BeamDirections_S(), options_, msg.get());
     }
     msg->header.stamp = stamp;
     msg->header.frame_id = frame_;

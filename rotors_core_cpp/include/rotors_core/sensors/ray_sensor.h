@@ -45,6 +45,8 @@ struct RayScanSpec {
   double HorizontalAngle(int i) const;  ///< [rad] h_i
   double VerticalAngle(int j) const;    ///< [rad] v_j
   Eigen::Vector3d Direction_S(int i, int j) const;  ///< unit beam direction, sensor frame
+  /// Every beam's Direction_S, at index j * horizontal_count + i.
+  std::vector<Eigen::Vector3d> Directions_S() const;
   size_t BeamCount() const { return static_cast<size_t>(horizontal_count) * vertical_count; }
 };
 
@@ -79,6 +81,8 @@ class RaySensor : public Sensor {
   /// Scans completed so far; the last one is LastScan().
   uint64_t ScanCount() const { return scan_count_; }
   const RayScan& LastScan() const { return last_; }
+  /// Spec().Directions_S(), computed once.
+  const std::vector<Eigen::Vector3d>& BeamDirections_S() const { return d_S_; }
 
  protected:
   void OnStep(const common::Time& sim_time) override;
@@ -87,6 +91,7 @@ class RaySensor : public Sensor {
 
  private:
   bool SweepsOverTime() const;  ///< over time and a rate to time the sweep by
+  void SyncScene();             ///< the world's ray scene up to date, the own link's mask reserved
   void StartScan(const common::Time& start);
   /// Casts column i from the sensor pose T_WS, `time_s` after the scan's start.
   void CastColumn(int i, const Eigen::Isometry3d& T_WS, double time_s);
@@ -95,8 +100,10 @@ class RaySensor : public Sensor {
   float Measure(double true_range_m);
 
   RayScanSpec spec_;
+  std::vector<Eigen::Vector3d> d_S_;  ///< beam directions, sensor frame, at index j * horizontal_count + i
   bool over_time_ = false;
   uint64_t seed_ = 0;
+  uint32_t skip_own_mask_ = 0xFFFFFFFFu;  ///< RayScene::SkipMask of the parent link (all bits: none yet)
   std::mt19937_64 rng_;
   std::normal_distribution<double> unit_normal_{0.0, 1.0};
   RayScan building_, last_;

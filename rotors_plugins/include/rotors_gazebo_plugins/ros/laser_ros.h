@@ -35,11 +35,13 @@ struct VelodyneCloudOptions {
   double min_intensity = -1e300;
   bool organize = false;  ///< height = rings, width = columns, NaN where there is no return
 };
-void ToVelodyneCloudMsg(const RayScan& scan, const RayScanSpec& spec, const VelodyneCloudOptions& options,
-                        sensor_msgs::PointCloud2* msg);
+/// d_S: the beams' directions (RaySensor::BeamDirections_S()).
+void ToVelodyneCloudMsg(const RayScan& scan, const RayScanSpec& spec, const std::vector<Eigen::Vector3d>& d_S,
+                        const VelodyneCloudOptions& options, sensor_msgs::PointCloud2* msg);
 
 /// gazebo_ros_block_laser's sensor_msgs/PointCloud: every return as a point, channel "intensity".
-void ToBlockCloudMsg(const RayScan& scan, const RayScanSpec& spec, sensor_msgs::PointCloud* msg);
+void ToBlockCloudMsg(const RayScan& scan, const RayScanSpec& spec, const std::vector<Eigen::Vector3d>& d_S,
+                     sensor_msgs::PointCloud* msg);
 
 /// The nearest return of the whole beam cone (Note 9: an ultrasonic sensor measures the shortest
 /// distance in its cone): -inf if any beam is closer than min range, +inf if none returns.
