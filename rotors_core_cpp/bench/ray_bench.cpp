@@ -1,8 +1,9 @@
 // Rays per second of the laser caster in a world given on the command line (the power plant for
 // `make bench`), against Embree's own figure for the same rays in the same run: the caster
 // (RayScene::Cast: ray set-up, the filter that skips the sensor's own link, the hit's world normal)
-// and a bare rtcIntersect1 loop on the same Embree scene. The rays are a VLP-16's 16 x 1800 beams
-// from a few places in the world. Also: a VLP-16 and an OS1-64 sensor stepping with the world
+// and a bare rtcIntersect1 loop on the same Embree scene; and the packet caster the sensors use
+// (RayScene::CastFan, a column of 16 beams per packet; its trigonometry for the directions
+// included). The rays are a VLP-16's 16 x 1800 beams from a few places in the world. Also: a VLP-16 and an OS1-64 sensor stepping with the world
 // (their whole per-step cost). Prints one JSON line.
 //   rotors_ray_bench <world file> [sweeps]
 #include <chrono>
@@ -108,6 +109,22 @@ int main(int argc, char** argv) {
         embree_hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
       }
   });
+  // the same rays again, a column (16 rings) at a time through the packet caster the sensors use
+  std::vector<Eigen::Vector3d> column(spec.vertical_count);
+  std::vector<raycast::RayHit> column_hits(spec.vertical_count);
+  size_t fan_hits = 0;
+  const uint32_t mask = rays.SkipMask(vlp16->ParentLink().get());
+  rays.Sync();
+  const double fan_s = Seconds([&] {
+    for (int k = 0; k < sweeps; ++k)
+      for (const auto& o : origins)
+        for (int i = 0; i < spec.horizontal_count; ++i) {
+          for (int j = 0; j < spec.vertical_count; ++j) column[j] = spec.Direction_S(i, j);
+          rays.CastFan(o, column.data(), column.size(), 0.0, 100.0, vlp16->ParentLink().get(), mask,
+                       column_hits.data());
+          for (const auto& h : column_hits) fan_hits += h.Hit();
+        }
+  });
   const double n_rays = static_cast<double>(beams.size()) * sweeps;
   const size_t triangles = rays.TriangleCount(), instances = rays.InstanceCount();
   world->Fini();
@@ -125,9 +142,9 @@ int main(int argc, char** argv) {
   const double os1_rtf = sensor_rtf(Lidar("os1_64", "2 -6 10 0 0 0", 1024, 64, 16.6 * M_PI / 180));
   std::printf(
       "{\"rays\": %.0f, \"hit_share\": %.3f, \"caster_rays_per_s\": %.0f, \"embree_rays_per_s\": %.0f, "
-      "\"caster_over_embree\": %.3f, \"hits_agree\": %s, \"scene_triangles\": %zu, \"instances\": %zu, "
+      "\"caster_over_embree\": %.3f, \"caster_fan_rays_per_s\": %.0f, \"hits_agree\": %s, \"scene_triangles\": %zu, \"instances\": %zu, "
       "\"world_with_vlp16_sim_s_per_wall_s\": %.2f, \"world_with_os1_64_sim_s_per_wall_s\": %.2f}\n",
       n_rays, hits / n_rays, n_rays / caster_s, n_rays / embree_s, (n_rays / caster_s) / (n_rays / embree_s),
-      hits == embree_hits ? "true" : "false", triangles, instances, vlp16_rtf, os1_rtf);
+      n_rays / fan_s, hits == embree_hits && hits == fan_hits ? "true" : "false", triangles, instances, vlp16_rtf, os1_rtf);
   return 0;
 }

@@ -1,5 +1,6 @@
 #include "rotors_core/raycast/ray_scene.h"
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -81,6 +82,17 @@ struct RayScene::Impl {
     return scene;
   }
   RTCScene TriangleScene(const rendering::TriangleSoup& soup);
+  /// The hit of instance `id` at distance t, with Embree's normal Ng (in the shape's frame).
+  RayHit Hit(unsigned id, float t, const Eigen::Vector3d& Ng, const Eigen::Vector3d& dir_W) const {
+    if (id >= instances.size()) return RayHit();
+    const Instance& instance = instances[id];
+    RayHit hit;
+    hit.distance_m = t;
+    const Eigen::Vector3d n = (instance.normal_to_W * Ng).normalized();
+    hit.normal_W = n.dot(dir_W) > 0 ? Eigen::Vector3d(-n) : n;
+    hit.link = instance.visual->link;
+    return hit;
+  }
   RTCScene SphereScene();
   RTCScene ShapeScene(const Shape& shape, Eigen::Matrix4d* S);
   void Rebuild();
@@ -280,15 +292,52 @@ RayHit RayScene::Cast(const Eigen::Vector3d& origin_W, const Eigen::Vector3d& di
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(r.top, &context.base, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.instID[0] >= r.instances.size()) return result;
-  const Instance& instance = r.instances[rh.hit.instID[0]];
-  result.distance_m = rh.ray.tfar;
-  // Embree reports an instanced hit's normal in the shape's frame
-  Eigen::Vector3d n = instance.normal_to_W * Eigen::Vector3d(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-  n.normalize();
-  result.normal_W = n.dot(dir_W) > 0 ? Eigen::Vector3d(-n) : n;
-  result.link = instance.visual->link;
-  return result;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return result;
+  return r.Hit(rh.hit.instID[0], rh.ray.tfar, Eigen::Vector3d(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), dir_W);
+}
+
+void RayScene::CastFan(const Eigen::Vector3d& origin_W, const Eigen::Vector3d* dirs_W, size_t n, double near_m,
+                       double far_m, const physics::Link* ignore, uint32_t ray_mask, RayHit* hits) const {
+  const Impl& r = *impl_;
+  if (!r.top) {
+    for (size_t k = 0; k < n; ++k) hits[k] = RayHit();
+    return;
+  }
+  CastContext context;
+  rtcInitIntersectContext(&context.base);
+  context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // one origin, neighbouring directions
+  context.instances = &r.instances;
+  context.ignore = ignore;
+  if (ignore && ray_mask == kAllVisuals) context.base.filter = SkipIgnoredLink;
+  for (size_t first = 0; first < n; first += 16) {
+    const size_t count = std::min<size_t>(16, n - first);
+    alignas(64) int valid[16];
+    alignas(64) RTCRayHit16 rh;
+    for (size_t k = 0; k < 16; ++k) {
+      valid[k] = k < count ? -1 : 0;
+      const Eigen::Vector3d& d = dirs_W[first + std::min(k, count - 1)];
+      rh.ray.org_x[k] = static_cast<float>(origin_W.x());
+      rh.ray.org_y[k] = static_cast<float>(origin_W.y());
+      rh.ray.org_z[k] = static_cast<float>(origin_W.z());
+      rh.ray.dir_x[k] = static_cast<float>(d.x());
+      rh.ray.dir_y[k] = static_cast<float>(d.y());
+      rh.ray.dir_z[k] = static_cast<float>(d.z());
+      rh.ray.tnear[k] = static_cast<float>(near_m);
+      rh.ray.tfar[k] = static_cast<float>(far_m);
+      rh.ray.time[k] = 0.0f;
+      rh.ray.mask[k] = ray_mask;
+      rh.ray.id[k] = static_cast<unsigned>(k);
+      rh.ray.flags[k] = 0;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, r.top, &context.base, &rh);
+    for (size_t k = 0; k < count; ++k)
+      hits[first + k] = rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID
+                            ? RayHit()
+                            : r.Hit(rh.hit.instID[0][k], rh.ray.tfar[k],
+                                    Eigen::Vector3d(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]), dirs_W[first + k]);
+  }
 }
 
 size_t RayScene::InstanceCount() const { return impl_->instances.size(); }

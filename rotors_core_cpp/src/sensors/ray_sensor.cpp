@@ -187,14 +187,20 @@ void RaySensor::StartScan(const common::Time& start) {
 }
 
 void RaySensor::CastColumn(int i, const Eigen::Isometry3d& T_WS, double time_s) {
-  raycast::RayScene& rays = ParentLink()->GetModel()->GetWorldRaw()->Rays();
+  const raycast::RayScene& rays = ParentLink()->GetModel()->GetWorldRaw()->Rays();
   const physics::Link* own = ParentLink().get();  // the sensor's housing is not in its view
-  for (int j = 0; j < spec_.vertical_count; ++j) {
-    const size_t k = static_cast<size_t>(j) * spec_.horizontal_count + i;
-    const Eigen::Vector3d d_W = T_WS.linear() * d_S_[k];
-    const raycast::RayHit hit = rays.Cast(T_WS.translation(), d_W, 0.0, spec_.range_max_m, own, skip_own_mask_);
+  const int rows = spec_.vertical_count, columns = spec_.horizontal_count;
+  column_d_W_.resize(rows);
+  column_hits_.resize(rows);
+  for (int j = 0; j < rows; ++j) column_d_W_[j] = T_WS.linear() * d_S_[static_cast<size_t>(j) * columns + i];
+  rays.CastFan(T_WS.translation(), column_d_W_.data(), rows, 0.0, spec_.range_max_m, own, skip_own_mask_,
+               column_hits_.data());
+  for (int j = 0; j < rows; ++j) {
+    const size_t k = static_cast<size_t>(j) * columns + i;
+    const raycast::RayHit& hit = column_hits_[j];
     building_.ranges_m[k] = Measure(hit.distance_m);
-    building_.intensities[k] = hit.Hit() ? static_cast<float>(255.0 * std::abs(hit.normal_W.dot(d_W))) : 0.0f;
+    // Lambertian return strength: the cosine between beam and surface normal
+    building_.intensities[k] = hit.Hit() ? static_cast<float>(255.0 * std::abs(hit.normal_W.dot(column_d_W_[j]))) : 0.0f;
   }
   building_.column_time_s[i] = static_cast<float>(time_s);
 }

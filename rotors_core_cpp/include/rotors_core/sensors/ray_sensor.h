@@ -24,6 +24,7 @@
 #include <Eigen/Geometry>
 #include <sdf/Element.hh>
 
+#include "rotors_core/raycast/ray_scene.h"
 #include "rotors_core/sensors/sensor.h"
 
 namespace rotors_sim {
@@ -101,6 +102,8 @@ class RaySensor : public Sensor {
 
   RayScanSpec spec_;
   std::vector<Eigen::Vector3d> d_S_;  ///< beam directions, sensor frame, at index j * horizontal_count + i
+  std::vector<Eigen::Vector3d> column_d_W_;  ///< one column's directions in the world (scratch)
+  std::vector<raycast::RayHit> column_hits_;
   bool over_time_ = false;
   uint64_t seed_ = 0;
   uint32_t skip_own_mask_ = 0xFFFFFFFFu;  ///< RayScene::SkipMask of the parent link (all bits: none yet)
