@@ -241,6 +241,34 @@ TEST(Rays, MovingModelsAreSeenWhereTheyAreNow) {
   EXPECT_NEAR(laser->LastScan().ranges_m[0], 2.0, 1e-5);
 }
 
+TEST(Rays, TheVehiclesOtherLinksAreSeenButNotTheSensorsOwnLink) {
+  // a vehicle of two rigidly joined links: the sensor's (a 0.2 m housing around it) and an arm
+  // reaching 0.5 m ahead of it; gpu_ray and lidar sensors are cast like ray sensors
+  for (const std::string type : {"gpu_ray", "lidar", "gpu_lidar"}) {
+    Scan scan;
+    scan.h_samples = 3;
+    scan.h_min = -0.5;
+    scan.h_max = 0.5;
+    scan.r_min = 0.05;
+    std::string sensor = scan.Sdf(type);
+    if (type == "lidar" || type == "gpu_lidar")  // SDF 1.6+ spells the element <lidar> for these
+      for (const std::string tag : {"<ray>", "</ray>"}) sensor.replace(sensor.find(tag), tag.size(), tag == "<ray>" ? "<lidar>" : "</lidar>");
+    const std::string vehicle =
+        "<model name='rig'><link name='base'><pose>0.5 0 0 0 0 0</pose><inertial><mass>1</mass></inertial>"
+        "<visual name='arm'><geometry><box><size>0.1 0.1 0.1</size></box></geometry></visual></link>"
+        "<link name='lidar'><inertial><mass>0.01</mass></inertial><visual name='housing'><geometry><box><size>0.2 0.2 "
+        "0.2</size></box></geometry></visual>" +
+        sensor + "</link><joint name='mount' type='fixed'><parent>base</parent><child>lidar</child></joint></model>";
+    WorldGuard g{LoadWorld(vehicle + Box("wall", Pose3d(6.05, 0, 0, 0, 0, 0), Eigen::Vector3d(0.1, 50, 50)), 0.0)};
+    g.world->Step(1);
+    auto laser = std::dynamic_pointer_cast<sensors::RaySensor>(g.world->ModelByName("rig")->Sensors().at(0));
+    ASSERT_TRUE(laser) << type;
+    const auto& r = laser->LastScan().ranges_m;
+    EXPECT_NEAR(r[1], 0.45, 1e-5) << type;                    // the arm's near face, not the housing
+    EXPECT_NEAR(r[0], 6.0 / std::cos(0.5), 1e-4) << type;     // beside the arm: the wall
+  }
+}
+
 TEST(Rays, NoiseIsGaussianWithTheDeclaredSigmaAndRepeatsWithTheSeed) {
   Scan scan;
   scan.h_samples = 2000;

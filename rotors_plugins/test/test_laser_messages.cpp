@@ -194,3 +194,29 @@ TEST(LaserMessages, BadPluginParametersAreRefusedWithOneLine) {
           "<max_range>1</max_range></plugin>",
           "<min_range> 5");
 }
+
+TEST(LaserMessages, RotorsLidarModelMeasuresTheDistanceBelowIt) {
+  // RotorS' lidar model (models/lidar), turned upside down 2 m above a floor: its beam looks down
+  setenv("GAZEBO_MODEL_PATH", RESOURCE_DIR "/../models", 1);
+  physics::WorldPtr world = WorldLoader::LoadString(
+      R"(<?xml version='1.0'?><sdf version='1.6'><world name='w'>
+      <model name='floor'><static>true</static><pose>0 0 -0.5 0 0 0</pose><link name='link'><visual name='v'>
+        <geometry><box><size>10 10 1</size></box></geometry></visual></link></model>
+      <include><uri>model://lidar</uri><name>lidar</name><static>true</static><pose>0 0 2 3.14159265 0 0</pose></include>
+      </world></sdf>)",
+      "lidar model");
+  auto sensor = std::dynamic_pointer_cast<sensors::RaySensor>(world->ModelByName("lidar")->Sensors().at(0));
+  ASSERT_TRUE(sensor);
+  EXPECT_DOUBLE_EQ(sensor->UpdateRate(), 20.0);
+  EXPECT_DOUBLE_EQ(sensor->Spec().range_min_m, 0.06);
+  EXPECT_DOUBLE_EQ(sensor->Spec().range_max_m, 25.0);
+  double sum = 0.0;
+  int n = 0;
+  for (int k = 0; k < 100; ++k) {  // 100 readings at 20 Hz
+    world->Step(static_cast<unsigned>(std::lround(0.05 / world->Physics().max_step_size_s)));
+    sum += sensor->LastScan().ranges_m.at(0);
+    ++n;
+  }
+  EXPECT_NEAR(sum / n, 2.0, 3 * 0.01 / std::sqrt(n) + 0.005);  // sigma 0.01 m, rounded to 0.01 m
+  world->Fini();
+}
