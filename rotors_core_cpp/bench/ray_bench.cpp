@@ -3,8 +3,8 @@
 // (RayScene::Cast: ray set-up, the filter that skips the sensor's own link, the hit's world normal)
 // and a bare rtcIntersect1 loop on the same Embree scene; and the packet caster the sensors use
 // (RayScene::CastFan, a column of 16 beams per packet; its trigonometry for the directions
-// included). The rays are a VLP-16's 16 x 1800 beams from a few places in the world. Also: a VLP-16 and an OS1-64 sensor stepping with the world
-// (their whole per-step cost). Prints one JSON line.
+// included). The rays are a VLP-16's 16 x 1800 beams from a few places in the world. Also: a VLP-16 and an OS1-64
+// sensor stepping with the world (their whole per-step cost). Prints one JSON line.
 //   rotors_ray_bench <world file> [sweeps]
 #include <chrono>
 #include <cmath>
@@ -142,9 +142,11 @@ int main(int argc, char** argv) {
   const double os1_rtf = sensor_rtf(Lidar("os1_64", "2 -6 10 0 0 0", 1024, 64, 16.6 * M_PI / 180));
   std::printf(
       "{\"rays\": %.0f, \"hit_share\": %.3f, \"caster_rays_per_s\": %.0f, \"embree_rays_per_s\": %.0f, "
-      "\"caster_over_embree\": %.3f, \"caster_fan_rays_per_s\": %.0f, \"hits_agree\": %s, \"scene_triangles\": %zu, \"instances\": %zu, "
+      "\"caster_over_embree\": %.3f, \"caster_fan_rays_per_s\": %.0f, \"hits_agree\": %s, \"scene_triangles\": %zu, "
+      "\"instances\": %zu, "
       "\"world_with_vlp16_sim_s_per_wall_s\": %.2f, \"world_with_os1_64_sim_s_per_wall_s\": %.2f}\n",
       n_rays, hits / n_rays, n_rays / caster_s, n_rays / embree_s, (n_rays / caster_s) / (n_rays / embree_s),
-      n_rays / fan_s, hits == embree_hits && hits == fan_hits ? "true" : "false", triangles, instances, vlp16_rtf, os1_rtf);
+      n_rays / fan_s, hits == embree_hits && hits == fan_hits ? "true" : "false", triangles, instances, vlp16_rtf,
+      os1_rtf);
   return 0;
 }

@@ -27,14 +27,6 @@ using ignition::math::Pose3d;
 
 namespace {
 
-std::string PoseText(const Pose3d& X) {
-  std::ostringstream s;
-  s.precision(17);
-  s << X.Pos().X() << " " << X.Pos().Y() << " " << X.Pos().Z() << " " << X.Rot().Roll() << " " << X.Rot().Pitch() << " "
-    << X.Rot().Yaw();
-  return s.str();
-}
-
 std::string Camera(const std::string& name, const Pose3d& X_SC, int w, int h, double hfov, const std::string& format,
                    double stddev = 0.0, double far = 100.0) {
   std::ostringstream s;
@@ -69,13 +61,6 @@ std::string World(const std::string& models, const std::string& background = "0 
   return w.substr(0, w.find("</world>")) + "<scene><ambient>1 1 1 1</ambient><background>" + background +
          "</background></scene><light name='sun' type='directional'><diffuse>0 0 0 1</diffuse>" +
          "<direction>0 0 -1</direction></light>" + models + "</world></sdf>";
-}
-
-Eigen::Isometry3d ToEigen(const Pose3d& X) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
-  return T;
 }
 
 /// The optical frame in the camera frame: x right = -y, y down = -z, z forward = x.

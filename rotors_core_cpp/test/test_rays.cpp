@@ -26,14 +26,6 @@ using ignition::math::Pose3d;
 
 namespace {
 
-std::string PoseText(const Pose3d& X) {
-  std::ostringstream s;
-  s.precision(17);
-  s << X.Pos().X() << " " << X.Pos().Y() << " " << X.Pos().Z() << " " << X.Rot().Roll() << " " << X.Rot().Pitch() << " "
-    << X.Rot().Yaw();
-  return s.str();
-}
-
 struct Scan {
   int h_samples = 181;
   double h_min = -1.2, h_max = 1.2;
@@ -43,7 +35,7 @@ struct Scan {
   double stddev = 0.0;
   double rate_hz = 10.0;
   std::string Sdf(const std::string& type = "ray") const {
- std::ostringstream s;
+    std::ostringstream s;
     s.precision(17);
     s << "<sensor name='laser' type='" << type << "'><update_rate>" << rate_hz << "</update_rate><ray><scan>"
       << "<horizontal><samples>" << h_samples << "</samples><resolution>1</resolution><min_angle>" << h_min
@@ -57,6 +49,32 @@ struct Scan {
     return s.str();
   }
 };
+
+/// A field of view of columns x rows beams within +-half_h_rad and +-half_v_rad.
+Scan Field(int columns, double half_h_rad, int rows, double half_v_rad) {
+  Scan scan;
+  scan.h_samples = columns;
+  scan.h_min = -half_h_rad;
+  scan.h_max = half_h_rad;
+  scan.v_samples = rows;
+  scan.v_min = -half_v_rad;
+  scan.v_max = half_v_rad;
+  return scan;
+}
+
+/// A spinning lidar's pattern: `columns` over the full turn (no column twice), `rings` within
+/// +-half_fov_rad, 10 Hz.
+Scan Spinning(int columns, int rings, double half_fov_rad) {
+  Scan scan;
+  scan.h_samples = columns;
+  scan.h_min = -M_PI;
+  scan.h_max = M_PI * (1 - 2.0 / columns);
+  scan.v_samples = rings;
+  scan.v_min = -half_fov_rad;
+  scan.v_max = half_fov_rad;
+  scan.rate_hz = 10.0;
+  return scan;
+}
 
 /// A model "rig" at X_WM (static or a free body) whose link carries `sensor` at X_LS, and a
 /// visual box of its own around the sensor (which the sensor must not see).
@@ -99,26 +117,13 @@ sensors::RaySensorPtr TheLaser(const physics::WorldPtr& world) {
   return sensor;
 }
 
-Eigen::Isometry3d ToEigen(const Pose3d& X) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
-  return T;
-}
-
 /// The sensor's frame in the world (rig pose, sensor offset).
 Eigen::Isometry3d T_WS(const sensors::RaySensor& laser) { return ToEigen(laser.WorldPose()); }
 
 }  // namespace
 
 TEST(Rays, BeamAnglesRunFromMinToMaxAndRingsFromTheLowest) {
-  Scan scan;
-  scan.h_samples = 1800;
-  scan.h_min = -M_PI;
-  scan.h_max = M_PI * (1 - 2.0 / 1800);
-  scan.v_samples = 16;
-  scan.v_min = -0.2617994;
-  scan.v_max = 0.2617994;
+  const Scan scan = Spinning(1800, 16, 0.2617994);
   WorldGuard g{LoadWorld(Rig(Pose3d(), Pose3d(), scan.Sdf()))};
   const sensors::RayScanSpec& spec = TheLaser(g.world)->Spec();
   ASSERT_EQ(spec.horizontal_count, 1800);
@@ -174,13 +179,7 @@ TEST(Rays, RangesToAPlaneAreDistanceOverCosines) {
 TEST(Rays, RangesToASphereAreTheFirstRootOfTheQuadratic) {
   const Eigen::Vector3d c(3.0, 0.4, 1.2);
   const double R = 0.7;
-  Scan scan;
-  scan.h_samples = 121;
-  scan.h_min = -0.4;
-  scan.h_max = 0.4;
-  scan.v_samples = 61;
-  scan.v_min = -0.4;
-  scan.v_max = 0.4;
+  const Scan scan = Field(121, 0.4, 61, 0.4);
   WorldGuard g{LoadWorld(Rig(Pose3d(0, 0, 1, 0, 0.02, 0.05), Pose3d(), scan.Sdf()) + Sphere("ball", c, R))};
   g.world->Step(1);
   auto laser = TheLaser(g.world);
@@ -229,14 +228,14 @@ TEST(Rays, MovingModelsAreSeenWhereTheyAreNow) {
   Scan scan;
   scan.h_samples = 1;
   scan.h_min = scan.h_max = 0.0;
-  WorldGuard g{LoadWorld(Rig(Pose3d(), Pose3d(), scan.Sdf()) +
-                             Box("cart", Pose3d(5, 0, 0, 0, 0, 0), Eigen::Vector3d(1, 1, 1), false),
-                         0.0)};
+  WorldGuard g{LoadWorld(
+      Rig(Pose3d(), Pose3d(), scan.Sdf()) + Box("cart", Pose3d(5, 0, 0, 0, 0, 0), Eigen::Vector3d(1, 1, 1), false),
+      0.0)};
   g.world->Step(1);
   auto laser = TheLaser(g.world);
   EXPECT_NEAR(laser->LastScan().ranges_m[0], 4.5, 1e-5);
   g.world->ModelByName("cart")->SetWorldPose(Pose3d(2.5, 0, 0, 0, 0, 0));  // moved between two updates
-  g.world->Step(1000);                                                      // ten updates at 10 Hz
+  g.world->Step(1000);                                                     // ten updates at 10 Hz
   EXPECT_EQ(laser->ScanCount(), 11u);
   EXPECT_NEAR(laser->LastScan().ranges_m[0], 2.0, 1e-5);
 }
@@ -252,7 +251,8 @@ TEST(Rays, TheVehiclesOtherLinksAreSeenButNotTheSensorsOwnLink) {
     scan.r_min = 0.05;
     std::string sensor = scan.Sdf(type);
     if (type == "lidar" || type == "gpu_lidar")  // SDF 1.6+ spells the element <lidar> for these
-      for (const std::string tag : {"<ray>", "</ray>"}) sensor.replace(sensor.find(tag), tag.size(), tag == "<ray>" ? "<lidar>" : "</lidar>");
+      for (const std::string tag : {"<ray>", "</ray>"})
+        sensor.replace(sensor.find(tag), tag.size(), tag == "<ray>" ? "<lidar>" : "</lidar>");
     const std::string vehicle =
         "<model name='rig'><link name='base'><pose>0.5 0 0 0 0 0</pose><inertial><mass>1</mass></inertial>"
         "<visual name='arm'><geometry><box><size>0.1 0.1 0.1</size></box></geometry></visual></link>"
@@ -264,19 +264,13 @@ TEST(Rays, TheVehiclesOtherLinksAreSeenButNotTheSensorsOwnLink) {
     auto laser = std::dynamic_pointer_cast<sensors::RaySensor>(g.world->ModelByName("rig")->Sensors().at(0));
     ASSERT_TRUE(laser) << type;
     const auto& r = laser->LastScan().ranges_m;
-    EXPECT_NEAR(r[1], 0.45, 1e-5) << type;                    // the arm's near face, not the housing
-    EXPECT_NEAR(r[0], 6.0 / std::cos(0.5), 1e-4) << type;     // beside the arm: the wall
+    EXPECT_NEAR(r[1], 0.45, 1e-5) << type;                 // the arm's near face, not the housing
+    EXPECT_NEAR(r[0], 6.0 / std::cos(0.5), 1e-4) << type;  // beside the arm: the wall
   }
 }
 
 TEST(Rays, NoiseIsGaussianWithTheDeclaredSigmaAndRepeatsWithTheSeed) {
-  Scan scan;
-  scan.h_samples = 2000;
-  scan.h_min = -0.05;
-  scan.h_max = 0.05;
-  scan.v_samples = 5;
-  scan.v_min = -0.05;
-  scan.v_max = 0.05;
+  Scan scan = Field(2000, 0.05, 5, 0.05);
   scan.stddev = 0.02;
   auto run = [&](std::vector<double>* errors) {
     WorldGuard g{LoadWorld(Rig(Pose3d(), Pose3d(), scan.Sdf()) +
@@ -286,8 +280,7 @@ TEST(Rays, NoiseIsGaussianWithTheDeclaredSigmaAndRepeatsWithTheSeed) {
     const sensors::RayScanSpec& spec = laser->Spec();
     for (int j = 0; j < spec.vertical_count; ++j)
       for (int i = 0; i < spec.horizontal_count; ++i)
-        errors->push_back(laser->LastScan().ranges_m[j * spec.horizontal_count + i] -
-                          6.0 / spec.Direction_S(i, j).x());
+        errors->push_back(laser->LastScan().ranges_m[j * spec.horizontal_count + i] - 6.0 / spec.Direction_S(i, j).x());
   };
   std::vector<double> e, again;
   run(&e);
@@ -333,28 +326,22 @@ Eigen::Isometry3d Between(const std::map<int64_t, Eigen::Isometry3d>& T_at, doub
   const double t0 = before->first * 1e-9, t1 = after->first * 1e-9;
   const double a = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() =
-      Eigen::Quaterniond(before->second.linear()).slerp(a, Eigen::Quaterniond(after->second.linear())).toRotationMatrix();
+  T.linear() = Eigen::Quaterniond(before->second.linear())
+                   .slerp(a, Eigen::Quaterniond(after->second.linear()))
+                   .toRotationMatrix();
   T.translation() = (1 - a) * before->second.translation() + a * after->second.translation();
   return T;
 }
 
 Deskew SpinInFrontOfAWall(bool over_time) {
-  Scan scan;
-  scan.h_samples = 900;
-  scan.h_min = -M_PI;
-  scan.h_max = M_PI * (1 - 2.0 / 900);
-  scan.v_samples = 16;
-  scan.v_min = -0.26;
-  scan.v_max = 0.26;
-  scan.rate_hz = 10.0;
+  const Scan scan = Spinning(900, 16, 0.26);
   WorldGuard g{LoadWorld(Rig(Pose3d(0, 0, 2, 0, 0, 0), Pose3d(0.1, 0, 0.05, 0, 0, 0), scan.Sdf(), false) +
                              Box("wall", Pose3d(4.05, 0, 2, 0, 0, 0), Eigen::Vector3d(0.1, 100, 100)),
                          0.0, 0.001)};
   auto laser = TheLaser(g.world);
   laser->SetScanOverTime(over_time);
   physics::LinkPtr body = g.world->ModelByName("rig")->GetLinks().at(0);
-  body->SetWorldAngularVel({0, 0, 1.0});  // about a principal axis: it keeps turning at 1 rad/s
+  body->SetWorldAngularVel({0, 0, 1.0});         // about a principal axis: it keeps turning at 1 rad/s
   std::map<int64_t, Eigen::Isometry3d> T_WS_at;  // ground truth, by sim time [ns]
   const Eigen::Isometry3d T_LS = ToEigen(laser->Pose());
   T_WS_at[0] = ToEigen(body->WorldPose()) * T_LS;

@@ -4,7 +4,26 @@
 #include <sstream>
 #include <string>
 
+#include <Eigen/Geometry>
+#include <ignition/math/Pose3.hh>
+
 #include "rotors_core/physics/world.h"
+
+/// "x y z roll pitch yaw" of a pose, for SDF text.
+inline std::string PoseText(const ignition::math::Pose3d& X) {
+  std::ostringstream s;
+  s.precision(17);
+  s << X.Pos().X() << " " << X.Pos().Y() << " " << X.Pos().Z() << " " << X.Rot().Roll() << " " << X.Rot().Pitch() << " "
+    << X.Rot().Yaw();
+  return s.str();
+}
+
+inline Eigen::Isometry3d ToEigen(const ignition::math::Pose3d& X) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
+  return T;
+}
 
 inline std::string WorldSdf(double step_s, double gravity_z, bool ground, const std::string& solver = "quick",
                             int iters = 1000, const std::string& ground_surface = "") {

@@ -47,7 +47,7 @@ TEST(LaserMessages, VelodyneCloudHasPointXYZIRTsLayoutAndOnlyReturns) {
   ToVelodyneCloudMsg(scan, spec, spec.Directions_S(), VelodyneCloudOptions(), &msg);
   using sensor_msgs::PointField;
   const std::vector<std::tuple<std::string, uint32_t, uint8_t>> expected = {
-      {"x", 0, PointField::FLOAT32},          {"y", 4, PointField::FLOAT32},     {"z", 8, PointField::FLOAT32},
+      {"x", 0, PointField::FLOAT32},          {"y", 4, PointField::FLOAT32},    {"z", 8, PointField::FLOAT32},
       {"intensity", 16, PointField::FLOAT32}, {"ring", 20, PointField::UINT16}, {"time", 24, PointField::FLOAT32}};
   ASSERT_EQ(msg.fields.size(), expected.size());
   for (size_t f = 0; f < expected.size(); ++f) {
@@ -184,15 +184,17 @@ TEST(LaserMessages, BadPluginParametersAreRefusedWithOneLine) {
       EXPECT_EQ(what.find('\n'), std::string::npos) << what;
     }
   };
-  refused("<plugin name='p' filename='libgazebo_ros_velodyne_laser.so'><topicName>points</topicName>"
-          "<organise_cloud>true</organise_cloud></plugin>",
-          "unknown parameter <organise_cloud>");
+  refused(
+      "<plugin name='p' filename='libgazebo_ros_velodyne_laser.so'><topicName>points</topicName>"
+      "<organise_cloud>true</organise_cloud></plugin>",
+      "unknown parameter <organise_cloud>");
   refused("<plugin name='p' filename='libgazebo_ros_laser.so'/>", "has 9 vertical samples");
   refused("<plugin name='p' filename='libgazebo_ros_range.so'><radiation>sonar</radiation></plugin>",
           "<radiation> 'sonar' must be ultrasound or infrared");
-  refused("<plugin name='p' filename='libgazebo_ros_velodyne_laser.so'><min_range>5</min_range>"
-          "<max_range>1</max_range></plugin>",
-          "<min_range> 5");
+  refused(
+      "<plugin name='p' filename='libgazebo_ros_velodyne_laser.so'><min_range>5</min_range>"
+      "<max_range>1</max_range></plugin>",
+      "<min_range> 5");
 }
 
 TEST(LaserMessages, RotorsLidarModelMeasuresTheDistanceBelowIt) {

@@ -1,6 +1,7 @@
 // Frame composition written as X_AC = X_AB * X_BC (engine internal).
 #pragma once
 
+#include <Eigen/Geometry>
 #include <ignition/math/Pose3.hh>
 
 namespace rotors_sim {
@@ -29,6 +30,14 @@ inline ignition::math::Pose3d Compose(const ignition::math::Pose3d& X_AB, const 
 inline ignition::math::Pose3d Inverse(const ignition::math::Pose3d& X_AB) {
   const ignition::math::Quaterniond q_BA = X_AB.Rot().Inverse();
   return {q_BA.RotateVector(-X_AB.Pos()), q_BA};
+}
+
+/// The pose as an Eigen isometry (for code that works in Eigen: the renderer, the ray caster).
+inline Eigen::Isometry3d ToIsometry(const ignition::math::Pose3d& X) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
+  return T;
 }
 
 }  // namespace rotors_sim

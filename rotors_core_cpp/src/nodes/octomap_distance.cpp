@@ -42,9 +42,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rotors_octomap_distance: cannot read points from '%s'\n", argv[2]);
     return 2;
   }
-  const octomap::point3d offset = argc == 6 ? octomap::point3d(std::atof(argv[3]), std::atof(argv[4]),
-                                                               std::atof(argv[5]))
-                                            : octomap::point3d(0, 0, 0);
+  const octomap::point3d offset = argc == 6
+                                      ? octomap::point3d(std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]))
+                                      : octomap::point3d(0, 0, 0);
   const double search_m = 1.0;
   std::vector<double> distances;
   size_t lonely = 0;

@@ -14,6 +14,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/rendering/tessellation.h"
+#include "../engine/pose_math.h"
 
 namespace rotors_sim {
 namespace raycast {
@@ -21,13 +22,6 @@ namespace {
 
 using geometry::Shape;
 using Affine = Eigen::Matrix<double, 3, 4>;
-
-Eigen::Isometry3d ToEigen(const ignition::math::Pose3d& X) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
-  return T;
-}
 
 /// Slices of a cylinder's triangles: the chord is r (1 - cos(pi / 512)) = 1.9e-5 r inside the
 /// circle, 0.002 mm for a 0.1 m radius.
@@ -213,7 +207,7 @@ void RayScene::Impl::Rebuild() {
 /// Moves an instance to its link's pose now; true if it moved.
 bool RayScene::Impl::Place(Instance* instance) {
   const geometry::Visual& v = *instance->visual;
-  const Eigen::Matrix4d T = ToEigen(v.X_LV + v.link->WorldPose()).matrix() * instance->S;
+  const Eigen::Matrix4d T = ToIsometry(v.X_LV + v.link->WorldPose()).matrix() * instance->S;
   const Eigen::Matrix<float, 3, 4> T_f = T.topRows<3>().cast<float>();
   if (instance->placed && T_f == instance->T_WShape) return false;
   instance->placed = true;

@@ -20,6 +20,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/rendering/tessellation.h"
+#include "../engine/pose_math.h"
 
 namespace rotors_sim {
 namespace rendering {
@@ -152,13 +153,6 @@ struct GpuMesh {
 struct Target {
   GLuint fbo = 0, colour = 0, depth_out = 0, depth_buffer = 0;
 };
-
-Eigen::Isometry3d ToEigen(const ignition::math::Pose3d& X) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
-  return T;
-}
 
 }  // namespace
 
@@ -367,7 +361,7 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   glClear(GL_DEPTH_BUFFER_BIT);  // to 1: the far plane
 
   const geometry::Lighting& light = world.GetLighting();
-  const Eigen::Isometry3d T_OW = ToEigen(OpticalInCamera() + X_WC).inverse();  // X_WO = X_WC X_CO
+  const Eigen::Isometry3d T_OW = ToIsometry(OpticalInCamera() + X_WC).inverse();  // X_WO = X_WC X_CO
   Eigen::Vector3d to_sun_W(-light.sun_direction_W.X(), -light.sun_direction_W.Y(), -light.sun_direction_W.Z());
   const Eigen::Vector3f to_sun_O = (T_OW.linear() * to_sun_W.normalized()).cast<float>();
   const float f = static_cast<float>(in.FocalLengthPx());
@@ -404,7 +398,7 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
       const GpuMesh* mesh = r.MeshFor(visual.shape, &S);
       if (!mesh) continue;
       const ignition::math::Pose3d X_WV = visual.X_LV + visual.link->WorldPose();
-      const Eigen::Matrix4d T_OV = (T_OW * ToEigen(X_WV)).matrix() * S;
+      const Eigen::Matrix4d T_OV = (T_OW * ToIsometry(X_WV)).matrix() * S;
       // the chunks in view only (a vehicle's own body behind its camera is skipped)
       const Eigen::Matrix3d A = T_OV.topLeftCorner<3, 3>();
       const double scale = A.colwise().norm().maxCoeff();

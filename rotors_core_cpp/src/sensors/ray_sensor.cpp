@@ -13,6 +13,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/raycast/ray_scene.h"
+#include "../engine/pose_math.h"
 
 namespace rotors_sim {
 namespace sensors {
@@ -51,16 +52,9 @@ void ParseAxis(const sdf::ElementPtr& scan, const std::string& axis, int* count,
                    " (angles in rad, min <= max)");
 }
 
-Eigen::Isometry3d ToEigen(const physics::Pose3d& X) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(X.Rot().W(), X.Rot().X(), X.Rot().Y(), X.Rot().Z()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(X.Pos().X(), X.Pos().Y(), X.Pos().Z());
-  return T;
-}
-
 /// The pose a fraction alpha of the way from X0 to X1: position linear, attitude by slerp.
 Eigen::Isometry3d Interpolate(const physics::Pose3d& X0, const physics::Pose3d& X1, double alpha) {
-  const Eigen::Isometry3d T0 = ToEigen(X0), T1 = ToEigen(X1);
+  const Eigen::Isometry3d T0 = ToIsometry(X0), T1 = ToIsometry(X1);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::Quaterniond(T0.linear()).slerp(alpha, Eigen::Quaterniond(T1.linear())).toRotationMatrix();
   T.translation() = (1.0 - alpha) * T0.translation() + alpha * T1.translation();
@@ -88,8 +82,8 @@ RayScanSpec RayScanSpec::Parse(const sdf::ElementPtr& sensor) {
   spec.range_resolution_m = Child(range, "resolution", 0.0);
   if (!(spec.range_min_m >= 0.0)) throw SimError("<range><min> " + Text(spec.range_min_m) + " must be >= 0 m");
   if (!(spec.range_max_m > spec.range_min_m) || !std::isfinite(spec.range_max_m))
-    throw SimError("<range><min> " + Text(spec.range_min_m) + " m is not below <range><max> " +
-                   Text(spec.range_max_m) + " m");
+    throw SimError("<range><min> " + Text(spec.range_min_m) + " m is not below <range><max> " + Text(spec.range_max_m) +
+                   " m");
   if (!(spec.range_resolution_m >= 0.0))
     throw SimError("<range><resolution> " + Text(spec.range_resolution_m) + " must be >= 0 m");
   if (ray->HasElement("noise")) {
@@ -149,8 +143,7 @@ void RaySensor::CheckAll(const sdf::ElementPtr& element, const std::string& mode
   if (!element) return;
   const std::string name = element->HasAttribute("name") ? element->Get<std::string>("name") : "";
   const std::string in_model = element->GetName() == "model" ? name : model;
-  if (element->GetName() == "sensor" && element->HasAttribute("type") &&
-      IsRayType(element->Get<std::string>("type"))) {
+  if (element->GetName() == "sensor" && element->HasAttribute("type") && IsRayType(element->Get<std::string>("type"))) {
     try {
       RayScanSpec::Parse(element);
     } catch (const SimError& e) {
@@ -200,7 +193,8 @@ void RaySensor::CastColumn(int i, const Eigen::Isometry3d& T_WS, double time_s) 
     const raycast::RayHit& hit = column_hits_[j];
     building_.ranges_m[k] = Measure(hit.distance_m);
     // Lambertian return strength: the cosine between beam and surface normal
-    building_.intensities[k] = hit.Hit() ? static_cast<float>(255.0 * std::abs(hit.normal_W.dot(column_d_W_[j]))) : 0.0f;
+    building_.intensities[k] =
+        hit.Hit() ? static_cast<float>(255.0 * std::abs(hit.normal_W.dot(column_d_W_[j]))) : 0.0f;
   }
   building_.column_time_s[i] = static_cast<float>(time_s);
 }
@@ -242,7 +236,7 @@ void RaySensor::OnStep(const common::Time& sim_time) {
 
 void RaySensor::OnUpdate(const common::Time& sim_time) {
   SyncScene();
-  const Eigen::Isometry3d T_WS = ToEigen(WorldPose());
+  const Eigen::Isometry3d T_WS = ToIsometry(WorldPose());
   if (SweepsOverTime()) {
     if (scanning_) {
       // columns left by rounding of the column times are cast now

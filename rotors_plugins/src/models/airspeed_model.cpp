@@ -13,7 +13,9 @@ std::string AirspeedParams::Validate() const {
 }
 
 AirspeedModel::AirspeedModel(const AirspeedParams& params, uint64_t seed)
-    : params_(params), a_B_(params.IsPitot() ? params.pitot_axis_B.normalized() : Eigen::Vector3d::Zero()), rng_(seed) {}
+    : params_(params),
+      a_B_(params.IsPitot() ? params.pitot_axis_B.normalized() : Eigen::Vector3d::Zero()),
+      rng_(seed) {}
 
 Eigen::Vector3d AirspeedModel::Measure(const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& v_W,
                                        const Eigen::Vector3d& v_wind_W) {

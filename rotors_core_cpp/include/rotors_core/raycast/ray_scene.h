@@ -21,7 +21,7 @@ namespace raycast {
 /// The first surface along a ray.
 struct RayHit {
   double distance_m = std::numeric_limits<double>::infinity();  ///< +inf: nothing within [near, far]
-  Eigen::Vector3d normal_W = Eigen::Vector3d::Zero();          ///< unit, facing the ray's origin
+  Eigen::Vector3d normal_W = Eigen::Vector3d::Zero();           ///< unit, facing the ray's origin
   const physics::Link* link = nullptr;                          ///< whose visual was hit
   bool Hit() const { return distance_m < std::numeric_limits<double>::infinity(); }
 };

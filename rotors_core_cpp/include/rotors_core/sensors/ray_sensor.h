@@ -43,8 +43,8 @@ struct RayScanSpec {
   /// Reads the <ray> or <lidar> child of a sensor element; throws SimError("<problem>") for a
   /// missing element, zero samples, min angle above max angle, min range above max range, ...
   static RayScanSpec Parse(const sdf::ElementPtr& sensor);
-  double HorizontalAngle(int i) const;  ///< [rad] h_i
-  double VerticalAngle(int j) const;    ///< [rad] v_j
+  double HorizontalAngle(int i) const;              ///< [rad] h_i
+  double VerticalAngle(int j) const;                ///< [rad] v_j
   Eigen::Vector3d Direction_S(int i, int j) const;  ///< unit beam direction, sensor frame
   /// Every beam's Direction_S, at index j * horizontal_count + i.
   std::vector<Eigen::Vector3d> Directions_S() const;
@@ -101,7 +101,7 @@ class RaySensor : public Sensor {
   float Measure(double true_range_m);
 
   RayScanSpec spec_;
-  std::vector<Eigen::Vector3d> d_S_;  ///< beam directions, sensor frame, at index j * horizontal_count + i
+  std::vector<Eigen::Vector3d> d_S_;         ///< beam directions, sensor frame, at index j * horizontal_count + i
   std::vector<Eigen::Vector3d> column_d_W_;  ///< one column's directions in the world (scratch)
   std::vector<raycast::RayHit> column_hits_;
   bool over_time_ = false;

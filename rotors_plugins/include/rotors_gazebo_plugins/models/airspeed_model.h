@@ -11,7 +11,7 @@
 namespace rotors_gazebo_plugins {
 
 struct AirspeedParams {
-  double noise_stddev_m_s = 0.0;                     ///< noiseStdDev [m/s] per measured axis
+  double noise_stddev_m_s = 0.0;                           ///< noiseStdDev [m/s] per measured axis
   Eigen::Vector3d pitot_axis_B = Eigen::Vector3d::Zero();  ///< pitotAxis; zero: all three axes
   std::string Validate() const;
   bool IsPitot() const { return pitot_axis_B.squaredNorm() > 0.0; }
