@@ -23,34 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path TempDir() {
-  static fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("rotors_geometry_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-/// A square floor of two triangles at height z, edge 2 a, as an OBJ file.
-std::string FloorObj(double a, double z) {
-  const fs::path p = TempDir() / "floor.obj";
-  std::ofstream f(p);
-  f << "v " << -a << " " << -a << " " << z << "\nv " << a << " " << -a << " " << z << "\nv " << a << " " << a << " "
-    << z << "\nv " << -a << " " << a << " " << z << "\nf 1 2 3\nf 1 3 4\n";
-  return p.string();
-}
-
-/// An n x n 8-bit PGM whose grey value rises linearly with the column: a ramp along +x.
-std::string RampPgm(int n, const std::string& name = "ramp.pgm", int rows = -1) {
-  const fs::path p = TempDir() / name;
-  std::ofstream f(p, std::ios::binary);
-  f << "P5\n" << n << " " << (rows < 0 ? n : rows) << "\n255\n";
-  for (int r = 0; r < (rows < 0 ? n : rows); ++r)
-    for (int c = 0; c < n; ++c) f.put(static_cast<char>(c * 255 / (n - 1)));
-  return p.string();
-}
-
 std::string StaticModel(const std::string& name, const std::string& geometry, const std::string& pose = "0 0 0 0 0 0") {
   return "<model name='" + name + "'><static>true</static><pose>" + pose + "</pose><link name='link'>" +
          "<collision name='collision'><geometry>" + geometry + "</geometry></collision>" +

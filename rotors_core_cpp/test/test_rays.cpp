@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "rotors_core/error.h"
+#include "rotors_core/geometry/shapes.h"
 #include "rotors_core/model_builder.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -205,6 +206,42 @@ TEST(Rays, RangesToASphereAreTheFirstRootOfTheQuadratic) {
   EXPECT_LT(worst, 1e-3);
 }
 
+TEST(Rays, RangesToAMeshFloorAndAHeightmapFollowTheirSurfaces) {
+  // two rigs looking down (pitch pi/2: the sensor's x is the world's -z) with 11 x 11 beams: one 3 m
+  // over a mesh floor at z = 0.5, one 10 m over a heightmap ramp rising 4 m over 20 m along x
+  const std::string ramp =
+      "<heightmap><uri>" + RampPgm(33) + "</uri><size>20 20 4</size><pos>1 2 0.5</pos></heightmap>";
+  const Scan scan = Field(11, 0.3, 11, 0.3);
+  std::string rig2 = Rig(Pose3d(1, 2, 10, 0, M_PI / 2, 0), Pose3d(), scan.Sdf());
+  rig2.replace(rig2.find("name='rig'"), 10, "name='rig2'");
+  WorldGuard g{
+      LoadWorld(Rig(Pose3d(-20, 0, 3, 0, M_PI / 2, 0), Pose3d(), scan.Sdf()) + rig2 +
+                "<model name='floor'><static>true</static><pose>-20 0 0 0 0 0</pose><link name='link'><visual name='v'>"
+                "<geometry><mesh><uri>" +
+                FloorObj(5, 0.5) +
+                "</uri></mesh></geometry></visual></link></model>"
+                "<model name='terrain'><static>true</static><link name='link'><visual name='v'><geometry>" +
+                ramp + "</geometry></visual></link></model>")};
+  g.world->Step(1);
+  const auto field = geometry::LoadHeightmap(TempDir() / "ramp.pgm", {20, 20, 4}, {1, 2, 0.5});
+  double worst_floor = 0.0, worst_terrain = 0.0;
+  for (const std::string name : {"rig", "rig2"}) {
+    auto laser = std::dynamic_pointer_cast<sensors::RaySensor>(g.world->ModelByName(name)->Sensors().at(0));
+    const Eigen::Isometry3d T = T_WS(*laser);
+    for (size_t k = 0; k < laser->BeamDirections_S().size(); ++k) {
+      const float r = laser->LastScan().ranges_m[k];
+      ASSERT_TRUE(std::isfinite(r)) << name << " beam " << k;
+      const Eigen::Vector3d p = T * (r * laser->BeamDirections_S()[k]);
+      if (name == "rig") worst_floor = std::max(worst_floor, std::abs(p.z() - 0.5));
+      else worst_terrain = std::max(worst_terrain, std::abs(p.z() - field->HeightAt(p.x(), p.y())));
+    }
+  }
+  std::printf("[ rays ] 121 beams on a mesh floor: largest height error %.3g mm; on a heightmap: %.3g mm\n",
+              worst_floor * 1e3, worst_terrain * 1e3);
+  EXPECT_LT(worst_floor, 1e-3);
+  EXPECT_LT(worst_terrain, 1e-3);
+}
+
 TEST(Rays, OutOfRangeReadingsFollowRep117AndTheHousingIsNotSeen) {
   Scan scan;
   scan.h_samples = 3;
@@ -238,6 +275,14 @@ TEST(Rays, MovingModelsAreSeenWhereTheyAreNow) {
   g.world->Step(1000);                                                     // ten updates at 10 Hz
   EXPECT_EQ(laser->ScanCount(), 11u);
   EXPECT_NEAR(laser->LastScan().ranges_m[0], 2.0, 1e-5);
+  // deleted and spawned again (as /gazebo/delete_model and spawn_sdf_model do), now 1 m wide at 7 m
+  ASSERT_TRUE(g.world->RemoveModel("cart"));
+  g.world->Step(100);
+  EXPECT_EQ(laser->LastScan().ranges_m[0], INFINITY);
+  const std::string box = Box("cart", Pose3d(), Eigen::Vector3d(2, 1, 1), false);
+  ModelBuilder::Spawn(g.world, SpawnRequest{"<sdf version='1.6'>" + box + "</sdf>", "cart", Pose3d(8, 0, 0, 0, 0, 0)});
+  g.world->Step(100);
+  EXPECT_NEAR(laser->LastScan().ranges_m[0], 7.0, 1e-5);
 }
 
 TEST(Rays, TheVehiclesOtherLinksAreSeenButNotTheSensorsOwnLink) {

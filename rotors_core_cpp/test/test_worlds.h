@@ -1,8 +1,12 @@
 // Worlds and models for the engine tests, as SDF/URDF text.
 #pragma once
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
+
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <ignition/math/Pose3.hh>
@@ -62,3 +66,33 @@ struct WorldGuard {
     if (world) world->Fini();
   }
 };
+
+// Files the tests write: a temporary folder of this process, a floor mesh and a heightmap ramp.
+inline std::filesystem::path TempDir() {
+  static std::filesystem::path dir = [] {
+    std::filesystem::path d =
+        std::filesystem::temp_directory_path() / ("rotors_geometry_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+/// A square floor of two triangles at height z, edge 2 a, as an OBJ file.
+inline std::string FloorObj(double a, double z) {
+  const std::filesystem::path p = TempDir() / "floor.obj";
+  std::ofstream f(p);
+  f << "v " << -a << " " << -a << " " << z << "\nv " << a << " " << -a << " " << z << "\nv " << a << " " << a << " "
+    << z << "\nv " << -a << " " << a << " " << z << "\nf 1 2 3\nf 1 3 4\n";
+  return p.string();
+}
+
+/// An n x n 8-bit PGM whose grey value rises linearly with the column: a ramp along +x.
+inline std::string RampPgm(int n, const std::string& name = "ramp.pgm", int rows = -1) {
+  const std::filesystem::path p = TempDir() / name;
+  std::ofstream f(p, std::ios::binary);
+  f << "P5\n" << n << " " << (rows < 0 ? n : rows) << "\n255\n";
+  for (int r = 0; r < (rows < 0 ? n : rows); ++r)
+    for (int c = 0; c < n; ++c) f.put(static_cast<char>(c * 255 / (n - 1)));
+  return p.string();
+}

@@ -107,6 +107,7 @@ void World::Fini() {
   plugins_.clear();
   for (auto& model : models_) model->Fini();
   models_.clear();
+  ++model_set_version_;
 }
 
 ModelPtr World::ModelByName(const std::string& name) const {
@@ -122,13 +123,17 @@ void World::SetPaused(bool paused, const std::string& reason) {
   events_.pause(paused);
 }
 
-void World::AddModel(const ModelPtr& model) { models_.push_back(model); }
+void World::AddModel(const ModelPtr& model) {
+  models_.push_back(model);
+  ++model_set_version_;
+}
 
 bool World::RemoveModel(const std::string& name) {
   for (auto it = models_.begin(); it != models_.end(); ++it) {
     if ((*it)->GetName() == name) {
       (*it)->Fini();
       models_.erase(it);
+      ++model_set_version_;
       return true;
     }
   }

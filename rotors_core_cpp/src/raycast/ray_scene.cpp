@@ -62,8 +62,8 @@ struct RayScene::Impl {
   RTCScene top = nullptr;
   std::map<const void*, RTCScene> shapes;  // by source object (a unit shape's tag, a mesh, ...)
   std::vector<std::shared_ptr<const void>> keep_alive;
-  std::vector<Instance> instances;  // index = Embree geometry ID in `top`
-  std::vector<const physics::Model*> models_seen;
+  std::vector<Instance> instances;                     // index = Embree geometry ID in `top`
+  uint64_t model_set_version = 0;                      // the world's ModelSetVersion() the instances were made for
   std::map<const physics::Link*, uint32_t> mask_bits;  // links whose visuals have a mask bit of their own
   bool masks_changed = false;
   uint64_t synced_iteration = ~0ull;
@@ -183,9 +183,7 @@ void RayScene::Impl::Rebuild() {
   top = rtcNewScene(device);
   rtcSetSceneFlags(top, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_LOW);  // rebuilt whenever something moves
-  models_seen.clear();
   for (const physics::ModelPtr& model : world->Models()) {
-    models_seen.push_back(model.get());
     for (const geometry::Visual& visual : model->Visuals()) {
       Instance instance;
       instance.visual = &visual;
@@ -234,14 +232,13 @@ RayScene::~RayScene() {
 
 void RayScene::Sync() {
   Impl& r = *impl_;
-  const auto& models = r.world->Models();
-  bool same_models = r.top && models.size() == r.models_seen.size();
-  for (size_t i = 0; same_models && i < models.size(); ++i) same_models = models[i].get() == r.models_seen[i];
+  const bool same_models = r.top && r.model_set_version == r.world->ModelSetVersion();
   if (same_models && !r.masks_changed && r.synced_iteration == r.world->Iterations()) return;
   bool moved = false;
   if (!same_models || r.masks_changed) {
     r.masks_changed = false;
     r.Rebuild();  // new instances are unplaced: Place() below sets every one
+    r.model_set_version = r.world->ModelSetVersion();
     moved = true;
   }
   for (Instance& instance : r.instances) moved |= r.Place(&instance);

@@ -75,6 +75,8 @@ class World : public std::enable_shared_from_this<World> {
   ModelPtr ModelByName(const std::string& name) const;
   const std::vector<ModelPtr>& Models() const { return models_; }
   size_t ModelCount() const { return models_.size(); }
+  /// Changes whenever a model is added or removed (a new model may reuse a removed one's address).
+  uint64_t ModelSetVersion() const { return model_set_version_; }
   /// Removes a model and its plugins; false if there is none of that name.
   bool RemoveModel(const std::string& name);
 
@@ -120,6 +122,7 @@ class World : public std::enable_shared_from_this<World> {
   SpaceHandle* space_ = nullptr;
   ContactGroupHandle* contact_group_ = nullptr;
   std::vector<ModelPtr> models_;
+  uint64_t model_set_version_ = 0;
   std::vector<std::unique_ptr<WorldPlugin>> plugins_;
   common::Time sim_time_;
   uint64_t iterations_ = 0;
