@@ -90,6 +90,39 @@ def test_runtime_spawn_delete_and_tf(ros: RosGraph, tmp_path: Path):
     assert "no model named 'box'" in result["msg"]
 
 
+PROBE_SDF = """<?xml version="1.0"?>
+<!-- an SDF vehicle with RotorS plugins: <robotNamespace> is in every plugin block -->
+<sdf version="1.6"><model name="probe"><static>true</static><link name="probe/base_link">
+  <inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>
+  <collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision>
+  <sensor name="rangefinder" type="ray"><pose>0 0 -0.15 0 1.5707963267948966 0</pose><update_rate>20</update_rate>
+    <ray><scan><horizontal><samples>1</samples><min_angle>0</min_angle><max_angle>0</max_angle></horizontal></scan>
+      <range><min>0.06</min><max>25</max></range></ray>
+    <plugin name="lidar" filename="librotors_gazebo_lidar_plugin.so"><robotNamespace>probe</robotNamespace></plugin>
+  </sensor>
+</link>
+<plugin name="baro" filename="librotors_gazebo_pressure_plugin.so">
+  <robotNamespace>probe</robotNamespace><linkName>probe/base_link</linkName>
+</plugin></model></sdf>"""
+
+
+def test_an_sdf_vehicle_with_rotors_plugins_spawns_through_spawn_sdf_model(ros: RosGraph, tmp_path: Path):
+    # the format is the root element's: an SDF model whose plugins carry <robotNamespace> is no URDF
+    start_server(ros, "--rtf", "1")
+    sdf = tmp_path / "probe.sdf"
+    sdf.write_text(PROBE_SDF)
+    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-sdf", "-file", str(sdf), "-model", "probe", "-z", "2"])
+    assert "Successfully spawned entity 'probe'" in res.stdout, res.stdout + res.stderr
+    result = ros.rospy("""
+        from sensor_msgs.msg import FluidPressure, Range
+        result['pressure'] = rospy.wait_for_message('/probe/air_pressure', FluidPressure, timeout=20).fluid_pressure
+        result['range'] = rospy.wait_for_message('/probe/lidar', Range, timeout=20).range
+    """)
+    # 2 m over the ground of basic.world (elevation 500 m), the beam starts 0.15 m below the link
+    assert abs(result["range"] - 1.85) < 1e-4
+    assert 90000 < result["pressure"] < 96000
+
+
 def test_bad_model_is_one_line_error_and_server_keeps_running(ros: RosGraph, tmp_path: Path):
     server = start_server(ros, "--rtf", "0")
     bad = tmp_path / "bad.urdf"

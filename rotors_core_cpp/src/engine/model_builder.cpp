@@ -17,6 +17,7 @@
 #include <sdf/Plane.hh>
 #include <sdf/Root.hh>
 #include <sdf/Sensor.hh>
+#include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "rotors_core/error.h"
@@ -37,6 +38,14 @@ namespace {
 
 using physics::Pose3d;
 using physics::Vector3d;
+
+/// Whether the description's root element is <robot> (URDF) rather than <sdf>. (A search for
+/// "<robot" in the text also finds the <robotNamespace> of every RotorS plugin block in an SDF model.)
+bool IsUrdf(const std::string& xml) {
+  tinyxml2::XMLDocument document;
+  if (document.Parse(xml.c_str()) != tinyxml2::XML_SUCCESS || !document.RootElement()) return false;
+  return std::string(document.RootElement()->Name()) == "robot";
+}
 
 /// Gazebo silently drops a URDF link without <inertial> that hangs on a non-fixed joint
 /// (book note 3); we refuse such a description instead.
@@ -292,7 +301,7 @@ physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const Spaw
   const sdf::Model* sdf_model = root.Model();
   if (!sdf_model) throw SimError("model '" + label + "': the description holds no <robot> or <model>");
   const std::string name = request.model_name.empty() ? sdf_model->Name() : request.model_name;
-  if (request.xml.find("<robot") != std::string::npos) CheckNoDroppedLinks(request.xml, *sdf_model, name);
+  if (IsUrdf(request.xml)) CheckNoDroppedLinks(request.xml, *sdf_model, name);
   return Build(world, *sdf_model, name, Compose(request.X_WM, sdf_model->RawPose()));
 }
 
