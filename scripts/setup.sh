@@ -12,7 +12,7 @@ apt_packages=(
   libsdformat-dev libignition-utils-dev libignition-math-dev libyaml-cpp-dev liburdfdom-dev
   liburdfdom-tools librosbag-dev libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
   libtrajectory-msgs-dev libstd-srvs-dev python3-nav-msgs python3-trajectory-msgs
-  python3-std-srvs imagemagick libstb-dev libassimp-dev libtinyxml2-dev libvisualization-msgs-dev python3-visualization-msgs
+  python3-std-srvs imagemagick libstb-dev libassimp-dev libtinyxml2-dev libompl-dev libvisualization-msgs-dev python3-visualization-msgs
   libnodeletlib-dev libnodeletlib-tools libnodelet-dev python3-nodelet pluginlib-dev
   libstereo-msgs-dev python3-stereo-msgs libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   python3-evdev python3-sensor-msgs clang-format libembree-dev
