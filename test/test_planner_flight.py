@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from conftest import REPO, RosGraph, launch, package_path, stop_launch, wait_sim_time
+from conftest import REPO, RosGraph
 from test_worlds import evaluate, fly_logged
 
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"

@@ -76,8 +76,8 @@ TEST(MapBuilder, MaxRangeClearsSpaceButMarksNoHitAndBadParametersAreRefused) {
   MapBuilder builder(params);
   builder.Insert({Vector3d(5.0, 0.0, 0.0), Vector3d(NAN, 0.0, 0.0)}, Vector3d::Zero());
   const octomap::OcTree& tree = builder.Tree();
-  EXPECT_EQ(tree.search(5.0, 0.0, 0.0), nullptr);            // beyond max range: unknown
-  ASSERT_NE(tree.search(1.5, 0.0, 0.0), nullptr);            // on the ray, within range: free
+  EXPECT_EQ(tree.search(5.0, 0.0, 0.0), nullptr);  // beyond max range: unknown
+  ASSERT_NE(tree.search(1.5, 0.0, 0.0), nullptr);  // on the ray, within range: free
   EXPECT_FALSE(tree.isNodeOccupied(tree.search(1.5, 0.0, 0.0)));
   params.prob_hit = 0.4;
   EXPECT_THROW(
@@ -96,11 +96,11 @@ TEST(OccupancyGrid, ClearanceIsTheDistanceToTheNearestOccupiedCube) {
   const octomap::OcTree tree = BoxTree(0, 1, 0, 1, 0, 1);  // the cube [0, 0.125]^3
   const OccupancyGrid grid(tree, Vector3d(-2, -2, -2), Vector3d(2, 2, 2));
   EXPECT_EQ(grid.OccupiedCount(), 1u);
-  EXPECT_NEAR(grid.Clearance_m({1.125, 0.05, 0.05}, 3.0), 1.0, 1e-12);                       // face
-  EXPECT_NEAR(grid.Clearance_m({1.125, 1.125, 0.05}, 3.0), std::sqrt(2.0), 1e-12);           // edge
+  EXPECT_NEAR(grid.Clearance_m({1.125, 0.05, 0.05}, 3.0), 1.0, 1e-12);                           // face
+  EXPECT_NEAR(grid.Clearance_m({1.125, 1.125, 0.05}, 3.0), std::sqrt(2.0), 1e-12);               // edge
   EXPECT_NEAR(grid.Clearance_m({-0.3, -0.4, 0.125 + 1.2}, 3.0), std::sqrt(0.25 + 1.44), 1e-12);  // corner
-  EXPECT_EQ(grid.Clearance_m({0.06, 0.06, 0.06}, 3.0), 0.0);                                  // inside
-  EXPECT_EQ(grid.Clearance_m({1.6, 0.0, 0.0}, 0.5), 0.5);                                     // nothing that close
+  EXPECT_EQ(grid.Clearance_m({0.06, 0.06, 0.06}, 3.0), 0.0);                                     // inside
+  EXPECT_EQ(grid.Clearance_m({1.6, 0.0, 0.0}, 0.5), 0.5);                                        // nothing that close
   EXPECT_TRUE(grid.IsFree({0.7, 0.06, 0.06}, 0.5));
   EXPECT_FALSE(grid.IsFree({0.6, 0.06, 0.06}, 0.5));
 }
@@ -121,7 +121,7 @@ TEST(PathPlanner, APathThroughAWindowKeepsTheRadiusFromEveryLeafAndTheTrajectory
   const PathPlanner planner(params);
   const PlannedPath path = planner.Plan(grid, Vector3d(0, 0, 0.1), Vector3d(4, 0, 1));
   ASSERT_TRUE(path.ok) << path.reason;
-  EXPECT_GT(path.raw_vertices, 2u);           // the straight line is blocked
+  EXPECT_GT(path.raw_vertices, 2u);             // the straight line is blocked
   EXPECT_EQ(path.p_W[1], Vector3d(0, 0, 0.5));  // from the ground: climbs into the box first
   TrajectoryLimits limits;
   limits.max_speed_mps = 2.0;
@@ -186,7 +186,8 @@ TEST(PathPlanner, BadGoalsAreRefusedWithTheReason) {
             "+ margin 0.1)");
   const PlannedPath unreachable = planner.Plan(grid, start, Vector3d(3.5, 3.5, 3.5));
   EXPECT_FALSE(unreachable.ok);
-  EXPECT_EQ(unreachable.reason.find("no path from (1, 1, 1) to (3.5, 3.5, 3.5) found in 0.5 s"), 0u) << unreachable.reason;
+  EXPECT_EQ(unreachable.reason.find("no path from (1, 1, 1) to (3.5, 3.5, 3.5) found in 0.5 s"), 0u)
+      << unreachable.reason;
   EXPECT_THROW(PathPlanner(PathPlannerParams{-1.0}), std::invalid_argument);
 }
 

@@ -17,13 +17,13 @@ namespace rotors_planning {
 
 /// Parameters named as octomap_server names them.
 struct MapBuilderParams {
-  double resolution_m = 0.15;        ///< [m] `resolution`: leaf size
-  double max_range_m = -1.0;         ///< [m] `sensor_model/max_range`; <= 0: no limit
-  double prob_hit = 0.7;             ///< `sensor_model/hit`
-  double prob_miss = 0.4;            ///< `sensor_model/miss`
-  double clamping_min = 0.12;        ///< `sensor_model/min`
-  double clamping_max = 0.97;        ///< `sensor_model/max`
-  std::string Validate() const;      ///< empty when valid, else a one-line reason
+  double resolution_m = 0.15;    ///< [m] `resolution`: leaf size
+  double max_range_m = -1.0;     ///< [m] `sensor_model/max_range`; <= 0: no limit
+  double prob_hit = 0.7;         ///< `sensor_model/hit`
+  double prob_miss = 0.4;        ///< `sensor_model/miss`
+  double clamping_min = 0.12;    ///< `sensor_model/min`
+  double clamping_max = 0.97;    ///< `sensor_model/max`
+  std::string Validate() const;  ///< empty when valid, else a one-line reason
 };
 
 class MapBuilder {

@@ -13,21 +13,21 @@
 namespace rotors_planning {
 
 struct PathPlannerParams {
-  double radius_m = 0.3;          ///< [m] the vehicle's radius (from its URDF)
-  double margin_m = 0.25;         ///< [m] kept on top of the radius
-  double planning_time_s = 2.0;   ///< [s] RRT-Connect's budget per query
-  double escape_m = 1.5;          ///< [m] how far a start closer than the clearance may move out first
-  unsigned int seed = 1;          ///< OMPL's seed, set once per process (0: OMPL picks one)
+  double radius_m = 0.3;         ///< [m] the vehicle's radius (from its URDF)
+  double margin_m = 0.25;        ///< [m] kept on top of the radius
+  double planning_time_s = 2.0;  ///< [s] RRT-Connect's budget per query
+  double escape_m = 1.5;         ///< [m] how far a start closer than the clearance may move out first
+  unsigned int seed = 1;         ///< OMPL's seed, set once per process (0: OMPL picks one)
   double Clearance_m() const { return radius_m + margin_m; }
-  std::string Validate() const;   ///< empty when valid, else a one-line reason
+  std::string Validate() const;  ///< empty when valid, else a one-line reason
 };
 
 struct PlannedPath {
   bool ok = false;
-  std::string reason;                 ///< why not, one line, when !ok
-  std::vector<Eigen::Vector3d> p_W;   ///< [m] vertices from start to goal
-  size_t raw_vertices = 0;            ///< RRT-Connect's path before shortening (2: a straight line)
-  double planning_time_s = 0.0;       ///< [s] wall time of the query
+  std::string reason;                ///< why not, one line, when !ok
+  std::vector<Eigen::Vector3d> p_W;  ///< [m] vertices from start to goal
+  size_t raw_vertices = 0;           ///< RRT-Connect's path before shortening (2: a straight line)
+  double planning_time_s = 0.0;      ///< [s] wall time of the query
 };
 
 class PathPlanner {
@@ -44,8 +44,8 @@ class PathPlanner {
   const PathPlannerParams& Params() const { return params_; }
 
  private:
-  std::vector<Eigen::Vector3d> Search(const OccupancyGrid& grid, const Eigen::Vector3d& a_W,
-                                      const Eigen::Vector3d& b_W, size_t* raw_vertices) const;
+  std::vector<Eigen::Vector3d> Search(const OccupancyGrid& grid, const Eigen::Vector3d& a_W, const Eigen::Vector3d& b_W,
+                                      size_t* raw_vertices) const;
   bool Escape(const OccupancyGrid& grid, const Eigen::Vector3d& start_W, Eigen::Vector3d* free_W) const;
 
   PathPlannerParams params_;

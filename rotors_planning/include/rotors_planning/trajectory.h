@@ -12,10 +12,10 @@
 namespace rotors_planning {
 
 struct TrajectoryLimits {
-  double max_speed_mps = 1.5;        ///< [m/s]
+  double max_speed_mps = 1.5;          ///< [m/s]
   double max_acceleration_mps2 = 1.5;  ///< [m/s^2]
-  double max_yaw_rate_radps = 1.0;   ///< [rad/s]
-  std::string Validate() const;      ///< empty when valid, else a one-line reason
+  double max_yaw_rate_radps = 1.0;     ///< [rad/s]
+  std::string Validate() const;        ///< empty when valid, else a one-line reason
 };
 
 struct TrajectorySample {

@@ -73,8 +73,9 @@ PlannedPath PathPlanner::Plan(const OccupancyGrid& grid, const Eigen::Vector3d& 
   const double goal_clearance = grid.Clearance_m(goal_W, clearance);
   if (goal_clearance < clearance) {
     std::ostringstream why;
-    why << "goal " << Text(goal_W) << " is inside or near an obstacle: " << goal_clearance << " m from an occupied cell, "
-        << clearance << " m needed (radius " << params_.radius_m << " + margin " << params_.margin_m << ")";
+    why << "goal " << Text(goal_W) << " is inside or near an obstacle: " << goal_clearance
+        << " m from an occupied cell, " << clearance << " m needed (radius " << params_.radius_m << " + margin "
+        << params_.margin_m << ")";
     return fail(why.str());
   }
   std::vector<Eigen::Vector3d> prefix{start_W};
@@ -157,7 +158,8 @@ bool PathPlanner::Escape(const OccupancyGrid& grid, const Eigen::Vector3d& start
   for (double r = 0.5 * grid.Resolution_m(); r <= params_.escape_m + 1e-9; r += 0.5 * grid.Resolution_m()) {
     for (int i = 0; i < kDirections; ++i) {
       const double z = 1.0 - 2.0 * (i + 0.5) / kDirections, rho = std::sqrt(1.0 - z * z);
-      const Eigen::Vector3d p = start_W + r * Eigen::Vector3d(rho * std::cos(golden * i), rho * std::sin(golden * i), z);
+      const Eigen::Vector3d p =
+          start_W + r * Eigen::Vector3d(rho * std::cos(golden * i), rho * std::sin(golden * i), z);
       if (grid.Contains(p) && grid.IsFree(p, params_.Clearance_m()) && grid.SegmentIsFree(start_W, p, 0.0)) {
         *free_W = p;
         return true;

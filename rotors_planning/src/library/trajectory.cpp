@@ -7,7 +7,7 @@
 
 namespace rotors_planning {
 namespace {
-constexpr double kPeakSpeed = 15.0 / 8.0;          // max ds/dtau of the quintic profile
+constexpr double kPeakSpeed = 15.0 / 8.0;                // max ds/dtau of the quintic profile
 const double kPeakAcceleration = 10.0 / std::sqrt(3.0);  // max |d2s/dtau2|
 }  // namespace
 
@@ -26,7 +26,8 @@ std::string TrajectoryLimits::Validate() const {
 Eigen::Vector3d MinimumJerkProfile(double tau) {
   tau = std::clamp(tau, 0.0, 1.0);
   const double t2 = tau * tau, t3 = t2 * tau;
-  return {t3 * (10.0 - 15.0 * tau + 6.0 * t2), 30.0 * t2 * (1.0 - 2.0 * tau + t2), 60.0 * tau * (1.0 - 3.0 * tau + 2.0 * t2)};
+  return {t3 * (10.0 - 15.0 * tau + 6.0 * t2), 30.0 * t2 * (1.0 - 2.0 * tau + t2),
+          60.0 * tau * (1.0 - 3.0 * tau + 2.0 * t2)};
 }
 
 RestToRestTrajectory::RestToRestTrajectory(const std::vector<Eigen::Vector3d>& path_W, double yaw_start_rad,

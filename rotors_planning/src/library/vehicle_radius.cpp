@@ -22,8 +22,7 @@ double BoundingRadius_m(const urdf::Geometry& geometry, const MeshRadiusFn& mesh
       const auto& c = static_cast<const urdf::Cylinder&>(geometry);
       return std::hypot(c.radius, 0.5 * c.length);
     }
-    case urdf::Geometry::SPHERE:
-      return static_cast<const urdf::Sphere&>(geometry).radius;
+    case urdf::Geometry::SPHERE: return static_cast<const urdf::Sphere&>(geometry).radius;
     case urdf::Geometry::MESH: {
       const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
       return mesh_radius(mesh.filename) * std::max({mesh.scale.x, mesh.scale.y, mesh.scale.z});
@@ -70,7 +69,8 @@ double VehicleRadius_m(const std::string& urdf_xml, const MeshRadiusFn& mesh_rad
       if (visual) include(visual->origin, visual->geometry);
     }
   }
-  if (radius_m <= 0.0) throw std::invalid_argument("robot_description has no <collision> or <visual> shape to take a radius from");
+  if (radius_m <= 0.0)
+    throw std::invalid_argument("robot_description has no <collision> or <visual> shape to take a radius from");
   return radius_m;
 }
 

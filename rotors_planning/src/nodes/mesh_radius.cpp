@@ -16,7 +16,8 @@ double MeshRadius_m(const std::string& uri) {
     const std::string rest = uri.substr(10);
     const std::string package = rest.substr(0, rest.find('/'));
     const std::string root = ros::package::getPath(package);
-    if (root.empty()) throw std::invalid_argument("mesh '" + uri + "': no package '" + package + "' on ROS_PACKAGE_PATH");
+    if (root.empty())
+      throw std::invalid_argument("mesh '" + uri + "': no package '" + package + "' on ROS_PACKAGE_PATH");
     path = root + rest.substr(package.size());
   } else if (uri.rfind("file://", 0) == 0) {
     path = uri.substr(7);

@@ -43,9 +43,10 @@ class MappingNode {
     full_srv_ = nh_.advertiseService("octomap_full", &MappingNode::OnGetFull, this);
     reset_srv_ = pnh.advertiseService("reset", &MappingNode::OnReset, this);
     save_srv_ = pnh.advertiseService("save_map", &MappingNode::OnSave, this);
-    ROS_INFO("[mapping] %.3f m leaves in '%s', max range %.1f m, hit %.2f miss %.2f, clamping %.2f-%.2f; listening on %s",
-             params.resolution_m, frame_id_.c_str(), params.max_range_m, params.prob_hit, params.prob_miss,
-             params.clamping_min, params.clamping_max, cloud_sub_.getTopic().c_str());
+    ROS_INFO(
+        "[mapping] %.3f m leaves in '%s', max range %.1f m, hit %.2f miss %.2f, clamping %.2f-%.2f; listening on %s",
+        params.resolution_m, frame_id_.c_str(), params.max_range_m, params.prob_hit, params.prob_miss,
+        params.clamping_min, params.clamping_max, cloud_sub_.getTopic().c_str());
   }
 
   ~MappingNode() {
@@ -114,7 +115,8 @@ class MappingNode {
   }
   bool OnSave(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
     res.success = Save();
-    res.message = res.success ? save_path_ : "cannot write '" + save_path_ + "' (set ~save_path to a writable .bt path)";
+    res.message =
+        res.success ? save_path_ : "cannot write '" + save_path_ + "' (set ~save_path to a writable .bt path)";
     return true;
   }
 

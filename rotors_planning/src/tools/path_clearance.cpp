@@ -21,8 +21,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rotors_path_clearance: cannot read '%s' as a binary OctoMap (.bt)\n", argv[1]);
     return 2;
   }
-  const Eigen::Vector3d shift = argc == 6 ? Eigen::Vector3d(std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]))
-                                          : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d shift =
+      argc == 6 ? Eigen::Vector3d(std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5])) : Eigen::Vector3d::Zero();
   std::ifstream in(argv[2]);
   std::vector<Eigen::Vector3d> points;
   for (Eigen::Vector3d p; in >> p.x() >> p.y() >> p.z();) points.push_back(p + shift);

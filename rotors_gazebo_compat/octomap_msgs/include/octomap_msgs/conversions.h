@@ -64,6 +64,8 @@ inline octomap::AbstractOcTree* fullMsgToMap(const Octomap& msg) {
 }
 
 /// Either kind of message.
-inline octomap::AbstractOcTree* msgToMap(const Octomap& msg) { return msg.binary ? binaryMsgToMap(msg) : fullMsgToMap(msg); }
+inline octomap::AbstractOcTree* msgToMap(const Octomap& msg) {
+  return msg.binary ? binaryMsgToMap(msg) : fullMsgToMap(msg);
+}
 
 }  // namespace octomap_msgs
