@@ -8,7 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from conftest import REPO, RosGraph
+from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+from rotors_evaluation.bag_data import load_flight
 from test_worlds import evaluate, fly_logged
 
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
@@ -52,3 +53,28 @@ def test_the_power_plant_example_with_the_planner_reaches_every_waypoint_without
     assert out.count("[Waypoint ") == len(file_waypoints)
     assert "No collisions occurred - good job!" in out
     assert clearance >= radius
+
+
+def test_a_goal_behind_the_wall_is_reached_with_a_map_built_in_flight_only(ros: RosGraph):
+    # no prior map: the VLP-16's map grows as the MAV flies; the straight line to the goal crosses
+    # the wall at x = 2.0-2.2 (y -3..3, up to 3 m)
+    proc = launch(ros, "rotors_gazebo", "mav_obstacle_course_into_the_unknown.launch", "gui:=false",
+                  "enable_logging:=true", "lockstep:=true", "real_time_factor:=2")
+    try:
+        wait_sim_time(ros, 45.0)
+    finally:
+        stop_launch(proc)
+    log = Path(proc.log_path).read_text()
+    assert "from topic" in log  # the planner's map is the mapping node's
+    legs = re.findall(r"\[planner\] leg (\d+) to .*?(\d+) replans so far", log)
+    replans = re.findall(r"\[planner\] replan (\d+): the trajectory ahead passes ([0-9.]+) m", log)
+    print(f"{len(legs)} plans, {len(replans)} replans:", [line for line in log.splitlines() if "[planner]" in line])
+    bag = next(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/planner/goal", "/wrench")
+    p = data.position.values
+    goal = np.array([4.5, 0.0, 1.0])
+    print(f"end at {p[-1].round(3)}, {np.linalg.norm(p[-1] - goal):.3f} m from the goal; largest x {p[:, 0].max():.2f}")
+    assert np.linalg.norm(p[-1] - goal) < 0.1
+    assert len(replans) >= 1  # the wall was not in the first map
+    out = evaluate("waypoints_eval.py", bag, "-w", "/planner/goal")
+    assert "No collisions occurred - good job!" in out

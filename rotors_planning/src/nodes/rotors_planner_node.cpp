@@ -169,6 +169,7 @@ class PlannerNode {
       CheckAhead(now);
     }
     if (!start_time_ || now < *start_time_ || goals_.empty() || now < next_goal_time_) return;
+    if (!grid_ && map_source_ == "topic") return;  // the first map has not come yet
     const Waypoint goal = goals_.front();
     goals_.pop_front();
     StartLeg(goal, now);
@@ -176,6 +177,7 @@ class PlannerNode {
 
   /// Plans from where the MAV is to the goal and sends the trajectory; on failure it stays put.
   bool StartLeg(const Waypoint& goal, const ros::Time& now) {
+    ++legs_;
     next_goal_time_ = now + ros::Duration(goal.wait_time_s);
     if (!grid_) {
       ROS_ERROR("[planner] goal %s refused: no map (%s); hovering", Text(goal.p_W).c_str(),
@@ -190,8 +192,9 @@ class PlannerNode {
     leg_ = Leg{goal, RestToRestTrajectory(path.p_W, yaw_rad_, goal.yaw_rad, limits_), now};
     const double duration_s = leg_->trajectory.Duration_s();
     if (now + ros::Duration(duration_s) > next_goal_time_) next_goal_time_ = now + ros::Duration(duration_s);
-    ROS_INFO("[planner] to %s: %zu vertices (RRT-Connect %zu) in %.3f s, %.1f s of flight", Text(goal.p_W).c_str(),
-             path.p_W.size(), path.raw_vertices, path.planning_time_s, duration_s);
+    ROS_INFO("[planner] leg %d to %s: %zu vertices (RRT-Connect %zu) in %.3f s, %.1f s of flight, %d replans so far",
+             legs_, Text(goal.p_W).c_str(), path.p_W.size(), path.raw_vertices, path.planning_time_s, duration_s,
+             replans_);
     Send(path, now);
     return true;
   }
@@ -302,7 +305,7 @@ class PlannerNode {
   std::deque<Waypoint> goals_;
   ros::Time next_goal_time_;
   std::optional<Leg> leg_;
-  int replans_ = 0;
+  int replans_ = 0, legs_ = 0;
   ros::Publisher trajectory_pub_, goal_pub_, path_pub_;
   ros::Subscriber odometry_sub_, goal_sub_, map_sub_;
   ros::Timer timer_;
