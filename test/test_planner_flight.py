@@ -10,6 +10,7 @@ import numpy as np
 
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 from rotors_evaluation.bag_data import load_flight
+from test_vehicles_flight import ground_truth
 from test_worlds import evaluate, fly_logged
 
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
@@ -78,3 +79,65 @@ def test_a_goal_behind_the_wall_is_reached_with_a_map_built_in_flight_only(ros: 
     assert len(replans) >= 1  # the wall was not in the first map
     out = evaluate("waypoints_eval.py", bag, "-w", "/planner/goal")
     assert "No collisions occurred - good job!" in out
+
+
+def send_goal(ros: RosGraph, x: float, y: float, z: float) -> None:
+    ros.rospy(f"""
+        from geometry_msgs.msg import PoseStamped
+        pub = rospy.Publisher('/firefly/goal', PoseStamped, queue_size=1, latch=True)
+        goal = PoseStamped()
+        goal.header.frame_id = 'world'
+        goal.pose.position.x, goal.pose.position.y, goal.pose.position.z = {x}, {y}, {z}
+        goal.pose.orientation.w = 1.0
+        while pub.get_num_connections() == 0:
+            time.sleep(0.05)
+        pub.publish(goal)
+        time.sleep(0.5)
+    """)
+
+
+def test_goals_that_cannot_be_flown_are_one_line_each_and_the_mav_keeps_hovering(ros: RosGraph):
+    # the box ends 3.3 m high and 3.3 m to the sides: the wall (3 m high, y -3..3) plus the
+    # clearance (0.57 m; over its top edge sqrt(0.3^2 + 0.3^2) = 0.42 m) closes it, so nothing behind
+    # the wall can be reached
+    proc = launch(ros, "rotors_gazebo", "mav_with_planner.launch", "world_name:=obstacle_course", "gui:=false",
+                  "map_min:=[-3, -3.3, 0.5]", "map_max:=[5, 3.3, 3.3]", "planning_time:=0.5", "lockstep:=true",
+                  "real_time_factor:=5")
+    try:
+        wait_sim_time(ros, 6.0)
+        send_goal(ros, 0.0, 1.0, 1.5)
+        t = wait_sim_time(ros, 16.0)
+        before = ground_truth(ros, "firefly")
+        for goal in ((2.1, 0.0, 1.5), (50.0, 0.0, 1.0), (4.0, 0.0, 1.0)):
+            send_goal(ros, *goal)
+            t = wait_sim_time(ros, t + 2.0)
+        wait_sim_time(ros, t + 3.0)
+        after = ground_truth(ros, "firefly")
+    finally:
+        stop_launch(proc)
+    refusals = [line for line in Path(proc.log_path).read_text().splitlines() if "refused" in line]
+    print("\n".join(refusals))
+    assert len(refusals) == 3
+    assert "goal (2.10, 0.00, 1.50) refused: goal (2.1, 0, 1.5) is inside or near an obstacle" in refusals[0]
+    assert "goal (50.00, 0.00, 1.00) refused: goal (50, 0, 1) is outside the map box" in refusals[1]
+    assert "goal (4.00, 0.00, 1.00) refused: no path from" in refusals[2]
+    assert all(line.rstrip("\x1b[0m").endswith("; hovering") for line in refusals)
+    moved = np.linalg.norm(np.subtract([after[k] for k in "xyz"], [before[k] for k in "xyz"]))
+    print(f"hovering at ({before['x']:.2f}, {before['y']:.2f}, {before['z']:.2f}), moved {moved:.4f} m meanwhile")
+    assert abs(before["y"] - 1.0) < 0.05 and moved < 0.02
+
+
+def test_a_map_file_that_does_not_exist_is_one_line_and_goals_are_refused(ros: RosGraph):
+    proc = launch(ros, "rotors_gazebo", "mav_with_planner.launch", "gui:=false", "map_source:=file",
+                  "map_file:=/nonexistent/map.bt", "lockstep:=true", "real_time_factor:=5")
+    try:
+        wait_sim_time(ros, 6.0)
+        send_goal(ros, 0.0, 0.0, 1.0)
+        wait_sim_time(ros, 8.0)
+        alive = "/firefly/planner" in ros.run(["rosnode", "list"]).stdout
+    finally:
+        stop_launch(proc)
+    log = Path(proc.log_path).read_text()
+    assert alive
+    assert log.count("map file '/nonexistent/map.bt' does not exist or holds no OcTree (~map_file)") == 2
+    assert "goal (0.00, 0.00, 1.00) refused: no map (map file '/nonexistent/map.bt'" in log
