@@ -15,7 +15,7 @@ GTESTS = {
     "rotors_control/test_rotors_control": 14,
     "rotors_core/test_rotors_core_engine": 51,
     "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 40,
-    "rotors_planning/test_rotors_planning": 8,
+    "rotors_planning/test_rotors_planning": 9,
 }
 
 

@@ -9,6 +9,7 @@
 #include <octomap/OcTree.h>
 
 #include "rotors_planning/map_builder.h"
+#include "rotors_planning/map_metrics.h"
 #include "rotors_planning/occupancy_grid.h"
 #include "rotors_planning/path_planner.h"
 #include "rotors_planning/trajectory.h"
@@ -205,6 +206,29 @@ TEST(PathPlanner, InThePowerPlantFromTheGroundToTheFirstWaypoint) {
   std::printf("power plant: %zu vertices (RRT-Connect: %zu) in %.3f s, %.1f s of flight, smallest clearance %.3f m\n",
               path.p_W.size(), path.raw_vertices, path.planning_time_s, trajectory.Duration_s(), clearance);
   EXPECT_GE(clearance, params.radius_m);
+}
+
+TEST(MapMetrics, AMapOfTheFaceASensorSawHasFullPrecisionAndRecallOfTheSeenLeaves) {
+  // truth: a solid block of 4 x 6 x 4 cells; the sensor at x = -2 sees its front face (x = 1.0)
+  const octomap::OcTree truth = BoxTree(8, 12, -3, 3, 2, 6);
+  MapBuilderParams params;
+  params.resolution_m = kRes;
+  MapBuilder builder(params);
+  std::vector<Vector3d> face;
+  for (int j = -3; j < 3; ++j)
+    for (int k = 2; k < 6; ++k) face.emplace_back(8 * kRes + 1e-4, (j + 0.5) * kRes, (k + 0.5) * kRes);
+  builder.Insert(face, Vector3d(-2.0, 0.0, 0.5));
+  MapMetrics m = CompareMaps(builder.Tree(), truth);
+  EXPECT_EQ(m.truth_occupied, 96u);
+  EXPECT_EQ(m.built_occupied, 24u);  // the face's cells
+  EXPECT_EQ(m.seen_truth, 24u);      // only the face has free space in front of it
+  EXPECT_DOUBLE_EQ(m.Precision(), 1.0);
+  EXPECT_DOUBLE_EQ(m.Recall(), 1.0);
+  // a spurious hit in mid-air: one false positive of 25
+  builder.Insert({Vector3d(0.06, 0.06, 0.06)}, Vector3d(-2.0, 0.0, 0.5));
+  m = CompareMaps(builder.Tree(), truth);
+  EXPECT_DOUBLE_EQ(m.Precision(), 24.0 / 25.0);
+  EXPECT_THROW(CompareMaps(octomap::OcTree(0.2), truth), std::invalid_argument);
 }
 
 TEST(VehicleRadius, TheFarthestShapeOfCollisionsAndVisualsThroughTheJoints) {
