@@ -1,7 +1,9 @@
 """The book's section 5 in flight: the power plant example with the planner in the loop (every
 waypoint of example_waypoints_powerplant.txt reached, no collision, clearance to the plant at least
 the vehicle's radius), a goal behind the wall of obstacle_course.world reached with a map built in
-flight only, and goals the planner cannot fly refused in one line while the MAV keeps hovering."""
+flight only, goals the planner cannot fly refused in one line while the MAV keeps hovering, a map
+built with the VI-sensor's depth camera against the world's octomap, and reactive avoidance with a 2D
+laser (section 5.1)."""
 import re
 import subprocess
 import sys
@@ -12,7 +14,7 @@ import numpy as np
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 from rotors_evaluation.bag_data import load_flight
 from test_vehicles_flight import ground_truth
-from test_worlds import EVAL, evaluate, fly_logged
+from test_worlds import EVAL, contacts_with, evaluate, fly_logged
 
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
 
@@ -174,3 +176,31 @@ def test_a_map_built_with_the_vi_sensors_depth_camera_matches_the_power_plant(ro
     recall = float(re.search(r"Recall of the seen leaves: ([0-9.]+)", out.stdout).group(1))
     assert precision >= 0.9 and recall >= 0.6
     assert (tmp_path / "mapping.png").is_file()
+
+
+def box_distance(p: np.ndarray, lo, hi) -> np.ndarray:
+    """Distance of points (N, 3) to an axis-aligned box."""
+    return np.linalg.norm(np.maximum(0.0, np.maximum(np.asarray(lo) - p, p - np.asarray(hi))), axis=1)
+
+
+def test_reactive_avoidance_steers_around_the_wall_to_the_goal_with_a_2d_laser(ros: RosGraph):
+    proc = launch(ros, "rotors_gazebo", "mav_reactive_avoidance.launch", "gui:=false", "enable_logging:=true",
+                  "lockstep:=true", "real_time_factor:=2")
+    try:
+        wait_sim_time(ros, 50.0)
+    finally:
+        stop_launch(proc)
+    bag = next(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
+    p = data.position.values
+    goal = np.array([4.5, 0.0, 1.0])
+    wall = box_distance(p, (2.0, -3.0, 0.0), (2.2, 3.0, 3.0))
+    pillar = np.hypot(p[:, 0] - 4.0, p[:, 1] + 4.0) - 0.3
+    ball = np.linalg.norm(p - [4.0, 4.0, 1.0], axis=1) - 0.5
+    print(f"end at {p[-1].round(3)}, {np.linalg.norm(p[-1, :2] - goal[:2]):.3f} m from the goal in xy; smallest "
+          f"clearance: wall {wall.min():.2f} m, pillar {pillar.min():.2f} m, ball {ball.min():.2f} m; "
+          f"height {p[p[:, 0] > 0.5, 2].min():.2f}-{p[p[:, 0] > 0.5, 2].max():.2f} m")
+    assert np.linalg.norm(p[-1, :2] - goal[:2]) < 0.15
+    assert min(wall.min(), pillar.min(), ball.min()) > 0.32  # the firefly's radius
+    hits = [t for t in contacts_with(bag, "firefly", "::", 3.0)]  # after take-off: with anything
+    assert not hits, f"contacts at {hits[:5]}"
