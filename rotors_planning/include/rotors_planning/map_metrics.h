@@ -24,7 +24,9 @@ struct MapMetrics {
   size_t seen_found = 0, seen_found_within_one = 0;          ///< seen truth leaves found (near) in the built map
   double known_volume_m3 = 0.0;                              ///< [m^3] free and occupied leaves of the built map
   double Precision() const { return built_occupied ? double(true_positives) / built_occupied : 0.0; }
-  double PrecisionWithinOne() const { return built_occupied ? double(true_positives_within_one) / built_occupied : 0.0; }
+  double PrecisionWithinOne() const {
+    return built_occupied ? double(true_positives_within_one) / built_occupied : 0.0;
+  }
   double Recall() const { return seen_truth ? double(seen_found) / seen_truth : 0.0; }
   double RecallWithinOne() const { return seen_truth ? double(seen_found_within_one) / seen_truth : 0.0; }
 };

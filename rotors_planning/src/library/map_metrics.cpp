@@ -41,7 +41,8 @@ bool AnyNear(const KeySet& set, const octomap::OcTreeKey& key, bool faces_only) 
 MapMetrics CompareMaps(const octomap::OcTree& built, const octomap::OcTree& truth, std::vector<LabelledCell>* cells) {
   if (std::abs(built.getResolution() - truth.getResolution()) > 1e-9) {
     throw std::invalid_argument("the maps' resolutions differ: built " + std::to_string(built.getResolution()) +
-                                " m, truth " + std::to_string(truth.getResolution()) + " m; build the map at the truth's");
+                                " m, truth " + std::to_string(truth.getResolution()) +
+                                " m; build the map at the truth's");
   }
   KeySet built_occupied, built_free, truth_occupied;
   FinestKeys(built, &built_occupied, &built_free);
