@@ -236,6 +236,14 @@ def ray_caster() -> Dict:
     return json.loads(out.strip().splitlines()[-1])
 
 
+def planning_pairs() -> Dict:
+    """rotors_planning_bench: 50 seeded start/goal pairs in the power plant's octree (points connected
+    to the open sky, 5-40 m apart), the firefly's radius: success, planning time, length, clearance."""
+    plant = Path(sh(["rospack", "find", "rotors_gazebo"]).strip()) / "resource" / "power_plant.bt"
+    out = sh([str(WS / "devel" / "lib" / "rotors_planning" / "rotors_planning_bench"), str(plant), "50", "1"])
+    return json.loads(out.strip().splitlines()[-1])
+
+
 def lidar_closed_loop(lidar: str, in_process: bool) -> Dict:
     """The hovering example with a lidar in the power plant (mav_hovering_example_with_lidar.launch),
     lockstep, as fast as possible, its cloud subscribed: sim s per wall s and clouds per sim s."""
@@ -461,7 +469,7 @@ GYM_PYBULLET_DRONES = ("gym-pybullet-drones: not measured. It is not on PyPI (it
                        "(3.2.7), but the peer is its drone environment and DSL PID controller, not the physics library")
 
 SECTIONS = ("engine", "peers", "closed_loop", "swarm", "startup", "estimator", "waypoints", "cameras", "vi_sensor",
-            "lasers", "sweep", "soak")
+            "lasers", "planning", "sweep", "soak")
 
 
 def median_of(runs: int, measure) -> Dict:
@@ -599,6 +607,17 @@ def main() -> int:
             rows += [(f"closed loop in the power plant with a {label}, lockstep, cloud subscribed: controller in "
                       "process / own process", f"{r_in['real_time_factor']:.1f} / {r_own['real_time_factor']:.1f} x "
                       f"real time ({r_in['clouds_per_sim_s']:.1f} clouds per sim s)", target)]
+    if "planning" in only:
+        plan = planning_pairs()
+        res["planning_power_plant"] = {k: v for k, v in plan.items() if k != "pairs"}
+        rows += [("planner in the power plant: 50 seeded start/goal pairs (5-40 m apart), firefly radius "
+                  f"{plan['radius_m']:.3f} m + 0.25 m margin: solved", f"{plan['success_rate']:.0%}", ""),
+                 ("  planning time, median / largest (OMPL RRT-Connect + shortening, one thread)",
+                  f"{plan['median_time_s'] * 1e3:.1f} / {plan['max_time_s'] * 1e3:.1f} ms", ""),
+                 (f"  path length over the straight line, the {plan['straight_blocked']} pairs whose line is blocked: "
+                  "median / largest", f"{plan['median_length_ratio_blocked']:.2f} / {plan['max_length_ratio']:.2f}", ""),
+                 ("  smallest clearance of any trajectory to the plant (sampled every 10 ms)",
+                  f"{plan['smallest_clearance_m']:.3f} m", f">= {plan['radius_m']:.3f} (radius)")]
     if "sweep" in only:
         sweeps = {n: sweep_flights_per_hour(n) for n in (1, 2)}
         res["sweep_firefly_lee_gains_x_wind"] = sweeps
