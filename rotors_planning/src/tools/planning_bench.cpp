@@ -52,7 +52,9 @@ int main(int argc, char** argv) {
   // free cell centres connected (6-neighbours) to the top layer of the box
   const double res = grid.Resolution_m();
   const Eigen::Vector3i n = ((hi - lo) / res).array().floor().cast<int>();
-  auto centre = [&](int i, int j, int k) { return Eigen::Vector3d(lo + res * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5)); };
+  auto centre = [&](int i, int j, int k) {
+    return Eigen::Vector3d(lo + res * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5));
+  };
   auto index = [&](int i, int j, int k) { return (static_cast<size_t>(i) * n.y() + j) * n.z() + k; };
   std::vector<uint8_t> state(static_cast<size_t>(n.prod()), 0);  // 0 unvisited, 1 reachable, 2 blocked
   std::deque<Eigen::Vector3i> open;
