@@ -8,6 +8,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "read_octree.h"
 #include "rotors_planning/map_metrics.h"
 
 int main(int argc, char** argv) {
@@ -15,13 +16,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: rotors_map_compare BUILT.bt TRUTH.bt [CELLS.csv]\n");
     return 2;
   }
-  octomap::OcTree built(0.1), truth(0.1);
-  for (auto [tree, path] : {std::pair{&built, argv[1]}, std::pair{&truth, argv[2]}}) {
-    if (!tree->readBinary(path)) {
-      std::fprintf(stderr, "rotors_map_compare: cannot read '%s' as a binary OctoMap (.bt)\n", path);
-      return 2;
-    }
-  }
+  const auto built_ptr = rotors_planning::ReadOcTree("rotors_map_compare", argv[1]);
+  const auto truth_ptr = built_ptr ? rotors_planning::ReadOcTree("rotors_map_compare", argv[2]) : nullptr;
+  if (!truth_ptr) return 2;
+  const octomap::OcTree &built = *built_ptr, &truth = *truth_ptr;
   std::vector<rotors_planning::LabelledCell> cells;
   rotors_planning::MapMetrics m;
   try {

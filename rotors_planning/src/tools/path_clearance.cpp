@@ -9,6 +9,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "read_octree.h"
 #include "rotors_planning/occupancy_grid.h"
 
 int main(int argc, char** argv) {
@@ -16,11 +17,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: rotors_path_clearance MAP.bt POINTS.txt [dx dy dz]\n");
     return 2;
   }
-  octomap::OcTree tree(0.1);
-  if (!tree.readBinary(argv[1])) {
-    std::fprintf(stderr, "rotors_path_clearance: cannot read '%s' as a binary OctoMap (.bt)\n", argv[1]);
-    return 2;
-  }
+  const auto tree = rotors_planning::ReadOcTree("rotors_path_clearance", argv[1]);
+  if (!tree) return 2;
   const Eigen::Vector3d shift =
       argc == 6 ? Eigen::Vector3d(std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5])) : Eigen::Vector3d::Zero();
   std::ifstream in(argv[2]);
@@ -37,7 +35,7 @@ int main(int argc, char** argv) {
     hi = hi.cwiseMax(p);
   }
   const Eigen::Vector3d pad = Eigen::Vector3d::Constant(search_m + 1.0);
-  const rotors_planning::OccupancyGrid grid(tree, lo - pad, hi + pad);
+  const rotors_planning::OccupancyGrid grid(*tree, lo - pad, hi + pad);
   double smallest = std::numeric_limits<double>::infinity();
   Eigen::Vector3d where = points.front();
   for (const auto& p : points) {

@@ -13,6 +13,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "read_octree.h"
 #include "rotors_planning/occupancy_grid.h"
 #include "rotors_planning/path_planner.h"
 #include "rotors_planning/trajectory.h"
@@ -32,11 +33,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: rotors_planning_bench MAP.bt PAIRS SEED [RADIUS]\n");
     return 2;
   }
-  octomap::OcTree tree(0.1);
-  if (!tree.readBinary(argv[1])) {
-    std::fprintf(stderr, "rotors_planning_bench: cannot read '%s' as a binary OctoMap (.bt)\n", argv[1]);
-    return 2;
-  }
+  const auto tree_ptr = rotors_planning::ReadOcTree("rotors_planning_bench", argv[1]);
+  if (!tree_ptr) return 2;
+  const octomap::OcTree& tree = *tree_ptr;
   const int pairs = std::atoi(argv[2]);
   const unsigned seed = static_cast<unsigned>(std::atoi(argv[3]));
   rotors_planning::PathPlannerParams params;

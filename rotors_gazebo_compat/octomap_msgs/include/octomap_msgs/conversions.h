@@ -12,30 +12,33 @@
 
 namespace octomap_msgs {
 
-/// The tree's occupied/free bits (writeBinaryData) into msg; false when the tree cannot write them.
-template <class OctomapT>
-bool binaryMapToMsg(const OctomapT& octomap, Octomap& msg) {
+namespace detail {
+/// The tree written by `write` (its writeBinaryData or writeData) into msg.
+template <class OctomapT, class WriteFn>
+bool MapToMsg(const OctomapT& octomap, bool binary, WriteFn write, Octomap& msg) {
   msg.resolution = octomap.getResolution();
   msg.id = octomap.getTreeType();
-  msg.binary = true;
+  msg.binary = binary;
   std::stringstream data;
-  if (!octomap.writeBinaryData(data)) return false;
+  if (!write(data)) return false;
   const std::string bytes = data.str();
   msg.data.assign(bytes.begin(), bytes.end());
   return true;
+}
+}  // namespace detail
+
+/// The tree's occupied/free bits (writeBinaryData) into msg; false when the tree cannot write them.
+template <class OctomapT>
+bool binaryMapToMsg(const OctomapT& octomap, Octomap& msg) {
+  return detail::MapToMsg(
+      octomap, true, [&](std::ostream& s) { return octomap.writeBinaryData(s).good(); }, msg);
 }
 
 /// The whole tree with its node data (writeData) into msg.
 template <class OctomapT>
 bool fullMapToMsg(const OctomapT& octomap, Octomap& msg) {
-  msg.resolution = octomap.getResolution();
-  msg.id = octomap.getTreeType();
-  msg.binary = false;
-  std::stringstream data;
-  if (!octomap.writeData(data)) return false;
-  const std::string bytes = data.str();
-  msg.data.assign(bytes.begin(), bytes.end());
-  return true;
+  return detail::MapToMsg(
+      octomap, false, [&](std::ostream& s) { return octomap.writeData(s).good(); }, msg);
 }
 
 /// A new tree (caller owns it) from a binary message; nullptr for an unknown tree type or bad data.
