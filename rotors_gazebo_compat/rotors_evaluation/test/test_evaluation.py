@@ -168,3 +168,19 @@ def test_a_topic_of_a_type_the_evaluation_cannot_use_is_one_line(tmp_path: Path)
     res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor", "-t", "/motors")
     assert res.returncode == 1 and len(res.stderr.strip().splitlines()) == 1, res.stderr
     assert "twist topic 'motors' has type mav_msgs/msg/MotorSpeed" in res.stderr
+
+
+def test_mapping_eval_scores_a_map_against_itself_and_names_bad_files(tmp_path: Path):
+    plant = Path(__file__).resolve().parents[2] / "rotors_gazebo" / "resource" / "power_plant.bt"
+    res = run("mapping_eval.py", "-m", str(plant), "-t", str(plant), "--save_plots", "True", "--plot_dir", str(tmp_path))
+    print(res.stdout, res.stderr)
+    assert res.returncode == 0
+    assert "Precision: 1.000 of the occupied leaves on or next to a truth leaf (1.000 on one)" in res.stdout
+    assert "Recall of the seen leaves: 1.000 found exactly" in res.stdout
+    assert (tmp_path / "mapping.png").is_file()
+    res = run("mapping_eval.py", "-m", str(tmp_path / "none.bt"), "-t", str(plant))
+    assert res.returncode == 1 and res.stdout.strip() == f"mapping_eval: the map file '{tmp_path / 'none.bt'}' does not exist"
+    not_a_map = tmp_path / "not_a_map.bt"
+    not_a_map.write_text("hello\n")
+    res = run("mapping_eval.py", "-m", str(not_a_map), "-t", str(plant))
+    assert res.returncode == 1 and res.stdout.strip().count("\n") == 0 and "cannot read" in res.stdout

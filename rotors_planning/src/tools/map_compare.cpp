@@ -1,7 +1,8 @@
-// rotors_map_compare BUILT.bt TRUTH.bt [CELLS.csv]: precision and recall of a map built in flight
-// against the world's ground truth (rotors_planning/map_metrics.h), printed as "name value" lines;
-// CELLS.csv gets x,y,z,label of every cell for plots (0 true positive, 1 false positive, 2 seen truth
-// missed, 3 truth not seen, 4 occupied next to a truth leaf).
+// rotors_map_compare BUILT.bt TRUTH.bt [CELLS.csv]: precision and recall of a map built in flight, and its observed
+// volume, against the world's ground truth (rotors_planning/map_metrics.h), printed as "name value" lines; CELLS.csv
+// gets x,y,z,label of every cell for plots (0 true positive, 1 false positive, 2 seen truth missed, 3 truth not seen, 4
+// occupied next to a truth leaf).
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <vector>
@@ -28,6 +29,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rotors_map_compare: %s\n", e.what());
     return 2;
   }
+  // the truth's box: the box world/get_octomap was asked for, as far as its occupied leaves reach
+  double x0, y0, z0, x1, y1, z1;
+  truth.getMetricMin(x0, y0, z0);
+  truth.getMetricMax(x1, y1, z1);
+  const double truth_box_m3 = std::max(0.0, (x1 - x0) * (y1 - y0) * (z1 - z0));
+  std::printf("truth_box_m3 %.1f\n", truth_box_m3);
   std::printf("resolution %.4f\nbuilt_occupied %zu\nbuilt_free %zu\ntruth_occupied %zu\nseen_truth %zu\n",
               built.getResolution(), m.built_occupied, m.built_free, m.truth_occupied, m.seen_truth);
   std::printf("precision %.4f\nprecision_within_one %.4f\nrecall %.4f\nrecall_within_one %.4f\nknown_volume_m3 %.1f\n",

@@ -54,8 +54,9 @@ def compare(built: Path, truth: Path, cells_csv: Optional[Path]) -> Dict[str, fl
     if not shutil.which("rotors_map_compare"):
         cmd = ["rosrun", "rotors_planning", "rotors_map_compare"] + cmd[1:]
     res = subprocess.run(cmd, capture_output=True, text=True)
-    if res.returncode != 0:
-        raise ValueError(res.stderr.strip() or f"rotors_map_compare failed ({res.returncode})")
+    if res.returncode != 0:  # its own line is the last (OctoMap may print one before it)
+        lines = res.stderr.strip().splitlines()
+        raise ValueError(lines[-1] if lines else f"rotors_map_compare failed ({res.returncode})")
     return {k: float(v) for k, v in (line.split() for line in res.stdout.splitlines())}
 
 
@@ -105,6 +106,10 @@ def parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
 def main(argv: Optional[Sequence[str]] = None) -> int:
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     a = parse(argv)
+    for path, what in ((a.map, "map"), (a.truth, "truth")):
+        if path is not None and not path.is_file():
+            print(f"mapping_eval: the {what} file '{path}' does not exist")
+            return 1
     try:
         truth = a.truth or truth_from_service(a.map, a.plot_dir / "truth.bt", a.from_service[:3], a.from_service[3:])
         cells = a.plot_dir / "mapping_cells.csv" if (a.save_plots or a.plot) else None
@@ -115,7 +120,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         print(f"mapping_eval: {e}")
         return 1
     print(f"Resolution: {f['resolution']:.3f} m; built map: {int(f['built_occupied'])} occupied and "
-          f"{int(f['built_free'])} free leaves ({f['known_volume_m3']:.0f} m^3 observed)")
+          f"{int(f['built_free'])} free leaves: {f['known_volume_m3']:.0f} m^3 observed, "
+          f"{f['known_volume_m3'] / max(f['truth_box_m3'], 1e-9):.1%} of the truth's box ({f['truth_box_m3']:.0f} m^3)")
     print(f"Ground truth: {int(f['truth_occupied'])} occupied leaves, {int(f['seen_truth'])} of them seen")
     # a hit on a face that lies on a cell boundary lands in either cell by rounding: "within one
     # cell" counts an occupied leaf that touches a truth leaf as on the surface
