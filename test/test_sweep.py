@@ -184,3 +184,20 @@ inject_failure: {flight: 3, at_sim_s: 3}""", """vary:
     assert "<noiseNormalPosition>0.05 0.05 0.05</noiseNormalPosition>" in urdf
     assert "<gyroscopeNoiseDensity>0.001</gyroscopeNoiseDensity>" in urdf
     assert "<windForceMean>0</windForceMean>" in urdf  # the fixed enable_wind came along
+
+
+def test_a_disturbance_sweep_may_set_every_option_of_the_evaluation_scripts(tmp_path: Path):
+    """eval_options are the evaluation scripts' own numeric options (one dataclass): a sweep shorter
+    than the default 40 s disturbance sets disturbance_time, and a misspelt option is named."""
+    from rotors_evaluation import options, sweep_spec
+    text = SMALL.replace("evaluation: hovering\neval_options: {delay_first_evaluation: 5, rms_calc_time: 4}",
+                         "evaluation: disturbance\neval_options: {disturbance_time: 8, rms_calc_time: 4}")
+    (tmp_path / "gust.yaml").write_text(text)
+    spec = sweep_spec.load(tmp_path / "gust.yaml")
+    assert spec.eval_options == {"disturbance_time": 8.0, "rms_calc_time": 4.0}
+    opts = options.with_overrides(tmp_path / "a.bag", "firefly", end_time=14, **spec.eval_options)
+    assert (opts.disturbance_time, opts.rms_calc_time, opts.end_time, opts.settling_radius) == (8.0, 4.0, 14.0, 0.1)
+    assert sweep_spec.EVAL_OPTIONS == options.TUNABLE
+    (tmp_path / "bad.yaml").write_text(text.replace("disturbance_time: 8", "disturbance_tme: 8"))
+    with pytest.raises(Exception, match="eval_options 'disturbance_tme' is unknown"):
+        sweep_spec.load(tmp_path / "bad.yaml")

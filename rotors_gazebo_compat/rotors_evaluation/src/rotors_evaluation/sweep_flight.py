@@ -240,9 +240,8 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
 def _evaluate(sweep: Dict[str, Any], bag: Path, flight_dir: Path) -> Dict[str, Any]:
     from rotors_evaluation.bag_data import load_flight
     from rotors_evaluation.evaluations import EVALUATORS
-    from rotors_evaluation.options import parse
-    opts = parse("sweep", ["-b", str(bag), "--mav_name", sweep["mav_name"], "--end_time", str(sweep["sim_time_s"]),
-                           *(f"--{k}={v}" for k, v in sweep["eval_options"].items())])
+    from rotors_evaluation.options import with_overrides
+    opts = with_overrides(bag, sweep["mav_name"], **{"end_time": sweep["sim_time_s"], **sweep["eval_options"]})
     metrics: Dict[str, Any] = {}
     data = None
     for kind in sweep["evaluations"]:

@@ -34,9 +34,10 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 import yaml
 
+from rotors_evaluation.options import TUNABLE
+
 EVALUATIONS = ("hovering", "waypoints", "disturbance", "estimator")
-EVAL_OPTIONS = ("begin_time", "end_time", "rms_calc_time", "settling_radius", "min_settled_time",
-                "delay_first_evaluation")
+EVAL_OPTIONS = TUNABLE  # the evaluation scripts' numeric options (options.EvalOptions)
 KINDS = ("launch", "model", "controller", "estimator")
 TOP_LEVEL = ("name", "launch", "sim_time_s", "wall_limit_s", "real_time_factor", "repetitions", "seed", "evaluation", "eval_options",
              "keep_bags", "fixed", "vary", "inject_failure")
