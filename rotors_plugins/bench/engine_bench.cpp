@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     xml << f.rdbuf();
     rotors_sim::SpawnRequest request{xml.str(), argv[3], rotors_sim::physics::Pose3d(0, 0, 1000, 0, 0, 0)};
     auto model = rotors_sim::ModelBuilder::Spawn(world, request);
-    auto bus = rotors_gazebo_plugins::VehicleBus::For(argv[3]);  // the model's plugins hold it
+    auto bus = rotors_gazebo_plugins::VehicleBus::For(*world, argv[3]);  // the model's plugins hold it
     bus->motor_command_rad_s.assign(bus->rotor_count, std::stod(argv[6]));
     const auto steps = static_cast<long>(std::stod(argv[5]) / world_params.max_step_size_s);
     const auto t0 = std::chrono::steady_clock::now();

@@ -1,4 +1,4 @@
-// In-process data shared by the plugins of one vehicle (keyed by robot namespace): the latest
+// In-process data shared by the plugins of one vehicle (keyed by world and robot namespace): the latest
 // motor command (controller interface -> motor models, no ROS round trip), the real rotor speeds
 // (motor models -> multirotor base, bag), the wind velocity (wind plugin -> motor models) and
 // injected motor faults (multirotor base's service -> motor models).
@@ -9,6 +9,12 @@
 #include <vector>
 
 #include <Eigen/Core>
+
+namespace rotors_sim {
+namespace physics {
+class World;
+}
+}  // namespace rotors_sim
 
 namespace rotors_gazebo_plugins {
 
@@ -25,10 +31,11 @@ struct VehicleBus {
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
   std::vector<MotorFault> motor_faults;                       ///< per motor number (healthy by default)
 
-  /// The bus of a namespace, shared by the plugins of the vehicle that hold it. It lives as long
-  /// as one of them: a model deleted and re-spawned under the same namespace (with another rotor
-  /// count, too) starts on a fresh bus.
-  static std::shared_ptr<VehicleBus> For(const std::string& robot_namespace);
+  /// The bus of a namespace in a world, shared by the plugins of the vehicle that hold it. It lives
+  /// as long as one of them: a model deleted and re-spawned under the same namespace (with another
+  /// rotor count, too) starts on a fresh bus. Buses live in the world (World::PluginState), so two
+  /// worlds in one process with the same vehicle name never share motor commands.
+  static std::shared_ptr<VehicleBus> For(rotors_sim::physics::World& world, const std::string& robot_namespace);
   void RegisterRotor(int motor_number);
   /// The factor motor `motor_number`'s command is scaled by at sim time t_s.
   double SpeedFactor(int motor_number, double t_s) const {

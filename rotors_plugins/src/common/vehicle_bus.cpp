@@ -3,16 +3,22 @@
 #include <map>
 #include <memory>
 
+#include "rotors_core/physics/world.h"
+
 namespace rotors_gazebo_plugins {
 namespace {
-std::map<std::string, std::weak_ptr<VehicleBus>>& Buses() {
-  static std::map<std::string, std::weak_ptr<VehicleBus>> buses;
-  return buses;
+using Buses = std::map<std::string, std::weak_ptr<VehicleBus>>;
+
+/// The world's buses by namespace, kept in the world.
+Buses& BusesOf(rotors_sim::physics::World& world) {
+  std::shared_ptr<void>& state = world.PluginState("rotors_gazebo_plugins/vehicle_buses");
+  if (!state) state = std::make_shared<Buses>();
+  return *std::static_pointer_cast<Buses>(state);
 }
 }  // namespace
 
-std::shared_ptr<VehicleBus> VehicleBus::For(const std::string& robot_namespace) {
-  std::weak_ptr<VehicleBus>& entry = Buses()[robot_namespace];
+std::shared_ptr<VehicleBus> VehicleBus::For(rotors_sim::physics::World& world, const std::string& robot_namespace) {
+  std::weak_ptr<VehicleBus>& entry = BusesOf(world)[robot_namespace];
   std::shared_ptr<VehicleBus> bus = entry.lock();
   if (!bus) {  // first plugin of this vehicle, or the last holder of the previous one is gone
     bus = std::make_shared<VehicleBus>();

@@ -39,7 +39,7 @@ class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
     model_ = std::make_unique<AirspeedModel>(p, ReadSeed(sdf));
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
-    bus_ = VehicleBus::For(ns);
+    bus_ = VehicleBus::For(*model->GetWorldRaw(), ns);
     limiter_ = RateLimiter(rate_hz);
     msg_.header.frame_id = link_name;
     node_ = MakeNode(ns);

@@ -80,7 +80,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     model_ = model.get();
     world_ = model->GetWorldRaw();
-    bus_ = VehicleBus::For(ns_);
+    bus_ = VehicleBus::For(*model->GetWorldRaw(), ns_);
     node_ = MakeNode(ns_);
     if (!node_) return;  // no ROS, no bag
     std::string t;

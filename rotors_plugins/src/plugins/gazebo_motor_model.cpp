@@ -70,7 +70,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     parent_link_ = joint_->GetParent();
     dt_s_ = model->GetWorldRaw()->Physics().max_step_size_s;
-    bus_ = VehicleBus::For(namespace_);
+    bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
     bus_->RegisterRotor(motor_number_);
 
     node_ = MakeNode(namespace_);

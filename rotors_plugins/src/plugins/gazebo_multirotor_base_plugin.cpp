@@ -33,7 +33,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
     ReadParam(sdf, "motorPubTopic", &topic);
     RequireLink(model, frame_id_);
     world_ = model->GetWorldRaw();
-    bus_ = VehicleBus::For(namespace_);
+    bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
     node_ = MakeNode(namespace_);
     if (node_) {
       pub_ = node_->advertise<mav_msgs::Actuators>(topic, 1);

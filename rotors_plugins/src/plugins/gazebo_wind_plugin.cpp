@@ -94,7 +94,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     offset_L_ = {offset.x(), offset.y(), offset.z()};
     world_ = model->GetWorldRaw();
-    bus_ = VehicleBus::For(namespace_);
+    bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
     node_ = MakeNode(namespace_);
     if (node_) {
       force_pub_ = node_->advertise<geometry_msgs::WrenchStamped>(force_topic, 10);

@@ -2,6 +2,7 @@
 // (gazebo::physics::World). It knows nothing about ROS or multirotors.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -107,6 +108,10 @@ class World : public std::enable_shared_from_this<World> {
   SpaceHandle* Space() const { return space_; }
   void AddModel(const ModelPtr& model);
   void AddPlugin(std::unique_ptr<WorldPlugin> plugin);
+  /// State the plugins of this world share, by key (e.g. rotors_gazebo_plugins' vehicle buses): it
+  /// lives and dies with the world, so two worlds in one process never share it. The engine does
+  /// not look inside; the key's owner decides the type.
+  std::shared_ptr<void>& PluginState(const std::string& key) { return plugin_state_[key]; }
 
  private:
   World(std::string name, const PhysicsParams& params);
@@ -135,6 +140,7 @@ class World : public std::enable_shared_from_this<World> {
   std::unique_ptr<PendingContacts> pending_;
   common::Time wall_start_;
   std::unique_ptr<raycast::RayScene> rays_;
+  std::map<std::string, std::shared_ptr<void>> plugin_state_;
 };
 
 }  // namespace physics

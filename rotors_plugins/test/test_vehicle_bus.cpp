@@ -1,0 +1,53 @@
+// Two worlds in one process, each with a vehicle named "mav": the vehicle bus belongs to the world,
+// so a motor command sent to one world's vehicle turns only that world's rotor.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "rotors_core/physics/world.h"
+#include "rotors_core/world_loader.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
+
+namespace {
+
+using rotors_gazebo_plugins::VehicleBus;
+
+// a body with one rotor on a revolute joint and RotorS' motor model (firefly constants)
+constexpr const char* kWorld = R"(<?xml version="1.0"?><sdf version="1.6"><world name="w">
+  <physics type="ode"><max_step_size>0.001</max_step_size><real_time_factor>0</real_time_factor></physics>
+  <gravity>0 0 0</gravity>
+  <model name="mav"><link name="mav/base_link"><inertial><mass>1</mass>
+      <inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial></link>
+    <link name="mav/rotor_0"><pose>0.2 0 0 0 0 0</pose><inertial><mass>0.005</mass>
+      <inertia><ixx>1e-5</ixx><iyy>1e-5</iyy><izz>1e-5</izz></inertia></inertial></link>
+    <joint name="mav/rotor_0_joint" type="revolute"><parent>mav/base_link</parent><child>mav/rotor_0</child>
+      <axis><xyz>0 0 1</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit></axis></joint>
+    <plugin name="motor_0" filename="librotors_gazebo_motor_model.so">
+      <robotNamespace>mav</robotNamespace><jointName>mav/rotor_0_joint</jointName><linkName>mav/rotor_0</linkName>
+      <turningDirection>ccw</turningDirection><timeConstantUp>0.0125</timeConstantUp>
+      <timeConstantDown>0.025</timeConstantDown><maxRotVelocity>838</maxRotVelocity>
+      <motorConstant>8.54858e-06</motorConstant><momentConstant>0.016</momentConstant>
+      <motorNumber>0</motorNumber><rotorDragCoefficient>8.06428e-05</rotorDragCoefficient>
+      <rollingMomentCoefficient>1e-06</rollingMomentCoefficient><rotorVelocitySlowdownSim>10</rotorVelocitySlowdownSim>
+    </plugin></model></world></sdf>)";
+
+TEST(VehicleBus, TwoWorldsWithTheSameVehicleNameDoNotShareMotorCommands) {
+  rotors_sim::physics::WorldPtr a = rotors_sim::WorldLoader::LoadString(kWorld, "a");
+  rotors_sim::physics::WorldPtr b = rotors_sim::WorldLoader::LoadString(kWorld, "b");
+  const std::shared_ptr<VehicleBus> bus_a = VehicleBus::For(*a, "mav"), bus_b = VehicleBus::For(*b, "mav");
+  ASSERT_NE(bus_a, bus_b);
+  EXPECT_EQ(bus_a, VehicleBus::For(*a, "mav"));  // the plugins of one vehicle share one
+  ASSERT_EQ(bus_a->rotor_count, 1);
+  ASSERT_EQ(bus_b->rotor_count, 1);
+  bus_a->motor_command_rad_s = {500.0};
+  a->Step(100);  // 0.1 s = 8 time constants up
+  b->Step(100);
+  EXPECT_NEAR(bus_a->rotor_speed_rad_s.at(0), 500.0, 500.0 * std::exp(-8.0) + 1.0);
+  EXPECT_EQ(bus_b->rotor_speed_rad_s.at(0), 0.0);
+  EXPECT_TRUE(bus_b->motor_command_rad_s.empty());
+  a->Fini();
+  b->Fini();
+}
+
+}  // namespace
