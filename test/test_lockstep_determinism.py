@@ -1,8 +1,13 @@
 """Lockstep makes runs repeatable: two runs with the same seeds write identical bags, message for
 message and bit for bit in the payloads."""
+import os
+import struct
+import subprocess
 from pathlib import Path
 
 from rosbags.rosbag1 import Reader
+
+from rotors_evaluation.bag_data import FlightBag
 
 from conftest import REPO, RosGraph, send_hover_pose, stop_launch, wait_sim_time
 
@@ -55,3 +60,45 @@ def assert_identical_flights(a, b) -> None:
 
 def test_two_lockstep_runs_write_identical_bags(ros: RosGraph):
     assert_identical_flights(messages(fly_once(ros, "run_a"), 5.5), messages(fly_once(ros, "run_b"), 5.5))
+
+
+SETPOINT_TOPICS = {"firefly/command/trajectory"}  # recorded when they arrive, which may be before or after unpausing
+
+
+def fly_hovering_example(ros: RosGraph, tag: str, cpu_hog: bool) -> Path:
+    """The book's hovering example as a user starts it (its waypoint node included), seeded, in
+    lockstep and as fast as possible, to 8 s of sim time (the waypoint is due at 5 s); with cpu_hog
+    a busy process per core competes for the CPU the whole time. The bag it wrote."""
+    hogs = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(os.cpu_count() or 2)] if cpu_hog \
+        else []
+    proc = ros.start(["roslaunch", "-p", str(ros.port), "rotors_gazebo", "mav_hovering_example.launch", "gui:=false",
+                      "lockstep:=true", "real_time_factor:=0", "enable_logging:=true", f"log_file:={tag}",
+                      "random_seed:=42"], f"launch_{tag}")
+    try:
+        wait_sim_time(ros, 8.0)
+        ros.run(["rosservice", "call", "/gazebo/pause_physics"])
+    finally:
+        stop_launch(proc)
+        for hog in hogs:
+            hog.kill()
+            hog.wait()
+    return next(Path(ros.env["ROS_HOME"]).glob(f"{tag}_*.bag"))
+
+
+def test_the_hovering_example_repeats_bit_for_bit_beside_a_cpu_hog(ros: RosGraph):
+    quiet, loaded = fly_hovering_example(ros, "quiet", False), fly_hovering_example(ros, "loaded", True)
+    for bag in (quiet, loaded):  # lockstep waited for every step
+        b = FlightBag(bag)
+        try:
+            assert b.unwaited("firefly") is None, b.unwaited("firefly")
+        finally:
+            b.close()
+    a, b = (sorted((topic, None if topic in SETPOINT_TOPICS else t, payload) for topic, t, payload in
+                   messages(bag, 7.5)) for bag in (quiet, loaded))
+    assert any(m[0] in SETPOINT_TOPICS for m in a)  # the waypoint node's set point is in the flight
+    assert_identical_flights(a, b)
+    # the MAV took off at the waypoint's due time: still on the ground before 5 s, climbing after
+    with Reader(quiet) as r:
+        z = [(t / 1e9, struct.unpack_from("<d", bytes(raw), len(bytes(raw)) - 40)[0]) for conn, t, raw in
+             r.messages() if conn.topic == "firefly/ground_truth/pose"]
+    assert max(h for t, h in z if t < 4.9) < 0.2 and max(h for t, h in z if 6.0 < t < 7.5) > 0.5

@@ -34,8 +34,9 @@ def reached(position: np.ndarray, goal: np.ndarray, tolerance_m: float) -> np.nd
 
 
 def test_the_power_plant_example_with_the_planner_reaches_every_waypoint_without_collision(ros: RosGraph, tmp_path: Path):
-    # 5 s until the planner starts, then a leg per waypoint, each at least its 110 s wait time
-    bag, data = fly_logged(ros, "mav_powerplant_with_planner.launch", 390.0, "gui:=false")
+    # 5 s until the planner starts, then a leg per waypoint, each at least its 110 s wait time; the
+    # last (25 m home from (25, 0, 5)) starts at about 335 s and takes about 65 s
+    bag, data = fly_logged(ros, "mav_powerplant_with_planner.launch", 450.0, "gui:=false")
     log = (ros.tmp_path / "launch.log").read_text()
     radius = float(re.search(r"\[planner\] radius ([0-9.]+) m", log).group(1))
     file_waypoints = np.loadtxt(RESOURCE / "example_waypoints_powerplant.txt")[:, 1:4]

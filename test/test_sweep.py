@@ -87,11 +87,12 @@ def check_small_sweep(out: Path, res: subprocess.CompletedProcess) -> list:
     parquet = pq.read_table(out / "results.parquet").to_pylist()
     assert [r["id"] for r in parquet] == [r["id"] for r in table]
     report = (out / "report.md").read_text()
-    assert "## Failures" in report and "flight 3" in report and "7 ok, 1 failed" in report
+    assert "## Failures" in report and "flight 3" in report and "7 ok, 0 not repeatable, 1 failed" in report
     for name in ("controller.position_gain.x", "model.wind_force_mean"):
         assert (out / f"hovering_position_rms_m_vs_{name}.png").stat().st_size > 10_000
     assert (out / "hovering_position_rms_m_boxplot_over_seeds.png").exists()
     ok = [r for r in table if r["status"] == "ok"]
+    assert {str(r["unwaited_steps"]) for r in table} == {"0"}  # lockstep waited for every step of every flight
     for r in ok:
         # a constant force F along x against the Lee law settles at e_x = F / k_p; with the book's
         # z offset the position RMS over the settled window is |(F / k_p, 0, 0.0398)|

@@ -3,8 +3,11 @@
 // command/pose -> command/motor_speed.
 // Ours: motor_failure (rotors_comm/MotorFailure) re-allocates without (or with a derated) rotor.
 // Parameters from the private namespace (lee_controller_<mav>.yaml and <mav>.yaml). Trajectory
-// points are released at their time_from_start (sim time). The motor command is stamped with the
-// odometry stamp it answers (lockstep keys on this).
+// point i is due at header.stamp + time_from_start_i (sim time; an unstamped trajectory counts from
+// the latest odometry) and is released with the first odometry stamped at or after that time, so
+// that in lockstep a set point sent ahead of time takes effect at the same step in every run. A
+// point already due is applied at once (RotorS). The motor command is stamped with the odometry
+// stamp it answers (lockstep keys on this).
 #pragma once
 
 #include <deque>
@@ -79,7 +82,6 @@ class LeePositionControllerRos {
       return;
     }
     pending_.clear();
-    timer_.stop();
     TrajectoryPoint point;
     point.position_W = {p.x, p.y, p.z};
     point.yaw_rad = mav_msgs::yawFromQuaternion(mav_msgs::quaternionFromMsg(msg->pose.orientation));
@@ -117,7 +119,7 @@ class LeePositionControllerRos {
         ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: point %zu has NaN or inf", i);
         return;
       }
-      // time_from_start: >= 0 and not decreasing, within a day (a timer cannot wait longer than int32 seconds)
+      // time_from_start: >= 0 and not decreasing, within a day
       const double t_s = pt.time_from_start.toSec();
       if (!(t_s >= 0.0 && t_s <= kMaxTimeFromStart_s && (points.empty() || t_s >= points.back().first))) {
         ROS_WARN_THROTTLE(1.0,
@@ -128,21 +130,25 @@ class LeePositionControllerRos {
       }
       points.emplace_back(t_s, p);
     }
+    double t0_s = msg->header.stamp.isZero() ? t_odometry_s_ : msg->header.stamp.toSec();
+    if (t0_s - t_odometry_s_ > kMaxTimeFromStart_s) {
+      ROS_WARN_THROTTLE(1.0,
+                        "[lee_position_controller] trajectory stamped %.0f s ahead of the odometry (a wall-clock "
+                        "stamp?); its points count from now",
+                        t0_s - t_odometry_s_);
+      t0_s = t_odometry_s_;
+    }
+    for (auto& point : points) point.first += t0_s;  // due times
     pending_ = std::move(points);
-    timer_.stop();
-    ReleaseNext();
+    ReleaseDue(t_odometry_s_);
   }
 
-  /// Applies the front point and schedules the next one after the time_from_start difference.
-  void ReleaseNext() {
-    if (pending_.empty()) return;
-    const double t_now = pending_.front().first;
-    controller_.SetTrajectoryPoint(pending_.front().second);
-    pending_.pop_front();
-    if (pending_.empty()) return;
-    const double wait_s = std::max(pending_.front().first - t_now, 0.0);
-    timer_ = nh_.createTimer(
-        ros::Duration(std::max(wait_s, 1e-6)), [this](const ros::TimerEvent&) { ReleaseNext(); }, true);
+  /// Applies every pending point due at or before t_s (the latest applied wins).
+  void ReleaseDue(double t_s) {
+    while (!pending_.empty() && pending_.front().first <= t_s) {
+      controller_.SetTrajectoryPoint(pending_.front().second);
+      pending_.pop_front();
+    }
   }
 
   void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
@@ -151,6 +157,8 @@ class LeePositionControllerRos {
       ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring odometry: %s (no command sent)", why.c_str());
       return;
     }
+    t_odometry_s_ = msg->header.stamp.toSec();
+    ReleaseDue(t_odometry_s_);
     // a shared pointer: in the simulator's process (in_process:=true) it reaches the plugins unserialized
     motor_pub_.publish(boost::make_shared<mav_msgs::Actuators>(
         ActuatorsMsg(controller_.RotorSpeeds(StateFromOdometry(*msg)), msg->header.stamp)));
@@ -159,8 +167,8 @@ class LeePositionControllerRos {
   static constexpr double kMaxTimeFromStart_s = 86400.0;
   ros::NodeHandle nh_;
   LeePositionController controller_;
-  std::deque<std::pair<double, TrajectoryPoint>> pending_;
-  ros::Timer timer_;
+  std::deque<std::pair<double, TrajectoryPoint>> pending_;  ///< (due sim time [s], point)
+  double t_odometry_s_ = 0.0;                               ///< stamp of the latest odometry
   ros::Publisher motor_pub_;
   ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_, failure_sub_;
 };

@@ -6,6 +6,7 @@
 
 #include <xmlrpcpp/XmlRpcValue.h>
 
+#include <cstdio>
 #include <cstring>
 #include <sstream>
 #include <stdexcept>
@@ -46,17 +47,18 @@ std::vector<LockstepParticipant> ParseLockstepParticipants(const std::string& sp
 }
 
 Lockstep::Lockstep(ros::NodeHandle nh, const std::vector<LockstepParticipant>& participants,
-                   const LockstepOptions& options)
-    : nh_(nh), options_(options) {
+                   const LockstepOptions& options, PublishCounts& counts)
+    : nh_(nh), options_(options), counts_(counts), pinger_(options.ping_deadline_s) {
   participants_.resize(participants.size());  // fixed from here on: callbacks hold pointers
   for (size_t i = 0; i < participants.size(); ++i) {
     Participant& p = participants_[i];
     p.topics = participants[i];
     p.input_pub = PublicationCache(p.topics.input_topic);
     p.answer_pub = PublicationCache(p.topics.answer_topic);
+    if (!p.topics.input_topic.empty()) p.input_count = counts_.Counter(p.topics.input_topic);
     p.sub = Subscribe(&p);
     ROS_INFO("[rotors_sim] lockstep (%s): each step waits for an answer on %s%s%s",
-             options_.mode == LockstepOptions::Mode::kHold ? "hold" : "lenient", p.topics.answer_topic.c_str(),
+             options_.mode == LockstepMode::kHold ? "hold" : "lenient", p.topics.answer_topic.c_str(),
              p.topics.input_topic.empty() ? "" : " to ", p.topics.input_topic.c_str());
   }
 }
@@ -69,21 +71,49 @@ ros::Subscriber Lockstep::Subscribe(Participant* p) {
 
 void Lockstep::Resubscribe() {
   for (auto& p : participants_) {
-    if (p.local) continue;                  // answers are counted, not subscribed
     ros::Subscriber fresh = Subscribe(&p);  // appended behind the plugins' subscriptions
     p.sub.shutdown();
     p.sub = fresh;
   }
 }
 
+void Lockstep::Answered(Participant* p, const ros::Time& stamp) {
+  if (stamp > p->last_stamp) p->last_stamp = stamp;
+  Apply(p, ParticipantEvent::kAnswered, stamp.toSec());
+}
+
 void Lockstep::OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstPtr& msg) {
   ros::Time stamp;
-  if (!HeaderStamp(*msg, &stamp)) return;
-  if (p->muted) ROS_INFO("[rotors_sim] lockstep: %s is answering again", p->topics.answer_topic.c_str());
-  p->muted = false;
-  p->answered = true;
-  p->warming_up = false;
-  if (stamp > p->last_stamp) p->last_stamp = stamp;
+  if (HeaderStamp(*msg, &stamp)) Answered(p, stamp);
+}
+
+void Lockstep::Apply(Participant* p, ParticipantEvent event, double sim_time_s) {
+  using S = ParticipantState;
+  const S before = p->state;
+  p->state = Next(before, event, options_.mode);
+  if (p->state == before) return;
+  const char* topic = p->topics.answer_topic.c_str();
+  if (p->state == S::kSettling) p->connected_since = ros::WallTime::now();
+  if (before == S::kGone) ROS_INFO("[rotors_sim] lockstep: %s is back; resuming at t = %.3f s", topic, sim_time_s);
+  else if (p->state == S::kGone)
+    ROS_WARN("[rotors_sim] lockstep: %s went away at t = %.3f s (%s); the simulation is paused until it is back", topic,
+             sim_time_s, ToString(event));
+  else if (p->state == S::kWarmingUp)
+    ROS_WARN(
+        "[rotors_sim] lockstep: no first answer on %s to t = %.3f s within %.1f s of wall time; not waiting for it "
+        "until it answers (e.g. an estimator not yet initialised): from here the run is not repeatable",
+        topic, sim_time_s, options_.first_answer_timeout_s);
+  else if (p->state == S::kMuted)
+    ROS_WARN(
+        "[rotors_sim] lockstep: no answer on %s for t = %.3f s within %.1f s; not waiting for it until it "
+        "answers again",
+        topic, sim_time_s, options_.silence_timeout_s);
+  else if (before == S::kMuted) ROS_INFO("[rotors_sim] lockstep: %s is answering again", topic);
+  if (p->state == S::kFirstAnswer && p->input_count && !counts_.Counted(p->topics.input_topic))
+    ROS_WARN(
+        "[rotors_sim] lockstep: no plugin counts its publications of %s (only sensor plugins' data topics "
+        "are counted); %s is never waited for",
+        p->topics.input_topic.c_str(), topic);
 }
 
 /// Subscribers of one of this node's topics in other nodes (the plugins' own subscriptions, e.g.
@@ -102,24 +132,13 @@ size_t RemoteSubscribers(const ros::PublicationPtr& pub) {
 void Lockstep::RefreshLocal(Participant* p) {
   // a hosted participant is set up within one callback on this thread: once its answer publication
   // exists here, its input subscription does too
-  const bool local = static_cast<bool>(p->answer_pub.Get());
-  if (local == p->local) return;
-  p->local = local;
-  if (local) {
-    p->sub.shutdown();  // a watcher of another type would make every answer serialized
-  } else {
-    p->sub = Subscribe(p);  // unloaded: it may come back as a node
-  }
+  p->local = static_cast<bool>(p->answer_pub.Get());
 }
 
-bool Lockstep::LocalAnswered(Participant* p, const ros::Time& stamp) {
-  const ros::PublicationPtr& pub = p->answer_pub.Get();
-  if (!pub || pub->getSequence() == p->answer_seq) return false;
-  p->answer_seq = pub->getSequence();
-  p->answered = true;
-  p->warming_up = false;
-  if (stamp > p->last_stamp) p->last_stamp = stamp;
-  return true;
+void Lockstep::FlushAnswer(Participant* p) {
+  // roscpp serializes a hosted participant's answer for the watcher (a ShapeShifter) and queues it;
+  // sending it now, in this thread, delivers it to the watcher with the next callAvailable
+  if (const ros::PublicationPtr& pub = p->answer_pub.Get()) pub->processPublishQueue();
 }
 
 bool Lockstep::ConnectedNow(const Participant& p) const {
@@ -127,50 +146,45 @@ bool Lockstep::ConnectedNow(const Participant& p) const {
   if (p.sub.getNumPublishers() == 0) return false;
   if (p.topics.input_topic.empty()) return true;
   // once present, a participant leaves through its answer topic; the input is checked on arrival
-  return p.present || RemoteSubscribers(p.input_pub.Get()) > 0;
+  const bool present = p.state != ParticipantState::kAbsent && p.state != ParticipantState::kGone;
+  return present || RemoteSubscribers(p.input_pub.Get()) > 0;
 }
 
-/// Updates p->present; true when it changed. A participant declared gone comes back only when a
-/// node publishing its answer topic answers pings again (a restarted node).
-bool Lockstep::UpdatePresence(Participant* p, double sim_time_s) {
-  bool now = ConnectedNow(*p);
-  if (now && p->gone) now = AnyPublisherAlive(p->topics.answer_topic);
-  if (now == p->present) return false;
-  p->present = now;
-  if (now) {
-    if (p->ever_present)
-      ROS_INFO("[rotors_sim] lockstep: %s is back; resuming at t = %.3f s", p->topics.answer_topic.c_str(), sim_time_s);
-    p->gone = false;
-    p->ever_present = true;
-    p->present_since = ros::WallTime::now();
-    p->answered = false;
-    p->warming_up = false;
-  } else if (p->ever_present) {
-    ROS_WARN("[rotors_sim] lockstep: %s went away at t = %.3f s; the simulation is paused until it is back",
-             p->topics.answer_topic.c_str(), sim_time_s);
+void Lockstep::Observe(Participant* p, double sim_time_s) {
+  using S = ParticipantState;
+  RefreshLocal(p);
+  const bool connected = ConnectedNow(*p);
+  if (p->state == S::kGone) {
+    // registered again, or still registered: back once its node answers pings (a restarted node)
+    if (!connected) return;
+    const NodePinger::Answer answer = pinger_.Take(p->topics.answer_topic);
+    if (answer == NodePinger::Answer::kAlive) {
+      Apply(p, ParticipantEvent::kConnected, sim_time_s);
+    } else if (ros::WallTime::now() >= p->next_ping) {
+      pinger_.Request(p->topics.answer_topic);
+      p->next_ping = ros::WallTime::now() + ros::WallDuration(0.5);
+    }
+    return;
   }
-  return true;
+  if (connected && p->state == S::kAbsent) Apply(p, ParticipantEvent::kConnected, sim_time_s);
+  if (!connected && p->state != S::kAbsent) Apply(p, ParticipantEvent::kDisconnected, sim_time_s);
+  if (p->state == S::kSettling && ros::WallTime::now() - p->connected_since >= ros::WallDuration(options_.settle_s))
+    Apply(p, ParticipantEvent::kSettled, sim_time_s);
 }
 
 std::string Lockstep::HoldReason(double sim_time_s) {
-  if (options_.mode != LockstepOptions::Mode::kHold) return "";
-  // gone participants are pinged at most twice a second
-  const bool may_ping = ros::WallTime::now() >= next_ping_;
   std::string reason;
   for (auto& p : participants_) {
-    RefreshLocal(&p);
-    if (!(p.gone && !may_ping)) UpdatePresence(&p, sim_time_s);
-    if (p.present && ros::WallTime::now() - p.present_since >= ros::WallDuration(options_.settle_s)) continue;
-    if (p.present) {
-      reason += std::string(reason.empty() ? "" : "; ") + "lockstep: " + p.topics.answer_topic + " connected, settling";
-      continue;
-    }
+    Observe(&p, sim_time_s);
+    if (!HoldsClock(p.state, options_.mode)) continue;
     if (!reason.empty()) reason += "; ";
-    reason += "lockstep: waiting for " + p.topics.answer_topic +
-              (p.sub.getNumPublishers() == 0 || p.gone ? " (no publisher)"
-                                                       : " (nobody subscribes " + p.topics.input_topic + ")");
+    if (p.state == ParticipantState::kSettling) reason += "lockstep: " + p.topics.answer_topic + " connected, settling";
+    else
+      reason += "lockstep: waiting for " + p.topics.answer_topic +
+                (p.sub.getNumPublishers() == 0 || p.state == ParticipantState::kGone
+                     ? " (no publisher)"
+                     : " (nobody subscribes " + p.topics.input_topic + ")");
   }
-  if (may_ping) next_ping_ = ros::WallTime::now() + ros::WallDuration(0.5);
   if (!reason.empty() && ros::WallTime::now() >= next_report_) {
     ROS_INFO("[rotors_sim] holding the clock at t = %.3f s: %s", sim_time_s, reason.c_str());
     next_report_ = ros::WallTime::now() + ros::WallDuration(options_.report_period_s);
@@ -178,80 +192,80 @@ std::string Lockstep::HoldReason(double sim_time_s) {
   return reason;
 }
 
-uint32_t Lockstep::FlushInput(Participant* p) {
-  if (p->topics.input_topic.empty()) return 0;
-  const ros::PublicationPtr& pub = p->input_pub.Get();
-  if (!pub) return 0;
-  pub->processPublishQueue();  // numbers and sends queued messages now, in this thread
-  return pub->getSequence();
+void Lockstep::FlushInput(Participant* p) {
+  if (p->topics.input_topic.empty()) return;
+  if (const ros::PublicationPtr& pub = p->input_pub.Get()) pub->processPublishQueue();
 }
 
 void Lockstep::BeforeStep() {
-  for (auto& p : participants_) {
-    p.input_seq = FlushInput(&p);
-    if (!p.local) continue;
-    const ros::PublicationPtr& answer = p.answer_pub.Get();
-    if (answer) p.answer_seq = answer->getSequence();
+  for (auto& p : participants_)
+    if (p.input_count) p.input_count_before = *p.input_count;
+}
+
+void Lockstep::CountUnwaited(const ros::Time& stamp) {
+  for (const auto& p : participants_) {
+    if (!p.input_published || (WaitedFor(p.state) && p.last_stamp >= stamp)) continue;
+    if (unwaited_steps_ == 0) {
+      char why[512];
+      std::snprintf(why, sizeof(why), "lockstep did not wait for %s at t = %.3f s (%s)", p.topics.answer_topic.c_str(),
+                    stamp.toSec(), ToString(p.state));
+      first_unwaited_reason_ = why;
+      ROS_WARN("[rotors_sim] %s: the run is not repeatable", why);
+    }
+    ++unwaited_steps_;
+    return;  // one per step
   }
 }
 
-bool Lockstep::Required(const Participant& p) const {
-  if (!p.input_published) return false;
-  if (options_.mode == LockstepOptions::Mode::kLenient) return !p.muted && (p.local || p.sub.getNumPublishers() > 0);
-  return p.present && !p.warming_up;
-}
-
 bool Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop) {
-  for (auto& p : participants_) p.input_published = p.topics.input_topic.empty() || FlushInput(&p) != p.input_seq;
+  for (auto& p : participants_) {
+    FlushInput(&p);
+    p.input_published = p.topics.input_topic.empty() || *p.input_count != p.input_count_before;
+  }
   const ros::WallTime start = ros::WallTime::now();
   ros::WallTime next_check = start + ros::WallDuration(options_.silence_timeout_s);
   ros::WallTime next_report = start + ros::WallDuration(options_.report_period_s);
-  const bool hold = options_.mode == LockstepOptions::Mode::kHold;
+  const bool hold = options_.mode == LockstepMode::kHold;
+  const double t_s = stamp.toSec();
   while (ros::ok() && !stop()) {
     bool all = true;
     for (auto& p : participants_) {
-      if (p.local) LocalAnswered(&p, stamp);
+      if (p.local) FlushAnswer(&p);
       if (Required(p) && p.last_stamp < stamp) all = false;
     }
     if (all) break;
     queue->callAvailable(ros::WallDuration(0.0005));
     const ros::WallTime now = ros::WallTime::now();
-    for (auto& p : participants_) {
-      if (!Required(p) || p.last_stamp >= stamp) continue;
-      if (!p.answered && now - start > ros::WallDuration(options_.first_answer_timeout_s)) {
-        ROS_INFO(
-            "[rotors_sim] lockstep: no first answer on %s to t = %.3f s within %.1f s; not waiting for it until "
-            "it answers (e.g. an estimator not yet initialised)",
-            p.topics.answer_topic.c_str(), stamp.toSec(), options_.first_answer_timeout_s);
-        p.warming_up = true;
-      } else if (!hold && now - start > ros::WallDuration(options_.silence_timeout_s)) {
-        ROS_WARN(
-            "[rotors_sim] lockstep: no answer on %s for t = %.3f s within %.1f s; not waiting for it until it "
-            "answers again",
-            p.topics.answer_topic.c_str(), stamp.toSec(), options_.silence_timeout_s);
-        p.muted = true;
-      }
-    }
-    if (!hold) continue;
-    // a participant that unregistered is gone at once; a silent one is pinged now and then
     bool lost = false;
     for (auto& p : participants_) {
       if (!Required(p) || p.last_stamp >= stamp) continue;
+      if (p.state == ParticipantState::kFirstAnswer && now - start > ros::WallDuration(options_.first_answer_timeout_s))
+        Apply(&p, ParticipantEvent::kFirstAnswerLate, t_s);
+      if (now - start > ros::WallDuration(options_.silence_timeout_s)) Apply(&p, ParticipantEvent::kSilent, t_s);
+      if (!hold || !Required(p)) continue;
+      // one that unregistered is gone at once; a silent one is pinged now and then (on the pinger's thread)
       if (!ConnectedNow(p)) {
-        lost = UpdatePresence(&p, stamp.toSec()) || lost;
-      } else if (now >= next_check && !AnyPublisherAlive(p.topics.answer_topic)) {
-        p.gone = true;
-        lost = UpdatePresence(&p, stamp.toSec()) || lost;
+        Apply(&p, ParticipantEvent::kDisconnected, t_s);
+      } else if (pinger_.Take(p.topics.answer_topic) == NodePinger::Answer::kDead) {
+        Apply(&p, ParticipantEvent::kPingFailed, t_s);
+      } else if (now >= next_check) {
+        pinger_.Request(p.topics.answer_topic);
       } else if (now >= next_report) {
-        ROS_WARN("[rotors_sim] lockstep: t = %.3f s: still waiting for an answer on %s (%.0f s)", stamp.toSec(),
+        ROS_WARN("[rotors_sim] lockstep: t = %.3f s: still waiting for an answer on %s (%.0f s)", t_s,
                  p.topics.answer_topic.c_str(), (now - start).toSec());
       }
+      lost = lost || p.state == ParticipantState::kGone;
     }
     if (now >= next_check) next_check = now + ros::WallDuration(options_.silence_timeout_s);
     if (now >= next_report) next_report = now + ros::WallDuration(options_.report_period_s);
-    if (lost) return false;
+    if (lost) {
+      CountUnwaited(stamp);
+      return false;
+    }
   }
-  queue->callAvailable();  // deliver the answer to every other subscriber of it too
+  if (!ros::ok() || stop()) return true;  // shutting down: the last step's answer does not matter
+  queue->callAvailable();                 // deliver the answer to every other subscriber of it too
+  CountUnwaited(stamp);
   return true;
 }
 

@@ -6,7 +6,7 @@
 #include <xmlrpcpp/XmlRpcClient.h>
 #include <xmlrpcpp/XmlRpcException.h>
 
-#include "rotors_core/ros/lockstep.h"
+#include "rotors_core/ros/node_pinger.h"
 
 namespace rotors_sim {
 namespace {
@@ -55,6 +55,72 @@ bool AnyPublisherAlive(const std::string& topic) {
                       e.getMessage().c_str());
   }
   return false;
+}
+
+NodePinger::NodePinger(double deadline_s) : shared_(std::make_shared<Shared>()), deadline_s_(deadline_s) {
+  worker_ = std::thread(&NodePinger::Work, shared_);
+}
+
+NodePinger::~NodePinger() {
+  bool busy = false;
+  {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    shared_->stop = true;
+    busy = shared_->busy;
+  }
+  shared_->wake.notify_all();
+  // a worker stuck on a node that does not answer must not stop the simulator's shutdown
+  if (busy) worker_.detach();
+  else worker_.join();
+}
+
+void NodePinger::Request(const std::string& topic) {
+  {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    Entry& e = shared_->entries[topic];
+    if (e.under_way) return;
+    e.under_way = true;
+    e.overdue_reported = false;
+    e.asked = ros::WallTime::now();
+    shared_->queue.push_back(topic);
+  }
+  shared_->wake.notify_one();
+}
+
+NodePinger::Answer NodePinger::Take(const std::string& topic) {
+  std::lock_guard<std::mutex> lock(shared_->mutex);
+  auto it = shared_->entries.find(topic);
+  if (it == shared_->entries.end()) return Answer::kNone;
+  Entry& e = it->second;
+  if (e.answer != Answer::kNone) {
+    const Answer a = e.answer;
+    e.answer = Answer::kNone;
+    return a;
+  }
+  if (e.under_way && !e.overdue_reported && ros::WallTime::now() - e.asked > ros::WallDuration(deadline_s_)) {
+    e.overdue_reported = true;
+    return Answer::kDead;
+  }
+  return Answer::kNone;
+}
+
+void NodePinger::Work(const std::shared_ptr<Shared>& shared) {
+  std::unique_lock<std::mutex> lock(shared->mutex);
+  while (true) {
+    shared->wake.wait(lock, [&] { return shared->stop || !shared->queue.empty(); });
+    if (shared->stop) return;
+    const std::string topic = shared->queue.front();
+    shared->queue.pop_front();
+    shared->busy = true;
+    lock.unlock();
+    const bool alive = AnyPublisherAlive(topic);  // on the network, without the lock
+    lock.lock();
+    shared->busy = false;
+    Entry& e = shared->entries[topic];
+    e.under_way = false;
+    // an overdue ping was already reported dead; a late "alive" still counts (the node is back)
+    if (!(e.overdue_reported && !alive)) e.answer = alive ? Answer::kAlive : Answer::kDead;
+  }
 }
 
 }  // namespace rotors_sim

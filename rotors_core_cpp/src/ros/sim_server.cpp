@@ -35,7 +35,8 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
       std::make_unique<StatePublisher>(nh_, options.state_publish_rate_hz, options.state_max_wall_rate_hz);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   world_markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("/world/markers", 1, true);
-  lockstep_ = std::make_unique<Lockstep>(nh_, options.lockstep_participants, options.lockstep);
+  lockstep_ =
+      std::make_unique<Lockstep>(nh_, options.lockstep_participants, options.lockstep, PublishCounts::Of(*world_));
   world_->SetPaused(true, user_paused_ ? "started paused" : "starting");
   services_.push_back(private_nh_.advertiseService("pause_physics", &SimServer::OnPause, this));
   services_.push_back(private_nh_.advertiseService("unpause_physics", &SimServer::OnUnpause, this));
@@ -94,6 +95,8 @@ void SimServer::StepOnce() {
     now.fromNSec(world_->SimTime().Nanoseconds());
     if (!lockstep_->WaitForAnswers(now, ros::getGlobalCallbackQueue(), [] { return g_stop_requested != 0; }))
       UpdateRunState();
+    if (lockstep_->UnwaitedSteps() != world_->UnwaitedSteps())
+      world_->SetUnwaitedSteps(lockstep_->UnwaitedSteps(), lockstep_->FirstUnwaitedReason());
   }
   pacer_.WaitUntilDue(world_->SimTime());
 }

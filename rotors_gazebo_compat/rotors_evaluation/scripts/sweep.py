@@ -48,8 +48,10 @@ def main(argv=None) -> int:
     wall_s = time.monotonic() - t0
     tables = write_table(spec, rows, out)
     report = write_report(spec, rows, out, wall_s)
-    failed = sum(r["status"] != "ok" for r in rows)
-    print(f"[sweep] {len(rows)} flights, {failed} failed, {wall_s:.1f} s; {', '.join(map(str, tables))}, {report}")
+    failed = sum(r["status"] == "failed" for r in rows)
+    unrepeatable = sum(r["status"] == "not repeatable" for r in rows)
+    print(f"[sweep] {len(rows)} flights, {failed} failed, {unrepeatable} not repeatable, {wall_s:.1f} s; "
+          f"{', '.join(map(str, tables))}, {report}")
     return 0
 
 

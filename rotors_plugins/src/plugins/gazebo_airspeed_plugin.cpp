@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <geometry_msgs/Vector3Stamped.h>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -44,7 +45,8 @@ class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
     msg_.header.frame_id = link_name;
     node_ = MakeNode(ns);
     if (!node_) return;
-    pub_ = node_->advertise<geometry_msgs::Vector3Stamped>(topic, 10);
+    pub_ = rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::Vector3Stamped>(topic, 10),
+                                         rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 

@@ -4,7 +4,8 @@
 // WrenchStamped per contact of the model). Re-recorded from ROS: imu, odometry, commands, wind,
 // and any topics of any type listed in <extraTopics> (ours; e.g. an estimator's output).
 // Ours: <ns>/simulation_status (rotors_comm/SimulationStatus) when the simulation is paused, resumes
-// or stops, so that the evaluation knows where the flight ended.
+// or stops, so that the evaluation knows where the flight ended, and at the first step lockstep did
+// not wait for (with the count of such steps), so that it knows whether the flight is repeatable.
 // File: <ROS_HOME or ~/.ros>/<bagFileName>_YYYY-MM-DD-HH-MM-SS.bag; service record_rosbag.
 #include <ctime>
 #include <sstream>
@@ -165,6 +166,10 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     status.header.stamp = ToRos(world_->SimTime());
     status.state = state;
     status.reason = state == rotors_comm::SimulationStatus::STOPPED ? "simulator shut down" : world_->PauseReason();
+    status.unwaited_steps = world_->UnwaitedSteps();
+    if (status.unwaited_steps > 0)
+      status.reason +=
+          std::string(status.reason.empty() ? "" : "; ") + "not repeatable: " + world_->FirstUnwaitedReason();
     Write(ns_ + "/simulation_status", status.header.stamp, status);
   }
 
@@ -181,6 +186,11 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
 
   void OnUpdate() {
     if (!recording_) return;
+    // the first step lockstep did not wait for: from here the flight depends on wall-clock timing
+    if (world_->UnwaitedSteps() > 0 && !unwaited_reported_) {
+      WriteStatus(rotors_comm::SimulationStatus::RUNNING);
+      unwaited_reported_ = true;
+    }
     const ros::Time stamp = ToRos(world_->SimTime());
     const auto X = link_->WorldPose();
     geometry_msgs::PoseStamped pose;
@@ -216,6 +226,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
   std::string pose_topic_ = "ground_truth/pose", twist_topic_ = "ground_truth/twist", motor_topic_ = "motor_speed",
               wrench_topic_ = "wrench";
   bool recording_ = false;
+  bool unwaited_reported_ = false;
   rosbag::Bag bag_;
   rotors_sim::physics::Model* model_ = nullptr;
   rotors_sim::physics::LinkPtr link_;

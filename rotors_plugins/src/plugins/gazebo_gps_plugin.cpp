@@ -6,6 +6,7 @@
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/NavSatFix.h>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/physics/link.h"
@@ -51,8 +52,12 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     fix_.position_covariance[8] = p.ver_pos_std_dev_m * p.ver_pos_std_dev_m;
     node_ = MakeNode(ns);
     if (!node_) return;
-    gps_pub_ = node_->advertise<sensor_msgs::NavSatFix>(gps_topic, 10);
-    ground_speed_pub_ = node_->advertise<geometry_msgs::TwistStamped>(ground_speed_topic, 10);
+    gps_pub_ =
+        rotors_sim::ListenedPublisher(node_->advertise<sensor_msgs::NavSatFix>(gps_topic, 10),
+                                      rotors_sim::PublishCounts::Of(*sensor->ParentLink()->GetModel()->GetWorldRaw()));
+    ground_speed_pub_ =
+        rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::TwistStamped>(ground_speed_topic, 10),
+                                      rotors_sim::PublishCounts::Of(*sensor->ParentLink()->GetModel()->GetWorldRaw()));
     connection_ = sensor->ConnectUpdated([this] { OnUpdate(); });
   }
 

@@ -7,6 +7,7 @@
 #include <rotors_comm/ImuBias.h>
 #include <sensor_msgs/Imu.h>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
@@ -63,8 +64,11 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     }
     node_ = MakeNode(ns);
     if (node_) {
-      pub_ = node_->advertise<sensor_msgs::Imu>(topic, 10);
-      if (!bias_topic.empty()) bias_pub_ = node_->advertise<rotors_comm::ImuBias>(bias_topic, 10);
+      pub_ = rotors_sim::ListenedPublisher(node_->advertise<sensor_msgs::Imu>(topic, 10),
+                                           rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+      if (!bias_topic.empty())
+        bias_pub_ = rotors_sim::ListenedPublisher(node_->advertise<rotors_comm::ImuBias>(bias_topic, 10),
+                                                  rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
       ROS_DEBUG("[imu] %s/%s seed %lu", ns.c_str(), topic.c_str(), static_cast<unsigned long>(seed_));
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });

@@ -4,6 +4,7 @@
 // world correctly (RotorS used N, E, D as x, y, z).
 #include <sensor_msgs/MagneticField.h>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
@@ -39,7 +40,8 @@ class GazeboMagnetometerPlugin : public rotors_sim::ModelPlugin {
     for (int i = 0; i < 3; ++i) msg_.magnetic_field_covariance[i * 4] = p.noise_normal_T[i] * p.noise_normal_T[i];
     node_ = MakeNode(ns);
     if (!node_) return;
-    pub_ = node_->advertise<sensor_msgs::MagneticField>(topic, 10);
+    pub_ = rotors_sim::ListenedPublisher(node_->advertise<sensor_msgs::MagneticField>(topic, 10),
+                                         rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 

@@ -4,6 +4,7 @@
 // scales the command the motor follows.
 #include <std_msgs/Float32.h>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
@@ -74,7 +75,9 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     bus_->RegisterRotor(motor_number_);
 
     node_ = MakeNode(namespace_);
-    if (node_) speed_pub_ = node_->advertise<std_msgs::Float32>(speed_topic, 1);
+    if (node_)
+      speed_pub_ = rotors_sim::ListenedPublisher(node_->advertise<std_msgs::Float32>(speed_topic, 1),
+                                                 rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
         [this](const rotors_sim::common::UpdateInfo& info) { OnUpdate(info.simTime.Double()); });
   }

@@ -12,6 +12,7 @@
 #include <rotors_comm/MotorFailure.h>
 #include <rotors_comm/SetMotorFailure.h>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/model.h"
@@ -36,8 +37,11 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
     node_ = MakeNode(namespace_);
     if (node_) {
-      pub_ = node_->advertise<mav_msgs::Actuators>(topic, 1);
-      failure_pub_ = node_->advertise<rotors_comm::MotorFailure>("motor_failure", 10, true);
+      pub_ = rotors_sim::ListenedPublisher(node_->advertise<mav_msgs::Actuators>(topic, 1),
+                                           rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+      failure_pub_ =
+          rotors_sim::ListenedPublisher(node_->advertise<rotors_comm::MotorFailure>("motor_failure", 10, true),
+                                        rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
       failure_srv_ = node_->advertiseService("set_motor_failure", &GazeboMultirotorBasePlugin::OnSetFailure, this);
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });

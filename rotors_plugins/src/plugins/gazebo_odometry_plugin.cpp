@@ -12,6 +12,7 @@
 #include <ros/package.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/event.h"
@@ -111,11 +112,18 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
 
     node_ = MakeNode(ns);
     if (node_) {
-      pose_pub_ = node_->advertise<geometry_msgs::Pose>(pose_topic, 10);
-      pose_cov_pub_ = node_->advertise<geometry_msgs::PoseWithCovarianceStamped>(pose_cov_topic, 10);
-      position_pub_ = node_->advertise<geometry_msgs::PointStamped>(position_topic, 10);
-      transform_pub_ = node_->advertise<geometry_msgs::TransformStamped>(transform_topic, 10);
-      odometry_pub_ = node_->advertise<nav_msgs::Odometry>(odometry_topic, 10);
+      pose_pub_ = rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::Pose>(pose_topic, 10),
+                                                rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+      pose_cov_pub_ =
+          rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::PoseWithCovarianceStamped>(pose_cov_topic, 10),
+                                        rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+      position_pub_ = rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::PointStamped>(position_topic, 10),
+                                                    rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+      transform_pub_ =
+          rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::TransformStamped>(transform_topic, 10),
+                                        rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+      odometry_pub_ = rotors_sim::ListenedPublisher(node_->advertise<nav_msgs::Odometry>(odometry_topic, 10),
+                                                    rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
       if (broadcast_tf_) tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });

@@ -3,6 +3,7 @@
 // plus N(0, pressureVariance).
 #include <sensor_msgs/FluidPressure.h>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
@@ -35,7 +36,8 @@ class GazeboPressurePlugin : public rotors_sim::ModelPlugin {
     msg_.variance = p.pressure_variance_pa2;
     node_ = MakeNode(ns);
     if (!node_) return;
-    pub_ = node_->advertise<sensor_msgs::FluidPressure>(topic, 10);
+    pub_ = rotors_sim::ListenedPublisher(node_->advertise<sensor_msgs::FluidPressure>(topic, 10),
+                                         rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 

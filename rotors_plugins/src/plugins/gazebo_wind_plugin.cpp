@@ -13,6 +13,7 @@
 
 #include <optional>
 
+#include "rotors_core/ros/publish_counts.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/geometry/uri_resolver.h"
@@ -97,8 +98,10 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
     node_ = MakeNode(namespace_);
     if (node_) {
-      force_pub_ = node_->advertise<geometry_msgs::WrenchStamped>(force_topic, 10);
-      speed_pub_ = node_->advertise<rotors_comm::WindSpeed>(speed_topic, 10);
+      force_pub_ = rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::WrenchStamped>(force_topic, 10),
+                                                 rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+      speed_pub_ = rotors_sim::ListenedPublisher(node_->advertise<rotors_comm::WindSpeed>(speed_topic, 10),
+                                                 rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
       if (!speed_sub_topic.empty())
         speed_sub_ = node_->subscribe(speed_sub_topic, 1, &GazeboWindPlugin::OnWindSpeed, this);
     }

@@ -94,6 +94,14 @@ class World : public std::enable_shared_from_this<World> {
   void SetPaused(bool paused, const std::string& reason = "");
   bool IsPaused() const { return paused_; }
   const std::string& PauseReason() const { return pause_reason_; }
+  /// Steps after which the host did not wait for a participant it steps in turns with (ROS lockstep):
+  /// a run with such steps depends on wall-clock timing. Reported by the host, read by plugins (the bag).
+  void SetUnwaitedSteps(uint64_t steps, const std::string& first_reason) {
+    unwaited_steps_ = steps;
+    first_unwaited_reason_ = first_reason;
+  }
+  uint64_t UnwaitedSteps() const { return unwaited_steps_; }
+  const std::string& FirstUnwaitedReason() const { return first_unwaited_reason_; }
 
   const std::vector<Contact>& Contacts() const { return contacts_; }
   /// Fires the stop event once, then unloads world plugins and removes every model (plugins hold
@@ -132,6 +140,8 @@ class World : public std::enable_shared_from_this<World> {
   common::Time sim_time_;
   uint64_t iterations_ = 0;
   bool paused_ = false;
+  uint64_t unwaited_steps_ = 0;
+  std::string first_unwaited_reason_;
   bool stopped_ = false;
   std::string pause_reason_;
   event::WorldEvents events_;

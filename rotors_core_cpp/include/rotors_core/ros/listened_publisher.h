@@ -9,6 +9,9 @@
 // subscribers in this process at once (the bag plugin, a controller nodelet), while a message
 // given by value reaches them only when roscpp's poll thread gets to it, i.e. some steps later when
 // the simulation runs fast: what they receive, and when, would depend on thread timing.
+//
+// Every publish() is counted in the world's PublishCounts, heard or not: lockstep tells from the
+// count whether a step published a participant's input.
 #pragma once
 
 #include <string>
@@ -18,6 +21,8 @@
 #include <ros/publication.h>
 #include <ros/ros.h>
 #include <ros/topic_manager.h>
+
+#include "rotors_core/ros/publish_counts.h"
 
 namespace rotors_sim {
 
@@ -40,8 +45,11 @@ class PublicationCache {
 class ListenedPublisher {
  public:
   ListenedPublisher() = default;
-  ListenedPublisher(const ros::Publisher& publisher)  // NOLINT: a drop-in for ros::Publisher members
-      : publisher_(publisher), cache_(publisher ? publisher.getTopic() : std::string()) {}
+  /// `counts`: the world's publish counts, which this publisher's publish() calls add to.
+  ListenedPublisher(const ros::Publisher& publisher, PublishCounts& counts)
+      : publisher_(publisher),
+        cache_(publisher ? publisher.getTopic() : std::string()),
+        published_(publisher ? counts.Register(publisher.getTopic()) : nullptr) {}
 
   uint32_t getNumSubscribers() {
     const ros::PublicationPtr& p = cache_.Get();
@@ -49,10 +57,12 @@ class ListenedPublisher {
   }
   template <class M>
   void publish(const M& message) {
+    if (published_) ++*published_;
     if (Listened()) publisher_.publish(boost::make_shared<M>(message));
   }
   template <class M>
   void publish(const boost::shared_ptr<M>& message) {
+    if (published_) ++*published_;
     if (Listened()) publisher_.publish(message);
   }
   std::string getTopic() const { return publisher_.getTopic(); }
@@ -60,16 +70,12 @@ class ListenedPublisher {
   explicit operator bool() const { return static_cast<bool>(publisher_); }
 
  private:
-  /// True when publish() must go through roscpp. Otherwise the message is counted as roscpp counts
-  /// one nobody hears (lockstep tells from the count that a step published its input).
-  bool Listened() {
-    if (publisher_.isLatched() || getNumSubscribers() > 0) return true;
-    if (const ros::PublicationPtr& p = cache_.Get()) p->incrementSequence();
-    return false;
-  }
+  /// True when publish() must go through roscpp.
+  bool Listened() { return publisher_.isLatched() || getNumSubscribers() > 0; }
 
   ros::Publisher publisher_;
   PublicationCache cache_;
+  uint64_t* published_ = nullptr;  ///< this topic's count in the world's PublishCounts
 };
 
 }  // namespace rotors_sim

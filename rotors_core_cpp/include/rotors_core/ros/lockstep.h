@@ -19,8 +19,13 @@
 //   answer yet (an estimator before initialisation) is not waited for until its first answer.
 // - A participant hosted in this process (a nodelet, see NodeletHost) runs on the simulation thread
 //   and answers while the simulator serves callbacks; it is recognised by its answer publication
-//   being in this process, and its answer by that publication's sequence number, so that nothing
-//   but the plugins and the nodelet touch its messages (they travel as shared pointers, unserialized).
+//   being in this process. Its messages reach the plugins and the nodelet as shared pointers;
+//   the watcher gets a serialized copy, sent in this thread as soon as it is published.
+// - Whether a step published a participant's input is read from the world's PublishCounts, which
+//   every ListenedPublisher adds to (all sensor plugins' data topics).
+// - Each participant is in one state of the transition table in lockstep_state.h. A step that
+//   published an input whose answer was not waited for is counted (UnwaitedSteps()): the run then
+//   depends on wall-clock timing, and the simulator says so once, at WARN.
 // Mode kLenient keeps the behaviour of earlier versions: only connected participants are waited
 // for, and one that stays silent past the timeout is not waited for until it answers again.
 #pragma once
@@ -34,6 +39,9 @@
 #include <topic_tools/shape_shifter.h>
 
 #include "rotors_core/ros/listened_publisher.h"
+#include "rotors_core/ros/lockstep_state.h"
+#include "rotors_core/ros/node_pinger.h"
+#include "rotors_core/ros/publish_counts.h"
 
 namespace rotors_sim {
 
@@ -46,77 +54,83 @@ struct LockstepParticipant {
 std::vector<LockstepParticipant> ParseLockstepParticipants(const std::string& spec);
 
 struct LockstepOptions {
-  enum class Mode { kHold, kLenient };
+  using Mode = LockstepMode;
   Mode mode = Mode::kHold;
   double settle_s = 0.5;  ///< [s wall] a participant that (re)connected is given to connect its other topics
   double first_answer_timeout_s = 0.5;  ///< [s wall] waiting for the first answer after (re)connecting
   double silence_timeout_s = 2.0;       ///< [s wall] kLenient: mute; kHold: check whether it is still alive
   double report_period_s = 5.0;         ///< [s wall] between "still waiting" lines
+  double ping_deadline_s = 1.0;         ///< [s wall] a node that does not answer a ping within it is gone
 };
 
 class Lockstep {
  public:
-  Lockstep(ros::NodeHandle nh, const std::vector<LockstepParticipant>& participants, const LockstepOptions& options);
+  /// `counts`: the world's publish counts (PublishCounts::Of(world)), read to tell which inputs a step published.
+  Lockstep(ros::NodeHandle nh, const std::vector<LockstepParticipant>& participants, const LockstepOptions& options,
+           PublishCounts& counts);
   bool Enabled() const { return !participants_.empty(); }
   /// Re-subscribes the watchers so that they come after every other subscriber of their topics:
   /// roscpp queues a message's callbacks in subscription order, so once the watcher has seen an
   /// answer, the plugins' callbacks for it are queued too. Call after plugins subscribed (spawn).
   void Resubscribe();
-  /// kHold: empty when every participant is present, else why the clock is held (and a line is
-  /// logged now and then). kLenient: always empty. Call before each step.
+  /// Observes who is connected (and settled); kHold: empty when no participant holds the clock,
+  /// else why it is held (and a line is logged now and then). kLenient: always empty. Call before each step.
   std::string HoldReason(double sim_time_s);
   /// Call right before the step (to tell which inputs the step publishes).
   void BeforeStep();
-  /// Serves callbacks until every participant whose input the step published answered `stamp`.
-  /// Returns false when a participant went away meanwhile (the caller pauses; HoldReason says why).
-  /// Gives up when `stop` returns true (the simulator is shutting down).
+  /// Serves callbacks until every participant whose input the step published, and that is waited
+  /// for, answered `stamp`. Returns false when a participant went away meanwhile (the caller
+  /// pauses; HoldReason says why). Gives up when `stop` returns true (the simulator is shutting down).
   bool WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop);
+  /// Steps after which a published input's answer was not waited for (see lockstep_state.h).
+  uint64_t UnwaitedSteps() const { return unwaited_steps_; }
+  /// Why the first of them was not waited for (empty while there was none).
+  const std::string& FirstUnwaitedReason() const { return first_unwaited_reason_; }
 
  private:
   struct Participant {
     LockstepParticipant topics;
     ros::Subscriber sub;
-    ros::Time last_stamp;
-    bool present = false;  ///< as of the last check
-    ros::WallTime present_since;
-    bool ever_present = false;
-    bool answered = false;                ///< answered since it (re)connected
-    bool warming_up = false;              ///< missed its first input; not waited for until it answers
-    bool muted = false;                   ///< kLenient: silent past the timeout
-    bool gone = false;                    ///< declared gone by a failed ping; present again once its node answers pings
-    uint32_t input_seq = 0;               ///< input publication's sequence number before the step
-    bool input_published = false;         ///< the last step published its input
-    mutable PublicationCache input_pub;   ///< the simulator's publication of its input
-    mutable PublicationCache answer_pub;  ///< its answer's publication in this process (a hosted nodelet)
-    bool local = false;                   ///< its answer is published in this process (a hosted nodelet)
-    uint32_t answer_seq = 0;              ///< local: the answer publication's sequence number before the step
+    ParticipantState state = ParticipantState::kAbsent;
+    ros::Time last_stamp;                   ///< of its latest answer
+    ros::WallTime connected_since;          ///< entered kSettling
+    ros::WallTime next_ping;                ///< kGone: when to ask again whether its node is back
+    const uint64_t* input_count = nullptr;  ///< the world's count of its input topic
+    uint64_t input_count_before = 0;        ///< ... before the step
+    bool input_published = false;           ///< the last step published its input
+    mutable PublicationCache input_pub;     ///< the simulator's publication of its input
+    mutable PublicationCache answer_pub;    ///< its answer's publication in this process (a hosted nodelet)
+    bool local = false;                     ///< its answer is published in this process (a hosted nodelet)
   };
+  /// Moves p along the transition table, logging what a user must know (went away, back, ...).
+  void Apply(Participant* p, ParticipantEvent event, double sim_time_s);
+  /// Connection, settling and (kGone) ping answers become events.
+  void Observe(Participant* p, double sim_time_s);
   /// Notices a participant that is (or no longer is) hosted in this process.
   void RefreshLocal(Participant* p);
-  /// local: true (and records the answer) when its answer publication counted a message this step.
-  bool LocalAnswered(Participant* p, const ros::Time& stamp);
-  /// Sends what the plugins published in the step (roscpp would do it in its poll thread) and
-  /// returns the input publication's sequence number (0 when it does not exist yet).
-  static uint32_t FlushInput(Participant* p);
+  /// local: sends its queued answers to the watcher now.
+  void FlushAnswer(Participant* p);
+  /// Sends what the plugins published in the step now, in this thread (roscpp would do it in its poll thread).
+  static void FlushInput(Participant* p);
   void OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstPtr& msg);
+  void Answered(Participant* p, const ros::Time& stamp);
   bool ConnectedNow(const Participant& p) const;
-  bool UpdatePresence(Participant* p, double sim_time_s);
-  bool Required(const Participant& p) const;
+  bool Required(const Participant& p) const { return p.input_published && WaitedFor(p.state); }
+  void CountUnwaited(const ros::Time& stamp);
   ros::Subscriber Subscribe(Participant* p);
 
   ros::NodeHandle nh_;
   std::vector<Participant> participants_;
   LockstepOptions options_;
+  PublishCounts& counts_;
+  NodePinger pinger_;
   ros::WallTime next_report_;
-  ros::WallTime next_ping_;
+  uint64_t unwaited_steps_ = 0;
+  std::string first_unwaited_reason_;
 };
 
 /// Reads the header stamp of a serialized message that starts with std_msgs/Header
 /// (uint32 seq, uint32 sec, uint32 nsec); false if it is too short.
 bool HeaderStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp);
-
-/// True when at least one node that publishes `topic` (per the master) answers an XML-RPC ping.
-/// A node killed with SIGKILL stays registered, and its TCP link in this process retries.
-bool AnyPublisherAlive(const std::string& topic);
 
 }  // namespace rotors_sim

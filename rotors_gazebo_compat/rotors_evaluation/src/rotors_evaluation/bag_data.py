@@ -49,6 +49,7 @@ class FlightData:
     motor_speeds: Optional[Series] = None  # (N, rotors) [rad/s]
     topics: Dict[str, str] = field(default_factory=dict)
     flight_end: Optional["FlightEnd"] = None  # where the simulation stopped, if the bag says so
+    unwaited: Optional["Unwaited"] = None     # lockstep steps that were not waited for, if any
 
 
 @dataclass
@@ -58,6 +59,14 @@ class FlightEnd:
     t: float
     reason: str
     dropped_s: float = 0.0  # [s] of pose data recorded after t (left out of the evaluation)
+
+
+@dataclass
+class Unwaited:
+    """Steps after which lockstep did not wait for a participant's answer (simulation_status): the
+    flight depended on wall-clock timing and another run with the same seed may differ."""
+    steps: int
+    reason: str
 
 
 STATUS_TOPIC = "/simulation_status"  # rotors_comm/SimulationStatus, written by the bag plugin
@@ -186,6 +195,18 @@ class FlightBag:
                                 else f"the simulation was {state}")
         return end
 
+    def unwaited(self, mav_name: str) -> Optional[Unwaited]:
+        """The count of steps lockstep did not wait for (the largest a status marker reports) and
+        why the first was not; None when every step was waited for or the bag has no markers."""
+        topic = self.resolve(mav_name, STATUS_TOPIC)
+        found = None
+        for msg, _, _ in self.messages(topic) if topic else ():
+            steps = int(getattr(msg, "unwaited_steps", 0))  # older bags: no such field
+            if steps > 0 and (found is None or steps > found.steps):
+                reason = msg.reason.split("not repeatable: ", 1)[-1]
+                found = Unwaited(steps, reason)
+        return found
+
     def messages(self, topic: str):
         conns = [c for c in self.reader.connections if c.topic.lstrip("/") == topic.lstrip("/")]
         if not conns:  # rosbags reads every connection when given none
@@ -284,7 +305,7 @@ def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, wa
                 if tm and len({len(o) for o in om}) == 1:
                     motors = Series(np.array(tm), np.array(om))
         data = FlightData(bag.path, Series(np.array(t), np.array(p)), Series(np.array(tw), np.array(w).reshape(-1, 3)),
-                          waypoints, np.array(sorted(collisions)), motors, used)
+                          waypoints, np.array(sorted(collisions)), motors, used, unwaited=bag.unwaited(mav_name))
         return _until(data, bag.flight_end(mav_name))
     finally:
         bag.close()

@@ -167,11 +167,15 @@ EVALUATORS = {"hovering": evaluate_hovering, "waypoints": evaluate_waypoints, "d
 
 
 def report_flight_end(data: FlightData, out=print) -> None:
-    """One line when the bag goes on after the simulation stopped for good (the tail is ignored)."""
+    """One line when the bag goes on after the simulation stopped for good (the tail is ignored), one
+    when lockstep did not wait for every step (the flight is not repeatable)."""
     end = data.flight_end
     if end is not None and end.dropped_s > 0.0:
         out(f"Evaluating until {end.t:.3f} s: {end.reason} (simulation_status); the last {end.dropped_s:.3f} s "
             f"of the bag are left out")
+    if data.unwaited is not None:
+        out(f"Not repeatable: {data.unwaited.steps} steps were not waited for in lockstep, the first because "
+            f"{data.unwaited.reason} (simulation_status)")
 
 
 def run(kind: str, description: str, argv: Optional[Sequence[str]] = None) -> int:

@@ -237,6 +237,17 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
     return bags[-1]
 
 
+def _repeatability(bag: Path, mav_name: str) -> Dict[str, Any]:
+    """unwaited_steps: steps lockstep did not wait for (simulation_status); > 0: not repeatable."""
+    from rotors_evaluation.bag_data import FlightBag
+    b = FlightBag(bag)
+    try:
+        unwaited = b.unwaited(mav_name)
+    finally:
+        b.close()
+    return {"unwaited_steps": unwaited.steps if unwaited else 0, "unwaited_reason": unwaited.reason if unwaited else ""}
+
+
 def _evaluate(sweep: Dict[str, Any], bag: Path, flight_dir: Path) -> Dict[str, Any]:
     from rotors_evaluation.bag_data import load_flight
     from rotors_evaluation.evaluations import EVALUATORS
@@ -277,21 +288,30 @@ def _ray_node() -> str:
         return ""
 
 
+def failed_row(flight: Dict[str, Any], reason: str = "", host: str = "", node: str = "") -> Dict[str, Any]:
+    """A flight's row before it flew (or when its worker died): status 'failed' with `reason`."""
+    return {"id": flight["id"], "index": flight["index"], "repetition": flight["repetition"], "seed": flight["seed"],
+            **flight["params"], "status": "failed", "reason": reason, "sim_s": 0.0, "wall_s": 0.0,
+            "unwaited_steps": 0, "host": host, "node": node, "bag": "", "log_tail": ""}
+
+
 def run_flight(sweep: Dict[str, Any], flight: Dict[str, Any], out_dir: str) -> Dict[str, Any]:
-    """Flies and evaluates one flight; always returns its row (status 'ok' or 'failed')."""
+    """Flies and evaluates one flight; always returns its row: status 'ok', 'not repeatable' (lockstep
+    did not wait for every step, so the same seed may fly differently; the metrics are kept) or 'failed'."""
     flight_dir = Path(out_dir) / "flights" / flight["id"]
     shutil.rmtree(flight_dir, ignore_errors=True)
     flight_dir.mkdir(parents=True)
-    row: Dict[str, Any] = {"id": flight["id"], "index": flight["index"], "repetition": flight["repetition"],
-                           "seed": flight["seed"], **flight["params"], "status": "failed", "reason": "",
-                           "sim_s": 0.0, "wall_s": 0.0, "host": socket.gethostname(), "node": _ray_node(), "bag": "",
-                           "log_tail": ""}
+    row = failed_row(flight, host=socket.gethostname(), node=_ray_node())
     (flight_dir / "flight.json").write_text(json.dumps(flight, indent=1) + "\n")
     t0 = time.monotonic()
     try:
         bag = _fly(sweep, flight, flight_dir, row)
         row.update(_evaluate(sweep, bag, flight_dir))
-        row["status"] = "ok"
+        repeatability = _repeatability(bag, sweep["mav_name"])
+        row["unwaited_steps"] = repeatability["unwaited_steps"]
+        row["status"] = "ok" if row["unwaited_steps"] == 0 else "not repeatable"
+        if row["unwaited_steps"]:
+            row["reason"] = f"{row['unwaited_steps']} steps not waited for: {repeatability['unwaited_reason']}"
         if sweep["keep_bags"]:
             row["bag"] = str(bag)
         else:
@@ -302,7 +322,7 @@ def run_flight(sweep: Dict[str, Any], flight: Dict[str, Any], out_dir: str) -> D
         row["reason"] = f"{type(e).__name__}: {e}".splitlines()[0]
         (flight_dir / "error.txt").write_text(traceback.format_exc())
     row["wall_s"] = round(time.monotonic() - t0, 3)
-    if row["status"] != "ok":
+    if row["status"] == "failed":
         row["log_tail"] = _log_tail(flight_dir / "roslaunch.log")
     shutil.rmtree(flight_dir / "log", ignore_errors=True)  # rosout copies; roslaunch.log keeps the output
     (flight_dir / "result.json").write_text(json.dumps(row, indent=1, default=str) + "\n")

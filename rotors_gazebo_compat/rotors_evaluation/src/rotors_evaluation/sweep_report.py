@@ -11,7 +11,7 @@ import numpy as np
 from rotors_evaluation.sweep_spec import SweepSpec
 
 FIRST = ["id", "index", "repetition", "seed"]
-LAST = ["status", "reason", "sim_s", "wall_s", "host", "node", "bag", "log_tail"]
+LAST = ["status", "reason", "sim_s", "wall_s", "unwaited_steps", "host", "node", "bag", "log_tail"]
 
 
 def columns(spec: SweepSpec, rows: List[Dict[str, Any]]) -> List[str]:
@@ -121,12 +121,13 @@ def write_report(spec: SweepSpec, rows: List[Dict[str, Any]], out_dir: Path, wal
     metric = _metric(spec, rows)
     plots = plot(spec, rows, out_dir)
     ok = [r for r in rows if r["status"] == "ok"]
-    failed = [r for r in rows if r["status"] != "ok"]
+    failed = [r for r in rows if r["status"] != "ok"]  # failed, or not repeatable (lockstep did not wait)
     lines = [f"# Sweep {spec.name}", "",
              f"- sweep file: `{spec.source}`; launch `{spec.launch_file.name}`; {spec.sim_time_s:g} s of sim time per "
              f"flight, lockstep, " + (f"paced at {spec.real_time_factor:g}x real time" if spec.real_time_factor > 0
                                       else "as fast as possible"),
-             f"- {len(rows)} flights: {len(ok)} ok, {len(failed)} failed; wall time of this run {wall_s:.1f} s",
+             f"- {len(rows)} flights: {len(ok)} ok, {sum(r['status'] == 'not repeatable' for r in rows)} not repeatable, "
+             f"{sum(r['status'] == 'failed' for r in rows)} failed; wall time of this run {wall_s:.1f} s",
              f"- fixed: {', '.join(f'{k}={v}' for k, v in spec.fixed.items()) or 'nothing'}",
              f"- varied: {', '.join(f'{k} ({len(v)} values)' for k, v in spec.vary.items()) or 'nothing'}; "
              f"{spec.repetitions} repetition(s) from seed {spec.seed}",
@@ -139,13 +140,13 @@ def write_report(spec: SweepSpec, rows: List[Dict[str, Any]], out_dir: Path, wal
         stats = [f"{np.mean(values):.4f}", f"{np.std(values):.4f}", str(len(values))] if values else ["-", "-", "0"]
         lines.append("| " + " | ".join([*map(_text, key), *stats]) + " |")
     lines += ["", "## Plots", ""] + [f"![{p.stem}]({p.name})" for p in plots]
-    lines += ["", "## Failures", ""]
+    lines += ["", "## Failures (and flights that are not repeatable)", ""]
     if not failed:
         lines.append("none")
     for r in failed:
         params = ", ".join(f"{n}={r.get(n)}" for n in names)
         lines += [f"- flight {r['index']} (`{r['id']}`, seed {r['seed']}{', ' + params if params else ''}): "
-                  f"{r['reason']}", "", "  ```", *("  " + line for line in (r.get("log_tail") or "").splitlines()[-8:]),
+                  f"{r['status']}: {r['reason']}", "", "  ```", *("  " + line for line in (r.get("log_tail") or "").splitlines()[-8:]),
                   "  ```"]
     path = out_dir / "report.md"
     path.write_text("\n".join(lines) + "\n")

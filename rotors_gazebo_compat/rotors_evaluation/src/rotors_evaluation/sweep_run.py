@@ -9,7 +9,7 @@ import time
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional
 
-from rotors_evaluation.sweep_flight import run_flight
+from rotors_evaluation.sweep_flight import failed_row, run_flight
 from rotors_evaluation.sweep_spec import SweepSpec
 
 RESULTS_LOG = "results.jsonl"
@@ -41,7 +41,7 @@ class Progress:
         if row is not None:
             self.done += 1
             self.finished_here += 1
-            self.failed += row["status"] != "ok"
+            self.failed += row["status"] != "ok"  # failed or not repeatable
         left = self.total - self.done
         if self.finished_here:
             per_flight = (time.monotonic() - self.t0) / self.finished_here
@@ -50,10 +50,10 @@ class Progress:
             eta = "?"
         width = 24
         bar = "#" * (width * self.done // max(self.total, 1))
-        text = (f"[sweep] [{bar:<{width}}] {self.done}/{self.total} done, {self.failed} failed, {left} remaining, "
+        text = (f"[sweep] [{bar:<{width}}] {self.done}/{self.total} done, {self.failed} not ok, {left} remaining, "
                 f"about {eta} left")
         if row is not None and row["status"] != "ok":
-            text += f"  (flight {row['index']} failed: {row['reason']})"
+            text += f"  (flight {row['index']} {row['status']}: {row['reason']})"
         print(("\r" + text) if self.tty else text, end="" if self.tty else "\n", file=self.stream, flush=True)
 
     def close(self) -> None:
@@ -98,9 +98,7 @@ def run_sweep(spec: SweepSpec, out_dir: Path, address: Optional[str] = None, wor
                     try:
                         row = ray.get(ref)
                     except Exception as e:  # the worker itself died: recorded like any failed flight
-                        row = {"id": f.id, "index": f.index, "repetition": f.repetition, "seed": f.seed, **f.params,
-                               "status": "failed", "reason": f"Ray task failed: {str(e).splitlines()[0]}",
-                               "sim_s": 0.0, "wall_s": 0.0, "host": "", "node": "", "bag": "", "log_tail": ""}
+                        row = failed_row(f.__dict__, f"Ray task failed: {str(e).splitlines()[0]}")
                     log.write(json.dumps(row, default=str) + "\n")
                     log.flush()
                     rows[f.id] = row
