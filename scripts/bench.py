@@ -14,8 +14,9 @@ import time
 from pathlib import Path
 from typing import Dict, List
 
+from rotors_evaluation import watchers
+from rotors_evaluation.processes import stop_process_group
 from rotors_evaluation.ros_master import start_own_master
-from rotors_evaluation.sweep_flight import CLOCK_WATCH as CLOCK_PRINTER  # prints sim time at 10 Hz
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "bench"
@@ -51,25 +52,8 @@ def engine_only(urdf: Path, with_ros: bool, runs: int = 5) -> Dict:
     try:
         results = [json.loads(sh(cmd, env=env).splitlines()[-1]) for _ in range(runs)]
     finally:
-        if master:
-            os.killpg(master.pid, signal.SIGINT)
-            master.wait(timeout=30)
+        stop_process_group(master, 30)
     return {"steps_per_s": statistics.median(r["steps_per_s"] for r in results), "plugins": results[0]["plugins"]}
-
-
-ROTORPY_HOVER = """
-import time
-from rotorpy.environments import Environment
-from rotorpy.vehicles.multirotor import Multirotor
-from rotorpy.vehicles.crazyflie_params import quad_params
-from rotorpy.controllers.quadrotor_control import SE3Control
-from rotorpy.trajectories.hover_traj import HoverTraj
-env = Environment(vehicle=Multirotor(quad_params), controller=SE3Control(quad_params), trajectory=HoverTraj(),
-                  sim_rate=1000)
-t0 = time.monotonic()
-env.run(t_final=20, use_mocap=False, terminate=False, plot=False, animate_bool=False, verbose=False)
-print(time.monotonic() - t0)
-"""
 
 
 def rotorpy_hover_wall_s() -> float:
@@ -79,70 +63,9 @@ def rotorpy_hover_wall_s() -> float:
         subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
         subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "--disable-pip-version-check", "rotorpy==3.0.0"],
                        check=True, stderr=subprocess.DEVNULL)
-    out = subprocess.run([str(venv / "bin" / "python"), "-c", ROTORPY_HOVER], capture_output=True, text=True,
-                         check=True, cwd=OUT).stdout
+    out = subprocess.run([str(venv / "bin" / "python"), str(ROOT / "scripts" / "peers" / "rotorpy_hover.py")],
+                         capture_output=True, text=True, check=True, cwd=OUT).stdout
     return float(out.split()[-1])
-
-
-# The watchers' common part: one /clock subscription for the whole run, polled every POLL_S of wall
-# time (no busy loop, no re-subscribing: fast runs stay measurable); wait_until(t) returns the wall
-# and sim time at which sim time t was seen.
-SIM_CLOCK = """
-import sys, time, rospy
-from rosgraph_msgs.msg import Clock
-sim = {'t': -1.0}
-def wait_until(t_sim, limit_s=300.0, poll_s=0.005):
-    deadline = time.monotonic() + limit_s
-    while sim['t'] < t_sim:
-        if time.monotonic() > deadline: sys.exit(f'sim time stuck at {sim["t"]:.2f} s, waiting for {t_sim} s')
-        time.sleep(poll_s)
-    return time.monotonic(), sim['t']
-def follow_clock():
-    return rospy.Subscriber('/clock', Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
-"""
-
-# Sim seconds per wall second between two sim times (default 5 and 25 s).
-CLOCK_WATCH = SIM_CLOCK + """
-rospy.init_node('bench_clock', anonymous=True, disable_signals=True)
-clock = follow_clock()
-begin, end = (float(a) for a in sys.argv[1:3]) if len(sys.argv) > 2 else (5.0, 25.0)
-w0, s0 = wait_until(begin)
-w1, s1 = wait_until(end)
-print((s1 - s0) / (w1 - w0))
-"""
-
-
-# As CLOCK_WATCH, while subscribed to the VI-sensor's stereo images (so that they are rendered and
-# sent); also prints the stereo pairs received per second of sim time.
-VI_WATCH = SIM_CLOCK + """
-rospy.init_node('bench_vi', anonymous=True, disable_signals=True)
-count = {'left': 0, 'right': 0}
-def counter(side):
-    def cb(msg): count[side] += 1
-    return cb
-# AnyMsg: received whole but not deserialised, so the watcher's Python costs little
-subs = [rospy.Subscriber(f'/firefly/vi_sensor/{s}/image_raw', rospy.AnyMsg, counter(s), queue_size=5) for s in count]
-clock = follow_clock()
-w0, s0 = wait_until(8.0, limit_s=120.0, poll_s=0.05)
-n0 = count['right']
-w1, s1 = wait_until(28.0, limit_s=120.0, poll_s=0.05)
-n1 = count['right']
-print((n1 - n0) / (s1 - s0), (s1 - s0) / (w1 - w0))
-"""
-
-
-# As CLOCK_WATCH between sim times 3 and 23 s, while subscribed to a lidar's cloud (argv[1]), so that
-# every sweep is turned into a message and sent; prints the clouds per sim second and sim s per wall s.
-LIDAR_WATCH = SIM_CLOCK + """
-rospy.init_node('bench_lidar', anonymous=True, disable_signals=True)
-count = {'clouds': 0}
-sub = rospy.Subscriber(sys.argv[1], rospy.AnyMsg, lambda m: count.update(clouds=count['clouds'] + 1), queue_size=5)
-clock = follow_clock()
-w0, s0 = wait_until(3.0, limit_s=120.0)
-n0 = count['clouds']
-w1, s1 = wait_until(23.0, limit_s=300.0)
-print((count['clouds'] - n0) / (s1 - s0), (s1 - s0) / (w1 - w0))
-"""
 
 
 class Graph:
@@ -157,24 +80,19 @@ class Graph:
         self.proc = subprocess.Popen(["roslaunch", "-p", str(self.port), *launch_args], env=self.env,
                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
 
-    def python(self, script: str, *args: str) -> float:
-        """Runs a watcher script against this graph; its last printed word is the result."""
-        out = subprocess.run([sys.executable, "-c", script, *args], env=self.env, capture_output=True, text=True,
+    def watch(self, name: str, *args: str) -> List[float]:
+        """Runs a watcher (rotors_evaluation.watchers) against this graph; the numbers of its last line."""
+        out = subprocess.run(watchers.command(name, *args), env=self.env, capture_output=True, text=True,
                              timeout=600, check=True).stdout
-        return float(out.split()[-1])
+        return [float(x) for x in out.strip().splitlines()[-1].split()]
 
     def __enter__(self) -> "Graph":
         return self
 
     def __exit__(self, *exc) -> None:
         for proc in (self.proc, self.master):
-            os.killpg(proc.pid, signal.SIGINT)
-            try:
-                proc.wait(timeout=30)
-            except subprocess.TimeoutExpired:  # seen once with rosmaster; the figure is already taken
+            if not stop_process_group(proc, 30):  # seen once with rosmaster; the figure is already taken
                 print(f"bench: {proc.args[0]} ignored Ctrl-C for 30 s; killed", file=sys.stderr)
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait(timeout=30)
 
 
 def closed_loop(lockstep: bool, in_process: bool = False) -> Dict:
@@ -182,7 +100,7 @@ def closed_loop(lockstep: bool, in_process: bool = False) -> Dict:
     robot_state_publisher); the controller in its own process or in the simulator's."""
     with Graph(["rotors_gazebo", "mav_hovering_example.launch", "gui:=false", "real_time_factor:=0",
                 f"lockstep:={'true' if lockstep else 'false'}", f"in_process:={'true' if in_process else 'false'}"]) as g:
-        rtf = g.python(CLOCK_WATCH, "5", "605" if in_process else "105")
+        rtf = g.watch("rtf", "5", "605" if in_process else "105")[-1]
         info = sh(["rosnode", "info", "/gazebo"], env=g.env)
         pid = next(line.split()[1] for line in info.splitlines() if line.startswith("Pid:"))
         rss_kb = int(next(line for line in Path(f"/proc/{pid}/status").read_text().splitlines()
@@ -196,7 +114,7 @@ def closed_loop_with_estimator(in_process: bool = False) -> float:
     time, or 200 s in process."""
     with Graph(["rotors_gazebo", "mav_hovering_example_msf.launch", "gui:=false", "real_time_factor:=0",
                 "lockstep:=true", "random_seed:=3", f"in_process:={'true' if in_process else 'false'}"]) as g:
-        return g.python(CLOCK_WATCH, "80", "280" if in_process else "100")
+        return g.watch("rtf", "80", "280" if in_process else "100")[-1]
 
 
 def waypoint_flight_steps_per_s(world: str) -> float:
@@ -206,7 +124,7 @@ def waypoint_flight_steps_per_s(world: str) -> float:
     waypoints = Path(sh(["rospack", "find", "rotors_gazebo"]).strip()) / "resource" / "example_waypoints_powerplant.txt"
     with Graph(["rotors_gazebo", "mav_with_waypoint_publisher.launch", "gui:=false", "real_time_factor:=0",
                 "lockstep:=true", f"world_name:={world}", f"waypoint_file:={waypoints}"]) as g:
-        return g.python(CLOCK_WATCH, "30", "60") / 0.01
+        return g.watch("rtf", "30", "60")[-1] / 0.01
 
 
 def vi_sensor_closed_loop(real_time_factor: str) -> float:
@@ -214,7 +132,7 @@ def vi_sensor_closed_loop(real_time_factor: str) -> float:
     lockstep; real_time_factor "1" (RotorS' pacing) or "0" (as fast as possible). Sim s per wall s."""
     with Graph(["rotors_gazebo", "mav_hovering_example_with_vi_sensor.launch", "gui:=false", "lockstep:=true",
                 f"real_time_factor:={real_time_factor}"]) as g:
-        return g.python(VI_WATCH)
+        return g.watch("vi")[-1]
 
 
 def camera_fps(world: str) -> Dict:
@@ -250,9 +168,8 @@ def lidar_closed_loop(lidar: str, in_process: bool) -> Dict:
     topic = {"vlp16": "/firefly/velodyne_points", "os1_64": "/firefly/os1/points"}[lidar]
     with Graph(["rotors_gazebo", "mav_hovering_example_with_lidar.launch", "gui:=false", "lockstep:=true",
                 "real_time_factor:=0", f"enable_lidar:={lidar}", f"in_process:={'true' if in_process else 'false'}"]) as g:
-        out = subprocess.run([sys.executable, "-c", LIDAR_WATCH, topic], env=g.env, capture_output=True, text=True,
-                             timeout=600, check=True).stdout.split()
-        return {"clouds_per_sim_s": float(out[-2]), "real_time_factor": float(out[-1])}
+        clouds_per_sim_s, rtf = g.watch("lidar", topic)
+        return {"clouds_per_sim_s": clouds_per_sim_s, "real_time_factor": rtf}
 
 
 def estimator_cost_us() -> Dict:
@@ -294,48 +211,6 @@ def swarm_launch(n: int, in_process: bool = False) -> Path:
     return path
 
 
-SWARM_WATCH = SIM_CLOCK + """
-import sys, time, rospy
-from geometry_msgs.msg import PoseStamped
-from rosgraph_msgs.msg import Clock
-from std_srvs.srv import Empty
-n = int(sys.argv[1])
-rospy.init_node('bench_swarm', anonymous=True, disable_signals=True)
-pubs = [rospy.Publisher(f'/firefly{i + 1}/command/pose', PoseStamped, queue_size=1, latch=True) for i in range(n)]
-deadline = time.monotonic() + 240
-while any(p.get_num_connections() == 0 for p in pubs) or len(rospy.get_published_topics()) < 3 * n:
-    if time.monotonic() > deadline:
-        sys.exit('controllers did not come up')
-    time.sleep(0.2)
-for i, p in enumerate(pubs):
-    m = PoseStamped(); m.pose.position.x = (i % 5) * 2.0; m.pose.position.y = (i // 5) * 2.0
-    m.pose.position.z = 1.0; m.pose.orientation.w = 1.0; p.publish(m)
-time.sleep(2.0)
-clock = follow_clock()
-rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-w0, s0 = wait_until(2.0)
-w1, s1 = wait_until(float(sys.argv[2]))
-print((s1 - s0) / (w1 - w0))
-"""
-
-
-AIRBORNE_WATCH = """
-import sys, time, threading, rospy
-from nav_msgs.msg import Odometry
-rospy.init_node('bench_airborne', anonymous=True, disable_signals=True)
-up = threading.Event()
-seen = {}
-def on_odometry(m):
-    if m.pose.pose.position.z > 0.2 and not up.is_set():
-        seen.update(wall=time.monotonic(), sim=m.header.stamp.to_sec())
-        up.set()
-sub = rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, on_odometry, queue_size=1)
-print('ready', flush=True)
-print(seen['wall'], seen['sim']) if up.wait(120) else print('nan nan')
-sys.stdout.flush()
-"""
-
-
 def launch_to_airborne(in_process: bool) -> Dict:
     """Wall seconds from starting `roslaunch rotors_gazebo mav_hovering_example.launch` (paced at real
     time, as users run it; the master already up) until the firefly's ground truth is 0.2 m above
@@ -344,7 +219,7 @@ def launch_to_airborne(in_process: bool) -> Dict:
     env.pop("DISPLAY", None)
     master, port = start_own_master(env, OUT / "ros" / "rosmaster.log")
     env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
-    watch = subprocess.Popen([sys.executable, "-c", AIRBORNE_WATCH], env=env, stdout=subprocess.PIPE, text=True,
+    watch = subprocess.Popen(watchers.command("airborne"), env=env, stdout=subprocess.PIPE, text=True,
                              stderr=subprocess.DEVNULL, start_new_session=True)
     launch = None
     try:
@@ -357,13 +232,7 @@ def launch_to_airborne(in_process: bool) -> Dict:
         return {"wall_s": wall - t0, "sim_s": sim}
     finally:
         for proc in (watch, launch, master):
-            if proc and proc.poll() is None:
-                os.killpg(proc.pid, signal.SIGINT)
-                try:
-                    proc.wait(timeout=30)
-                except subprocess.TimeoutExpired:
-                    os.killpg(proc.pid, signal.SIGKILL)
-                    proc.wait()
+            stop_process_group(proc, 30)
 
 
 def swarm_rtf(n: int, in_process: bool = False) -> float:
@@ -371,7 +240,7 @@ def swarm_rtf(n: int, in_process: bool = False) -> float:
     300 s for one firefly, so that the window lasts long enough on the wall clock to be measured."""
     end = 2.0 + ((300.0 if n == 1 else 60.0) if in_process else 10.0)
     with Graph([str(swarm_launch(n, in_process))]) as g:
-        return g.python(SWARM_WATCH, str(n), str(end))
+        return g.watch("swarm", str(n), str(end))[-1]
 
 
 def sweep_flights_per_hour(workers: int) -> Dict:
@@ -390,15 +259,6 @@ def sweep_flights_per_hour(workers: int) -> Dict:
     return {"flights": ok, "wall_s": wall_s, "flights_per_hour": 3600.0 * ok / wall_s}
 
 
-SOAK_HOVER = r"""
-import rospy
-from nav_msgs.msg import Odometry
-rospy.init_node('bench_soak_hover', anonymous=True, disable_signals=True)
-z = [rospy.wait_for_message(f'/firefly{i}/ground_truth/odometry', Odometry, timeout=30).pose.pose.position.z
-     for i in range(1, 10)]
-"""
-
-
 def _proc_rss_cpu(pid: int) -> (float, float):
     """Resident set [MB] and CPU time (user + system) [s] of a process."""
     rss_kb = int(next(line for line in Path(f"/proc/{pid}/status").read_text().splitlines()
@@ -412,7 +272,7 @@ def soak(sim_s: float = 3600.0, sample_every_s: float = 60.0) -> Dict:
     per sim second, sampled every `sample_every_s`, compared between the first and the last tenth."""
     with Graph(["rotors_gazebo", "firefly_swarm_hovering_example.launch", "gui:=false", "lockstep:=true",
                 "real_time_factor:=0"]) as g:
-        watch = subprocess.Popen([sys.executable, "-c", CLOCK_PRINTER], env=g.env, stdout=subprocess.PIPE,
+        watch = subprocess.Popen(watchers.command("clock"), env=g.env, stdout=subprocess.PIPE,
                                  stderr=subprocess.DEVNULL, text=True, start_new_session=True)
         try:
             pid = None
@@ -433,10 +293,9 @@ def soak(sim_s: float = 3600.0, sample_every_s: float = 60.0) -> Dict:
                     next_mark += sample_every_s
                 if t >= sim_s:
                     break
-            hover = g.python(SOAK_HOVER + "\nprint(max(abs(v - 1.04) for v in z))")
+            hover = g.watch("soak_hover")[-1]
         finally:
-            os.killpg(watch.pid, signal.SIGKILL)
-            watch.wait()
+            stop_process_group(watch, 5, signal.SIGKILL)
     tenth = max(1, len(samples) // 10)
 
     def cpu_per_sim_s(window):

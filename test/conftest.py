@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Dict, Iterator, List
 
 import pytest
+from rotors_evaluation.processes import stop_process_group
 from rotors_evaluation.ros_master import start_own_master
 
 REPO = Path(__file__).resolve().parents[1]
@@ -156,10 +157,4 @@ def send_hover_pose(ros: RosGraph, then: str = "") -> None:
 
 def stop_launch(proc: subprocess.Popen, timeout: float = 30.0) -> None:
     """SIGINT as Ctrl-C does, so that bags are closed and indexed."""
-    if proc.poll() is None:
-        os.killpg(proc.pid, signal.SIGINT)
-        try:
-            proc.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait()
+    stop_process_group(proc, timeout)

@@ -10,7 +10,6 @@ As a command (for shell scripts): `python3 -m rotors_evaluation.ros_master LOG_F
 detached master and prints "PORT PID"; stop it with `kill -INT PID`.
 """
 import os
-import signal
 import socket
 import subprocess
 import sys
@@ -18,6 +17,8 @@ import time
 import xmlrpc.client
 from pathlib import Path
 from typing import Callable, Dict, Optional, Tuple
+
+from rotors_evaluation.processes import stop_process_group
 
 START_TIMEOUT_S = 20.0
 TRIES = 8
@@ -32,19 +33,6 @@ def unused_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
-
-
-def _stop(proc: subprocess.Popen) -> None:
-    if proc.poll() is not None:
-        return
-    try:
-        os.killpg(proc.pid, signal.SIGINT)
-        proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait(timeout=10)
-    except ProcessLookupError:
-        pass
 
 
 def _answers_as(port: int, proc: subprocess.Popen) -> bool:
@@ -72,7 +60,7 @@ def start_own_master(env: Dict[str, str], log_path: Path,
                                     start_new_session=preexec_fn is None)
         if _answers_as(port, proc):
             return proc, port
-        _stop(proc)
+        stop_process_group(proc, 10)
     raise MasterStartError(f"could not start a ROS master of its own ({TRIES} ports tried); see {log_path}")
 
 

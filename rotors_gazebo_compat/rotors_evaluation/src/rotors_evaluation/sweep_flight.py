@@ -10,16 +10,17 @@ import shutil
 import signal
 import socket
 import subprocess
-import sys
 import threading
 import time
 import traceback
 from pathlib import Path
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List
 
 import yaml
 from xml.sax.saxutils import quoteattr
 
+from rotors_evaluation import watchers
+from rotors_evaluation.processes import stop_process_group
 from rotors_evaluation.ros_master import MasterStartError, start_own_master
 from rotors_evaluation.sweep_spec import FORCED_ARGS
 
@@ -27,37 +28,8 @@ LOG_TAIL_LINES = 15
 STALL_LIMIT_S = 60.0      # wall seconds without sim time advancing before a flight is called stalled
 STOP_GRACE_S = 20.0       # wall seconds roslaunch gets to shut down (and close the bag) after Ctrl-C
 
-CLOCK_WATCH = r"""
-import sys, time, rospy
-from rosgraph_msgs.msg import Clock
-rospy.init_node("sweep_clock_watch", anonymous=True, disable_signals=True)
-sim = {"t": -1.0}
-rospy.Subscriber("/clock", Clock, lambda m: sim.update(t=m.clock.to_sec()), queue_size=1)
-while True:
-    print(f"{sim['t']:.4f}", flush=True)
-    time.sleep(0.1)
-"""
-
-
 class FlightFailed(Exception):
     pass
-
-
-def _stop(proc: Optional[subprocess.Popen], grace_s: float, sig=signal.SIGINT) -> None:
-    """Ctrl-C to the process group, then SIGKILL after grace_s."""
-    if proc is None or proc.poll() is not None:
-        return
-    try:
-        os.killpg(proc.pid, sig)
-        proc.wait(timeout=grace_s)
-    except subprocess.TimeoutExpired:
-        try:
-            os.killpg(proc.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
-        proc.wait(timeout=10)
-    except ProcessLookupError:
-        pass
 
 
 def _graph_processes(port: int, comm: str = "") -> List[int]:
@@ -183,7 +155,7 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
         with open(log_path, "w") as log:
             launch = subprocess.Popen(["roslaunch", "-p", str(port), str(launch_file)], env=env, stdout=log,
                                       stderr=subprocess.STDOUT, preexec_fn=_default_signals)
-        watch = subprocess.Popen([sys.executable, "-c", CLOCK_WATCH], env=env, stdout=subprocess.PIPE,
+        watch = subprocess.Popen(watchers.command("clock"), env=env, stdout=subprocess.PIPE,
                                  stderr=subprocess.DEVNULL, text=True, preexec_fn=_default_signals)
         sim = {"t": -1.0}
 
@@ -227,10 +199,10 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
             if now - last_change > STALL_LIMIT_S:
                 raise FlightFailed(f"sim time stalled at {max(t, 0):.2f} s for {STALL_LIMIT_S:.0f} s")
     finally:
-        _stop(watch, 5, signal.SIGKILL)
-        _stop(launch, STOP_GRACE_S)
+        stop_process_group(watch, 5, signal.SIGKILL)
+        stop_process_group(launch, STOP_GRACE_S)
         _kill_leftovers(port)  # a node roslaunch could not stop (or every node, if roslaunch was killed)
-        _stop(master, 10)
+        stop_process_group(master, 10)
     bags = sorted(flight_dir.glob("*.bag"))
     if not bags:
         raise FlightFailed("no bag was written (enable_logging)")
