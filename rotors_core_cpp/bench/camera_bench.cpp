@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
     write("depth.pgm", 640, 480, grey);
   }
   std::printf("{\"stereo_pairs_per_s\": %.1f, \"depth_frames_per_s\": %.1f, \"triangles\": %zu}\n", pair_fps, depth_fps,
-              rendering::Renderer::Instance().CachedTriangles());
+              rendering::Renderer::Of(*world).CachedTriangles());
   world->Fini();
   return 0;
 }

@@ -458,14 +458,14 @@ TEST(Camera, AMissingTextureFailsTheModelUnlessBrokenSensorsAreSkipped) {
   EXPECT_NE(error.find("quadrants.ppm' of visual 'square::link::v' does not exist"), std::string::npos) << error;
   EXPECT_EQ(error.find('\n'), std::string::npos);
 
-  ModelBuilder::SetSkipBrokenSensors(true);
+  WorldLoadOptions skip;
+  skip.skip_broken_sensors = true;
   {
-    WorldGuard g{WorldLoader::LoadString(world, "missing_skipped")};
+    WorldGuard g{WorldLoader::LoadString(world, "missing_skipped", skip)};
     EXPECT_TRUE(g.world->ModelByName("rig")->Sensors().empty());
     g.world->Step(10);  // the simulation goes on without it
     EXPECT_EQ(g.world->Iterations(), 10u);
   }
-  ModelBuilder::SetSkipBrokenSensors(false);
   std::filesystem::remove_all(folder);
 }
 
@@ -522,4 +522,25 @@ TEST(Camera, HeightmapDepthFollowsTheTerrain) {
   EXPECT_GT(checked, 1000);
   EXPECT_LT(worst, 0.001);
   std::filesystem::remove(pgm);
+}
+
+TEST(Camera, TwoWorldsInOneProcessRenderEachItsOwnScene) {
+  // the same rig in two worlds, a white box ahead in one, a dark grey box in the other: each world
+  // has its renderer (and GL context), rendered in turn from this thread; one world's end leaves
+  // the other rendering
+  const Pose3d X_WC = X_SC + (X_LS + X_WM);
+  const Pose3d X_WB = Pose3d(4, 0, 0, 0, 0, 0) + X_WC;
+  const std::string rig = Rig(X_WM, X_LS, "camera", 30, Camera("", X_SC, 64, 48, 1.2, "L8"));
+  auto a = std::make_unique<WorldGuard>();
+  a->world = WorldLoader::LoadString(World(BoxModel("box", X_WB, 1, 1, 1, "1 1 1 1") + rig), "white");
+  WorldGuard b{WorldLoader::LoadString(World(BoxModel("box", X_WB, 1, 1, 1, "0.25 0.25 0.25 1") + rig), "grey")};
+  for (int i = 1; i <= 3; ++i) {
+    a->world->Step(34);
+    b.world->Step(34);
+    EXPECT_EQ(Pixel(TheCamera(a->world)->Frame(0), 32, 24), 255) << "step " << i;
+    EXPECT_NEAR(Pixel(TheCamera(b.world)->Frame(0), 32, 24), 64, 1) << "step " << i;
+  }
+  a.reset();
+  b.world->Step(34);
+  EXPECT_NEAR(Pixel(TheCamera(b.world)->Frame(0), 32, 24), 64, 1);
 }

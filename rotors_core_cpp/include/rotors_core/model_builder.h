@@ -14,19 +14,19 @@ struct SpawnRequest {
   std::string xml;         ///< URDF or SDF text
   std::string model_name;  ///< empty: the name in the description
   physics::Pose3d X_WM;    ///< spawn pose of the model frame in the world
+  /// Off (the default): a sensor that cannot be built (a bad camera, a missing texture) fails the
+  /// whole model. On (rotors_sim_server --skip-broken-sensors): the model loads without that
+  /// sensor and its plugins, and the reason is printed in one line.
+  bool skip_broken_sensors = false;
 };
 
 class ModelBuilder {
  public:
-  /// Off (the default): a sensor that cannot be built (a bad camera, a missing texture) fails the
-  /// whole model. On (rotors_sim_server --skip-broken-sensors): the model loads without that
-  /// sensor and its plugins, and the reason is printed in one line.
-  static void SetSkipBrokenSensors(bool skip);
   /// Throws SimError with one line naming the model and the problem.
   static physics::ModelPtr Spawn(const physics::WorldPtr& world, const SpawnRequest& request);
   /// Builds an already parsed SDF model (used for the models of a world file).
   static physics::ModelPtr Build(const physics::WorldPtr& world, const sdf::Model& sdf_model, const std::string& name,
-                                 const physics::Pose3d& X_WM);
+                                 const physics::Pose3d& X_WM, bool skip_broken_sensors = false);
 };
 
 }  // namespace rotors_sim

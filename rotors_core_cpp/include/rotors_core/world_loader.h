@@ -11,6 +11,8 @@ namespace rotors_sim {
 struct WorldLoadOptions {
   /// World plugins (by file name) the caller does not need, with the reason it prints when it skips one.
   std::map<std::string, std::string> skipped_plugins;
+  /// The world's models load without a sensor that cannot be built (see SpawnRequest).
+  bool skip_broken_sensors = false;
 };
 
 class WorldLoader {

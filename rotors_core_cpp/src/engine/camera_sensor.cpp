@@ -74,9 +74,9 @@ void CameraSensor::OnUpdate(const common::Time& /*sim_time*/) { ++update_count_;
 
 const rendering::RenderedFrame& CameraSensor::Frame(size_t i) {
   if (rendered_update_.at(i) != update_count_) {
-    const physics::World& world = *ParentLink()->GetModel()->GetWorldRaw();
-    rendering::Renderer::Instance().Render(world, CameraWorldPose(i), cameras_[i],
-                                           seed_ * 1000003u + update_count_ * 16u + i, true, IsDepth(), &frames_[i]);
+    physics::World& world = *ParentLink()->GetModel()->GetWorldRaw();
+    rendering::Renderer::Of(world).Render(world, CameraWorldPose(i), cameras_[i],
+                                          seed_ * 1000003u + update_count_ * 16u + i, true, IsDepth(), &frames_[i]);
     rendered_update_[i] = update_count_;
   }
   return frames_[i];

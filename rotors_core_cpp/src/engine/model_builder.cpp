@@ -234,9 +234,8 @@ void LoadPlugins(const physics::WorldPtr& world, const physics::ModelPtr& model)
   }
 }
 
-bool g_skip_broken_sensors = false;
-
-void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model, const sdf::Model& sdf_model) {
+void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model, const sdf::Model& sdf_model,
+                 bool skip_broken_sensors) {
   event::ScopedCurrentEvents scope(&world->Events());
   for (uint64_t i = 0; i < sdf_model.LinkCount(); ++i) {
     const sdf::Link& sdf_link = *sdf_model.LinkByIndex(i);
@@ -255,7 +254,7 @@ void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model,
             sensor = std::make_shared<sensors::CameraSensor>(s.Name(), type, link, X_LS, s.UpdateRate(), s.Element());
           else sensor = std::make_shared<sensors::RaySensor>(s.Name(), type, link, X_LS, s.UpdateRate(), s.Element());
         } catch (const SimError& e) {
-          if (!g_skip_broken_sensors) throw SimError("model '" + model->GetName() + "', " + e.what());
+          if (!skip_broken_sensors) throw SimError("model '" + model->GetName() + "', " + e.what());
           std::cerr << "[rotors_sim] model '" << model->GetName() << "': left out (--skip-broken-sensors): " << e.what()
                     << "\n";
           continue;
@@ -284,8 +283,6 @@ void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model,
 
 }  // namespace
 
-void ModelBuilder::SetSkipBrokenSensors(bool skip) { g_skip_broken_sensors = skip; }
-
 physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const SpawnRequest& request) {
   SilenceSdformatConsole();
   const std::string label = request.model_name.empty() ? std::string("<unnamed>") : request.model_name;
@@ -302,11 +299,11 @@ physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const Spaw
   if (!sdf_model) throw SimError("model '" + label + "': the description holds no <robot> or <model>");
   const std::string name = request.model_name.empty() ? sdf_model->Name() : request.model_name;
   if (IsUrdf(request.xml)) CheckNoDroppedLinks(request.xml, *sdf_model, name);
-  return Build(world, *sdf_model, name, Compose(request.X_WM, sdf_model->RawPose()));
+  return Build(world, *sdf_model, name, Compose(request.X_WM, sdf_model->RawPose()), request.skip_broken_sensors);
 }
 
 physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf::Model& sdf_model,
-                                      const std::string& name, const Pose3d& X_WM) {
+                                      const std::string& name, const Pose3d& X_WM, bool skip_broken_sensors) {
   if (name.empty()) throw SimError("a model needs a name");
   if (world->ModelByName(name)) throw SimError("model '" + name + "': a model of that name already exists");
   if (sdf_model.LinkCount() == 0) throw SimError("model '" + name + "': it has no links");
@@ -450,7 +447,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
   }
   try {
     LoadPlugins(world, model);
-    LoadSensors(world, model, sdf_model);
+    LoadSensors(world, model, sdf_model, skip_broken_sensors);
   } catch (...) {
     world->RemoveModel(name);
     throw;

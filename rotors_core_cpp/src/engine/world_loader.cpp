@@ -101,7 +101,7 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
   try {
     for (uint64_t i = 0; i < sdf_world.ModelCount(); ++i) {
       const sdf::Model& m = *sdf_world.ModelByIndex(i);
-      ModelBuilder::Build(world, m, m.Name(), m.RawPose());
+      ModelBuilder::Build(world, m, m.Name(), m.RawPose(), options.skip_broken_sensors);
     }
     sdf::ElementPtr element = sdf_world.Element();
     if (element->HasElement("plugin")) {

@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else if (arg == "--skip-broken-sensors") {
-      rotors_sim::ModelBuilder::SetSkipBrokenSensors(true);
+      options.skip_broken_sensors = true;
     } else if (arg == "--lockstep-lenient") {
       options.lockstep.mode = rotors_sim::LockstepOptions::Mode::kLenient;
     } else if (!arg.empty() && arg[0] != '-') {

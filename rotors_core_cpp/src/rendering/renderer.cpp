@@ -143,6 +143,52 @@ GLuint Link(const char* vertex, const char* fragment) {
   return program;
 }
 
+/// A uniform's location; throws when the program has none of that name (misspelt, or unused and
+/// optimised away), which glUniform* calls would otherwise ignore silently.
+GLint RequireUniform(GLuint program, const char* name) {
+  const GLint location = glGetUniformLocation(program, name);
+  if (location < 0)
+    throw SimError(std::string("camera renderer: the shader program has no uniform '") + name +
+                   "' (misspelt, or unused and optimised away)");
+  return location;
+}
+
+/// The fragment shader's uniforms in one program, resolved once. The background program draws
+/// one flat, unlit colour, so the compiler drops the lighting and mesh colouring there: those are
+/// looked up without the check (-1: setting them does nothing, as intended).
+struct FragmentUniforms {
+  GLint albedo = -1, use_vertex_colour = -1, use_texture = -1, texture_image = -1, to_sun_O = -1, ambient = -1,
+        sun_diffuse = -1, background = -1, grey = -1, noise = -1, seed = -1;
+  FragmentUniforms() = default;
+  FragmentUniforms(GLuint program, bool draws_meshes) {
+    auto mesh_only = [&](const char* name) {
+      return draws_meshes ? RequireUniform(program, name) : glGetUniformLocation(program, name);
+    };
+    albedo = RequireUniform(program, "albedo");
+    background = RequireUniform(program, "background");
+    grey = RequireUniform(program, "grey");
+    noise = RequireUniform(program, "noise");
+    seed = RequireUniform(program, "seed");
+    use_vertex_colour = mesh_only("use_vertex_colour");
+    use_texture = mesh_only("use_texture");
+    texture_image = mesh_only("texture_image");
+    to_sun_O = mesh_only("to_sun_O");
+    ambient = mesh_only("ambient");
+    sun_diffuse = mesh_only("sun_diffuse");
+  }
+};
+
+/// The mesh vertex shader's uniforms, resolved once.
+struct MeshUniforms {
+  GLint T_OV = -1, N_OV = -1, projection = -1;
+  explicit MeshUniforms(GLuint program = 0) {
+    if (!program) return;
+    T_OV = RequireUniform(program, "T_OV");
+    N_OV = RequireUniform(program, "N_OV");
+    projection = RequireUniform(program, "projection");
+  }
+};
+
 struct GpuMesh {
   GLuint vao = 0, vbo = 0, ebo = 0, texture = 0;  // ebo 0: not indexed; texture 0: none
   bool own_colours = false;                       // per-vertex colours from the mesh file
@@ -160,6 +206,8 @@ struct Renderer::Impl {
   EGLDisplay display = EGL_NO_DISPLAY;
   EGLContext context = EGL_NO_CONTEXT;
   GLuint mesh_program = 0, background_program = 0, empty_vao = 0;
+  FragmentUniforms mesh_fragment, background_fragment;
+  MeshUniforms mesh_vertex;
   std::map<const void*, GpuMesh> meshes;                      // by source object
   std::map<std::tuple<int, int, int, bool>, Target> targets;  // by width, height, format, depth
   size_t triangles = 0;
@@ -189,6 +237,9 @@ void Renderer::Impl::CreateContext() {
     throw SimError("camera renderer: no OpenGL 3.3 core context" + fix);
   mesh_program = Link(kMeshVertexShader, kFragmentShader);
   background_program = Link(kBackgroundVertexShader, kFragmentShader);
+  mesh_fragment = FragmentUniforms(mesh_program, true);
+  background_fragment = FragmentUniforms(background_program, false);
+  mesh_vertex = MeshUniforms(mesh_program);
   glGenVertexArrays(1, &empty_vao);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // meshes of unknown winding; the optical frame mirrors GL's anyway
@@ -332,9 +383,10 @@ Target& Renderer::Impl::TargetFor(int width, int height, PixelFormat format, boo
   return targets.emplace(key, t).first->second;
 }
 
-Renderer& Renderer::Instance() {
-  static Renderer renderer;
-  return renderer;
+Renderer& Renderer::Of(physics::World& world) {
+  std::shared_ptr<void>& state = world.PluginState("rotors_sim/renderer");
+  if (!state) state = std::shared_ptr<Renderer>(new Renderer());
+  return *std::static_pointer_cast<Renderer>(state);
 }
 
 Renderer::Renderer() : impl_(new Impl) { impl_->CreateContext(); }
@@ -343,7 +395,7 @@ Renderer::~Renderer() {
   if (impl_->display != EGL_NO_DISPLAY) {
     eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (impl_->context != EGL_NO_CONTEXT) eglDestroyContext(impl_->display, impl_->context);
-    eglTerminate(impl_->display);
+    // no eglTerminate: the surfaceless display is one per process, shared with other worlds' renderers
   }
 }
 
@@ -352,6 +404,9 @@ size_t Renderer::CachedTriangles() const { return impl_->triangles; }
 void Renderer::Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
                       uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
   Impl& r = *impl_;
+  // each world's renderer has its own context; several worlds may render from one thread
+  if (eglGetCurrentContext() != r.context && !eglMakeCurrent(r.display, EGL_NO_SURFACE, EGL_NO_SURFACE, r.context))
+    throw SimError("camera renderer: cannot make its OpenGL context current");
   const CameraIntrinsics& in = camera.intrinsics;
   const int W = in.width_px, H = in.height_px;
   const PixelFormat format = camera.format;
@@ -367,29 +422,26 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   const float f = static_cast<float>(in.FocalLengthPx());
 
   for (GLuint program : {r.background_program, r.mesh_program}) {
+    const FragmentUniforms& u = program == r.mesh_program ? r.mesh_fragment : r.background_fragment;
     glUseProgram(program);
-    glUniform1i(glGetUniformLocation(program, "use_vertex_colour"), 0);
-    glUniform1i(glGetUniformLocation(program, "use_texture"), 0);
-    glUniform3f(glGetUniformLocation(program, "to_sun_O"), to_sun_O.x(), to_sun_O.y(), to_sun_O.z());
-    glUniform1f(glGetUniformLocation(program, "ambient"), light.ambient);
-    glUniform1f(glGetUniformLocation(program, "sun_diffuse"), light.sun_diffuse);
-    glUniform1i(glGetUniformLocation(program, "grey"), format == PixelFormat::kL8);
-    glUniform2f(glGetUniformLocation(program, "noise"), static_cast<float>(camera.noise_mean),
-                static_cast<float>(camera.noise_stddev));
-    glUniform2ui(glGetUniformLocation(program, "seed"), static_cast<GLuint>(noise_seed),
-                 static_cast<GLuint>(noise_seed >> 32));
-    glUniform1i(glGetUniformLocation(program, "background"), program == r.background_program);
+    glUniform1i(u.use_vertex_colour, 0);
+    glUniform1i(u.use_texture, 0);
+    glUniform1i(u.texture_image, 0);
+    glUniform3f(u.to_sun_O, to_sun_O.x(), to_sun_O.y(), to_sun_O.z());
+    glUniform1f(u.ambient, light.ambient);
+    glUniform1f(u.sun_diffuse, light.sun_diffuse);
+    glUniform1i(u.grey, format == PixelFormat::kL8);
+    glUniform2f(u.noise, static_cast<float>(camera.noise_mean), static_cast<float>(camera.noise_stddev));
+    glUniform2ui(u.seed, static_cast<GLuint>(noise_seed), static_cast<GLuint>(noise_seed >> 32));
+    glUniform1i(u.background, program == r.background_program);
   }
 
   glUseProgram(r.mesh_program);
-  glUniform4f(glGetUniformLocation(r.mesh_program, "projection"), 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
+  glUniform4f(r.mesh_vertex.projection, 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
               static_cast<float>(in.far_m));
-  const GLint loc_T = glGetUniformLocation(r.mesh_program, "T_OV");
-  const GLint loc_N = glGetUniformLocation(r.mesh_program, "N_OV");
-  const GLint loc_albedo = glGetUniformLocation(r.mesh_program, "albedo");
-  const GLint loc_vertex_colour = glGetUniformLocation(r.mesh_program, "use_vertex_colour");
-  const GLint loc_texture = glGetUniformLocation(r.mesh_program, "use_texture");
-  glUniform1i(glGetUniformLocation(r.mesh_program, "texture_image"), 0);
+  const GLint loc_T = r.mesh_vertex.T_OV, loc_N = r.mesh_vertex.N_OV;
+  const GLint loc_albedo = r.mesh_fragment.albedo, loc_vertex_colour = r.mesh_fragment.use_vertex_colour;
+  const GLint loc_texture = r.mesh_fragment.use_texture;
   glActiveTexture(GL_TEXTURE0);
   std::vector<const Chunk*> visible;
   for (const physics::ModelPtr& model : world.Models()) {
@@ -432,8 +484,7 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   // the sky last, on the far plane where nothing was drawn (early depth test: no overdraw), through
   // the same noise as everything else
   glUseProgram(r.background_program);
-  glUniform3f(glGetUniformLocation(r.background_program, "albedo"), light.background[0], light.background[1],
-              light.background[2]);
+  glUniform3f(r.background_fragment.albedo, light.background[0], light.background[1], light.background[2]);
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   glBindVertexArray(r.empty_vao);

@@ -27,6 +27,7 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   WorldLoadOptions load;
   // RotorS' worlds load its ROS bridge plugin; here every plugin talks ROS itself
   load.skipped_plugins["librotors_gazebo_ros_interface_plugin.so"] = "not needed, plugins publish on ROS directly";
+  load.skip_broken_sensors = skip_broken_sensors_ = options.skip_broken_sensors;
   world_ = WorldLoader::LoadFile(options.world_file, load);
   if (options.real_time_factor >= 0.0) world_->SetRealTimeFactor(options.real_time_factor);
   pacer_.SetRealTimeFactor(world_->Physics().real_time_factor);
@@ -167,6 +168,7 @@ bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::Spaw
   SpawnRequest spawn;
   spawn.xml = req.model_xml;
   spawn.model_name = req.model_name;
+  spawn.skip_broken_sensors = skip_broken_sensors_;
   spawn.X_WM = physics::Pose3d(p.position.x, p.position.y, p.position.z, p.orientation.w, p.orientation.x,
                                p.orientation.y, p.orientation.z);
   if (p.orientation.w == 0 && p.orientation.x == 0 && p.orientation.y == 0 && p.orientation.z == 0)

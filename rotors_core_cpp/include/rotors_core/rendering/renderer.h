@@ -1,8 +1,8 @@
 // Renders the world's visual geometry as a camera sees it: headless OpenGL 3.3 through EGL on
-// Mesa's surfaceless platform (llvmpipe), no X server. One renderer per process, used from the
-// simulation thread only. Colour is Lambert shading under the world's sun plus Gaussian pixel
-// noise (a hash of pixel, frame and seed: deterministic); depth is the optical-axis distance
-// written by the fragment shader as a float, so it is exact to float precision.
+// Mesa's surfaceless platform (llvmpipe), no X server. One renderer (and GL context, with its
+// uploaded meshes) per world, kept in the world; used from the thread that steps that world. Colour is Lambert shading
+// under the world's sun plus Gaussian pixel noise (a hash of pixel, frame and seed: deterministic); depth is the
+// optical-axis distance written by the fragment shader as a float, so it is exact to float precision.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,7 @@
 
 #include "rotors_core/geometry/visual.h"
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/physics/world.h"
 #include "rotors_core/rendering/camera_model.h"
 
 namespace rotors_sim {
@@ -24,9 +25,9 @@ struct RenderedFrame {
 
 class Renderer {
  public:
-  /// The process' renderer; creates the GL context on first use. Throws SimError when no headless
+  /// The world's renderer; creates its GL context on first use. Throws SimError when no headless
   /// OpenGL 3.3 context can be made (the message names the missing package).
-  static Renderer& Instance();
+  static Renderer& Of(physics::World& world);
   ~Renderer();
 
   /// Renders every visual of every model of `world` from the camera at X_WC (camera frame:

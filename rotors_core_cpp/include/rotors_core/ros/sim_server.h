@@ -31,6 +31,7 @@ struct SimServerOptions {
   double clock_max_wall_rate_hz = 1000.0;
   std::vector<LockstepParticipant> lockstep_participants;  ///< see Lockstep; empty: free running
   LockstepOptions lockstep;
+  bool skip_broken_sensors = false;  ///< models load without a sensor that cannot be built (SpawnRequest)
 };
 
 class SimServer {
@@ -64,6 +65,7 @@ class SimServer {
   ros::NodeHandle nh_, private_nh_;
   physics::WorldPtr world_;
   bool user_paused_;
+  bool skip_broken_sensors_ = false;
   RealTimePacer pacer_;
   std::unique_ptr<StatePublisher> state_publisher_;
   std::unique_ptr<Lockstep> lockstep_;
