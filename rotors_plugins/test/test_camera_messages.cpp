@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <sensor_msgs/point_cloud2_iterator.h>
 
+#include "rotors_core/error.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/world_loader.h"
@@ -98,4 +99,29 @@ TEST(CameraMessages, CloudPointsLieOnTheBoxFacesAndDisparityIsFbOverZ) {
   EXPECT_DOUBLE_EQ(info.K[5], 239.5);
   EXPECT_DOUBLE_EQ(info.P[3], -info.K[0] * 0.11);
   world->Fini();
+}
+
+TEST(CameraMessages, APlainCameraRefusesTheDepthCamerasParameters) {
+  // the reader records what a plugin reads; the loader refuses the rest by name: a plain camera
+  // does not read <depthImageTopicName> (only the depth plugins do), so it is not silently ignored
+  const std::string camera = R"(<?xml version='1.0'?><sdf version='1.6'><world name='w'>
+<model name='rig'><static>true</static><link name='link'>
+  <sensor name='cam' type='camera'><update_rate>30</update_rate><camera name='cam'><horizontal_fov>1</horizontal_fov>
+    <image><width>64</width><height>48</height><format>L8</format></image><clip><near>0.01</near><far>10</far></clip>
+  </camera><plugin name='p' filename='libgazebo_ros_camera.so'><cameraName>cam</cameraName><alwaysOn>true</alwaysOn>
+  PARAM</plugin></sensor></link></model></world></sdf>)";
+  auto with = [&](const std::string& param) {
+    std::string w = camera;
+    return w.replace(w.find("PARAM"), 5, param);
+  };
+  WorldLoader::LoadString(with(""), "plain")->Fini();  // <alwaysOn> is Gazebo's, accepted
+  std::string error;
+  try {
+    WorldLoader::LoadString(with("<depthImageTopicName>depth</depthImageTopicName>"), "depth_key")->Fini();
+  } catch (const SimError& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("unknown parameter <depthImageTopicName>"), std::string::npos) << error;
+  EXPECT_NE(error.find("this plugin reads: "), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
 }

@@ -9,48 +9,6 @@ const char kVehicleHint[] = "load the vehicle yaml, resource/<mav>.yaml";
 const char kGainHint[] = "load the controller yaml, e.g. resource/lee_controller_<mav>.yaml";
 }  // namespace
 
-std::string ParameterReader::Require(const std::string& name, double* value, const std::string& hint) {
-  asked_.insert(nh_.resolveName(name));
-  if (!nh_.getParam(name, *value)) {
-    if (nh_.hasParam(name)) return "parameter " + nh_.resolveName(name) + " must be a number";
-    return "missing parameter " + nh_.resolveName(name) + " (" + hint + ")";
-  }
-  return {};
-}
-
-std::string ParameterReader::Optional(const std::string& name, double* value, const std::string& meaning) {
-  asked_.insert(nh_.resolveName(name));
-  if (nh_.getParam(name, *value)) return {};
-  if (nh_.hasParam(name)) return "parameter " + nh_.resolveName(name) + " must be a number";
-  std::ostringstream line;
-  line << nh_.resolveName(name) << " not given: " << *value << " (" << meaning << ")";
-  defaults_.push_back(line.str());
-  return {};
-}
-
-std::string ParameterReader::RequireVector(const std::string& name, Eigen::Vector3d* value, const std::string& hint) {
-  const char* axes[3] = {"x", "y", "z"};
-  if (!nh_.hasParam(name)) {
-    for (const char* axis : axes) asked_.insert(nh_.resolveName(name + "/" + axis));
-    return "missing parameter " + nh_.resolveName(name) + " (" + hint + ")";
-  }
-  for (int i = 0; i < 3; ++i) {
-    asked_.insert(nh_.resolveName(name + "/" + axes[i]));
-    if (!nh_.getParam(name + "/" + axes[i], (*value)[i]))
-      return "parameter " + nh_.resolveName(name) + " needs numbers x, y and z";
-  }
-  return {};
-}
-
-std::vector<std::string> ParameterReader::UnknownKeys() const {
-  std::vector<std::string> all, unknown;
-  if (!nh_.getParamNames(all)) return unknown;
-  const std::string prefix = nh_.getNamespace() + "/";
-  for (const std::string& name : all)
-    if (name.compare(0, prefix.size(), prefix) == 0 && !asked_.count(name)) unknown.push_back(name);
-  return unknown;
-}
-
 std::string LoadVehicleParameters(ParameterReader& reader, VehicleParameters* v) {
   std::string why = reader.Require("mass", &v->mass_kg, kVehicleHint);
   if (!why.empty()) return why;

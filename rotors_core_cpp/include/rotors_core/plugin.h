@@ -7,6 +7,7 @@
 #include <sdf/Element.hh>
 
 #include "rotors_core/physics/physics_types.h"
+#include "rotors_core/sdf_params.h"
 #include "rotors_core/sensors/sensor.h"
 
 namespace rotors_sim {
@@ -22,9 +23,18 @@ class PluginBase {
     handle_ = handle;
     filename_ = filename;
   }
+  /// The <plugin> element's parameters. Read them through this reader: after Load() the loader
+  /// rejects, by name, every child element the plugin did not ask for (AcceptParams()).
+  SdfParams& Params() { return params_; }
+  void SetParams(sdf::ElementPtr sdf) { params_ = SdfParams(std::move(sdf)); }
+  /// Called by the loader after Load(): throws SimError naming an unread parameter.
+  void AcceptParams() const {
+    if (params_.Used()) params_.RejectUnread();
+  }
 
  private:
   std::string handle_, filename_;
+  SdfParams params_;
 };
 
 class ModelPlugin : public PluginBase {

@@ -1,13 +1,18 @@
-// One helper to read typed plugin parameters from <plugin> child elements.
+// Reading typed plugin parameters from <plugin> child elements: ReadParam / RequireParam on an
+// element, and SdfParams, the reader every plugin gets (PluginBase::Params()), which records what
+// was read so that the loader rejects the rest by name after Load().
 #pragma once
 
 #include <cctype>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <sdf/Element.hh>
 
 #include "rotors_core/error.h"
+#include "rotors_params/param_record.h"
 
 namespace rotors_sim {
 
@@ -64,6 +69,56 @@ void RequireParam(const sdf::ElementPtr& sdf, const std::string& name, T* value)
   if (!ReadParam(sdf, name, value)) {
     throw SimError("missing required parameter <" + name + ">");
   }
+}
+
+/// A plugin's parameters: typed reads that record each name asked for (ParamRecord).
+class SdfParams {
+ public:
+  SdfParams() = default;
+  explicit SdfParams(sdf::ElementPtr sdf) : sdf_(std::move(sdf)) {}
+  const sdf::ElementPtr& Element() const { return sdf_; }
+  bool Has(const std::string& name) {
+    record_.Asked(name);
+    return sdf_ && sdf_->HasElement(name);
+  }
+  template <typename T>
+  bool Read(const std::string& name, T* value) {
+    record_.Asked(name);
+    return ReadParam(sdf_, name, value);
+  }
+  template <typename T>
+  void Require(const std::string& name, T* value) {
+    record_.Asked(name);
+    RequireParam(sdf_, name, value);
+  }
+  /// A parameter the plugin takes without using it (e.g. Gazebo's <alwaysOn>); `why` documents it.
+  void Accept(const std::string& name, const char* /*why*/) { record_.Asked(name); }
+  /// True once the plugin read anything through this reader (a ported plugin that reads the
+  /// element directly is not checked).
+  bool Used() const { return !record_.Empty(); }
+  /// Throws SimError("unknown parameter <x> (this plugin reads: ...)") for the first child element
+  /// nobody asked for.
+  void RejectUnread() const {
+    if (!sdf_) return;
+    std::vector<std::string> present;
+    for (sdf::ElementPtr e = sdf_->GetFirstElement(); e; e = e->GetNextElement()) present.push_back(e->GetName());
+    const std::vector<std::string> unread = record_.Unasked(present);
+    if (!unread.empty())
+      throw SimError("unknown parameter <" + unread.front() + "> (this plugin reads: " + record_.AskedList() + ")");
+  }
+
+ private:
+  sdf::ElementPtr sdf_;
+  rotors_params::ParamRecord record_;
+};
+
+template <typename T>
+bool ReadParam(SdfParams& params, const std::string& name, T* value) {
+  return params.Read(name, value);
+}
+template <typename T>
+void RequireParam(SdfParams& params, const std::string& name, T* value) {
+  params.Require(name, value);
 }
 
 }  // namespace rotors_sim

@@ -14,7 +14,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/rendering/tessellation.h"
-#include "../engine/pose_math.h"
+#include "physics/pose_math.h"
 
 namespace rotors_sim {
 namespace raycast {

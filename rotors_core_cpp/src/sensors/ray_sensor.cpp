@@ -13,7 +13,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/raycast/ray_scene.h"
-#include "../engine/pose_math.h"
+#include "physics/pose_math.h"
 
 namespace rotors_sim {
 namespace sensors {

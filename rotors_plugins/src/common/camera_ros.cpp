@@ -18,65 +18,39 @@ using rotors_sim::SimError;
 using rotors_sim::rendering::CameraSpec;
 using rotors_sim::rendering::RenderedFrame;
 
-CameraRosParams CameraRosParams::Read(const sdf::ElementPtr& sdf, const rotors_sim::sensors::CameraSensor& sensor,
-                                      bool depth_plugin, const std::vector<std::string>& extra_known) {
-  std::vector<std::string> known = {"robotNamespace",
-                                    "cameraName",
-                                    "imageTopicName",
-                                    "cameraInfoTopicName",
-                                    "frameName",
-                                    "updateRate",
-                                    "alwaysOn",
-                                    "hackBaseline",
-                                    "distortionK1",
-                                    "distortionK2",
-                                    "distortionK3",
-                                    "distortionT1",
-                                    "distortionT2",
-                                    "CxPrime",
-                                    "Cx",
-                                    "Cy",
-                                    "focalLength",
-                                    "borderCrop",
-                                    "baseline",
-                                    "pointCloudCutoff",
-                                    "pointCloudCutoffMax",
-                                    "depthImageTopicName",
-                                    "depthImageCameraInfoTopicName",
-                                    "pointCloudTopicName",
-                                    "disparityTopicName"};
-  known.insert(known.end(), extra_known.begin(), extra_known.end());
-  CheckKnownParams(sdf, known);
+CameraRosParams CameraRosParams::Read(rotors_sim::SdfParams& params, const rotors_sim::sensors::CameraSensor& sensor,
+                                      bool depth_plugin) {
+  params.Accept("alwaysOn", "gazebo_ros: render when nobody listens; here a camera renders when subscribed");
   CameraRosParams p;
-  if (sdf->HasElement("robotNamespace")) {
-    p.robot_namespace = ReadRobotNamespace(sdf);
+  if (params.Has("robotNamespace")) {
+    p.robot_namespace = ReadRobotNamespace(params);
   } else {
     // gazebo_ros gives a plugin without <robotNamespace> the spawn namespace: the model name
     p.robot_namespace = sensor.ParentLink()->GetModel()->GetName();
   }
-  ReadParam(sdf, "cameraName", &p.camera_name);
-  ReadParam(sdf, "imageTopicName", &p.image_topic);
-  ReadParam(sdf, "cameraInfoTopicName", &p.info_topic);
-  ReadParam(sdf, "frameName", &p.frame_name);
-  ReadParam(sdf, "updateRate", &p.update_rate_hz);
-  ReadParam(sdf, "hackBaseline", &p.hack_baseline_m);
+  ReadParam(params, "cameraName", &p.camera_name);
+  ReadParam(params, "imageTopicName", &p.image_topic);
+  ReadParam(params, "cameraInfoTopicName", &p.info_topic);
+  ReadParam(params, "frameName", &p.frame_name);
+  ReadParam(params, "updateRate", &p.update_rate_hz);
+  ReadParam(params, "hackBaseline", &p.hack_baseline_m);
   for (const char* zero : {"distortionK1", "distortionK2", "distortionK3", "distortionT1", "distortionT2", "CxPrime",
                            "Cx", "Cy", "focalLength", "borderCrop"}) {
     double value = 0.0;
-    ReadParam(sdf, zero, &value);
+    ReadParam(params, zero, &value);
     if (value != 0.0)
       throw SimError(std::string("<") + zero + "> " + std::to_string(value) +
                      " is not supported: the image is an ideal pinhole image with K from horizontal_fov and size "
                      "(leave it 0 or remove it)");
   }
   if (depth_plugin) {
-    ReadParam(sdf, "depthImageTopicName", &p.depth_topic);
-    ReadParam(sdf, "depthImageCameraInfoTopicName", &p.depth_info_topic);
-    ReadParam(sdf, "pointCloudTopicName", &p.points_topic);
-    ReadParam(sdf, "disparityTopicName", &p.disparity_topic);
-    ReadParam(sdf, "baseline", &p.baseline_m);
-    ReadParam(sdf, "pointCloudCutoff", &p.cloud_cutoff_min_m);
-    ReadParam(sdf, "pointCloudCutoffMax", &p.cloud_cutoff_max_m);
+    ReadParam(params, "depthImageTopicName", &p.depth_topic);
+    ReadParam(params, "depthImageCameraInfoTopicName", &p.depth_info_topic);
+    ReadParam(params, "pointCloudTopicName", &p.points_topic);
+    ReadParam(params, "disparityTopicName", &p.disparity_topic);
+    ReadParam(params, "baseline", &p.baseline_m);
+    ReadParam(params, "pointCloudCutoff", &p.cloud_cutoff_min_m);
+    ReadParam(params, "pointCloudCutoffMax", &p.cloud_cutoff_max_m);
     if (p.baseline_m < 0 || p.cloud_cutoff_min_m < 0 || p.cloud_cutoff_max_m < 0)
       throw SimError("baseline and pointCloudCutoff(Max) must be >= 0");
   }

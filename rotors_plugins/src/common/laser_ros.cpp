@@ -131,20 +131,17 @@ void LaserPlugin::Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sd
   if (!sensor_)
     throw SimError(GetFilename() + " belongs in a <sensor type=\"ray\"> (or gpu_ray), not type '" + sensor->Type() +
                    "'");
-  std::vector<std::string> known = {"robotNamespace", "topicName", "frameName", "updateRate"};
-  for (const std::string& own : OwnParams()) known.push_back(own);
-  CheckKnownParams(sdf, known);
   std::string robot_namespace = sensor_->ParentLink()->GetModel()->GetName();  // gazebo_ros: the spawn namespace
-  if (sdf->HasElement("robotNamespace")) robot_namespace = ReadRobotNamespace(sdf);
+  if (Params().Has("robotNamespace")) robot_namespace = ReadRobotNamespace(Params());
   topic_ = DefaultTopic();
-  ReadParam(sdf, "topicName", &topic_);
+  ReadParam(Params(), "topicName", &topic_);
   frame_ = sensor_->ParentName();
-  ReadParam(sdf, "frameName", &frame_);
-  ReadParam(sdf, "updateRate", &update_rate_hz_);
+  ReadParam(Params(), "frameName", &frame_);
+  ReadParam(Params(), "updateRate", &update_rate_hz_);
   if (!(update_rate_hz_ >= 0.0)) throw SimError("<updateRate> " + std::to_string(update_rate_hz_) + " must be >= 0");
   rng_.seed(std::hash<std::string>()(sensor_->ParentLink()->GetModel()->GetName() + "::" + sensor_->Name() +
                                      "::" + GetHandle()));
-  Configure(sdf);
+  Configure(Params());
   node_ = MakeNode(robot_namespace);
   if (!node_) return;  // no ROS in this process: nothing to publish
   Advertise();

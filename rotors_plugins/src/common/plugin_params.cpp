@@ -7,35 +7,20 @@
 
 namespace rotors_gazebo_plugins {
 
-bool ReadVector(const sdf::ElementPtr& sdf, const std::string& name, Eigen::Vector3d* value) {
+bool ReadVector(SdfParams& params, const std::string& name, Eigen::Vector3d* value) {
   ignition::math::Vector3d v(value->x(), value->y(), value->z());
-  if (!ReadParam(sdf, name, &v)) return false;
+  if (!ReadParam(params, name, &v)) return false;
   *value = Eigen::Vector3d(v.X(), v.Y(), v.Z());
   return true;
-}
-
-void CheckKnownParams(const sdf::ElementPtr& sdf, std::initializer_list<const char*> known) {
-  CheckKnownParams(sdf, std::vector<std::string>(known.begin(), known.end()));
-}
-
-void CheckKnownParams(const sdf::ElementPtr& sdf, const std::vector<std::string>& known) {
-  if (!sdf) return;
-  const std::set<std::string> names(known.begin(), known.end());
-  for (sdf::ElementPtr e = sdf->GetFirstElement(); e; e = e->GetNextElement()) {
-    if (names.count(e->GetName())) continue;
-    std::string list;
-    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    throw rotors_sim::SimError("unknown parameter <" + e->GetName() + "> (this plugin reads: " + list + ")");
-  }
 }
 
 void ThrowIfInvalid(const std::string& why) {
   if (!why.empty()) throw rotors_sim::SimError(why);
 }
 
-std::string ReadRobotNamespace(const sdf::ElementPtr& sdf) {
+std::string ReadRobotNamespace(SdfParams& params) {
   std::string ns;
-  RequireParam(sdf, "robotNamespace", &ns);
+  RequireParam(params, "robotNamespace", &ns);
   while (!ns.empty() && ns.front() == '/') ns.erase(ns.begin());
   while (!ns.empty() && ns.back() == '/') ns.pop_back();
   return ns;
@@ -59,9 +44,9 @@ rotors_sim::physics::JointPtr RequireJoint(const rotors_sim::physics::ModelPtr& 
   return joint;
 }
 
-uint64_t ReadSeed(const sdf::ElementPtr& sdf) {
+uint64_t ReadSeed(SdfParams& params) {
   int64_t seed = -1;
-  if (ReadParam(sdf, "randomEngineSeed", &seed) && seed >= 0) return static_cast<uint64_t>(seed);
+  if (ReadParam(params, "randomEngineSeed", &seed) && seed >= 0) return static_cast<uint64_t>(seed);
   return static_cast<uint64_t>(std::chrono::high_resolution_clock::now().time_since_epoch().count());
 }
 

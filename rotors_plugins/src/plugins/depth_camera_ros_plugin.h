@@ -21,7 +21,7 @@ class DepthCameraRosPlugin : public rotors_sim::SensorPlugin {
     if (!sensor_ || !sensor_->IsDepth())
       throw rotors_sim::SimError(GetFilename() + " belongs in a <sensor type=\"depth\">, not type '" + sensor->Type() +
                                  "'");
-    params_ = ReadParams(sdf);
+    params_ = ReadParams(Params());
     limiter_ = RateLimiter(params_.update_rate_hz);
     node_ = MakeNode(params_.robot_namespace);
     if (!node_) return;
@@ -43,7 +43,9 @@ class DepthCameraRosPlugin : public rotors_sim::SensorPlugin {
 
  protected:
   /// The plugin's parameters (defaults and extra parameters differ between depth plugins).
-  virtual CameraRosParams ReadParams(const sdf::ElementPtr& sdf) { return CameraRosParams::Read(sdf, *sensor_, true); }
+  virtual CameraRosParams ReadParams(rotors_sim::SdfParams& params) {
+    return CameraRosParams::Read(params, *sensor_, true);
+  }
   /// The depth the messages carry: the rendered one, or a noisy copy in `scratch`.
   virtual const rotors_sim::rendering::RenderedFrame& Measured(const rotors_sim::rendering::RenderedFrame& rendered,
                                                                rotors_sim::rendering::RenderedFrame* /*scratch*/) {

@@ -24,20 +24,18 @@ namespace rotors_gazebo_plugins {
 class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "airspeedTopic", "noiseStdDev", "pitotAxis",
-                           "randomEngineSeed", "updateRate"});
-    const std::string ns = ReadRobotNamespace(sdf);
+    const std::string ns = ReadRobotNamespace(Params());
     std::string link_name, topic = "air_speed";
-    RequireParam(sdf, "linkName", &link_name);
-    ReadParam(sdf, "airspeedTopic", &topic);
+    RequireParam(Params(), "linkName", &link_name);
+    ReadParam(Params(), "airspeedTopic", &topic);
     AirspeedParams p;
-    ReadParam(sdf, "noiseStdDev", &p.noise_stddev_m_s);
-    ReadVector(sdf, "pitotAxis", &p.pitot_axis_B);
+    ReadParam(Params(), "noiseStdDev", &p.noise_stddev_m_s);
+    ReadVector(Params(), "pitotAxis", &p.pitot_axis_B);
     double rate_hz = 0.0;
-    ReadParam(sdf, "updateRate", &rate_hz);
+    ReadParam(Params(), "updateRate", &rate_hz);
     if (!(rate_hz >= 0.0)) throw rotors_sim::SimError("updateRate must be >= 0 Hz");
     ThrowIfInvalid(p.Validate());
-    model_ = std::make_unique<AirspeedModel>(p, ReadSeed(sdf));
+    model_ = std::make_unique<AirspeedModel>(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), ns);

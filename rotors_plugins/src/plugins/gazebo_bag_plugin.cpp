@@ -43,51 +43,36 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
   ~GazeboBagPlugin() override { Close(); }
 
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace",
-                           "bagFileName",
-                           "linkName",
-                           "frameId",
-                           "imuTopic",
-                           "odometryTopic",
-                           "commandAttitudeThrustTopic",
-                           "commandMotorSpeedTopic",
-                           "commandRateThrustTopic",
-                           "windSpeedTopic",
-                           "motorTopic",
-                           "poseTopic",
-                           "twistTopic",
-                           "wrenchesTopic",
-                           "externalForceTopic",
-                           "waypointTopic",
-                           "commandPoseTopic",
-                           "extraTopics",
-                           "recordingServiceName",
-                           "rotorVelocitySlowdownSim",
-                           "waitToRecordBag"});
-    ns_ = ReadRobotNamespace(sdf);
+    ns_ = ReadRobotNamespace(Params());
     std::string link_name = "base_link", service = "record_rosbag";
     bool wait_to_record = false;
-    ReadParam(sdf, "bagFileName", &bag_name_);
-    ReadParam(sdf, "linkName", &link_name);
-    ReadParam(sdf, "frameId", &frame_id_);
-    ReadParam(sdf, "poseTopic", &pose_topic_);
-    ReadParam(sdf, "twistTopic", &twist_topic_);
-    ReadParam(sdf, "motorTopic", &motor_topic_);
-    ReadParam(sdf, "wrenchesTopic", &wrench_topic_);
-    ReadParam(sdf, "recordingServiceName", &service);
-    ReadParam(sdf, "waitToRecordBag", &wait_to_record);
+    ReadParam(Params(), "bagFileName", &bag_name_);
+    ReadParam(Params(), "linkName", &link_name);
+    ReadParam(Params(), "frameId", &frame_id_);
+    ReadParam(Params(), "poseTopic", &pose_topic_);
+    ReadParam(Params(), "twistTopic", &twist_topic_);
+    ReadParam(Params(), "motorTopic", &motor_topic_);
+    ReadParam(Params(), "wrenchesTopic", &wrench_topic_);
+    ReadParam(Params(), "recordingServiceName", &service);
+    ReadParam(Params(), "waitToRecordBag", &wait_to_record);
     double slowdown = 10;
-    ReadParam(sdf, "rotorVelocitySlowdownSim", &slowdown);  // accepted for compatibility: speeds come unslowed
+    ReadParam(Params(), "rotorVelocitySlowdownSim", &slowdown);  // accepted for compatibility: speeds come unslowed
     link_ = RequireLink(model, link_name);
     model_ = model.get();
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), ns_);
     node_ = MakeNode(ns_);
-    if (!node_) return;  // no ROS, no bag
+    if (!node_) {  // no ROS, no bag: its topics are not needed
+      for (const char* name : {"imuTopic", "odometryTopic", "commandAttitudeThrustTopic", "commandMotorSpeedTopic",
+                               "commandRateThrustTopic", "windSpeedTopic", "externalForceTopic", "waypointTopic",
+                               "commandPoseTopic", "extraTopics"})
+        Params().Accept(name, "recorded from ROS, which this process does not run");
+      return;
+    }
     std::string t;
     auto topic = [&](const char* param, const char* fallback) {
       t = fallback;
-      ReadParam(sdf, param, &t);
+      ReadParam(Params(), param, &t);
       return t;
     };
     Record<sensor_msgs::Imu>(topic("imuTopic", "imu"));

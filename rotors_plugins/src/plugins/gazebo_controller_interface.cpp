@@ -42,13 +42,11 @@ std::string CheckMotorCommand(const std::vector<double>& speeds, int rotor_count
 class GazeboControllerInterface : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf,
-                     {"robotNamespace", "commandMotorSpeedSubTopic", "motorSpeedCommandPubTopic", "commandTimeout"});
-    namespace_ = ReadRobotNamespace(sdf);
+    namespace_ = ReadRobotNamespace(Params());
     std::string command_topic = "command/motor_speed", direct_topic = "gazebo/command/motor_speed";
-    ReadParam(sdf, "commandMotorSpeedSubTopic", &command_topic);
-    ReadParam(sdf, "motorSpeedCommandPubTopic", &direct_topic);
-    ReadParam(sdf, "commandTimeout", &command_timeout_s_);
+    ReadParam(Params(), "commandMotorSpeedSubTopic", &command_topic);
+    ReadParam(Params(), "motorSpeedCommandPubTopic", &direct_topic);
+    ReadParam(Params(), "commandTimeout", &command_timeout_s_);
     if (!(command_timeout_s_ >= 0.0))
       throw rotors_sim::SimError("commandTimeout = " + std::to_string(command_timeout_s_) +
                                  " must be >= 0 s (0: hold the last command forever)");

@@ -25,25 +25,23 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     if (sensor->Type() != "gps" && sensor->Type() != "navsat")
       throw rotors_sim::SimError("librotors_gazebo_gps_plugin.so belongs in a <sensor type=\"gps\">, not type '" +
                                  sensor->Type() + "'");
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "gpsTopic", "groundSpeedTopic", "horPosStdDev", "verPosStdDev",
-                           "horVelStdDev", "verVelStdDev", "randomEngineSeed"});
-    const std::string ns = ReadRobotNamespace(sdf);
+    const std::string ns = ReadRobotNamespace(Params());
     std::string gps_topic = "gps", ground_speed_topic = "ground_speed", link_name;
-    ReadParam(sdf, "gpsTopic", &gps_topic);
-    ReadParam(sdf, "groundSpeedTopic", &ground_speed_topic);
-    if (ReadParam(sdf, "linkName", &link_name) && link_name != sensor->ParentName())
+    ReadParam(Params(), "gpsTopic", &gps_topic);
+    ReadParam(Params(), "groundSpeedTopic", &ground_speed_topic);
+    if (ReadParam(Params(), "linkName", &link_name) && link_name != sensor->ParentName())
       throw rotors_sim::SimError("<linkName> '" + link_name + "' is not the sensor's link '" + sensor->ParentName() +
                                  "'");
     GpsParams p;
-    ReadParam(sdf, "horPosStdDev", &p.hor_pos_std_dev_m);
-    ReadParam(sdf, "verPosStdDev", &p.ver_pos_std_dev_m);
-    ReadParam(sdf, "horVelStdDev", &p.hor_vel_std_dev_m_s);
-    ReadParam(sdf, "verVelStdDev", &p.ver_vel_std_dev_m_s);
+    ReadParam(Params(), "horPosStdDev", &p.hor_pos_std_dev_m);
+    ReadParam(Params(), "verPosStdDev", &p.ver_pos_std_dev_m);
+    ReadParam(Params(), "horVelStdDev", &p.hor_vel_std_dev_m_s);
+    ReadParam(Params(), "verVelStdDev", &p.ver_vel_std_dev_m_s);
     ThrowIfInvalid(p.Validate());
     sensor_ = sensor;
     const auto& o = sensor->ParentLink()->GetModel()->GetWorldRaw()->Origin();
     model_ = std::make_unique<GpsModel>(
-        p, GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg}, ReadSeed(sdf));
+        p, GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg}, ReadSeed(Params()));
     fix_.header.frame_id = sensor->ParentName();
     fix_.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
     fix_.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;

@@ -25,33 +25,29 @@ namespace rotors_gazebo_plugins {
 class GazeboImuPlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "imuTopic", "gyroscopeNoiseDensity", "gyroscopeRandomWalk",
-                           "gyroscopeBiasRandomWalk", "gyroscopeBiasCorrelationTime", "gyroscopeTurnOnBiasSigma",
-                           "accelerometerNoiseDensity", "accelerometerRandomWalk", "accelerometerBiasCorrelationTime",
-                           "accelerometerTurnOnBiasSigma", "randomEngineSeed", "biasTopic"});
-    const std::string ns = ReadRobotNamespace(sdf);
+    const std::string ns = ReadRobotNamespace(Params());
     std::string link_name, topic = "imu", bias_topic;
-    RequireParam(sdf, "linkName", &link_name);
-    ReadParam(sdf, "imuTopic", &topic);
-    ReadParam(sdf, "biasTopic", &bias_topic);
+    RequireParam(Params(), "linkName", &link_name);
+    ReadParam(Params(), "imuTopic", &topic);
+    ReadParam(Params(), "biasTopic", &bias_topic);
     ImuNoiseParams p;
-    ReadParam(sdf, "gyroscopeNoiseDensity", &p.gyroscope_noise_density);
-    const bool xacro_name = ReadParam(sdf, "gyroscopeRandomWalk", &p.gyroscope_random_walk);
+    ReadParam(Params(), "gyroscopeNoiseDensity", &p.gyroscope_noise_density);
+    const bool xacro_name = ReadParam(Params(), "gyroscopeRandomWalk", &p.gyroscope_random_walk);
     double plugin_name_value = p.gyroscope_random_walk;
-    if (ReadParam(sdf, "gyroscopeBiasRandomWalk", &plugin_name_value)) {
+    if (ReadParam(Params(), "gyroscopeBiasRandomWalk", &plugin_name_value)) {
       if (xacro_name && plugin_name_value != p.gyroscope_random_walk)
         throw rotors_sim::SimError("<gyroscopeRandomWalk> and <gyroscopeBiasRandomWalk> disagree; give one of them");
       p.gyroscope_random_walk = plugin_name_value;
     }
-    ReadParam(sdf, "gyroscopeBiasCorrelationTime", &p.gyroscope_bias_correlation_time_s);
-    ReadParam(sdf, "gyroscopeTurnOnBiasSigma", &p.gyroscope_turn_on_bias_sigma);
-    ReadParam(sdf, "accelerometerNoiseDensity", &p.accelerometer_noise_density);
-    ReadParam(sdf, "accelerometerRandomWalk", &p.accelerometer_random_walk);
-    ReadParam(sdf, "accelerometerBiasCorrelationTime", &p.accelerometer_bias_correlation_time_s);
-    ReadParam(sdf, "accelerometerTurnOnBiasSigma", &p.accelerometer_turn_on_bias_sigma);
+    ReadParam(Params(), "gyroscopeBiasCorrelationTime", &p.gyroscope_bias_correlation_time_s);
+    ReadParam(Params(), "gyroscopeTurnOnBiasSigma", &p.gyroscope_turn_on_bias_sigma);
+    ReadParam(Params(), "accelerometerNoiseDensity", &p.accelerometer_noise_density);
+    ReadParam(Params(), "accelerometerRandomWalk", &p.accelerometer_random_walk);
+    ReadParam(Params(), "accelerometerBiasCorrelationTime", &p.accelerometer_bias_correlation_time_s);
+    ReadParam(Params(), "accelerometerTurnOnBiasSigma", &p.accelerometer_turn_on_bias_sigma);
     ThrowIfInvalid(p.Validate());
     params_ = p;
-    seed_ = ReadSeed(sdf);
+    seed_ = ReadSeed(Params());
     noise_ = std::make_unique<ImuNoiseModel>(p, seed_);
 
     link_ = RequireLink(model, link_name);

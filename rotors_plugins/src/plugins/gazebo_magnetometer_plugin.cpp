@@ -20,20 +20,18 @@ namespace rotors_gazebo_plugins {
 class GazeboMagnetometerPlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "magnetometerTopic", "refMagNorth", "refMagEast", "refMagDown",
-                           "noiseNormal", "noiseUniformInitialBias", "randomEngineSeed"});
-    const std::string ns = ReadRobotNamespace(sdf);
+    const std::string ns = ReadRobotNamespace(Params());
     std::string link_name, topic = "magnetic_field";
-    RequireParam(sdf, "linkName", &link_name);
-    ReadParam(sdf, "magnetometerTopic", &topic);
+    RequireParam(Params(), "linkName", &link_name);
+    ReadParam(Params(), "magnetometerTopic", &topic);
     MagnetometerParams p;
-    ReadParam(sdf, "refMagNorth", &p.reference_NED_T.x());
-    ReadParam(sdf, "refMagEast", &p.reference_NED_T.y());
-    ReadParam(sdf, "refMagDown", &p.reference_NED_T.z());
-    ReadVector(sdf, "noiseNormal", &p.noise_normal_T);
-    ReadVector(sdf, "noiseUniformInitialBias", &p.noise_uniform_initial_bias_T);
+    ReadParam(Params(), "refMagNorth", &p.reference_NED_T.x());
+    ReadParam(Params(), "refMagEast", &p.reference_NED_T.y());
+    ReadParam(Params(), "refMagDown", &p.reference_NED_T.z());
+    ReadVector(Params(), "noiseNormal", &p.noise_normal_T);
+    ReadVector(Params(), "noiseUniformInitialBias", &p.noise_uniform_initial_bias_T);
     ThrowIfInvalid(p.Validate());
-    model_ = std::make_unique<MagnetometerModel>(p, ReadSeed(sdf));
+    model_ = std::make_unique<MagnetometerModel>(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     msg_.header.frame_id = link_name;

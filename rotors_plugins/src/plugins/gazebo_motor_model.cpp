@@ -30,28 +30,27 @@ Vector3d FromEigen(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 class GazeboMotorModel : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "jointName", "linkName", "motorNumber", "turningDirection", "motorType",
-                           "commandSubTopic", "windSpeedSubTopic", "motorSpeedPubTopic", "rotorDragCoefficient",
-                           "rollingMomentCoefficient", "maxRotVelocity", "motorConstant", "momentConstant",
-                           "timeConstantUp", "timeConstantDown", "rotorVelocitySlowdownSim"});
-    namespace_ = ReadRobotNamespace(sdf);
+    namespace_ = ReadRobotNamespace(Params());
+    // RotorS' ROS topics between the plugins: here the command and the wind travel in memory (VehicleBus)
+    Params().Accept("commandSubTopic", "the motor command comes over the vehicle bus");
+    Params().Accept("windSpeedSubTopic", "the wind comes over the vehicle bus");
     std::string joint_name, link_name, direction, motor_type = "velocity", speed_topic = "motor_speed";
-    RequireParam(sdf, "jointName", &joint_name);
-    RequireParam(sdf, "linkName", &link_name);
+    RequireParam(Params(), "jointName", &joint_name);
+    RequireParam(Params(), "linkName", &link_name);
     // the rotor's physics has no defaults: a missing constant would silently be another vehicle's
-    RequireParam(sdf, "motorNumber", &motor_number_);
-    RequireParam(sdf, "turningDirection", &direction);
-    ReadParam(sdf, "motorType", &motor_type);
-    ReadParam(sdf, "motorSpeedPubTopic", &speed_topic);
+    RequireParam(Params(), "motorNumber", &motor_number_);
+    RequireParam(Params(), "turningDirection", &direction);
+    ReadParam(Params(), "motorType", &motor_type);
+    ReadParam(Params(), "motorSpeedPubTopic", &speed_topic);
     RotorParams p;
-    RequireParam(sdf, "rotorDragCoefficient", &p.rotor_drag_coefficient);
-    RequireParam(sdf, "rollingMomentCoefficient", &p.rolling_moment_coefficient);
-    RequireParam(sdf, "maxRotVelocity", &p.max_rot_velocity);
-    RequireParam(sdf, "motorConstant", &p.motor_constant);
-    RequireParam(sdf, "momentConstant", &p.moment_constant);
-    RequireParam(sdf, "timeConstantUp", &p.time_constant_up_s);
-    RequireParam(sdf, "timeConstantDown", &p.time_constant_down_s);
-    ReadParam(sdf, "rotorVelocitySlowdownSim", &slowdown_);  // visual only
+    RequireParam(Params(), "rotorDragCoefficient", &p.rotor_drag_coefficient);
+    RequireParam(Params(), "rollingMomentCoefficient", &p.rolling_moment_coefficient);
+    RequireParam(Params(), "maxRotVelocity", &p.max_rot_velocity);
+    RequireParam(Params(), "motorConstant", &p.motor_constant);
+    RequireParam(Params(), "momentConstant", &p.moment_constant);
+    RequireParam(Params(), "timeConstantUp", &p.time_constant_up_s);
+    RequireParam(Params(), "timeConstantDown", &p.time_constant_down_s);
+    ReadParam(Params(), "rotorVelocitySlowdownSim", &slowdown_);  // visual only
     if (direction == "ccw") {
       p.turning_direction = 1;
     } else if (direction == "cw") {

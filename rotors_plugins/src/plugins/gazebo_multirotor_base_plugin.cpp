@@ -27,11 +27,12 @@ namespace rotors_gazebo_plugins {
 class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "motorPubTopic", "rotorVelocitySlowdownSim"});
-    namespace_ = ReadRobotNamespace(sdf);
+    namespace_ = ReadRobotNamespace(Params());
+    // RotorS scales the joint speeds it publishes by this; the bus holds the real speeds already
+    Params().Accept("rotorVelocitySlowdownSim", "the published speeds are the real ones");
     std::string topic = "motor_speed";
-    ReadParam(sdf, "linkName", &frame_id_);
-    ReadParam(sdf, "motorPubTopic", &topic);
+    ReadParam(Params(), "linkName", &frame_id_);
+    ReadParam(Params(), "motorPubTopic", &topic);
     RequireLink(model, frame_id_);
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);

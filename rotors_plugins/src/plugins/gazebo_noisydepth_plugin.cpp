@@ -11,29 +11,27 @@ namespace rotors_gazebo_plugins {
 
 class GazeboNoisyDepth : public DepthCameraRosPlugin {
  protected:
-  CameraRosParams ReadParams(const sdf::ElementPtr& sdf) override {
-    CameraRosParams p = CameraRosParams::Read(
-        sdf, *sensor_, true,
-        {"depthNoiseModelName", "horizontal_fov", "D435NoiseSubpixelErr", "D435MaxStdev", "randomEngineSeed"});
-    if (!sdf->HasElement("imageTopicName")) p.image_topic = "ir/image_raw";
-    if (!sdf->HasElement("cameraInfoTopicName")) p.info_topic = "ir/camera_info";
-    if (!sdf->HasElement("pointCloudTopicName")) p.points_topic = "points";
-    if (!sdf->HasElement("pointCloudCutoff")) p.cloud_cutoff_min_m = 0.4;
-    if (!sdf->HasElement("pointCloudCutoffMax")) p.cloud_cutoff_max_m = 5.0;
+  CameraRosParams ReadParams(rotors_sim::SdfParams& params) override {
+    CameraRosParams p = CameraRosParams::Read(params, *sensor_, true);
+    if (!Params().Has("imageTopicName")) p.image_topic = "ir/image_raw";
+    if (!Params().Has("cameraInfoTopicName")) p.info_topic = "ir/camera_info";
+    if (!Params().Has("pointCloudTopicName")) p.points_topic = "points";
+    if (!Params().Has("pointCloudCutoff")) p.cloud_cutoff_min_m = 0.4;
+    if (!Params().Has("pointCloudCutoffMax")) p.cloud_cutoff_max_m = 5.0;
     DepthNoiseParams noise;
     std::string model = "Kinect";
-    ReadParam(sdf, "depthNoiseModelName", &model);
+    ReadParam(Params(), "depthNoiseModelName", &model);
     noise.model = DepthNoiseParams::ParseModel(model);
     noise.min_depth_m = p.cloud_cutoff_min_m;
     noise.max_depth_m = p.cloud_cutoff_max_m;
     noise.width_px = sensor_->Camera(0).intrinsics.width_px;
     noise.horizontal_fov_rad = sensor_->Camera(0).intrinsics.horizontal_fov_rad;
-    ReadParam(sdf, "horizontal_fov", &noise.horizontal_fov_rad);
+    ReadParam(Params(), "horizontal_fov", &noise.horizontal_fov_rad);
     if (p.baseline_m > 0) noise.baseline_m = p.baseline_m;
-    ReadParam(sdf, "D435NoiseSubpixelErr", &noise.subpixel_error_px);
-    ReadParam(sdf, "D435MaxStdev", &noise.max_stdev_m);
+    ReadParam(Params(), "D435NoiseSubpixelErr", &noise.subpixel_error_px);
+    ReadParam(Params(), "D435MaxStdev", &noise.max_stdev_m);
     ThrowIfInvalid(noise.Validate());
-    noise_ = std::make_unique<DepthNoiseModel>(noise, ReadSeed(sdf));
+    noise_ = std::make_unique<DepthNoiseModel>(noise, ReadSeed(Params()));
     return p;
   }
 

@@ -25,8 +25,8 @@ class GazeboOctomapPlugin : public rotors_sim::WorldPlugin {
   void Load(rotors_sim::physics::WorldPtr world, sdf::ElementPtr sdf) override {
     world_ = world;
     std::string topic = "world/octomap", service = "world/get_octomap";
-    ReadParam(sdf, "octomapPubTopic", &topic);
-    ReadParam(sdf, "octomapServiceName", &service);
+    ReadParam(Params(), "octomapPubTopic", &topic);
+    ReadParam(Params(), "octomapServiceName", &service);
     node_ = MakeNode("");
     if (!node_) return;  // no ROS in this process (engine tests)
     publisher_ = node_->advertise<octomap_msgs::Octomap>(topic, 1, /*latch=*/true);

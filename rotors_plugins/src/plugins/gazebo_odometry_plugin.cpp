@@ -40,64 +40,41 @@ std::string ResolvePackageUrl(const std::string& url) {
 class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace",
-                           "linkName",
-                           "poseTopic",
-                           "poseWithCovarianceTopic",
-                           "positionTopic",
-                           "transformTopic",
-                           "odometryTopic",
-                           "parentFrameId",
-                           "childFrameId",
-                           "measurementDivisor",
-                           "measurementDelay",
-                           "unknownDelay",
-                           "noiseNormalPosition",
-                           "noiseNormalQuaternion",
-                           "noiseNormalLinearVelocity",
-                           "noiseNormalAngularVelocity",
-                           "noiseUniformPosition",
-                           "noiseUniformQuaternion",
-                           "noiseUniformLinearVelocity",
-                           "noiseUniformAngularVelocity",
-                           "covarianceImage",
-                           "covarianceImageScale",
-                           "randomEngineSeed"});
-    const std::string ns = ReadRobotNamespace(sdf);
+    const std::string ns = ReadRobotNamespace(Params());
     std::string link_name = "odometry_sensor_link", parent_frame = "world";
     std::string pose_topic = "pose", pose_cov_topic = "pose_with_covariance", position_topic = "position",
                 transform_topic = "transform", odometry_topic = "odometry";
-    ReadParam(sdf, "linkName", &link_name);
-    ReadParam(sdf, "poseTopic", &pose_topic);
-    ReadParam(sdf, "poseWithCovarianceTopic", &pose_cov_topic);
-    ReadParam(sdf, "positionTopic", &position_topic);
-    ReadParam(sdf, "transformTopic", &transform_topic);
-    ReadParam(sdf, "odometryTopic", &odometry_topic);
-    ReadParam(sdf, "parentFrameId", &parent_frame);
-    ReadParam(sdf, "childFrameId", &child_frame_);
-    ReadParam(sdf, "measurementDivisor", &divisor_);
-    ReadParam(sdf, "measurementDelay", &delay_steps_);
-    ReadParam(sdf, "unknownDelay", &unknown_delay_s_);
+    ReadParam(Params(), "linkName", &link_name);
+    ReadParam(Params(), "poseTopic", &pose_topic);
+    ReadParam(Params(), "poseWithCovarianceTopic", &pose_cov_topic);
+    ReadParam(Params(), "positionTopic", &position_topic);
+    ReadParam(Params(), "transformTopic", &transform_topic);
+    ReadParam(Params(), "odometryTopic", &odometry_topic);
+    ReadParam(Params(), "parentFrameId", &parent_frame);
+    ReadParam(Params(), "childFrameId", &child_frame_);
+    ReadParam(Params(), "measurementDivisor", &divisor_);
+    ReadParam(Params(), "measurementDelay", &delay_steps_);
+    ReadParam(Params(), "unknownDelay", &unknown_delay_s_);
     if (parent_frame != "world")
       throw rotors_sim::SimError("parentFrameId = '" + parent_frame + "' is not supported yet; use 'world'");
     if (divisor_ < 1) throw rotors_sim::SimError("measurementDivisor = " + std::to_string(divisor_) + " must be >= 1");
     if (delay_steps_ < 0)
       throw rotors_sim::SimError("measurementDelay = " + std::to_string(delay_steps_) + " must be >= 0");
     OdometryNoiseParams noise;
-    ReadVector(sdf, "noiseNormalPosition", &noise.normal_position_m);
-    ReadVector(sdf, "noiseNormalQuaternion", &noise.normal_quaternion_rad);
-    ReadVector(sdf, "noiseNormalLinearVelocity", &noise.normal_linear_velocity_m_s);
-    ReadVector(sdf, "noiseNormalAngularVelocity", &noise.normal_angular_velocity_rad_s);
-    ReadVector(sdf, "noiseUniformPosition", &noise.uniform_position_m);
-    ReadVector(sdf, "noiseUniformQuaternion", &noise.uniform_quaternion_rad);
-    ReadVector(sdf, "noiseUniformLinearVelocity", &noise.uniform_linear_velocity_m_s);
-    ReadVector(sdf, "noiseUniformAngularVelocity", &noise.uniform_angular_velocity_rad_s);
+    ReadVector(Params(), "noiseNormalPosition", &noise.normal_position_m);
+    ReadVector(Params(), "noiseNormalQuaternion", &noise.normal_quaternion_rad);
+    ReadVector(Params(), "noiseNormalLinearVelocity", &noise.normal_linear_velocity_m_s);
+    ReadVector(Params(), "noiseNormalAngularVelocity", &noise.normal_angular_velocity_rad_s);
+    ReadVector(Params(), "noiseUniformPosition", &noise.uniform_position_m);
+    ReadVector(Params(), "noiseUniformQuaternion", &noise.uniform_quaternion_rad);
+    ReadVector(Params(), "noiseUniformLinearVelocity", &noise.uniform_linear_velocity_m_s);
+    ReadVector(Params(), "noiseUniformAngularVelocity", &noise.uniform_angular_velocity_rad_s);
     ThrowIfInvalid(noise.Validate());
-    noise_ = std::make_unique<OdometryNoise>(noise, ReadSeed(sdf));
+    noise_ = std::make_unique<OdometryNoise>(noise, ReadSeed(Params()));
     std::string image;
     double scale = 1.0;
-    ReadParam(sdf, "covarianceImageScale", &scale);
-    if (ReadParam(sdf, "covarianceImage", &image) && !image.empty()) {
+    ReadParam(Params(), "covarianceImageScale", &scale);
+    if (ReadParam(Params(), "covarianceImage", &image) && !image.empty()) {
       try {
         outage_map_ = std::make_unique<OutageMap>(ResolvePackageUrl(image), scale);
       } catch (const std::runtime_error& e) {

@@ -19,17 +19,15 @@ namespace rotors_gazebo_plugins {
 class GazeboPressurePlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace", "linkName", "pressureTopic", "referenceAltitude", "pressureVariance",
-                           "randomEngineSeed"});
-    const std::string ns = ReadRobotNamespace(sdf);
+    const std::string ns = ReadRobotNamespace(Params());
     std::string link_name, topic = "air_pressure";
-    RequireParam(sdf, "linkName", &link_name);
-    ReadParam(sdf, "pressureTopic", &topic);
+    RequireParam(Params(), "linkName", &link_name);
+    ReadParam(Params(), "pressureTopic", &topic);
     PressureParams p;
-    ReadParam(sdf, "referenceAltitude", &p.reference_altitude_m);
-    ReadParam(sdf, "pressureVariance", &p.pressure_variance_pa2);
+    ReadParam(Params(), "referenceAltitude", &p.reference_altitude_m);
+    ReadParam(Params(), "pressureVariance", &p.pressure_variance_pa2);
     ThrowIfInvalid(p.Validate());
-    model_ = std::make_unique<PressureModel>(p, ReadSeed(sdf));
+    model_ = std::make_unique<PressureModel>(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     msg_.header.frame_id = link_name;

@@ -8,10 +8,9 @@ namespace rotors_gazebo_plugins {
 
 class GazeboRosBlockLaser : public LaserPlugin {
  protected:
-  std::vector<std::string> OwnParams() const override { return {"gaussianNoise"}; }
   std::string DefaultTopic() const override { return "points"; }
-  void Configure(const sdf::ElementPtr& sdf) override {
-    ReadParam(sdf, "gaussianNoise", &noise_m_);
+  void Configure(rotors_sim::SdfParams& params) override {
+    ReadParam(params, "gaussianNoise", &noise_m_);
     if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
   }
   void Advertise() override { pub_ = node_->advertise<sensor_msgs::PointCloud>(topic_, 4); }

@@ -15,7 +15,7 @@ class GazeboRosCamera : public rotors_sim::SensorPlugin {
     if (!sensor_ || sensor_->Type() != "camera")
       throw rotors_sim::SimError("libgazebo_ros_camera.so belongs in a <sensor type=\"camera\">, not type '" +
                                  sensor->Type() + "'");
-    const CameraRosParams params = CameraRosParams::Read(sdf, *sensor_, false);
+    const CameraRosParams params = CameraRosParams::Read(Params(), *sensor_, false);
     limiter_ = RateLimiter(params.update_rate_hz);
     node_ = MakeNode(params.robot_namespace);
     if (!node_) return;  // no ROS in this process: nothing to publish

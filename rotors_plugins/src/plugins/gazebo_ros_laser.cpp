@@ -10,7 +10,7 @@ namespace rotors_gazebo_plugins {
 class GazeboRosLaser : public LaserPlugin {
  protected:
   std::string DefaultTopic() const override { return "scan"; }
-  void Configure(const sdf::ElementPtr& /*sdf*/) override {
+  void Configure(rotors_sim::SdfParams& /*params*/) override {
     if (sensor_->Spec().vertical_count != 1)
       throw rotors_sim::SimError("a LaserScan has one row, but sensor '" + sensor_->Name() + "' has " +
                                  std::to_string(sensor_->Spec().vertical_count) +

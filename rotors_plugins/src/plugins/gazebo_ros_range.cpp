@@ -13,18 +13,17 @@ namespace rotors_gazebo_plugins {
 
 class GazeboRosRange : public LaserPlugin {
  protected:
-  std::vector<std::string> OwnParams() const override { return {"radiation", "fov", "gaussianNoise"}; }
   std::string DefaultTopic() const override { return "range"; }
-  void Configure(const sdf::ElementPtr& sdf) override {
+  void Configure(rotors_sim::SdfParams& params) override {
     std::string radiation = "ultrasound";
-    ReadParam(sdf, "radiation", &radiation);
+    ReadParam(params, "radiation", &radiation);
     if (radiation != "ultrasound" && radiation != "infrared")
       throw rotors_sim::SimError("<radiation> '" + radiation + "' must be ultrasound or infrared");
     msg_.radiation_type = radiation == "ultrasound" ? sensor_msgs::Range::ULTRASOUND : sensor_msgs::Range::INFRARED;
     double fov_rad = 0.05;
-    ReadParam(sdf, "fov", &fov_rad);
+    ReadParam(params, "fov", &fov_rad);
     if (!(fov_rad >= 0.0 && fov_rad < M_PI)) throw rotors_sim::SimError("<fov> must be in [0, pi) rad");
-    ReadParam(sdf, "gaussianNoise", &noise_m_);
+    ReadParam(params, "gaussianNoise", &noise_m_);
     if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
     msg_.field_of_view = static_cast<float>(fov_rad);
     msg_.min_range = static_cast<float>(sensor_->Spec().range_min_m);

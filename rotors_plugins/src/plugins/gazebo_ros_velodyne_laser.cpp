@@ -13,22 +13,19 @@ namespace rotors_gazebo_plugins {
 
 class GazeboRosVelodyneLaser : public LaserPlugin {
  protected:
-  std::vector<std::string> OwnParams() const override {
-    return {"min_range", "max_range", "gaussianNoise", "min_intensity", "organize_cloud", "instantaneous_scan"};
-  }
   std::string DefaultTopic() const override { return "points"; }
-  void Configure(const sdf::ElementPtr& sdf) override {
-    ReadParam(sdf, "min_range", &options_.min_range_m);
-    ReadParam(sdf, "max_range", &options_.max_range_m);
-    ReadParam(sdf, "min_intensity", &options_.min_intensity);
-    ReadParam(sdf, "organize_cloud", &options_.organize);
-    ReadParam(sdf, "gaussianNoise", &noise_m_);
+  void Configure(rotors_sim::SdfParams& params) override {
+    ReadParam(params, "min_range", &options_.min_range_m);
+    ReadParam(params, "max_range", &options_.max_range_m);
+    ReadParam(params, "min_intensity", &options_.min_intensity);
+    ReadParam(params, "organize_cloud", &options_.organize);
+    ReadParam(params, "gaussianNoise", &noise_m_);
     if (!(options_.min_range_m >= 0.0) || !(options_.max_range_m > options_.min_range_m))
       throw rotors_sim::SimError("<min_range> " + std::to_string(options_.min_range_m) + " m must be >= 0 and below " +
                                  "<max_range> " + std::to_string(options_.max_range_m) + " m");
     if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
     bool instantaneous = false;
-    ReadParam(sdf, "instantaneous_scan", &instantaneous);
+    ReadParam(params, "instantaneous_scan", &instantaneous);
     sensor_->SetScanOverTime(!instantaneous);
   }
   void Advertise() override { pub_ = node_->advertise<sensor_msgs::PointCloud2>(topic_, 4); }

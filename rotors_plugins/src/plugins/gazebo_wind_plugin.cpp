@@ -33,41 +33,21 @@ namespace rotors_gazebo_plugins {
 class GazeboWindPlugin : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    CheckKnownParams(sdf, {"robotNamespace",
-                           "xyzOffset",
-                           "windForcePubTopic",
-                           "windSpeedPubTopic",
-                           "frameId",
-                           "linkName",
-                           "windSpeedMean",
-                           "windSpeedVariance",
-                           "windDirection",
-                           "windForceMean",
-                           "windForceVariance",
-                           "windGustStart",
-                           "windGustDuration",
-                           "windGustForceMean",
-                           "windGustForceVariance",
-                           "windGustDirection",
-                           "useCustomStaticWindField",
-                           "customWindFieldPath",
-                           "randomEngineSeed",
-                           "windProfilePath",
-                           "windSpeedSubTopic"});
-    namespace_ = ReadRobotNamespace(sdf);
+    namespace_ = ReadRobotNamespace(Params());
     std::string link_name = "base_link", force_topic = "external_force", speed_topic = "wind_speed";
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
     bool custom_field = false;
-    ReadParam(sdf, "linkName", &link_name);
-    ReadParam(sdf, "frameId", &frame_id_);
-    ReadParam(sdf, "windForcePubTopic", &force_topic);
-    ReadParam(sdf, "windSpeedPubTopic", &speed_topic);
-    if (!ReadVector(sdf, "xyzOffset", &offset)) throw rotors_sim::SimError("missing required parameter <xyzOffset>");
-    ReadParam(sdf, "useCustomStaticWindField", &custom_field);
+    ReadParam(Params(), "linkName", &link_name);
+    ReadParam(Params(), "frameId", &frame_id_);
+    ReadParam(Params(), "windForcePubTopic", &force_topic);
+    ReadParam(Params(), "windSpeedPubTopic", &speed_topic);
+    if (!ReadVector(Params(), "xyzOffset", &offset))
+      throw rotors_sim::SimError("missing required parameter <xyzOffset>");
+    ReadParam(Params(), "useCustomStaticWindField", &custom_field);
     std::string field_path, profile_path, speed_sub_topic;
-    ReadParam(sdf, "customWindFieldPath", &field_path);
-    ReadParam(sdf, "windProfilePath", &profile_path);
-    ReadParam(sdf, "windSpeedSubTopic", &speed_sub_topic);
+    ReadParam(Params(), "customWindFieldPath", &field_path);
+    ReadParam(Params(), "windProfilePath", &profile_path);
+    ReadParam(Params(), "windSpeedSubTopic", &speed_sub_topic);
     if (custom_field && field_path.empty())
       throw rotors_sim::SimError("useCustomStaticWindField = true needs <customWindFieldPath>");
     if (!custom_field && !field_path.empty())
@@ -80,18 +60,18 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
       throw rotors_sim::SimError(e.what());
     }
     WindParams p;
-    ReadParam(sdf, "windSpeedMean", &p.wind_speed_mean_m_s);
-    ReadParam(sdf, "windSpeedVariance", &p.wind_speed_variance);
-    ReadVector(sdf, "windDirection", &p.wind_direction);
-    ReadParam(sdf, "windForceMean", &p.wind_force_mean_n);
-    ReadParam(sdf, "windForceVariance", &p.wind_force_variance);
-    ReadParam(sdf, "windGustStart", &p.wind_gust_start_s);
-    ReadParam(sdf, "windGustDuration", &p.wind_gust_duration_s);
-    ReadParam(sdf, "windGustForceMean", &p.wind_gust_force_mean_n);
-    ReadParam(sdf, "windGustForceVariance", &p.wind_gust_force_variance);
-    ReadVector(sdf, "windGustDirection", &p.wind_gust_direction);
+    ReadParam(Params(), "windSpeedMean", &p.wind_speed_mean_m_s);
+    ReadParam(Params(), "windSpeedVariance", &p.wind_speed_variance);
+    ReadVector(Params(), "windDirection", &p.wind_direction);
+    ReadParam(Params(), "windForceMean", &p.wind_force_mean_n);
+    ReadParam(Params(), "windForceVariance", &p.wind_force_variance);
+    ReadParam(Params(), "windGustStart", &p.wind_gust_start_s);
+    ReadParam(Params(), "windGustDuration", &p.wind_gust_duration_s);
+    ReadParam(Params(), "windGustForceMean", &p.wind_gust_force_mean_n);
+    ReadParam(Params(), "windGustForceVariance", &p.wind_gust_force_variance);
+    ReadVector(Params(), "windGustDirection", &p.wind_gust_direction);
     ThrowIfInvalid(p.Validate());
-    wind_ = std::make_unique<WindModel>(p, ReadSeed(sdf));
+    wind_ = std::make_unique<WindModel>(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     offset_L_ = {offset.x(), offset.y(), offset.z()};
     world_ = model->GetWorldRaw();

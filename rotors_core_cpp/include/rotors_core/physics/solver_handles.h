@@ -1,6 +1,6 @@
 // Opaque handles of the rigid-body solver's objects. The engine's API owns these types: code that
 // uses the engine (plugins, tests, the ROS server) never sees the solver's own types or headers,
-// so the solver can change without touching them. Inside the engine, src/engine/ode_handles.h
+// so the solver can change without touching them. Inside the engine, src/physics/ode_handles.h
 // converts them to ODE's.
 #pragma once
 

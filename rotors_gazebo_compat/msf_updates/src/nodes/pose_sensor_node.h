@@ -25,51 +25,33 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "msf_updates/ekf/pose_ekf.h"
+#include "rotors_params/ros_param_reader.h"
 
 namespace msf_updates {
 namespace {
 
-/// Reads ~<ns>/<key> parameters and remembers which keys were read, so that keys nobody reads
-/// (typos such as RotorS' `core/fixed_bias`) are reported instead of silently ignored.
+/// MSF's parameters all have defaults (as upstream): one that is absent is announced with the value
+/// used, and a key below core/ or pose_sensor/ that nobody reads is reported by name.
 class ParamReader {
  public:
-  explicit ParamReader(const ros::NodeHandle& private_nh) : nh_(private_nh) {}
-  /// MSF's parameters all have defaults (as upstream); one that is absent is announced with the
-  /// value used (ReportDefaults), as the project's parameter policy asks.
+  explicit ParamReader(const ros::NodeHandle& private_nh) : reader_(private_nh) {}
   template <typename T>
   T Get(const std::string& key, const T& fallback) {
-    read_.insert(nh_.resolveName(key));
-    T value = fallback;
-    if (!nh_.getParam(key, value)) {
-      std::ostringstream line;
-      line << key << " = " << std::boolalpha << fallback;
-      defaults_.push_back(line.str());
-      value = fallback;
-    }
-    return value;
+    return reader_.Get(key, fallback);
   }
   void ReportDefaults() const {
-    if (defaults_.empty()) return;
     std::string list;
-    for (const std::string& d : defaults_) list += (list.empty() ? "" : ", ") + d;
-    ROS_INFO("[msf] not given, defaults used: %s", list.c_str());
+    for (const std::string& d : reader_.Defaults()) list += (list.empty() ? "" : ", ") + d;
+    if (!list.empty()) ROS_INFO("[msf] not given, defaults used: %s", list.c_str());
   }
   void WarnUnread(const std::vector<std::string>& namespaces) const {
-    std::vector<std::string> names;
-    ros::param::getParamNames(names);
-    for (const std::string& ns : namespaces) {
-      const std::string prefix = nh_.resolveName(ns) + "/";
-      for (const std::string& name : names)
-        if (name.rfind(prefix, 0) == 0 && !read_.count(name))
-          ROS_WARN("[msf] parameter %s is not a parameter of this estimator and is ignored (check its spelling)",
-                   name.c_str());
-    }
+    for (const std::string& name : reader_.UnknownKeys(namespaces))
+      ROS_WARN("[msf] parameter %s is not a parameter of this estimator and is ignored (check its spelling)",
+               name.c_str());
   }
 
  private:
-  ros::NodeHandle nh_;
-  std::set<std::string> read_;
-  std::vector<std::string> defaults_;
+  rotors_params::RosParamReader reader_;
 };
 
 /// Throttles a warning on wall time (ROS_WARN_THROTTLE uses ros::Time, which stands still before

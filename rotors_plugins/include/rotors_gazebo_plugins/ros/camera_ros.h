@@ -13,6 +13,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <stereo_msgs/DisparityImage.h>
 
+#include "rotors_core/sdf_params.h"
 #include "rotors_core/rendering/camera_model.h"
 #include "rotors_core/rendering/renderer.h"
 #include "rotors_core/sensors/camera_sensor.h"
@@ -35,8 +36,8 @@ struct CameraRosParams {
 
   /// Reads and checks the plugin's <plugin> element; throws SimError naming a bad or unknown one.
   /// `extra_known`: further parameters the calling plugin reads itself.
-  static CameraRosParams Read(const sdf::ElementPtr& sdf, const rotors_sim::sensors::CameraSensor& sensor,
-                              bool depth_plugin, const std::vector<std::string>& extra_known = {});
+  static CameraRosParams Read(rotors_sim::SdfParams& params, const rotors_sim::sensors::CameraSensor& sensor,
+                              bool depth_plugin);
 };
 
 /// K from the intrinsics, P = [K | (-f b, 0, 0)], R = I, no distortion (plumb_bob, zeros).

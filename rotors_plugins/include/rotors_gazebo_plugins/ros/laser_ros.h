@@ -58,11 +58,11 @@ class LaserPlugin : public rotors_sim::SensorPlugin {
   void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) final;
 
  protected:
-  /// The plugin's own parameters (besides the common ones) and its default topic.
-  virtual std::vector<std::string> OwnParams() const { return {}; }
+  /// The plugin's default topic.
   virtual std::string DefaultTopic() const = 0;
-  /// Reads the own parameters and checks the sensor; throws SimError with the problem.
-  virtual void Configure(const sdf::ElementPtr& /*sdf*/) {}
+  /// Reads the plugin's own parameters (besides the common ones) through `params` and checks the
+  /// sensor; throws SimError with the problem. What it does not read is rejected by the loader.
+  virtual void Configure(rotors_sim::SdfParams& /*params*/) {}
   /// Advertises on node_ (topic_).
   virtual void Advertise() = 0;
   virtual void Publish(const RayScan& scan, const ros::Time& stamp) = 0;

@@ -1,4 +1,4 @@
-#include "octree_geom.h"
+#include "physics/octree_geom.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,8 +6,8 @@
 #include <ode/ode.h>
 #include <octomap/OcTree.h>
 
-#include "octree_geom.h"
-#include "ode_handles.h"
+#include "physics/octree_geom.h"
+#include "physics/ode_handles.h"
 #include "rotors_core/error.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"

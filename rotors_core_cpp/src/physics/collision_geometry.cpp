@@ -1,4 +1,4 @@
-#include "collision_geometry.h"
+#include "physics/collision_geometry.h"
 
 #include <sdf/Box.hh>
 #include <sdf/Cylinder.hh>
@@ -7,7 +7,7 @@
 #include <sdf/Plane.hh>
 #include <sdf/Sphere.hh>
 
-#include "octree_geom.h"
+#include "physics/octree_geom.h"
 #include "rotors_core/error.h"
 #include "rotors_core/geometry/uri_resolver.h"
 

@@ -15,8 +15,8 @@
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/plugin.h"
-#include "ode_convert.h"
-#include "ode_handles.h"
+#include "physics/ode_convert.h"
+#include "physics/ode_handles.h"
 
 namespace rotors_sim {
 namespace physics {

@@ -27,11 +27,11 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin_loader.h"
-#include "collision_geometry.h"
+#include "physics/collision_geometry.h"
 #include "sdf_console.h"
-#include "ode_convert.h"
-#include "ode_handles.h"
-#include "pose_math.h"
+#include "physics/ode_convert.h"
+#include "physics/ode_handles.h"
+#include "physics/pose_math.h"
 
 namespace rotors_sim {
 namespace {
@@ -226,7 +226,9 @@ void LoadPlugins(const physics::WorldPtr& world, const physics::ModelPtr& model)
     try {
       std::unique_ptr<ModelPlugin> plugin = PluginLoader::CreateModelPlugin(filename);
       plugin->SetIdentity(name, filename);
+      plugin->SetParams(p);
       plugin->Load(model, p);
+      plugin->AcceptParams();
       model->AddPlugin(std::move(plugin));
     } catch (const std::exception& e) {
       throw SimError("model '" + model->GetName() + "', plugin '" + name + "' (" + filename + "): " + e.what());
@@ -270,7 +272,9 @@ void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model,
         try {
           auto plugin = PluginLoader::CreateSensorPlugin(filename);
           plugin->SetIdentity(name, filename);
+          plugin->SetParams(p);
           plugin->Load(sensor, p);
+          plugin->AcceptParams();
           model->AddSensorPlugin(std::move(plugin));
         } catch (const std::exception& e) {
           throw SimError("model '" + model->GetName() + "', sensor '" + s.Name() + "', plugin '" + name + "' (" +

@@ -1,7 +1,7 @@
 #include "rotors_core/sensors/sensor.h"
 
 #include "rotors_core/physics/link.h"
-#include "pose_math.h"
+#include "physics/pose_math.h"
 
 namespace rotors_sim {
 namespace sensors {

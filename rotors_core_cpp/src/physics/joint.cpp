@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "rotors_core/physics/model.h"
-#include "ode_convert.h"
-#include "ode_handles.h"
-#include "pose_math.h"
+#include "physics/ode_convert.h"
+#include "physics/ode_handles.h"
+#include "physics/pose_math.h"
 
 namespace rotors_sim {
 namespace physics {

@@ -1,5 +1,5 @@
 // Engine-internal: the opaque solver handles of the public API (rotors_core/physics/solver_handles.h)
-// are ODE's objects. Ode() and Handle() convert between the two; nothing outside src/engine does.
+// are ODE's objects. Ode() and Handle() convert between the two; nothing outside the engine (src/) does.
 #pragma once
 
 #include <ode/ode.h>

@@ -5,9 +5,9 @@
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
-#include "ode_convert.h"
-#include "ode_handles.h"
-#include "pose_math.h"
+#include "physics/ode_convert.h"
+#include "physics/ode_handles.h"
+#include "physics/pose_math.h"
 
 namespace rotors_sim {
 namespace physics {
