@@ -226,9 +226,7 @@ void LoadPlugins(const physics::WorldPtr& world, const physics::ModelPtr& model)
     try {
       std::unique_ptr<ModelPlugin> plugin = PluginLoader::CreateModelPlugin(filename);
       plugin->SetIdentity(name, filename);
-      plugin->SetParams(p);
-      plugin->Load(model, p);
-      plugin->AcceptParams();
+      LoadPlugin(*plugin, model, p);
       model->AddPlugin(std::move(plugin));
     } catch (const std::exception& e) {
       throw SimError("model '" + model->GetName() + "', plugin '" + name + "' (" + filename + "): " + e.what());
@@ -272,9 +270,7 @@ void LoadSensors(const physics::WorldPtr& world, const physics::ModelPtr& model,
         try {
           auto plugin = PluginLoader::CreateSensorPlugin(filename);
           plugin->SetIdentity(name, filename);
-          plugin->SetParams(p);
-          plugin->Load(sensor, p);
-          plugin->AcceptParams();
+          LoadPlugin(*plugin, sensor, p);
           model->AddSensorPlugin(std::move(plugin));
         } catch (const std::exception& e) {
           throw SimError("model '" + model->GetName() + "', sensor '" + s.Name() + "', plugin '" + name + "' (" +

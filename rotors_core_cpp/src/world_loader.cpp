@@ -116,9 +116,7 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
         try {
           auto plugin = PluginLoader::CreateWorldPlugin(filename);
           plugin->SetIdentity(p->Get<std::string>("name"), filename);
-          plugin->SetParams(p);
-          plugin->Load(world, p);
-          plugin->AcceptParams();
+          LoadPlugin(*plugin, world, p);
           world->AddPlugin(std::move(plugin));
         } catch (const std::exception& e) {
           throw SimError("world '" + source + "', plugin '" + p->Get<std::string>("name") + "' (" + filename +

@@ -53,6 +53,15 @@ class SensorPlugin : public PluginBase {
   virtual void Load(sensors::SensorPtr sensor, sdf::ElementPtr sdf) = 0;
 };
 
+/// Loads `plugin` into `target` (a model, world or sensor) as the loader does: its parameters
+/// through Params(), then every parameter it did not read refused (SimError naming it).
+template <typename PluginT, typename TargetT>
+void LoadPlugin(PluginT& plugin, const TargetT& target, const sdf::ElementPtr& sdf) {
+  plugin.SetParams(sdf);
+  plugin.Load(target, sdf);
+  plugin.AcceptParams();
+}
+
 }  // namespace rotors_sim
 
 #define RSIM_REGISTER_SENSOR_PLUGIN(classname)                                                                \
