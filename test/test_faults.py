@@ -207,3 +207,39 @@ def test_pause_for_10_s_and_resume(ros: RosGraph):
           f"{r['worst_after_resume'] * 1000:.1f} mm")
     assert r["clock_advanced_while_paused"] == 0.0 and r["moved_while_paused"] == 0.0
     assert r["worst_after_resume"] < 0.01
+
+
+def test_a_controller_stopped_as_in_a_debugger_never_freezes_the_simulator(ros: RosGraph):
+    # lockstep: SIGSTOP the controller (a debugger's breakpoint). Its node still accepts connections
+    # but answers nothing; the simulator pings it from a worker thread with a deadline, so services
+    # keep answering at once, the participant is declared gone, and SIGCONT resumes the flight
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=1")
+    try:
+        wait_sim_time(ros, 8.0)
+        r = client(ros, """
+            from gazebo_msgs.srv import GetModelState
+            model_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
+            wait_clock(8.0)
+            pid = node_pid('/firefly/lee_position_controller_node')
+            os.kill(pid, signal.SIGSTOP)
+            t_stop = state['clock']
+            slowest, t_end = 0.0, time.monotonic() + 8.0
+            while time.monotonic() < t_end:
+                t0 = time.monotonic()
+                assert model_state(model_name='firefly').success
+                slowest = max(slowest, time.monotonic() - t0)
+                time.sleep(0.05)
+            result['slowest_service_call_s'] = slowest
+            result['clock_while_stopped'] = state['clock'] - t_stop
+            os.kill(pid, signal.SIGCONT)
+            result['resumed_to'] = wait_clock(t_stop + 2.0, limit_s=60) - t_stop
+        """)
+    finally:
+        stop_launch(proc)
+    log = Path(proc.log_path).read_text()
+    print(r)
+    assert r["slowest_service_call_s"] < 0.5  # the simulation thread never waited on the stopped node
+    assert r["clock_while_stopped"] < 0.05  # lockstep held the clock meanwhile
+    assert "lockstep: /firefly/command/motor_speed went away" in log and "(ping failed)" in log
+    assert "/firefly/command/motor_speed is back" in log
+    assert r["resumed_to"] >= 2.0
