@@ -102,3 +102,50 @@ def test_the_hovering_example_repeats_bit_for_bit_beside_a_cpu_hog(ros: RosGraph
         z = [(t / 1e9, struct.unpack_from("<d", bytes(raw), len(bytes(raw)) - 40)[0]) for conn, t, raw in
              r.messages() if conn.topic == "firefly/ground_truth/pose"]
     assert max(h for t, h in z if t < 4.9) < 0.2 and max(h for t, h in z if 6.0 < t < 7.5) > 0.5
+
+
+def test_the_python_module_flies_the_hovering_example_bit_for_bit_as_ros_in_lockstep(ros: RosGraph):
+    # the same seed, world, vehicle, controller yaml and waypoint timing, once as ROS nodes in
+    # lockstep and once in one Python loop (rotors_sim, no ROS master): the plugins' IMU, odometry
+    # and rotor-speed messages are the same bytes, every motor command the same numbers, and the
+    # ground-truth positions the same bits (the bag plugin writes its own PoseStamped of the link
+    # pose, whose quaternion it converts itself: compared to 1e-15, not bitwise)
+    import struct
+
+    from mav_msgs.msg import Actuators
+    from rotors_sim.examples import hovering_example
+
+    bag = fly_hovering_example(ros, "ros_side", False)
+    until_s = 7.5
+    same_bytes = ("firefly/imu", "firefly/odometry_sensor1/odometry", "firefly/motor_speed")
+    recorded = {topic: [] for topic in (*same_bytes, "firefly/ground_truth/pose", "firefly/command/motor_speed")}
+    with Reader(bag) as r:
+        for conn, t, raw in r.messages():
+            if conn.topic in recorded and 0 < t <= until_s * 1e9:
+                recorded[conn.topic].append((t / 1e9, bytes(raw)))
+    flight = hovering_example(random_seed=42, duration_s=until_s,
+                              record=tuple("/" + t for t in (*same_bytes, "firefly/ground_truth/pose")))
+
+    def ours(topic):
+        return [payload for name, t, payload in flight.messages if name == "/" + topic]
+
+    for topic in same_bytes:
+        mine, theirs = ours(topic), [payload for t, payload in recorded[topic]]
+        print(f"{topic}: ROS {len(theirs)} messages, Python {len(mine)}")
+        assert len(theirs) > 500 and len(mine) == len(theirs)
+        diff = [i for i, (a, b) in enumerate(zip(mine, theirs)) if a != b]
+        assert not diff, f"{topic}: {len(diff)} of {len(theirs)} messages differ, first at index {diff[0]}"
+    mine, theirs = ours("firefly/ground_truth/pose"), [p[-56:] for t, p in recorded["firefly/ground_truth/pose"]]
+    assert len(mine) == len(theirs) > 500
+    assert all(a[:24] == b[:24] for a, b in zip(mine, theirs))  # positions: the same bits
+    worst_q = max(max(abs(x - y) for x, y in zip(struct.unpack("<4d", a[24:]), struct.unpack("<4d", b[24:])))
+                  for a, b in zip(mine, theirs))
+    assert worst_q < 1e-15
+    theirs = [Actuators().deserialize(p).angular_velocities for t, p in recorded["firefly/command/motor_speed"]]
+    mine = [tuple(speeds) for t, speeds in flight.commands if t <= until_s]
+    print(f"motor commands: ROS {len(theirs)}, Python {len(mine)}; ground-truth quaternions within {worst_q:.1e}; "
+          f"z at {until_s} s: {flight.position_W[-1][2]:.6f} m")
+    assert len(theirs) > 500 and abs(len(mine) - len(theirs)) <= 1
+    diff = [i for i, (a, b) in enumerate(zip(mine, theirs)) if a != b]
+    assert not diff, f"{len(diff)} motor commands differ, first at index {diff[0]}"
+    assert max(max(s) for s in mine) > 400  # it flew

@@ -94,6 +94,19 @@ void Model::SetWorldPose(const Pose3d& X_WM) {
   for (const auto& link : links_) link->InvalidatePose();
 }
 
+void Model::SetWorldTwist(const Vector3d& v_W, const Vector3d& omega_W) {
+  const Vector3d p_WM = WorldPose().Pos();
+  for (const auto& b : bodies_) {
+    const dReal* p = dBodyGetPosition(Ode(b.body));
+    // rigid motion: v_body = v + omega x r, r from the model origin to the body
+    const Vector3d v_body_W = v_W + omega_W.Cross(Vector3d(p[0], p[1], p[2]) - p_WM);
+    dBodySetLinearVel(Ode(b.body), v_body_W.X(), v_body_W.Y(), v_body_W.Z());
+    dBodySetAngularVel(Ode(b.body), omega_W.X(), omega_W.Y(), omega_W.Z());
+    dBodyEnable(Ode(b.body));
+  }
+  for (auto& b : bodies_) b.before.dt_s = 0.0;  // no acceleration until the next step
+}
+
 Model::GeomInfo* Model::AddGeom(GeomHandle* geom, Link* link, const std::string& scoped_name,
                                 const SurfaceParams& surface) {
   auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name, surface, nullptr});

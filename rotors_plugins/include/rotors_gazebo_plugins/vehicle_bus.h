@@ -26,6 +26,7 @@ struct MotorFault {
 
 struct VehicleBus {
   std::vector<double> motor_command_rad_s;                    ///< empty until the first valid command
+  uint64_t motor_command_count = 0;                           ///< valid commands so far (any source)
   std::vector<double> rotor_speed_rad_s;                      ///< signed real speed per motor number
   int rotor_count = 0;                                        ///< number of motor models registered
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
@@ -37,6 +38,10 @@ struct VehicleBus {
   /// worlds in one process with the same vehicle name never share motor commands.
   static std::shared_ptr<VehicleBus> For(rotors_sim::physics::World& world, const std::string& robot_namespace);
   void RegisterRotor(int motor_number);
+  /// The one way in for motor commands (the controller interface's ROS topics, the Python module):
+  /// "" and the command in force, or the reason it was refused (wrong length, NaN, inf, negative),
+  /// the last valid command staying in force.
+  std::string SetMotorCommand(const std::vector<double>& speeds_rad_s);
   /// The factor motor `motor_number`'s command is scaled by at sim time t_s.
   double SpeedFactor(int motor_number, double t_s) const {
     if (motor_number >= static_cast<int>(motor_faults.size())) return 1.0;

@@ -7,4 +7,12 @@ std::shared_ptr<ros::NodeHandle> MakeNode(const std::string& robot_namespace) {
   return std::make_shared<ros::NodeHandle>("/" + robot_namespace);
 }
 
+std::string ResolveTopic(const std::string& robot_namespace, const std::string& topic) {
+  if (!topic.empty() && topic[0] == '/') return topic;
+  std::string ns = robot_namespace;
+  while (!ns.empty() && ns.back() == '/') ns.pop_back();
+  while (!ns.empty() && ns.front() == '/') ns.erase(0, 1);
+  return ns.empty() ? "/" + topic : "/" + ns + "/" + topic;
+}
+
 }  // namespace rotors_gazebo_plugins

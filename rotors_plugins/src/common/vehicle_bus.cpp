@@ -1,7 +1,9 @@
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
+#include <cmath>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include "rotors_core/physics/world.h"
 
@@ -31,6 +33,23 @@ void VehicleBus::RegisterRotor(int motor_number) {
   if (motor_number + 1 > rotor_count) rotor_count = motor_number + 1;
   rotor_speed_rad_s.resize(rotor_count, 0.0);
   motor_faults.resize(rotor_count);
+}
+
+std::string VehicleBus::SetMotorCommand(const std::vector<double>& speeds_rad_s) {
+  std::ostringstream why;
+  if (static_cast<int>(speeds_rad_s.size()) != rotor_count) {
+    why << "has " << speeds_rad_s.size() << " angular_velocities, the vehicle has " << rotor_count << " rotors";
+    return why.str();
+  }
+  for (size_t i = 0; i < speeds_rad_s.size(); ++i) {
+    if (!std::isfinite(speeds_rad_s[i]) || speeds_rad_s[i] < 0.0) {
+      why << "angular_velocities[" << i << "] = " << speeds_rad_s[i] << " must be a finite speed >= 0 rad/s";
+      return why.str();
+    }
+  }
+  motor_command_rad_s = speeds_rad_s;
+  ++motor_command_count;
+  return {};
 }
 
 }  // namespace rotors_gazebo_plugins

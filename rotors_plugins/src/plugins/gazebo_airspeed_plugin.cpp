@@ -42,9 +42,8 @@ class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
     limiter_ = RateLimiter(rate_hz);
     msg_.header.frame_id = link_name;
     node_ = MakeNode(ns);
-    if (!node_) return;
-    pub_ = rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::Vector3Stamped>(topic, 10),
-                                         rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+    pub_ = Advertise<geometry_msgs::Vector3Stamped>(node_, ns, topic, *model->GetWorldRaw(), 10);
+    if (!pub_) return;  // neither ROS nor in-process taps: nobody to publish to
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 

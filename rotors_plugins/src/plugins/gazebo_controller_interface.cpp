@@ -23,22 +23,6 @@
 
 namespace rotors_gazebo_plugins {
 
-/// Empty if `speeds` is a valid command for `rotor_count` rotors, else the reason.
-std::string CheckMotorCommand(const std::vector<double>& speeds, int rotor_count) {
-  std::ostringstream why;
-  if (static_cast<int>(speeds.size()) != rotor_count) {
-    why << "has " << speeds.size() << " angular_velocities, the vehicle has " << rotor_count << " rotors";
-    return why.str();
-  }
-  for (size_t i = 0; i < speeds.size(); ++i) {
-    if (!std::isfinite(speeds[i]) || speeds[i] < 0.0) {
-      why << "angular_velocities[" << i << "] = " << speeds[i] << " must be a finite speed >= 0 rad/s";
-      return why.str();
-    }
-  }
-  return {};
-}
-
 class GazeboControllerInterface : public rotors_sim::ModelPlugin {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
@@ -65,13 +49,14 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
 
   void Reset() override {
     bus_->motor_command_rad_s.clear();
+    seen_commands_ = bus_->motor_command_count;
     last_command_s_ = now_s_ = 0.0;
     timed_out_ = false;
   }
 
  private:
   void OnCommand(const mav_msgs::ActuatorsConstPtr& msg) {
-    const std::string why = CheckMotorCommand(msg->angular_velocities, bus_->rotor_count);
+    const std::string why = bus_->SetMotorCommand(msg->angular_velocities);
     if (!why.empty()) {
       // at most one line per second of wall time per kind of fault (the reason without its numbers),
       // counting the rejections it did not show
@@ -93,15 +78,19 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
       }
       return;
     }
-    bus_->motor_command_rad_s = msg->angular_velocities;
-    last_command_s_ = now_s_;
-    if (timed_out_) {
-      ROS_INFO("[controller_interface] model '%s': motor commands again at t = %.3f s", model_name_.c_str(), now_s_);
-      timed_out_ = false;
-    }
   }
 
+  /// Commands come from ROS (OnCommand) or in process (the Python module), both through the bus:
+  /// a new one shows as a changed VehicleBus::motor_command_count.
   void CheckCommandAge(double t_s) {
+    if (bus_->motor_command_count != seen_commands_) {
+      seen_commands_ = bus_->motor_command_count;
+      last_command_s_ = now_s_;
+      if (timed_out_) {
+        ROS_INFO("[controller_interface] model '%s': motor commands again at t = %.3f s", model_name_.c_str(), now_s_);
+        timed_out_ = false;
+      }
+    }
     if (t_s < now_s_) last_command_s_ = t_s;  // the clock went back (reset_simulation)
     now_s_ = t_s;
     if (timed_out_ || bus_->motor_command_rad_s.empty()) return;
@@ -125,6 +114,7 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
   std::map<std::string, Throttle> throttles_;
   double command_timeout_s_ = 2.0;
   double now_s_ = 0.0, last_command_s_ = 0.0;  ///< sim time [s]
+  uint64_t seen_commands_ = 0;                 ///< VehicleBus::motor_command_count at the last step
   bool timed_out_ = false;
   rotors_sim::event::ConnectionPtr update_;
 };

@@ -49,13 +49,11 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     fix_.position_covariance[0] = fix_.position_covariance[4] = p.hor_pos_std_dev_m * p.hor_pos_std_dev_m;
     fix_.position_covariance[8] = p.ver_pos_std_dev_m * p.ver_pos_std_dev_m;
     node_ = MakeNode(ns);
-    if (!node_) return;
     gps_pub_ =
-        rotors_sim::ListenedPublisher(node_->advertise<sensor_msgs::NavSatFix>(gps_topic, 10),
-                                      rotors_sim::PublishCounts::Of(*sensor->ParentLink()->GetModel()->GetWorldRaw()));
-    ground_speed_pub_ =
-        rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::TwistStamped>(ground_speed_topic, 10),
-                                      rotors_sim::PublishCounts::Of(*sensor->ParentLink()->GetModel()->GetWorldRaw()));
+        Advertise<sensor_msgs::NavSatFix>(node_, ns, gps_topic, *sensor->ParentLink()->GetModel()->GetWorldRaw(), 10);
+    ground_speed_pub_ = Advertise<geometry_msgs::TwistStamped>(node_, ns, ground_speed_topic,
+                                                               *sensor->ParentLink()->GetModel()->GetWorldRaw(), 10);
+    if (!gps_pub_) return;  // neither ROS nor in-process taps: nobody to publish to
     connection_ = sensor->ConnectUpdated([this] { OnUpdate(); });
   }
 

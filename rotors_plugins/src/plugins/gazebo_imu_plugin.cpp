@@ -59,12 +59,10 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
       msg_.linear_acceleration_covariance[i * 4] = p.accelerometer_noise_density * p.accelerometer_noise_density;
     }
     node_ = MakeNode(ns);
+    pub_ = Advertise<sensor_msgs::Imu>(node_, ns, topic, *model->GetWorldRaw(), 10);
+    if (!bias_topic.empty())
+      bias_pub_ = Advertise<rotors_comm::ImuBias>(node_, ns, bias_topic, *model->GetWorldRaw(), 10);
     if (node_) {
-      pub_ = rotors_sim::ListenedPublisher(node_->advertise<sensor_msgs::Imu>(topic, 10),
-                                           rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
-      if (!bias_topic.empty())
-        bias_pub_ = rotors_sim::ListenedPublisher(node_->advertise<rotors_comm::ImuBias>(bias_topic, 10),
-                                                  rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
       ROS_DEBUG("[imu] %s/%s seed %lu", ns.c_str(), topic.c_str(), static_cast<unsigned long>(seed_));
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
@@ -80,7 +78,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     const auto f_I = X_WI.Rot().RotateVectorReverse(link_->WorldLinearAccel() - world_->Gravity());
     const auto w_I = link_->RelativeAngularVel();
     const ImuSample m = noise_->Corrupt({{w_I.X(), w_I.Y(), w_I.Z()}, {f_I.X(), f_I.Y(), f_I.Z()}}, dt);
-    if (!node_) return;
+    if (!pub_) return;
     msg_.header.stamp = ToRos(world_->SimTime());
     msg_.orientation = rotors_sim::QuaternionMsg(X_WI.Rot());
     msg_.angular_velocity = ToVector3Msg(m.angular_velocity_I);

@@ -37,9 +37,8 @@ class GazeboMagnetometerPlugin : public rotors_sim::ModelPlugin {
     msg_.header.frame_id = link_name;
     for (int i = 0; i < 3; ++i) msg_.magnetic_field_covariance[i * 4] = p.noise_normal_T[i] * p.noise_normal_T[i];
     node_ = MakeNode(ns);
-    if (!node_) return;
-    pub_ = rotors_sim::ListenedPublisher(node_->advertise<sensor_msgs::MagneticField>(topic, 10),
-                                         rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+    pub_ = Advertise<sensor_msgs::MagneticField>(node_, ns, topic, *model->GetWorldRaw(), 10);
+    if (!pub_) return;  // neither ROS nor in-process taps: nobody to publish to
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 

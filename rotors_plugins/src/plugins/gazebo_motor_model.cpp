@@ -74,9 +74,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     bus_->RegisterRotor(motor_number_);
 
     node_ = MakeNode(namespace_);
-    if (node_)
-      speed_pub_ = rotors_sim::ListenedPublisher(node_->advertise<std_msgs::Float32>(speed_topic, 1),
-                                                 rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+    speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 1);
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
         [this](const rotors_sim::common::UpdateInfo& info) { OnUpdate(info.simTime.Double()); });
   }
@@ -106,7 +104,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     // every published value use the real speed.
     joint_->SetVelocity(0, rotor_->SignedOmega() / slowdown_);
 
-    if (node_ && speed_pub_.getNumSubscribers() > 0) {
+    if (speed_pub_ && speed_pub_.getNumSubscribers() > 0) {
       std_msgs::Float32 msg;
       msg.data = static_cast<float>(rotor_->SignedOmega());
       speed_pub_.publish(msg);

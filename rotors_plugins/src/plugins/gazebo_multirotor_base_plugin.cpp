@@ -37,12 +37,10 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
     node_ = MakeNode(namespace_);
+    pub_ = Advertise<mav_msgs::Actuators>(node_, namespace_, topic, *model->GetWorldRaw(), 1);
+    failure_pub_ =
+        Advertise<rotors_comm::MotorFailure>(node_, namespace_, "motor_failure", *model->GetWorldRaw(), 10, true);
     if (node_) {
-      pub_ = rotors_sim::ListenedPublisher(node_->advertise<mav_msgs::Actuators>(topic, 1),
-                                           rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
-      failure_pub_ =
-          rotors_sim::ListenedPublisher(node_->advertise<rotors_comm::MotorFailure>("motor_failure", 10, true),
-                                        rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
       failure_srv_ = node_->advertiseService("set_motor_failure", &GazeboMultirotorBasePlugin::OnSetFailure, this);
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
@@ -83,7 +81,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
   }
 
   void OnUpdate() {
-    if (!node_) return;
+    if (!pub_) return;
     const double now_s = world_->SimTime().Double();
     for (auto it = pending_.begin(); it != pending_.end();) {
       if (now_s < it->announce_at_s) {

@@ -88,19 +88,13 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     parent_frame_ = parent_frame;
 
     node_ = MakeNode(ns);
+    pose_pub_ = Advertise<geometry_msgs::Pose>(node_, ns, pose_topic, *model->GetWorldRaw(), 10);
+    pose_cov_pub_ =
+        Advertise<geometry_msgs::PoseWithCovarianceStamped>(node_, ns, pose_cov_topic, *model->GetWorldRaw(), 10);
+    position_pub_ = Advertise<geometry_msgs::PointStamped>(node_, ns, position_topic, *model->GetWorldRaw(), 10);
+    transform_pub_ = Advertise<geometry_msgs::TransformStamped>(node_, ns, transform_topic, *model->GetWorldRaw(), 10);
+    odometry_pub_ = Advertise<nav_msgs::Odometry>(node_, ns, odometry_topic, *model->GetWorldRaw(), 10);
     if (node_) {
-      pose_pub_ = rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::Pose>(pose_topic, 10),
-                                                rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
-      pose_cov_pub_ =
-          rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::PoseWithCovarianceStamped>(pose_cov_topic, 10),
-                                        rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
-      position_pub_ = rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::PointStamped>(position_topic, 10),
-                                                    rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
-      transform_pub_ =
-          rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::TransformStamped>(transform_topic, 10),
-                                        rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
-      odometry_pub_ = rotors_sim::ListenedPublisher(node_->advertise<nav_msgs::Odometry>(odometry_topic, 10),
-                                                    rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
       if (broadcast_tf_) tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
@@ -139,7 +133,7 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
   }
 
   void Publish(const Pending& pending) {
-    if (!node_) return;
+    if (!odometry_pub_) return;  // neither ROS nor in-process taps
     const OdometryMeasurement m = noise_->Corrupt(pending.truth);
     geometry_msgs::Pose pose;
     pose.position.x = m.p_W.x();

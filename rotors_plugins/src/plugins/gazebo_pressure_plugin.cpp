@@ -33,9 +33,8 @@ class GazeboPressurePlugin : public rotors_sim::ModelPlugin {
     msg_.header.frame_id = link_name;
     msg_.variance = p.pressure_variance_pa2;
     node_ = MakeNode(ns);
-    if (!node_) return;
-    pub_ = rotors_sim::ListenedPublisher(node_->advertise<sensor_msgs::FluidPressure>(topic, 10),
-                                         rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
+    pub_ = Advertise<sensor_msgs::FluidPressure>(node_, ns, topic, *model->GetWorldRaw(), 10);
+    if (!pub_) return;  // neither ROS nor in-process taps: nobody to publish to
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 

@@ -77,11 +77,9 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
     node_ = MakeNode(namespace_);
+    force_pub_ = Advertise<geometry_msgs::WrenchStamped>(node_, namespace_, force_topic, *model->GetWorldRaw(), 10);
+    speed_pub_ = Advertise<rotors_comm::WindSpeed>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 10);
     if (node_) {
-      force_pub_ = rotors_sim::ListenedPublisher(node_->advertise<geometry_msgs::WrenchStamped>(force_topic, 10),
-                                                 rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
-      speed_pub_ = rotors_sim::ListenedPublisher(node_->advertise<rotors_comm::WindSpeed>(speed_topic, 10),
-                                                 rotors_sim::PublishCounts::Of(*model->GetWorldRaw()));
       if (!speed_sub_topic.empty())
         speed_sub_ = node_->subscribe(speed_sub_topic, 1, &GazeboWindPlugin::OnWindSpeed, this);
     }
@@ -119,7 +117,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     bus_->wind_velocity_W = s.velocity_W;
     const rotors_sim::physics::Vector3d force_W(s.force_W.x(), s.force_W.y(), s.force_W.z());
     if (force_W != rotors_sim::physics::Vector3d::Zero) link_->AddForceAtRelativePosition(force_W, offset_L_);
-    if (!node_) return;
+    if (!force_pub_) return;
     const ros::Time stamp = ToRos(info.simTime);
     geometry_msgs::WrenchStamped wrench;
     wrench.header.stamp = stamp;

@@ -42,6 +42,8 @@ class Model {
   Vector3d WorldAngularVel() const;
   /// Moves the model rigidly to X_WM and zeroes every velocity (reset and teleport).
   void SetWorldPose(const Pose3d& X_WM);
+  /// Moves the model as one rigid body: each body's velocity v_W + omega_W x (p_body - p_model).
+  void SetWorldTwist(const Vector3d& v_W, const Vector3d& omega_W);
   const Pose3d& InitialPose() const { return X_WM_initial_; }
 
   // --- Engine side ---

@@ -11,7 +11,9 @@
 // the simulation runs fast: what they receive, and when, would depend on thread timing.
 //
 // Every publish() is counted in the world's PublishCounts, heard or not: lockstep tells from the
-// count whether a step published a participant's input.
+// count whether a step published a participant's input. With the world's MessageTaps enabled (the
+// Python module), publish() also keeps the message for in-process readers; such a publisher may
+// have no ROS publisher at all (ROS not initialised).
 #pragma once
 
 #include <string>
@@ -22,6 +24,7 @@
 #include <ros/ros.h>
 #include <ros/topic_manager.h>
 
+#include "rotors_core/ros/message_taps.h"
 #include "rotors_core/ros/publish_counts.h"
 
 namespace rotors_sim {
@@ -50,32 +53,55 @@ class ListenedPublisher {
       : publisher_(publisher),
         cache_(publisher ? publisher.getTopic() : std::string()),
         published_(publisher ? counts.Register(publisher.getTopic()) : nullptr) {}
+  /// `publisher` may be empty (no ROS); `topic` is the resolved name; `tap` may be nullptr.
+  ListenedPublisher(const ros::Publisher& publisher, const std::string& topic, PublishCounts& counts,
+                    TappedMessage* tap)
+      : publisher_(publisher),
+        cache_(publisher ? topic : std::string()),
+        published_(counts.Register(topic)),
+        tap_(tap),
+        topic_(topic) {}
 
+  /// ROS subscribers, plus one for an in-process tap.
   uint32_t getNumSubscribers() {
     const ros::PublicationPtr& p = cache_.Get();
-    return p ? p->getNumSubscribers() : 0;
+    return (p ? p->getNumSubscribers() : 0) + (tap_ ? 1 : 0);
   }
   template <class M>
   void publish(const M& message) {
     if (published_) ++*published_;
-    if (Listened()) publisher_.publish(boost::make_shared<M>(message));
+    const bool listened = Listened();
+    if (!listened && !tap_) return;
+    auto shared = boost::make_shared<M>(message);
+    if (tap_) tap_->Put(boost::shared_ptr<const M>(shared));
+    if (listened) publisher_.publish(shared);
   }
   template <class M>
   void publish(const boost::shared_ptr<M>& message) {
     if (published_) ++*published_;
+    if (tap_) tap_->Put(boost::shared_ptr<const M>(message));
     if (Listened()) publisher_.publish(message);
   }
-  std::string getTopic() const { return publisher_.getTopic(); }
+  std::string getTopic() const { return publisher_ ? publisher_.getTopic() : topic_; }
 
-  explicit operator bool() const { return static_cast<bool>(publisher_); }
+  /// A ROS publisher or a tap: publish() reaches somebody (now or once they subscribe).
+  explicit operator bool() const { return static_cast<bool>(publisher_) || tap_ != nullptr; }
+  /// Somebody takes the message now: a ROS subscriber, a latch or an in-process tap.
+  bool Wanted() { return tap_ != nullptr || (publisher_ && Listened()); }
 
  private:
   /// True when publish() must go through roscpp.
-  bool Listened() { return publisher_.isLatched() || getNumSubscribers() > 0; }
+  bool Listened() {
+    if (!publisher_) return false;
+    const ros::PublicationPtr& p = cache_.Get();
+    return publisher_.isLatched() || (p && p->getNumSubscribers() > 0);
+  }
 
   ros::Publisher publisher_;
   PublicationCache cache_;
   uint64_t* published_ = nullptr;  ///< this topic's count in the world's PublishCounts
+  TappedMessage* tap_ = nullptr;   ///< the world's MessageTaps slot of this topic (taps enabled)
+  std::string topic_;
 };
 
 }  // namespace rotors_sim

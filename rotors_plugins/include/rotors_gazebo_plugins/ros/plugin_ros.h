@@ -1,5 +1,6 @@
-// ROS access for plugins. Plugins also run without ROS (engine benchmarks and tests): then
-// Node() is null and they skip publishing.
+// ROS access for plugins. Plugins also run without ROS (engine benchmarks, tests, the Python
+// module): then MakeNode() is null, and Advertise() gives a publisher that only feeds the world's
+// MessageTaps when they are enabled (Python reads them), or nothing at all (publishing is skipped).
 #pragma once
 
 #include <memory>
@@ -10,11 +11,31 @@
 #include <ros/ros.h>
 
 #include "rotors_core/common.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/ros/listened_publisher.h"
 
 namespace rotors_gazebo_plugins {
 
 /// A node handle in /<robot_namespace>, or nullptr when ROS is not initialised in this process.
 std::shared_ptr<ros::NodeHandle> MakeNode(const std::string& robot_namespace);
+
+/// `topic` resolved as a node handle in /<robot_namespace> resolves it ("/ns/topic", or `topic` if absolute).
+std::string ResolveTopic(const std::string& robot_namespace, const std::string& topic);
+
+/// A publisher of `topic` (relative to the node's namespace) on ROS when `node` is not null, and
+/// into the world's MessageTaps when they are enabled. Empty (false) when neither.
+template <class M>
+rotors_sim::ListenedPublisher Advertise(const std::shared_ptr<ros::NodeHandle>& node,
+                                        const std::string& robot_namespace, const std::string& topic,
+                                        rotors_sim::physics::World& world, uint32_t queue_size = 10,
+                                        bool latch = false) {
+  const std::string resolved = node ? node->resolveName(topic) : ResolveTopic(robot_namespace, topic);
+  rotors_sim::TappedMessage* tap = rotors_sim::MessageTaps::Of(world).Slot(resolved);
+  if (!node && !tap) return {};
+  ros::Publisher publisher;
+  if (node) publisher = node->advertise<M>(topic, queue_size, latch);
+  return rotors_sim::ListenedPublisher(publisher, resolved, rotors_sim::PublishCounts::Of(world), tap);
+}
 
 inline ros::Time ToRos(const rotors_sim::common::Time& t) {
   ros::Time r;

@@ -1,0 +1,83 @@
+// Loading controller and vehicle parameters (the layout of lee_controller_<mav>.yaml and <mav>.yaml)
+// through any reader with the project's parameter policy: rotors_params::RosParamReader in the
+// ROS nodes, rotors_params::MapParamReader in the Python module. No ROS here.
+//   mass, inertia/{xx, yy, zz} (off-diagonal terms optional, 0), rotor_configuration/<i>/{angle,
+//   arm_length, rotor_force_constant, rotor_moment_constant, direction}, optional max_rot_velocity
+//   and gravity (announced when absent: 9.81, RotorS' value); attitude_gain and angular_rate_gain
+//   {x, y, z}; position_gain, velocity_gain and the optional max_tilt_angle. Each returns "" or the
+//   reason naming the parameter.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "rotors_control/attitude_control_law.h"
+#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/vehicle_parameters.h"
+
+namespace rotors_control {
+
+namespace parameter_hints {
+constexpr char kVehicle[] = "load the vehicle yaml, resource/<mav>.yaml";
+constexpr char kGain[] = "load the controller yaml, e.g. resource/lee_controller_<mav>.yaml";
+}  // namespace parameter_hints
+
+template <class Reader>
+std::string LoadVehicleParameters(Reader& reader, VehicleParameters* v) {
+  std::string why = reader.Require("mass", &v->mass_kg, parameter_hints::kVehicle);
+  if (!why.empty()) return why;
+  v->gravity_m_s2 = VehicleParameters{}.gravity_m_s2;  // the one default, whatever *v held
+  why = reader.Optional("gravity", &v->gravity_m_s2, "RotorS' value; the world's may differ, as in the book's example");
+  if (!why.empty()) return why;
+  const char* keys[3][3] = {{"inertia/xx", "inertia/xy", "inertia/xz"},
+                            {"inertia/xy", "inertia/yy", "inertia/yz"},
+                            {"inertia/xz", "inertia/yz", "inertia/zz"}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double value = 0.0;
+      why = i == j ? reader.Require(keys[i][j], &value, parameter_hints::kVehicle)
+                   : reader.Optional(keys[i][j], &value, "a principal-axes body");
+      if (!why.empty()) return why;
+      v->inertia_kg_m2(i, j) = value;
+    }
+  v->rotors.clear();
+  for (int i = 0; reader.Has("rotor_configuration/" + std::to_string(i)); ++i) {
+    const std::string base = "rotor_configuration/" + std::to_string(i) + "/";
+    Rotor r;
+    for (const auto& field : {std::make_pair("angle", &r.angle_rad), std::make_pair("arm_length", &r.arm_length_m),
+                              std::make_pair("rotor_force_constant", &r.rotor_force_constant),
+                              std::make_pair("rotor_moment_constant", &r.rotor_moment_constant)}) {
+      why = reader.Require(base + field.first, field.second, parameter_hints::kVehicle);
+      if (!why.empty()) return why;
+    }
+    double direction = 0.0;
+    why = reader.Require(base + "direction", &direction, parameter_hints::kVehicle);
+    if (!why.empty()) return why;
+    r.direction = static_cast<int>(std::lround(direction));
+    why = reader.Optional(base + "max_rot_velocity", &r.max_rot_velocity_rad_s, "rotor speed not limited");
+    if (!why.empty()) return why;
+    v->rotors.push_back(r);
+  }
+  if (v->rotors.empty())
+    return "missing parameter " + reader.Resolve("rotor_configuration") + " (" + parameter_hints::kVehicle + ")";
+  return v->Validate();
+}
+
+template <class Reader>
+std::string LoadAttitudeGains(Reader& reader, AttitudeGains* gains) {
+  std::string why = reader.RequireVector("attitude_gain", &gains->attitude_gain, parameter_hints::kGain);
+  return why.empty() ? reader.RequireVector("angular_rate_gain", &gains->angular_rate_gain, parameter_hints::kGain)
+                     : why;
+}
+
+template <class Reader>
+std::string LoadLeeParameters(Reader& reader, LeePositionControllerParameters* p) {
+  std::string why = reader.RequireVector("position_gain", &p->position_gain, parameter_hints::kGain);
+  if (why.empty()) why = reader.RequireVector("velocity_gain", &p->velocity_gain, parameter_hints::kGain);
+  if (why.empty()) why = LoadAttitudeGains(reader, &p->attitude);
+  if (why.empty()) why = LoadVehicleParameters(reader, &p->vehicle);
+  if (why.empty()) why = reader.Optional("max_tilt_angle", &p->max_tilt_angle_rad, "no tilt limit");
+  return why.empty() ? p->Validate() : why;
+}
+
+}  // namespace rotors_control

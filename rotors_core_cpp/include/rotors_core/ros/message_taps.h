@@ -1,0 +1,79 @@
+// In-process readers of what plugins publish, without a ROS master (the Python module): when a
+// world's taps are enabled before its models load, every ListenedPublisher of its plugins keeps
+// the last message of its topic here (a shared copy, serialized only when somebody reads it), so
+// that the same plugin code serves ROS subscribers and Python. The taps live in the world.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <boost/shared_ptr.hpp>
+#include <ros/message_traits.h>
+#include <ros/serialization.h>
+
+#include "rotors_core/physics/world.h"
+
+namespace rotors_sim {
+
+/// The last message of one topic.
+struct TappedMessage {
+  std::string datatype;  ///< e.g. "sensor_msgs/Imu"
+  std::string md5sum;
+  uint64_t count = 0;  ///< messages so far
+  boost::shared_ptr<const void> message;
+  std::function<std::string(const void*)> serialize;  ///< ROS wire format of `message`
+
+  /// The message in ROS' wire format ("" before the first one).
+  std::string Serialized() const { return message ? serialize(message.get()) : std::string(); }
+
+  template <class M>
+  void Put(const boost::shared_ptr<const M>& m) {
+    if (!serialize) {
+      datatype = ros::message_traits::DataType<M>::value();
+      md5sum = ros::message_traits::MD5Sum<M>::value();
+      serialize = [](const void* p) {
+        const M& msg = *static_cast<const M*>(p);
+        std::string bytes(ros::serialization::serializationLength(msg), '\0');
+        ros::serialization::OStream stream(reinterpret_cast<uint8_t*>(&bytes[0]), static_cast<uint32_t>(bytes.size()));
+        ros::serialization::serialize(stream, msg);
+        return bytes;
+      };
+    }
+    message = m;
+    ++count;
+  }
+};
+
+class MessageTaps {
+ public:
+  /// The world's taps (created on first use, disabled).
+  static MessageTaps& Of(physics::World& world) {
+    std::shared_ptr<void>& state = world.PluginState("rotors_sim/message_taps");
+    if (!state) state = std::make_shared<MessageTaps>();
+    return *std::static_pointer_cast<MessageTaps>(state);
+  }
+  /// From now on, publishers made for this world keep their messages here.
+  void Enable() { enabled_ = true; }
+  bool Enabled() const { return enabled_; }
+  /// The slot of a resolved topic name, nullptr when the taps are disabled. Valid as long as the world.
+  TappedMessage* Slot(const std::string& topic) { return enabled_ ? &slots_[topic] : nullptr; }
+  const TappedMessage* Find(const std::string& topic) const {
+    auto it = slots_.find(topic);
+    return it == slots_.end() ? nullptr : &it->second;
+  }
+  std::vector<std::string> Topics() const {
+    std::vector<std::string> names;
+    for (const auto& slot : slots_) names.push_back(slot.first);
+    return names;
+  }
+
+ private:
+  bool enabled_ = false;
+  std::map<std::string, TappedMessage> slots_;  // std::map: pointers to its values stay valid
+};
+
+}  // namespace rotors_sim

@@ -1,0 +1,106 @@
+"""One world with one MAV, stepped at the control rate: the part every environment shares.
+
+Actions (both in [-1, 1], symmetric, as learning libraries expect):
+  "motor":    one value per rotor, omega_i = (a_i + 1) / 2 * max_rot_velocity   [rad/s]
+  "attitude": (roll, pitch, yaw rate, thrust): roll, pitch = a * max_tilt [rad], yaw rate =
+              a * max_yaw_rate [rad/s], thrust = (a + 1) * m g [N] (a = 0: hover), flown by the
+              roll-pitch-yawrate-thrust controller of rotors_control with the vehicle's yaml.
+Observations come from the vehicle's odometry sensor (the noisy one the controllers use).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotors_sim.controllers import AttitudeLevelController
+from rotors_sim.world import Odometry, World
+from rotors_sim._engine import SimError
+
+ACTION_TYPES = ("motor", "attitude")
+
+
+def rotate(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """R(q) v for a unit quaternion (x, y, z, w)."""
+    u, w = q_xyzw[:3], q_xyzw[3]
+    return v + 2.0 * np.cross(u, np.cross(u, v) + w * v)
+
+
+@dataclass
+class FlightConfig:
+    mav_name: str = "firefly"
+    action_type: str = "motor"
+    world: str = "basic"
+    physics_hz: float = 500.0  # the world's step is 1 / physics_hz
+    control_hz: float = 100.0
+    sensor_seed: int = 0  # seed of every sensor noise of the vehicle (xacro random_seed)
+    max_tilt_rad: float = 0.6
+    max_yaw_rate_rad_s: float = 2.0
+
+
+class Flight:
+    def __init__(self, config: FlightConfig):
+        if config.action_type not in ACTION_TYPES:
+            raise SimError(f"action_type '{config.action_type}' unknown (use one of: {', '.join(ACTION_TYPES)})")
+        self.config = config
+        self.world = World(config.world, step_size=1.0 / config.physics_hz)
+        self.ns = config.mav_name
+        self.world.spawn_mav(config.mav_name, xyz=(0.0, 0.0, 0.1), random_seed=config.sensor_seed)
+        self.substeps = max(1, round(1.0 / config.control_hz / self.world.step_size))
+        self.attitude = AttitudeLevelController.for_mav(config.mav_name)
+        vehicle = self.attitude.vehicle
+        self.rotor_count = len(vehicle["rotors"])
+        limits = [r["max_rot_velocity_rad_s"] for r in vehicle["rotors"]]
+        if not all(limit > 0 for limit in limits):
+            raise SimError(f"{config.mav_name}.yaml: every rotor needs max_rot_velocity for the motor action space")
+        self.max_rot_velocity = np.array(limits)
+        self.hover_thrust_N = vehicle["mass_kg"] * vehicle["gravity_m_s2"]
+        self.action_size = self.rotor_count if config.action_type == "motor" else 4
+        self.odometry: Odometry | None = None
+
+    @property
+    def dt(self) -> float:
+        return self.substeps * self.world.step_size
+
+    def reset(self, position: np.ndarray, yaw: float = 0.0) -> Odometry:
+        self.world.reset()
+        q = np.array([0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2)])
+        self.world.set_model_state(self.ns, position, q)
+        self.world.step(1)  # the sensors sample the new state
+        self.odometry = self._read()
+        return self.odometry
+
+    def rotor_command(self, action: np.ndarray) -> np.ndarray:
+        """Rotor speeds [rad/s] for a normalized action (checked: shape, finite)."""
+        a = np.asarray(action, dtype=np.float64)
+        if a.shape != (self.action_size,):
+            raise SimError(f"action has shape {a.shape}, the '{self.config.action_type}' action space of "
+                           f"{self.ns} needs ({self.action_size},)")
+        if not np.all(np.isfinite(a)):
+            raise SimError(f"action {a.tolist()} has NaN or inf")
+        a = np.clip(a, -1.0, 1.0)
+        if self.config.action_type == "motor":
+            return (a + 1.0) / 2.0 * self.max_rot_velocity
+        self.attitude.set_roll_pitch_yawrate_thrust(a[0] * self.config.max_tilt_rad, a[1] * self.config.max_tilt_rad,
+                                                    a[2] * self.config.max_yaw_rate_rad_s,
+                                                    (a[3] + 1.0) * self.hover_thrust_N)
+        return np.clip(self.attitude.rotor_speeds(self.odometry), 0.0, self.max_rot_velocity)
+
+    def apply(self, action: np.ndarray) -> None:
+        self.world.set_motor_speeds(self.ns, self.rotor_command(action))
+
+    def after_step(self) -> Odometry:
+        self.odometry = self._read()
+        return self.odometry
+
+    def collided(self) -> bool:
+        prefix = self.ns + "::"
+        return any(c["collision1"].startswith(prefix) or c["collision2"].startswith(prefix)
+                   for c in self.world.contacts())
+
+    def _read(self) -> Odometry:
+        odometry = self.world.odometry(self.ns)
+        if odometry is None:
+            raise SimError(f"no odometry from /{self.ns}/odometry_sensor1/odometry yet")
+        return odometry

@@ -1,0 +1,200 @@
+"""rotors_sim.World: one simulated world, its vehicles and sensors, stepped from Python.
+
+The plugins are the ones the ROS simulator loads (same code); with no ROS master they publish
+into the world's message taps, which `message()` reads as the ROS message classes.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+import xacro
+
+from rotors_sim import _engine
+from rotors_sim._engine import SimError
+from rotors_sim.paths import package_path, world_file
+
+
+def known_vehicles() -> list[str]:
+    """Vehicles with a mechanics file <name>.xacro beside <name>_base.xacro (as rotors_xacro checks)."""
+    urdf = package_path("rotors_description") / "urdf"
+    return sorted(p.name[: -len("_base.xacro")] for p in urdf.glob("*_base.xacro")
+                  if (urdf / p.name.replace("_base.xacro", ".xacro")).exists())
+
+
+def run_xacro(path: str | Path, args: dict[str, Any]) -> str:
+    """The URDF text of a xacro file with arguments (booleans written as xacro reads them)."""
+    mappings = {k: (str(v).lower() if isinstance(v, bool) else str(v)) for k, v in args.items()}
+    try:
+        return xacro.process_file(str(path), mappings=mappings).toprettyxml(indent="  ")
+    except Exception as e:  # xacro raises XacroException, ParseError, NameError, ...
+        raise SimError(f"xacro {Path(path).name}: {e}") from None
+
+
+_message_classes: dict[str, type] = {}
+
+
+def message_class(datatype: str) -> type:
+    """The Python class of a ROS message type, e.g. 'sensor_msgs/Imu'."""
+    if datatype not in _message_classes:
+        package, name = datatype.split("/")
+        _message_classes[datatype] = getattr(importlib.import_module(f"{package}.msg"), name)
+    return _message_classes[datatype]
+
+
+@dataclass
+class Odometry:
+    """nav_msgs/Odometry as the controllers take it: time, position_W, orientation (x, y, z, w),
+    velocity_B and angular_velocity_B (body frame, as RotorS' odometry plugin publishes them)."""
+
+    time_s: float
+    position_W: np.ndarray
+    orientation: np.ndarray
+    velocity_B: np.ndarray
+    angular_velocity_B: np.ndarray
+    count: int
+
+    @classmethod
+    def from_msg(cls, msg: Any, count: int) -> "Odometry":
+        p, q = msg.pose.pose.position, msg.pose.pose.orientation
+        v, w = msg.twist.twist.linear, msg.twist.twist.angular
+        return cls(msg.header.stamp.to_sec(), np.array([p.x, p.y, p.z]), np.array([q.x, q.y, q.z, q.w]),
+                   np.array([v.x, v.y, v.z]), np.array([w.x, w.y, w.z]), count)
+
+
+class World:
+    """A world from rotors_gazebo/worlds (by name), a .world file, or SDF text (`sdf=`)."""
+
+    def __init__(self, name_or_path: str | Path = "basic", *, sdf: str | None = None, step_size: float | None = None):
+        """`step_size` [s] overrides the world file's max_step_size (e.g. 0.002 for 500 Hz physics)."""
+        if sdf is not None:
+            self._w = _engine.World.load_string(sdf, "<string>")
+        else:
+            self._w = _engine.World.load_file(str(world_file(str(name_or_path))))
+        if step_size is not None:
+            self._w.step_size = float(step_size)
+        self._vehicles: dict[str, str] = {}  # namespace -> model name
+
+    # --- vehicles ---
+    def spawn(self, description: str | Path, name: str, xyz: Sequence[float] = (0.0, 0.0, 0.0),
+              rpy: Sequence[float] = (0.0, 0.0, 0.0), **xacro_args: Any) -> str:
+        """Spawns a model from URDF/SDF text, or from a .urdf/.sdf/.xacro/.gazebo file (run through
+        xacro with `xacro_args`). Returns the model name."""
+        text = str(description)
+        if not text.lstrip().startswith("<"):
+            path = Path(text)
+            if not path.exists():
+                raise SimError(f"model file '{path}' does not exist")
+            text = path.read_text() if path.suffix in (".urdf", ".sdf") and not xacro_args else run_xacro(path, xacro_args)
+        return self._w.spawn(text, name, list(map(float, xyz)), list(map(float, rpy)))
+
+    def spawn_mav(self, mav_name: str = "firefly", namespace: str | None = None,
+                  xyz: Sequence[float] = (0.0, 0.0, 0.1), rpy: Sequence[float] = (0.0, 0.0, 0.0),
+                  random_seed: int = -1, model: str | Path | None = None, **xacro_args: Any) -> str:
+        """A RotorS vehicle as spawn_mav.launch spawns it: `model` defaults to
+        mav_generic_odometry_sensor.gazebo (the hovering example's), `random_seed` seeds every sensor
+        noise (-1: from the clock). Further xacro arguments as keywords (enable_logging=False, ...)."""
+        known = known_vehicles()
+        if mav_name not in known:
+            raise SimError(f"unknown vehicle mav_name '{mav_name}' (known: {' '.join(known)})")
+        namespace = namespace or mav_name
+        path = model or package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"
+        args = dict(mav_name=mav_name, namespace=namespace, random_seed=random_seed, enable_logging=False,
+                    enable_ground_truth=True, log_file=mav_name, wait_to_record_bag=False,
+                    enable_mavlink_interface=False)
+        args.update(xacro_args)
+        name = self.spawn(path, namespace, xyz, rpy, **args)
+        self._vehicles[namespace] = name
+        return name
+
+    def remove(self, name: str) -> bool:
+        return self._w.remove_model(name)
+
+    # --- time ---
+    def step(self, n: int = 1) -> None:
+        """Advances n physics steps (the GIL released meanwhile)."""
+        self._w.step(int(n))
+
+    def reset(self) -> None:
+        """Gazebo's reset_simulation: time 0, models at their spawn poses, plugins reset."""
+        self._w.reset()
+
+    @property
+    def time(self) -> float:
+        return self._w.time
+
+    @property
+    def step_size(self) -> float:
+        return self._w.step_size
+
+    @property
+    def engine(self) -> _engine.World:
+        return self._w
+
+    # --- state ---
+    def models(self) -> list[str]:
+        return self._w.model_names()
+
+    def link_state(self, model: str, link: str = "") -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(position_W, orientation (x, y, z, w), velocity_W, angular_velocity_W); the canonical link by default."""
+        return self._w.link_state(model, link)
+
+    def set_model_state(self, model: str, position: Sequence[float], orientation: Sequence[float] = (0, 0, 0, 1),
+                        velocity: Sequence[float] = (0, 0, 0), angular_velocity: Sequence[float] = (0, 0, 0)) -> None:
+        self._w.set_model_state(model, list(map(float, position)), list(map(float, orientation)),
+                                list(map(float, velocity)), list(map(float, angular_velocity)))
+
+    def set_motor_speeds(self, namespace: str, speeds: Sequence[float]) -> None:
+        """The motor command [rad/s], as command/motor_speed would give it (validated the same way)."""
+        self._w.set_motor_speeds(namespace, [float(s) for s in np.asarray(speeds, dtype=float).ravel()])
+
+    def rotor_speeds(self, namespace: str) -> np.ndarray:
+        return np.asarray(self._w.rotor_speeds(namespace))
+
+    def contacts(self) -> list[dict]:
+        return self._w.contacts()
+
+    # --- sensors ---
+    def topics(self) -> list[tuple[str, str, int]]:
+        """(topic, message type, messages so far) of everything the plugins publish."""
+        return self._w.topics()
+
+    def message(self, topic: str) -> tuple[Any, int] | None:
+        """(the last message of `topic` as its ROS message class, messages so far), None before the first."""
+        got = self._w.message(topic)
+        if got is None:
+            if topic not in {t for t, _, _ in self._w.topics()}:
+                raise SimError(f"no plugin publishes '{topic}' (topics: {' '.join(t for t, _, _ in self._w.topics())})")
+            return None
+        datatype, count, data = got
+        return message_class(datatype)().deserialize(data), count
+
+    def odometry(self, namespace: str, topic: str = "odometry_sensor1/odometry") -> Odometry | None:
+        """The last message of /<namespace>/<topic> (nav_msgs/Odometry), None before the first."""
+        got = self._w.odometry_array(f"/{namespace}/{topic}")
+        if got is None:
+            self.message(f"/{namespace}/{topic}")  # raises if nobody publishes it
+            return None
+        count, a = got
+        return Odometry(float(a[0]), a[1:4], a[4:8], a[8:11], a[11:14], count)
+
+    def camera_image(self, model: str, sensor: str, index: int = 0) -> np.ndarray:
+        """The sensor's last frame (H x W x channels, uint8, rows top to bottom): a view of the
+        engine's buffer, valid until the next step (copy it to keep it)."""
+        return self._w.camera_image(model, sensor, index, False)
+
+    def camera_depth(self, model: str, sensor: str, index: int = 0) -> np.ndarray:
+        """A depth camera's last depth image [m] (H x W float32, NaN out of range); a view, as camera_image."""
+        return self._w.camera_image(model, sensor, index, True)
+
+    def laser_scan(self, model: str, sensor: str) -> dict:
+        """The last scan of a ray sensor: ranges_m and intensities (vertical x horizontal, views),
+        column_time_s, start_time_s, scan_count."""
+        return self._w.laser_scan(model, sensor)
+
+    def sensors(self, model: str) -> list[tuple[str, str]]:
+        return self._w.sensor_names(model)

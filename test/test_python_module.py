@@ -1,0 +1,167 @@
+"""rotors_sim, the engine from Python without ROS: the hovering example's offset, many worlds in
+one process (different seeds differ, the same seed repeats), sensors and contacts, the controllers
+from the vehicle yaml, and bad input as one clear exception with the world still working.
+(Bit for bit against a lockstep ROS flight: test_lockstep_determinism.py.)"""
+import math
+
+import numpy as np
+import pytest
+
+import rotors_sim as rs
+from rotors_sim.examples import hovering_example
+
+
+def test_the_hovering_example_from_python_hovers_with_the_ros_examples_offset():
+    # the ROS example settles 0.040 m above its set point (the Lee controller's steady state with
+    # the yaml's rounded constants); the same libraries from Python give the same offset
+    flight = hovering_example(random_seed=1, duration_s=15.0)
+    settled = flight.position_W[flight.time_s > 10.0]
+    offset = settled.mean(axis=0) - np.array([0.0, 0.0, 1.0])
+    print(f"offset after settling: {offset.round(4)} m")
+    assert abs(offset[2] - 0.040) < 0.002 and np.all(np.abs(offset[:2]) < 0.005)
+    before = flight.position_W[flight.time_s < 4.9]
+    assert before[:, 2].max() < 0.2  # on the ground until the waypoint is due at 5 s
+
+
+def fly(seed: int, world: rs.World | None = None, duration_s: float = 6.0):
+    return hovering_example(random_seed=seed, duration_s=duration_s, due_s=1.0, world=world)
+
+
+def test_a_batch_of_16_worlds_with_different_seeds_flies_16_different_repeatable_flights():
+    batch = rs.Batch(lambda i: rs.World("basic"), 16)
+    for i, world in enumerate(batch.worlds):
+        world.spawn_mav("firefly", random_seed=100 + i, odometry_noise_position="0.01 0.01 0.01")
+    lees = [rs.LeePositionController.for_mav("firefly") for _ in batch.worlds]
+    for lee in lees:
+        lee.set_point([0.0, 0.0, 1.0])
+    seen = [0] * len(batch)
+    imu = [[] for _ in batch.worlds]
+    for _ in range(300):  # 3 s: every world steps in one call, on threads
+        for i, world in enumerate(batch.worlds):
+            odometry = world.odometry("firefly")
+            if odometry is not None and odometry.count != seen[i]:
+                seen[i] = odometry.count
+                world.set_motor_speeds("firefly", lees[i].rotor_speeds(odometry))
+        batch.step(1)
+        for i, world in enumerate(batch.worlds):
+            imu[i].append(world.message("/firefly/imu")[0].linear_acceleration.z)
+    final = np.array([w.link_state("firefly")[0] for w in batch.worlds])
+    print("positions after 3 s [mm]:", (final * 1000).round(1).tolist())
+    assert np.all(np.abs(final[:, 2] - 1.0) < 0.2)  # all of them fly
+    assert len({tuple(series) for series in imu}) == 16  # 16 seeds, 16 different IMU streams
+    assert len({tuple(p) for p in final}) == 16  # and 16 different flights (the controller sees noisy odometry)
+    # a world of the batch flown again alone with its seed: the same flight, bit for bit
+    again = rs.World("basic")
+    again.spawn_mav("firefly", random_seed=100 + 5, odometry_noise_position="0.01 0.01 0.01")
+    lee = rs.LeePositionController.for_mav("firefly")
+    lee.set_point([0.0, 0.0, 1.0])
+    seen_again, imu_again = 0, []
+    for _ in range(300):
+        odometry = again.odometry("firefly")
+        if odometry is not None and odometry.count != seen_again:
+            seen_again = odometry.count
+            again.set_motor_speeds("firefly", lee.rotor_speeds(odometry))
+        again.step()
+        imu_again.append(again.message("/firefly/imu")[0].linear_acceleration.z)
+    assert imu_again == imu[5]
+    assert np.array_equal(again.link_state("firefly")[0], final[5])
+
+
+def test_reset_repeats_the_flight_and_set_model_state_moves_the_vehicle():
+    world = rs.World("basic")
+    first = fly(3, world)
+    world.reset()
+    lee = rs.LeePositionController.for_mav("firefly")
+    lee.set_point([0.0, 0.0, 1.0])
+    assert world.time == 0.0
+    world.set_model_state("firefly", [2.0, -1.0, 3.0], [0, 0, math.sin(0.25), math.cos(0.25)], velocity=[1, 0, 0])
+    world.step()
+    p, q, v, _ = world.link_state("firefly")
+    assert abs(p[0] - 2.01) < 1e-3 and abs(p[2] - 3.0) < 1e-3 and abs(v[0] - 1.0) < 1e-3
+    assert abs(2 * math.atan2(q[2], q[3]) - 0.5) < 1e-9
+    assert first.position_W[-1][2] > 0.8
+
+
+def test_sensors_messages_and_contacts():
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=9, enable_navigation_sensors=True)
+    world.step(200)  # 2 s on the ground, motors off
+    topics = {t: kind for t, kind, _ in world.topics()}
+    for topic, kind in {"/firefly/imu": "sensor_msgs/Imu", "/firefly/odometry_sensor1/odometry": "nav_msgs/Odometry",
+                        "/firefly/gps": "sensor_msgs/NavSatFix", "/firefly/magnetic_field": "sensor_msgs/MagneticField",
+                        "/firefly/air_pressure": "sensor_msgs/FluidPressure"}.items():
+        assert topics.get(topic) == kind, (topic, topics.get(topic))
+    imu, count = world.message("/firefly/imu")
+    assert count == 200 and abs(imu.linear_acceleration.z - 9.8) < 0.5  # at rest: the specific force is -g
+    gps, _ = world.message("/firefly/gps")
+    assert abs(gps.latitude - 47.3667) < 0.01  # basic.world's spherical coordinates (Zurich)
+    contacts = world.contacts()
+    assert any("firefly::" in c["collision1"] + c["collision2"] for c in contacts)  # standing on the ground
+    assert world.rotor_speeds("firefly").shape == (6,)
+
+
+def test_a_depth_camera_and_a_lidar_read_as_numpy_arrays():
+    world = rs.World("basic")
+    model = rs.paths.package_path("rotors_description") / "urdf" / "mav_with_vi_sensor.gazebo"
+    world.spawn_mav("firefly", model=model, random_seed=2, enable_vi_depth=True, enable_lidar="vlp16")
+    world.step(20)
+    scan = world.laser_scan("firefly", "velodyne")
+    ranges = scan["ranges_m"]
+    assert ranges.shape == (16, 1800) and scan["scan_count"] >= 1 and not ranges.flags.owndata
+    # the lowest beam (-15 deg) meets the ground: range * sin(15 deg) is the lidar's height
+    heights = ranges[0][np.isfinite(ranges[0])] * math.sin(math.radians(15.0))
+    p_W = world.link_state("firefly")[0]
+    print(f"lidar height from its lowest beam: {np.median(heights):.3f} m (base link at {p_W[2]:.3f} m)")
+    assert len(heights) > 1000 and abs(np.median(heights) - (p_W[2] + 0.15)) < 0.03  # lidar_xyz 0 0 0.15
+    depth = world.camera_depth("firefly", "firefly/vi_sensor_camera_depth")
+    image = world.camera_image("firefly", "firefly/vi_sensor_camera_depth")
+    left = world.camera_image("firefly", "firefly_vi_sensor_stereo_camera", 0)
+    right = world.camera_image("firefly", "firefly_vi_sensor_stereo_camera", 1)
+    assert depth.dtype == np.float32 and depth.ndim == 2 and image.shape[:2] == depth.shape
+    assert left.shape == right.shape == (480, 752, 1) and not left.flags.owndata  # views of the engine's buffers
+    assert np.isfinite(depth).mean() > 0.3  # the ground ahead
+    with pytest.raises(rs.SimError, match="camera index 2 out of range"):
+        world.camera_image("firefly", "firefly_vi_sensor_stereo_camera", 2)
+
+
+def test_the_controllers_read_the_vehicle_yaml_and_name_a_missing_parameter(tmp_path):
+    lee = rs.LeePositionController.for_mav("firefly")
+    assert len(lee.vehicle["rotors"]) == 6 and abs(lee.vehicle["mass_kg"] - 1.56779) < 1e-9
+    attitude = rs.AttitudeLevelController.for_mav("hummingbird")
+    assert len(attitude.vehicle["rotors"]) == 4
+    broken = tmp_path / "firefly_no_mass.yaml"
+    text = (rs.paths.resource("firefly.yaml")).read_text().replace("mass: 1.56779", "")
+    broken.write_text(text)
+    with pytest.raises(rs.SimError, match="missing parameter mass"):
+        rs.LeePositionController(rs.paths.resource("lee_controller_firefly.yaml"), broken)
+    with pytest.warns(UserWarning, match="unknown parameter.*positon_gain"):
+        typo = tmp_path / "typo.yaml"
+        typo.write_text("positon_gain: {x: 1, y: 1, z: 1}\n")
+        rs.LeePositionController(rs.paths.resource("lee_controller_firefly.yaml"), rs.paths.resource("firefly.yaml"),
+                                 typo)
+
+
+@pytest.mark.parametrize("bad, match", [
+    (lambda w: w.spawn_mav("fireflyy"), "unknown vehicle mav_name 'fireflyy'"),
+    (lambda w: w.set_motor_speeds("firefly", [500.0] * 4), "has 4 angular_velocities, the vehicle has 6 rotors"),
+    (lambda w: w.set_motor_speeds("firefly", [float("nan")] * 6), r"angular_velocities\[0\] = nan"),
+    (lambda w: w.set_motor_speeds("nobody", [1.0] * 6), "no vehicle with motor models in namespace 'nobody'"),
+    (lambda w: w.link_state("nobody"), "no model 'nobody' in the world"),
+    (lambda w: w.message("/firefly/imuu"), "no plugin publishes '/firefly/imuu'"),
+    (lambda w: w.set_model_state("firefly", [0, 0, float("inf")]), "position must be finite"),
+    (lambda w: w.step(-1), "must be >= 0"),
+    (lambda w: w.laser_scan("firefly", "imu"), "has no sensor 'imu'"),
+    (lambda w: rs.World("nowhere"), "unknown world 'nowhere'"),
+    (lambda w: w.spawn("<robot name='x'><link name='a'></robot>", "x"), "x"),
+])
+def test_bad_input_is_one_clear_exception_and_the_world_keeps_working(bad, match):
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=4)
+    world.set_motor_speeds("firefly", [100.0] * 6)
+    world.step(10)
+    with pytest.raises(rs.SimError, match=match):
+        bad(world)
+    t = world.time
+    world.step(10)
+    assert abs(world.time - t - 0.1) < 1e-9 and world.odometry("firefly").count >= 20
+    assert world.rotor_speeds("firefly")[0] > 50.0  # the last valid command stays in force
