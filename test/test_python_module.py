@@ -165,3 +165,22 @@ def test_bad_input_is_one_clear_exception_and_the_world_keeps_working(bad, match
     world.step(10)
     assert abs(world.time - t - 0.1) < 1e-9 and world.odometry("firefly").count >= 20
     assert world.rotor_speeds("firefly")[0] > 50.0  # the last valid command stays in force
+
+
+def test_a_controller_attached_in_the_engine_flies_the_python_loops_flight_bit_for_bit():
+    loop = hovering_example(random_seed=5, duration_s=8.0)
+    attached = hovering_example(random_seed=5, duration_s=8.0, attached=True)
+    assert np.array_equal(loop.position_W, attached.position_W)
+    assert abs(attached.position_W[-1][2] - 1.04) < 0.03
+
+
+def test_listen_keeps_only_the_topics_asked_for():
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=1)
+    world.listen(["/firefly/odometry_sensor1/odometry"])
+    world.step(5)
+    counts = {topic: count for topic, _, count in world.topics()}
+    assert counts["/firefly/odometry_sensor1/odometry"] == 5 and counts["/firefly/imu"] == 0
+    world.listen()
+    world.step(5)
+    assert world.message("/firefly/imu")[1] == 5

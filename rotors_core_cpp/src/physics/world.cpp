@@ -81,6 +81,10 @@ World::World(std::string name, const PhysicsParams& params) : name_(std::move(na
   dWorldSetContactMaxCorrectingVel(ode_world, params_.contact_max_correcting_vel_m_s);
   dWorldSetContactSurfaceLayer(ode_world, params_.contact_surface_layer_m);
   dWorldSetAutoDisableFlag(ode_world, 0);
+  // Worlds may step on different threads at once (the Python module's batches): each world gets
+  // its own ODE threading implementation (ODE's default one is shared by every world).
+  threading_ = dThreadingAllocateSelfThreadedImplementation();
+  dWorldSetStepThreadingImplementation(ode_world, dThreadingImplementationGetFunctions(threading_), threading_);
   space_ = Handle(dHashSpaceCreate(nullptr));
   contact_group_ = Handle(dJointGroupCreate(0));
   wall_start_ = WallNow();
@@ -97,6 +101,7 @@ World::~World() {
   dJointGroupDestroy(Ode(contact_group_));
   dSpaceDestroy(Ode(space_));
   dWorldDestroy(Ode(solver_world_));
+  dThreadingFreeImplementation(threading_);
 }
 
 void World::Fini() {
@@ -146,6 +151,7 @@ void World::Step(unsigned int steps) {
   const double dt = params_.max_step_size_s;
   const common::Time dt_time = common::Time::FromSeconds(dt);
   event::ScopedCurrentEvents scope(&events_);
+  dAllocateODEDataForThread(dAllocateMaskAll);  // ODE's per-thread data (a no-op once this thread has it)
   for (unsigned int i = 0; i < steps; ++i) {
     common::UpdateInfo info{name_, sim_time_, WallNow() - wall_start_};
     events_.world_update_begin(info);

@@ -1,7 +1,11 @@
 // rotors_sim._engine.LeePositionController / AttitudeLevelController: the controller libraries of
 // rotors_control (no ROS), with their parameters read by the same loaders as the ROS nodes
 // (parameter_loading.h) from the same yaml files, flattened by Python into "a/b/c" -> number.
+#include <limits>
 #include <map>
+#include <memory>
+#include <optional>
+#include <utility>
 #include <set>
 #include <string>
 #include <vector>
@@ -25,10 +29,10 @@ namespace {
 using rotors_control::VehicleState;
 using rotors_sim::SimError;
 
-/// The state as the ROS nodes take it from nav_msgs/Odometry: position and attitude in the world,
-/// velocities in the body frame.
-VehicleState State(const Eigen::Vector3d& position_W, const Eigen::Vector4d& q_xyzw, const Eigen::Vector3d& velocity_B,
-                   const Eigen::Vector3d& angular_velocity_B) {
+}  // namespace
+
+VehicleState StateFromOdometry(const Eigen::Vector3d& position_W, const Eigen::Vector4d& q_xyzw,
+                               const Eigen::Vector3d& velocity_B, const Eigen::Vector3d& angular_velocity_B) {
   if (!position_W.allFinite() || !q_xyzw.allFinite() || !velocity_B.allFinite() || !angular_velocity_B.allFinite())
     throw SimError("controller state must be finite (position, orientation, velocity, angular_velocity)");
   VehicleState s;
@@ -40,6 +44,8 @@ VehicleState State(const Eigen::Vector3d& position_W, const Eigen::Vector4d& q_x
   s.angular_velocity_B = angular_velocity_B;
   return s;
 }
+
+namespace {
 
 /// The reader of the parameter map, with its unknown keys and announcements kept for Python.
 struct LoadReport {
@@ -55,7 +61,9 @@ LoadReport LoadWith(const std::map<std::string, double>& numbers, const std::vec
   return {reader.UnknownKeys(), reader.Defaults()};
 }
 
-class PyLee {
+/// The Lee controller as lee_position_controller_node runs it: set points due at a sim time are
+/// released with the first odometry stamped at or after it.
+class PyLee : public OdometryController {
  public:
   PyLee(const std::map<std::string, double>& numbers, const std::vector<std::string>& others, const std::string& source)
       : report_(LoadWith(
@@ -64,7 +72,7 @@ class PyLee {
         controller_(params_) {}
 
   void SetTrajectoryPoint(const Eigen::Vector3d& p, const Eigen::Vector3d& v, const Eigen::Vector3d& a, double yaw,
-                          double yaw_rate) {
+                          double yaw_rate, double due_s) {
     rotors_control::TrajectoryPoint point;
     point.position_W = p;
     point.velocity_W = v;
@@ -72,11 +80,21 @@ class PyLee {
     point.yaw_rad = yaw;
     point.yaw_rate_rad_s = yaw_rate;
     if (!point.IsFinite()) throw SimError("trajectory point must be finite (position, velocity, acceleration, yaw)");
-    controller_.SetTrajectoryPoint(point);
+    if (!std::isfinite(due_s)) throw SimError("due time must be finite");
+    if (due_s <= t_odometry_s_) {
+      controller_.SetTrajectoryPoint(point);
+      pending_.reset();
+    } else {
+      pending_ = std::make_pair(due_s, point);
+    }
   }
-  Eigen::VectorXd RotorSpeeds(const Eigen::Vector3d& p, const Eigen::Vector4d& q, const Eigen::Vector3d& v_B,
-                              const Eigen::Vector3d& w_B) const {
-    return controller_.RotorSpeeds(State(p, q, v_B, w_B));
+  Eigen::VectorXd Answer(const VehicleState& state, double stamp_s) override {
+    t_odometry_s_ = stamp_s;
+    if (pending_ && pending_->first <= stamp_s) {
+      controller_.SetTrajectoryPoint(pending_->second);
+      pending_.reset();
+    }
+    return controller_.RotorSpeeds(state);
   }
   const LoadReport& Report() const { return report_; }
   const rotors_control::LeePositionControllerParameters& Params() const { return params_; }
@@ -86,9 +104,11 @@ class PyLee {
   rotors_control::LeePositionControllerParameters params_;
   LoadReport report_;
   rotors_control::LeePositionController controller_;
+  std::optional<std::pair<double, rotors_control::TrajectoryPoint>> pending_;  ///< (due sim time, point)
+  double t_odometry_s_ = -std::numeric_limits<double>::infinity();             ///< stamp of the last odometry
 };
 
-class PyAttitude {
+class PyAttitude : public OdometryController {
  public:
   PyAttitude(const std::map<std::string, double>& numbers, const std::vector<std::string>& others,
              const std::string& source)
@@ -117,9 +137,8 @@ class PyAttitude {
     Finite({omega_B[0], omega_B[1], omega_B[2], thrust_N}, "rates and thrust");
     controller_.SetRateThrust(omega_B, thrust_N);
   }
-  Eigen::VectorXd RotorSpeeds(const Eigen::Vector3d& p, const Eigen::Vector4d& q, const Eigen::Vector3d& v_B,
-                              const Eigen::Vector3d& w_B) const {
-    return controller_.RotorSpeeds(State(p, q, v_B, w_B));
+  Eigen::VectorXd Answer(const VehicleState& state, double /*stamp_s*/) override {
+    return controller_.RotorSpeeds(state);
   }
   const LoadReport& Report() const { return report_; }
   const rotors_control::AttitudeControllerParameters& Params() const { return params_; }
@@ -156,26 +175,28 @@ void BindControllers(py::module_& m) {
   const char* state_doc =
       "Rotor speeds [rad/s] for the state as the ROS node takes it from odometry: position_W, "
       "orientation (x, y, z, w), velocity_B and angular_velocity_B in the body frame.";
-  py::class_<PyLee>(m, "LeePositionController")
+  auto answer = [](OdometryController& c, const Eigen::Vector3d& p, const Eigen::Vector4d& q,
+                   const Eigen::Vector3d& v_B, const Eigen::Vector3d& w_B,
+                   double stamp_s) { return c.Answer(StateFromOdometry(p, q, v_B, w_B), stamp_s); };
+  py::class_<OdometryController, std::shared_ptr<OdometryController>>(m, "OdometryController")
+      .def("answer", answer, py::arg("position"), py::arg("orientation"), py::arg("velocity_B"),
+           py::arg("angular_velocity_B"), py::arg("stamp"), state_doc);
+  py::class_<PyLee, OdometryController, std::shared_ptr<PyLee>>(m, "LeePositionController")
       .def(py::init<const std::map<std::string, double>&, const std::vector<std::string>&, const std::string&>(),
            py::arg("numbers"), py::arg("others"), py::arg("source"))
       .def("set_trajectory_point", &PyLee::SetTrajectoryPoint, py::arg("position"), py::arg("velocity"),
-           py::arg("acceleration"), py::arg("yaw"), py::arg("yaw_rate"))
-      .def("rotor_speeds", &PyLee::RotorSpeeds, py::arg("position"), py::arg("orientation"), py::arg("velocity_B"),
-           py::arg("angular_velocity_B"), state_doc)
+           py::arg("acceleration"), py::arg("yaw"), py::arg("yaw_rate"), py::arg("due") = -1e300)
       .def_property_readonly("has_reference", &PyLee::HasReference)
       .def_property_readonly("unknown_keys", [](const PyLee& c) { return c.Report().unknown_keys; })
       .def_property_readonly("defaults", [](const PyLee& c) { return c.Report().defaults; })
       .def_property_readonly("vehicle", [](const PyLee& c) { return VehicleDict(c.Params().vehicle); });
-  py::class_<PyAttitude>(m, "AttitudeLevelController")
+  py::class_<PyAttitude, OdometryController, std::shared_ptr<PyAttitude>>(m, "AttitudeLevelController")
       .def(py::init<const std::map<std::string, double>&, const std::vector<std::string>&, const std::string&>(),
            py::arg("numbers"), py::arg("others"), py::arg("source"))
       .def("set_roll_pitch_yawrate_thrust", &PyAttitude::RollPitchYawrateThrust, py::arg("roll"), py::arg("pitch"),
            py::arg("yaw_rate"), py::arg("thrust"))
       .def("set_attitude_thrust", &PyAttitude::AttitudeThrust, py::arg("orientation"), py::arg("thrust"))
       .def("set_rate_thrust", &PyAttitude::RateThrust, py::arg("angular_velocity_B"), py::arg("thrust"))
-      .def("rotor_speeds", &PyAttitude::RotorSpeeds, py::arg("position"), py::arg("orientation"), py::arg("velocity_B"),
-           py::arg("angular_velocity_B"), state_doc)
       .def_property_readonly("unknown_keys", [](const PyAttitude& c) { return c.Report().unknown_keys; })
       .def_property_readonly("defaults", [](const PyAttitude& c) { return c.Report().defaults; })
       .def_property_readonly("vehicle", [](const PyAttitude& c) { return VehicleDict(c.Params().vehicle); });

@@ -9,9 +9,11 @@
 #include <tuple>
 #include <vector>
 
+#include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+
 #include <nav_msgs/Odometry.h>
 
 #include "bindings.h"
@@ -82,8 +84,40 @@ class PyWorld {
   void Step(long steps) {
     if (steps < 0) throw SimError("step(n): n = " + std::to_string(steps) + " must be >= 0");
     py::gil_scoped_release release;
-    world_->Step(static_cast<unsigned>(steps));
+    Advance(static_cast<unsigned>(steps));
   }
+
+  /// n steps; before each, every attached controller answers a new odometry message with a motor
+  /// command (what a controller node does in lockstep). Runs without the GIL.
+  void Advance(unsigned steps) {
+    if (attached_.empty()) {
+      world_->Step(steps);
+      return;
+    }
+    for (unsigned i = 0; i < steps; ++i) {
+      for (Attached& a : attached_) a.AnswerNewOdometry();
+      world_->Step(1);
+    }
+  }
+
+  void AttachController(const std::string& ns, const std::string& odometry_topic,
+                        std::shared_ptr<OdometryController> controller) {
+    auto bus = Bus(ns);
+    auto& taps = rotors_sim::MessageTaps::Of(*world_);
+    const rotors_sim::TappedMessage* slot = taps.Find(odometry_topic);
+    if (!slot) throw SimError("no plugin publishes '" + odometry_topic + "' (the controller's odometry)");
+    if (!slot->wanted) throw SimError("topic '" + odometry_topic + "' was left out by listen()");
+    for (Attached& a : attached_)
+      if (a.bus == bus) {
+        a.controller = std::move(controller);
+        a.slot = slot;
+        return;
+      }
+    attached_.push_back(Attached{ns, bus, slot, std::move(controller), slot->count});
+  }
+  void DetachControllers() { attached_.clear(); }
+
+  void Listen(const std::vector<std::string>& topics) { rotors_sim::MessageTaps::Of(*world_).Restrict(topics); }
 
   ModelPtr Model(const std::string& name) const {
     ModelPtr model = world_->ModelByName(name);
@@ -243,7 +277,28 @@ class PyWorld {
   }
 
  private:
+  struct Attached {
+    std::string ns;
+    std::shared_ptr<rotors_gazebo_plugins::VehicleBus> bus;
+    const rotors_sim::TappedMessage* slot;
+    std::shared_ptr<OdometryController> controller;
+    uint64_t seen;
+    void AnswerNewOdometry() {
+      if (!slot->message || slot->count == seen) return;
+      seen = slot->count;
+      const auto& m = *static_cast<const nav_msgs::Odometry*>(slot->message.get());
+      const auto& p = m.pose.pose.position;
+      const auto& q = m.pose.pose.orientation;
+      const auto &v = m.twist.twist.linear, &w = m.twist.twist.angular;
+      const Eigen::VectorXd speeds =
+          controller->Answer(StateFromOdometry({p.x, p.y, p.z}, {q.x, q.y, q.z, q.w}, {v.x, v.y, v.z}, {w.x, w.y, w.z}),
+                             m.header.stamp.toSec());
+      const std::string why = bus->SetMotorCommand(std::vector<double>(speeds.data(), speeds.data() + speeds.size()));
+      if (!why.empty()) throw SimError("attached controller of '" + ns + "': motor command " + why);
+    }
+  };
   WorldPtr world_;
+  std::vector<Attached> attached_;
 };
 
 /// Steps every world n times, the worlds shared out over `threads` threads, with the GIL released.
@@ -256,7 +311,7 @@ void StepAll(const std::vector<PyWorld*>& worlds, long steps, int threads) {
   std::mutex error_mutex;
   auto run = [&](int t) {
     try {
-      for (size_t i = t; i < worlds.size(); i += threads) worlds[i]->W().Step(static_cast<unsigned>(steps));
+      for (size_t i = t; i < worlds.size(); i += threads) worlds[i]->Advance(static_cast<unsigned>(steps));
     } catch (...) {
       std::lock_guard<std::mutex> lock(error_mutex);
       if (!first_error) first_error = std::current_exception();
@@ -326,6 +381,10 @@ void BindWorld(py::module_& m) {
       .def("message", &PyWorld::Message, py::arg("topic"))
       .def("odometry_array", &PyWorld::OdometryArray, py::arg("topic"))
       .def("topics", &PyWorld::Topics)
+      .def("listen", &PyWorld::Listen, py::arg("topics"))
+      .def("attach_controller", &PyWorld::AttachController, py::arg("namespace"), py::arg("odometry_topic"),
+           py::arg("controller"))
+      .def("detach_controllers", &PyWorld::DetachControllers)
       .def("camera_image", &PyWorld::CameraImage, py::arg("model"), py::arg("sensor"), py::arg("index") = 0,
            py::arg("depth") = false)
       .def("laser_scan", &PyWorld::LaserScan, py::arg("model"), py::arg("sensor"))

@@ -58,8 +58,9 @@ def _report(controller: Any, source: str) -> None:
                       stacklevel=3)
 
 
-def _state(odometry: Odometry) -> tuple:
-    return odometry.position_W, odometry.orientation, odometry.velocity_B, odometry.angular_velocity_B
+def _answer(controller: Any, odometry: Odometry) -> np.ndarray:
+    return controller.answer(odometry.position_W, odometry.orientation, odometry.velocity_B,
+                             odometry.angular_velocity_B, odometry.time_s)
 
 
 class LeePositionController:
@@ -76,13 +77,21 @@ class LeePositionController:
         return cls(resource(f"lee_controller_{mav_name}.yaml"), resource(f"{mav_name}.yaml"))
 
     def set_point(self, position: Sequence[float], yaw: float = 0.0, velocity: Sequence[float] = (0, 0, 0),
-                  acceleration: Sequence[float] = (0, 0, 0), yaw_rate: float = 0.0) -> None:
+                  acceleration: Sequence[float] = (0, 0, 0), yaw_rate: float = 0.0, due: float | None = None) -> None:
+        """A reference point; with `due` [s of sim time] it is released with the first odometry stamped
+        at or after it (as the ROS node releases a stamped trajectory), else with the next odometry."""
         self._c.set_trajectory_point(np.asarray(position, float), np.asarray(velocity, float),
-                                     np.asarray(acceleration, float), float(yaw), float(yaw_rate))
+                                     np.asarray(acceleration, float), float(yaw), float(yaw_rate),
+                                     -1e300 if due is None else float(due))
 
     def rotor_speeds(self, odometry: Odometry) -> np.ndarray:
-        """Rotor speeds [rad/s] for the odometry (zeros until the first set point, as the node)."""
-        return self._c.rotor_speeds(*_state(odometry))
+        """Rotor speeds [rad/s] answering an odometry message (zeros until the first set point, as the node)."""
+        return _answer(self._c, odometry)
+
+    @property
+    def engine(self) -> Any:
+        """The C++ controller (for World.attach_controller)."""
+        return self._c
 
     @property
     def vehicle(self) -> dict:
@@ -112,7 +121,11 @@ class AttitudeLevelController:
         self._c.set_rate_thrust(np.asarray(angular_velocity_B, float), float(thrust_N))
 
     def rotor_speeds(self, odometry: Odometry) -> np.ndarray:
-        return self._c.rotor_speeds(*_state(odometry))
+        return _answer(self._c, odometry)
+
+    @property
+    def engine(self) -> Any:
+        return self._c
 
     @property
     def vehicle(self) -> dict:

@@ -182,6 +182,21 @@ class World:
         count, a = got
         return Odometry(float(a[0]), a[1:4], a[4:8], a[8:11], a[11:14], count)
 
+    def listen(self, topics: Sequence[str] = ()) -> None:
+        """Keep only these topics' messages (their plugins skip building the others): faster when a
+        loop reads one or two topics. No argument: all again."""
+        self._w.listen(list(topics))
+
+    def attach_controller(self, namespace: str, controller: Any,
+                          odometry_topic: str = "odometry_sensor1/odometry") -> None:
+        """Runs `controller` (LeePositionController, AttitudeLevelController) in C++ inside step():
+        each new odometry message of /<namespace>/<odometry_topic> is answered with a motor command
+        before the next physics step, exactly as the Python loop (and a ROS node in lockstep) would."""
+        self._w.attach_controller(namespace, f"/{namespace}/{odometry_topic}", controller.engine)
+
+    def detach_controllers(self) -> None:
+        self._w.detach_controllers()
+
     def camera_image(self, model: str, sensor: str, index: int = 0) -> np.ndarray:
         """The sensor's last frame (H x W x channels, uint8, rows top to bottom): a view of the
         engine's buffer, valid until the next step (copy it to keep it)."""

@@ -13,6 +13,8 @@
 #include "rotors_core/physics/physics_types.h"
 #include "rotors_core/physics/solver_handles.h"
 
+struct dxThreadingImplementation;  // ODE's, kept out of this header as the other solver handles
+
 namespace rotors_sim {
 class WorldPlugin;
 namespace raycast {
@@ -134,6 +136,7 @@ class World : public std::enable_shared_from_this<World> {
   SphericalCoordinates origin_;
   geometry::Lighting lighting_;
   SolverWorldHandle* solver_world_ = nullptr;
+  dxThreadingImplementation* threading_ = nullptr;  ///< this world's own ODE stepping threading
   SpaceHandle* space_ = nullptr;
   ContactGroupHandle* contact_group_ = nullptr;
   std::vector<ModelPtr> models_;

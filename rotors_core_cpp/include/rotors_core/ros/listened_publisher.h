@@ -65,21 +65,21 @@ class ListenedPublisher {
   /// ROS subscribers, plus one for an in-process tap.
   uint32_t getNumSubscribers() {
     const ros::PublicationPtr& p = cache_.Get();
-    return (p ? p->getNumSubscribers() : 0) + (tap_ ? 1 : 0);
+    return (p ? p->getNumSubscribers() : 0) + (Tapped() ? 1 : 0);
   }
   template <class M>
   void publish(const M& message) {
     if (published_) ++*published_;
     const bool listened = Listened();
-    if (!listened && !tap_) return;
+    if (!listened && !Tapped()) return;
     auto shared = boost::make_shared<M>(message);
-    if (tap_) tap_->Put(boost::shared_ptr<const M>(shared));
+    if (Tapped()) tap_->Put(boost::shared_ptr<const M>(shared));
     if (listened) publisher_.publish(shared);
   }
   template <class M>
   void publish(const boost::shared_ptr<M>& message) {
     if (published_) ++*published_;
-    if (tap_) tap_->Put(boost::shared_ptr<const M>(message));
+    if (Tapped()) tap_->Put(boost::shared_ptr<const M>(message));
     if (Listened()) publisher_.publish(message);
   }
   std::string getTopic() const { return publisher_ ? publisher_.getTopic() : topic_; }
@@ -87,9 +87,10 @@ class ListenedPublisher {
   /// A ROS publisher or a tap: publish() reaches somebody (now or once they subscribe).
   explicit operator bool() const { return static_cast<bool>(publisher_) || tap_ != nullptr; }
   /// Somebody takes the message now: a ROS subscriber, a latch or an in-process tap.
-  bool Wanted() { return tap_ != nullptr || (publisher_ && Listened()); }
+  bool Wanted() { return Tapped() || (publisher_ && Listened()); }
 
  private:
+  bool Tapped() const { return tap_ != nullptr && tap_->wanted; }
   /// True when publish() must go through roscpp.
   bool Listened() {
     if (!publisher_) return false;

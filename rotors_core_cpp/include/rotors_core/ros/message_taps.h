@@ -24,6 +24,7 @@ struct TappedMessage {
   std::string datatype;  ///< e.g. "sensor_msgs/Imu"
   std::string md5sum;
   uint64_t count = 0;  ///< messages so far
+  bool wanted = true;  ///< false: MessageTaps::Restrict left this topic out (its plugin skips it)
   boost::shared_ptr<const void> message;
   std::function<std::string(const void*)> serialize;  ///< ROS wire format of `message`
 
@@ -64,6 +65,12 @@ class MessageTaps {
   const TappedMessage* Find(const std::string& topic) const {
     auto it = slots_.find(topic);
     return it == slots_.end() ? nullptr : &it->second;
+  }
+  /// Only these topics are kept from now on (the others' plugins need not even build their
+  /// messages: a speed-up when a learning loop reads one or two topics); empty: all again.
+  void Restrict(const std::vector<std::string>& topics) {
+    for (auto& slot : slots_) slot.second.wanted = topics.empty();
+    for (const std::string& topic : topics) slots_[topic].wanted = true;
   }
   std::vector<std::string> Topics() const {
     std::vector<std::string> names;

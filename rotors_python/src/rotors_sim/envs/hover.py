@@ -1,7 +1,8 @@
 """RotorS/Hover-v0: hold a MAV at a point.
 
-Observation (13, float32), from the odometry sensor: position error p - p_target [m] (3), velocity
-in the world frame [m/s] (3), orientation quaternion (x, y, z, w) (4), body rates [rad/s] (3).
+Observation (13, float32), from the odometry sensor: position error p - p_target [m] (3, within
++-5), velocity in the world frame [m/s] (3, +-20), orientation quaternion (x, y, z, w) (4, +-1),
+body rates [rad/s] (3, +-50); values are clipped to these bounds.
 Action: see rotors_sim.envs.flight ("motor": one per rotor, "attitude": roll, pitch, yaw rate, thrust).
 Reward per control step: -|p - p_target| - 0.1 |v| - 0.05 |omega|, and -10 when terminated.
 Start: at rest, p_target + U(-0.5, 0.5) m per axis (z at least 0.3 m), yaw U(-pi, pi).
@@ -18,15 +19,16 @@ import numpy as np
 
 from rotors_sim.envs.flight import Flight, FlightConfig, rotate
 
-OBSERVATION_SIZE = 13
+OBSERVATION_HIGH = np.array([5.0] * 3 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
+OBSERVATION_SIZE = len(OBSERVATION_HIGH)
 BOUND_M = 2.0
 TERMINATION_REWARD = -10.0
 
 
 def hover_observation(odometry, target: np.ndarray) -> np.ndarray:
     v_W = rotate(odometry.orientation, odometry.velocity_B)
-    return np.concatenate([odometry.position_W - target, v_W, odometry.orientation,
-                           odometry.angular_velocity_B]).astype(np.float32)
+    obs = np.concatenate([odometry.position_W - target, v_W, odometry.orientation, odometry.angular_velocity_B])
+    return np.clip(obs, -OBSERVATION_HIGH, OBSERVATION_HIGH).astype(np.float32)
 
 
 def hover_reward(obs: np.ndarray) -> float:
@@ -43,7 +45,7 @@ class HoverEnv(gym.Env):
         self.target = np.asarray(target, dtype=np.float64)
         self.max_steps = int(round(episode_s / self.flight.dt))
         self.action_space = gym.spaces.Box(-1.0, 1.0, (self.flight.action_size,), np.float32)
-        self.observation_space = gym.spaces.Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
+        self.observation_space = gym.spaces.Box(-OBSERVATION_HIGH, OBSERVATION_HIGH, dtype=np.float32)
         self.steps = 0
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):

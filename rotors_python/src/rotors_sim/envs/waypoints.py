@@ -1,8 +1,8 @@
 """RotorS/Waypoints-v0: fly through a list of waypoints in order.
 
-Observation (16, float32), from the odometry sensor: p - current waypoint [m] (3), p - next
-waypoint [m] (3; the current one again at the last), velocity in the world frame [m/s] (3),
-orientation quaternion (x, y, z, w) (4), body rates [rad/s] (3).
+Observation (16, float32), from the odometry sensor: p - current waypoint [m] (3, +-10), p - next
+waypoint [m] (3, +-10; the current one again at the last), velocity in the world frame [m/s]
+(3, +-20), orientation quaternion (x, y, z, w) (4, +-1), body rates [rad/s] (3, +-50); clipped.
 Action: see rotors_sim.envs.flight.
 Reward per control step: 10 x (distance to the current waypoint before the step - after it)
 - 0.01 |omega|, +5 for each waypoint reached (within reach_m), -10 when terminated by a crash.
@@ -20,6 +20,7 @@ import numpy as np
 
 from rotors_sim.envs.flight import Flight, FlightConfig, rotate
 
+OBSERVATION_HIGH = np.array([10.0] * 6 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
 SQUARE = ((0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 1.0, 1.0), (0.0, 1.0, 1.0), (0.0, 0.0, 1.0))
 
 
@@ -36,7 +37,7 @@ class WaypointsEnv(gym.Env):
         self.reach_m = reach_m
         self.max_steps = int(round(episode_s / self.flight.dt))
         self.action_space = gym.spaces.Box(-1.0, 1.0, (self.flight.action_size,), np.float32)
-        self.observation_space = gym.spaces.Box(-np.inf, np.inf, (16,), np.float32)
+        self.observation_space = gym.spaces.Box(-OBSERVATION_HIGH, OBSERVATION_HIGH, dtype=np.float32)
         self.index = 0
         self.steps = 0
 
@@ -45,8 +46,8 @@ class WaypointsEnv(gym.Env):
         current = self.waypoints[min(self.index, len(self.waypoints) - 1)]
         following = self.waypoints[min(self.index + 1, len(self.waypoints) - 1)]
         v_W = rotate(odometry.orientation, odometry.velocity_B)
-        return np.concatenate([p - current, p - following, v_W, odometry.orientation,
-                               odometry.angular_velocity_B]).astype(np.float32)
+        obs = np.concatenate([p - current, p - following, v_W, odometry.orientation, odometry.angular_velocity_B])
+        return np.clip(obs, -OBSERVATION_HIGH, OBSERVATION_HIGH).astype(np.float32)
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
