@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test lint demo demo-msf bench clean
+.PHONY: setup build test test-long test-all lint demo demo-msf bench clean
 
 setup:
 	@bash scripts/setup.sh
@@ -8,8 +8,16 @@ setup:
 build: setup
 	@bash scripts/build.sh
 
+# make test: the quick tier (every test but those marked long, about 18 min here); make test-long:
+# only the long tier (about 9 min); make test-all: both in one run. .ci/run runs test and test-long.
 test: build
-	@bash scripts/run_tests.sh
+	@ROTORS_TEST_TIER=quick bash scripts/run_tests.sh
+
+test-long: build
+	@ROTORS_TEST_TIER=long bash scripts/run_tests.sh
+
+test-all: build
+	@ROTORS_TEST_TIER=all bash scripts/run_tests.sh
 
 lint: setup
 	@bash scripts/lint.sh

@@ -323,11 +323,71 @@ def soak_rows(k: Dict) -> List:
              "")]
 
 
+# The Python peers, each in a venv of its own under build/bench (pinned: crazyflow 0.0.2 runs with
+# these versions of jax and mujoco; newer ones fail to build its model).
+PEER_VENVS = {
+    "pyflyt": ["pyflyt==0.29.0"],
+    "crazyflow": ["crazyflow==0.0.2", "mujoco==3.3.7", "mujoco-mjx==3.3.7", "jax[cpu]==0.7.0", "numpy<2"],
+}
+
+
+def peer_python(peer: str) -> Path:
+    venv = OUT / f"{peer}-venv"
+    stamp = venv / ".installed"
+    want = " ".join(PEER_VENVS[peer])
+    if not stamp.exists() or stamp.read_text() != want:
+        print(f"[bench] installing {peer} into {venv} (once)", file=sys.stderr)
+        subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
+        subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "--disable-pip-version-check", *PEER_VENVS[peer]],
+                       check=True)
+        stamp.write_text(want)
+    return venv / "bin" / "python"
+
+
+def hover_drone_s_per_s(peer: str, worlds: int, seconds: float) -> Dict:
+    """One closed-loop hover run of a peer script (scripts/peers/<peer>_hover.py): its JSON line."""
+    python = sys.executable if peer == "rotors_sim" else str(peer_python(peer))
+    out = subprocess.run([python, str(ROOT / "scripts" / "peers" / f"{peer}_hover.py"), str(worlds), str(seconds)],
+                         capture_output=True, text=True, timeout=1800)
+    lines = [line for line in out.stdout.splitlines() if line.startswith("{")]
+    if out.returncode != 0 or not lines:
+        raise RuntimeError(f"{peer} hover ({worlds} worlds) failed: {(out.stderr or out.stdout)[-800:]}")
+    return json.loads(lines[-1])
+
+
+def python_peers() -> Dict:
+    """Hover, closed loop, 500 Hz physics and 100 Hz control, for 1 and 64 worlds: best of 3 runs each."""
+    table: Dict = {}
+    for peer, seconds in (("rotors_sim", 20.0), ("crazyflow", 20.0), ("pyflyt", 5.0)):  # PyFlyt: ~3 x real time
+        for worlds in (1, 64):
+            sim_s = seconds if worlds == 1 or peer != "pyflyt" else 1.0  # 64 PyFlyt drones: well below real time
+            runs = [hover_drone_s_per_s(peer, worlds, sim_s) for _ in range(3)]
+            table[f"{peer}/{worlds}"] = max(runs, key=lambda r: r["drone_s_per_s"])
+    return table
+
+
+def python_peer_rows(t: Dict) -> List:
+    rows = []
+    notes = {"rotors_sim": "firefly, 12 RotorS plugins, Lee controller library attached, worlds on threads",
+             "crazyflow": "Crazyflie, onboard state controller, JAX on the CPU (vmap over worlds)",
+             "pyflyt": "QuadX in position mode; 64 = 64 drones in one Aviary (no batch of worlds)"}
+    for peer in ("rotors_sim", "crazyflow", "pyflyt"):
+        one, many = t[f"{peer}/1"], t[f"{peer}/64"]
+        rows += [(f"hover, 500 Hz physics, 100 Hz control: {peer} ({notes[peer]})",
+                  f"1 world {one['drone_s_per_s']:,.1f} x real time; 64 worlds {many['drone_s_per_s']:,.0f} drone-s/s", "")]
+    ours1, ours64 = t["rotors_sim/1"]["drone_s_per_s"], t["rotors_sim/64"]["drone_s_per_s"]
+    rows += [("  ratio, one world: rotors_sim / PyFlyt", f"{ours1 / t['pyflyt/1']['drone_s_per_s']:,.0f} x", ">= 200"),
+             ("  ratio, one world: rotors_sim / crazyflow", f"{ours1 / t['crazyflow/1']['drone_s_per_s']:.1f} x", ">= 10"),
+             ("  ratio, 64 worlds: rotors_sim / crazyflow (aggregate drone-s/s)",
+              f"{ours64 / t['crazyflow/64']['drone_s_per_s']:.2f} x", ">= 1")]
+    return rows
+
+
 GYM_PYBULLET_DRONES = ("gym-pybullet-drones: not measured. It is not on PyPI (its README installs it from a git "
                        "clone: pip install -e .) and GitHub is not reachable from this machine; pybullet itself is "
                        "(3.2.7), but the peer is its drone environment and DSL PID controller, not the physics library")
 
-SECTIONS = ("engine", "peers", "closed_loop", "swarm", "startup", "estimator", "waypoints", "cameras", "vi_sensor",
+SECTIONS = ("engine", "peers", "python_peers", "closed_loop", "swarm", "startup", "estimator", "waypoints", "cameras", "vi_sensor",
             "lasers", "planning", "sweep", "soak")
 
 
@@ -402,6 +462,9 @@ def main() -> int:
                       f"{res['closed_loop_rtf_lockstep_in_process'] / (20.0 / rotorpy_s):.0f} x", "")]
         res["not_measured"].append(GYM_PYBULLET_DRONES)
         rows += [("ratio to gym-pybullet-drones (hover, DSL PID, 240/48 Hz and 1000/100 Hz)", "not measured", ">= 5 x")]
+    if "python_peers" in only:
+        res["python_peers"] = python_peers()
+        rows += python_peer_rows(res["python_peers"])
     if "startup" in only:
         runs = {ip: [launch_to_airborne(ip) for _ in range(3)] for ip in (False, True)}
         res["launch_to_airborne"] = runs

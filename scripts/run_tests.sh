@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Builds the C++ tests and runs the whole suite (C++ gtests, Python unit and ROS integration tests)
-# in one pytest run, so there is one summary line.
+# Builds the C++ tests and runs the suite (C++ gtests, Python unit and ROS integration tests) in one
+# pytest run, so there is one summary line. The tier comes from ROTORS_TEST_TIER: quick (make test:
+# every test but those marked long), long (make test-long: only those) or all (make test-all).
+# Arguments, when given, replace the test paths (and the tier's selection).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 export PATH="$root/build/venv/bin:$PATH"
@@ -12,5 +14,12 @@ source "$root/scripts/env.bash"
 set -u
 unset DISPLAY
 cd "$root"
-if [ $# -eq 0 ]; then set -- test rotors_gazebo_compat/rotors_evaluation/test; fi
+if [ $# -eq 0 ]; then
+  case "${ROTORS_TEST_TIER:-all}" in
+    quick) set -- test rotors_gazebo_compat/rotors_evaluation/test -m "not long" ;;
+    long) set -- test -m long ;;
+    all) set -- test rotors_gazebo_compat/rotors_evaluation/test ;;
+    *) echo "ROTORS_TEST_TIER=${ROTORS_TEST_TIER} unknown (quick, long or all)" >&2; exit 2 ;;
+  esac
+fi
 exec python -m pytest -q -p no:cacheprovider "$@"

@@ -15,6 +15,11 @@ from rotors_evaluation.processes import stop_process_group
 from rotors_evaluation.ros_master import start_own_master
 
 REPO = Path(__file__).resolve().parents[1]
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "long: the long tier (minutes each): run by make test-all and make test-long, "
+                                       "not by make test")
 WS = REPO / "build" / "ws"
 
 
@@ -98,6 +103,7 @@ class RosGraph:
             try:
                 p.wait(timeout=10)
             except subprocess.TimeoutExpired:
+                print(f"TEARDOWN-TIMEOUT {p.args}", file=sys.stderr)
                 os.killpg(p.pid, signal.SIGKILL)
                 p.wait()
 

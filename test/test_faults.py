@@ -35,6 +35,7 @@ def on_odom(m):
 rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, on_odom, queue_size=1)
 rospy.Subscriber('/clock', Clock, lambda m: state.update(clock=m.clock.to_sec()), queue_size=1)
 from mav_msgs.msg import Actuators
+import pytest
 rospy.Subscriber('/firefly/command/motor_speed', Actuators,
                  lambda m: state.update(command=state['clock']), queue_size=1)
 def wait_clock(t_s, limit_s=120):
@@ -180,6 +181,7 @@ def test_reset_world_and_reset_simulation_mid_flight(ros: RosGraph):
     assert r["error_8_s_after_reset_world"] < 0.01 and r["error_8_s_after_reset_simulation"] < 0.01
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_pause_for_10_s_and_resume(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "real_time_factor:=1")
     try:

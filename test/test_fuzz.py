@@ -28,6 +28,7 @@ import genpy
 from nav_msgs.msg import Odometry
 from geometry_msgs.msg import PoseStamped
 from std_srvs.srv import Empty
+import pytest
 
 random.seed(14)
 NAN, INF = float('nan'), float('inf')
@@ -210,6 +211,7 @@ FUZZ_LAUNCH = """<launch>
 NOT_RATE_LIMITED_UPSTREAM = {"/firefly/joint_states"}
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_fuzzing_every_input_of_the_hovering_example(ros: RosGraph, tmp_path: Path):
     launch_file = tmp_path / "fuzz.launch"
     launch_file.write_text(FUZZ_LAUNCH)

@@ -15,6 +15,7 @@ from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 from rotors_evaluation.bag_data import load_flight
 from test_vehicles_flight import ground_truth
 from test_worlds import EVAL, contacts_with, evaluate, fly_logged
+import pytest
 
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
 
@@ -60,6 +61,7 @@ def test_the_power_plant_example_with_the_planner_reaches_every_waypoint_without
     assert clearance >= radius
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_a_goal_behind_the_wall_is_reached_with_a_map_built_in_flight_only(ros: RosGraph):
     # no prior map: the VLP-16's map grows as the MAV flies; the straight line to the goal crosses
     # the wall at x = 2.0-2.2 (y -3..3, up to 3 m)
@@ -147,6 +149,7 @@ def test_a_map_file_that_does_not_exist_is_one_line_and_goals_are_refused(ros: R
     assert "goal (0.00, 0.00, 1.00) refused: no map (map file '/nonexistent/map.bt'" in log
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_a_map_built_with_the_vi_sensors_depth_camera_matches_the_power_plant(ros: RosGraph, tmp_path: Path):
     built, truth = tmp_path / "built.bt", tmp_path / "truth.bt"
     proc = launch(ros, "rotors_gazebo", "mav_powerplant_with_planner.launch", "gui:=false", "mapping:=true",

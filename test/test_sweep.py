@@ -140,6 +140,7 @@ def test_local_ray_sweep_records_the_injected_crash_evaluates_the_rest_and_resum
     assert [p.parent.name for p, t in stamps.items() if p.stat().st_mtime != t] == [missing]
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_the_same_sweep_runs_on_a_two_node_ray_cluster(tmp_path: Path):
     ray = str(Path(sys.executable).parent / "ray")
     port = unused_port()  # `ray start` fails when the port is taken meanwhile (check=True)

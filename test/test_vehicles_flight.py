@@ -98,6 +98,7 @@ def test_controller_interface_rejects_bad_commands_and_keeps_the_last_valid_one(
     assert result["climb"] > 1.0
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_swarm_launch_flies_all_nine_fireflies(ros: RosGraph):
     targets = [(0, -1), (1, -1), (1, 0), (1, -2), (-1, 0), (-2, 0), (-3, 0), (-4, 0), (0, 0)]
     proc = launch(ros, "rotors_gazebo", "firefly_swarm_hovering_example.launch", "lockstep:=true",

@@ -46,8 +46,11 @@ class Flight:
         self.config = config
         self.world = World(config.world, step_size=1.0 / config.physics_hz)
         self.ns = config.mav_name
-        self.world.spawn_mav(config.mav_name, xyz=(0.0, 0.0, 0.1), random_seed=config.sensor_seed)
         self.substeps = max(1, round(1.0 / config.control_hz / self.world.step_size))
+        # the odometry sensor publishes at the control rate
+        self.world.spawn_mav(config.mav_name, xyz=(0.0, 0.0, 0.1), random_seed=config.sensor_seed,
+                             odometry_divisor=self.substeps)
+        self.world.listen([f"/{self.ns}/odometry_sensor1/odometry"])
         self.attitude = AttitudeLevelController.for_mav(config.mav_name)
         vehicle = self.attitude.vehicle
         self.rotor_count = len(vehicle["rotors"])
