@@ -18,6 +18,7 @@ import subprocess
 import textwrap
 from pathlib import Path
 
+import pytest
 from conftest import NODE_PROCESS_HELPERS, RosGraph, launch, stop_launch, wait_sim_time
 
 # rospy helpers shared by the scenarios (run in the client process after rospy.init_node)
@@ -35,7 +36,6 @@ def on_odom(m):
 rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, on_odom, queue_size=1)
 rospy.Subscriber('/clock', Clock, lambda m: state.update(clock=m.clock.to_sec()), queue_size=1)
 from mav_msgs.msg import Actuators
-import pytest
 rospy.Subscriber('/firefly/command/motor_speed', Actuators,
                  lambda m: state.update(command=state['clock']), queue_size=1)
 def wait_clock(t_s, limit_s=120):

@@ -19,6 +19,7 @@ not an input), /rosout (ROS' log aggregation), the Empty services pause/unpause/
 their effects are tested in test_faults.py) and roscpp's get_loggers/set_logger_level."""
 from pathlib import Path
 
+import pytest
 from conftest import NODE_PROCESS_HELPERS, RosGraph, stop_launch, wait_sim_time
 
 FUZZ = r'''
@@ -28,7 +29,6 @@ import genpy
 from nav_msgs.msg import Odometry
 from geometry_msgs.msg import PoseStamped
 from std_srvs.srv import Empty
-import pytest
 
 random.seed(14)
 NAN, INF = float('nan'), float('inf')

@@ -10,12 +10,12 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 from rotors_evaluation.bag_data import load_flight
 from test_vehicles_flight import ground_truth
 from test_worlds import EVAL, contacts_with, evaluate, fly_logged
-import pytest
 
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
 
