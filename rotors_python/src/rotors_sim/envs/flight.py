@@ -22,9 +22,13 @@ ACTION_TYPES = ("motor", "attitude")
 
 
 def rotate(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """R(q) v for a unit quaternion (x, y, z, w)."""
-    u, w = q_xyzw[:3], q_xyzw[3]
-    return v + 2.0 * np.cross(u, np.cross(u, v) + w * v)
+    """R(q) v for a unit quaternion (x, y, z, w): v + 2 u x (u x v + w v), written out (np.cross is
+    slow for single vectors)."""
+    x, y, z, w = (float(c) for c in q_xyzw)
+    a, b, c = (float(c) for c in v)
+    # t = u x v + w v
+    tx, ty, tz = y * c - z * b + w * a, z * a - x * c + w * b, x * b - y * a + w * c
+    return np.array([a + 2.0 * (y * tz - z * ty), b + 2.0 * (z * tx - x * tz), c + 2.0 * (x * ty - y * tx)])
 
 
 @dataclass
