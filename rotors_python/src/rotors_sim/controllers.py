@@ -63,13 +63,35 @@ def _answer(controller: Any, odometry: Odometry) -> np.ndarray:
                              odometry.angular_velocity_B, odometry.time_s)
 
 
-class LeePositionController:
-    """Lee's SE(3) position controller (rotors_control library), as lee_position_controller_node runs it."""
+class _YamlController:
+    """A controller library object built from yaml files through the shared loaders."""
+
+    _engine_class: Any = None
 
     def __init__(self, *yaml_paths: str | Path):
         numbers, others, source = load_yamls(yaml_paths)
-        self._c = _engine.LeePositionController(numbers, others, source)
+        self._c = self._engine_class(numbers, others, source)
         _report(self._c, source)
+
+    def rotor_speeds(self, odometry: Odometry) -> np.ndarray:
+        """Rotor speeds [rad/s] answering an odometry message (zeros until the first command, as the node)."""
+        return _answer(self._c, odometry)
+
+    @property
+    def engine(self) -> Any:
+        """The C++ controller (for World.attach_controller)."""
+        return self._c
+
+    @property
+    def vehicle(self) -> dict:
+        """The vehicle parameters as the controller read them (mass, inertia, rotors)."""
+        return self._c.vehicle
+
+
+class LeePositionController(_YamlController):
+    """Lee's SE(3) position controller (rotors_control library), as lee_position_controller_node runs it."""
+
+    _engine_class = _engine.LeePositionController
 
     @classmethod
     def for_mav(cls, mav_name: str) -> "LeePositionController":
@@ -84,27 +106,11 @@ class LeePositionController:
                                      np.asarray(acceleration, float), float(yaw), float(yaw_rate),
                                      -1e300 if due is None else float(due))
 
-    def rotor_speeds(self, odometry: Odometry) -> np.ndarray:
-        """Rotor speeds [rad/s] answering an odometry message (zeros until the first set point, as the node)."""
-        return _answer(self._c, odometry)
 
-    @property
-    def engine(self) -> Any:
-        """The C++ controller (for World.attach_controller)."""
-        return self._c
-
-    @property
-    def vehicle(self) -> dict:
-        return self._c.vehicle
-
-
-class AttitudeLevelController:
+class AttitudeLevelController(_YamlController):
     """The attitude-level controllers (roll-pitch-yawrate-thrust, attitude-thrust, rate-thrust)."""
 
-    def __init__(self, *yaml_paths: str | Path):
-        numbers, others, source = load_yamls(yaml_paths)
-        self._c = _engine.AttitudeLevelController(numbers, others, source)
-        _report(self._c, source)
+    _engine_class = _engine.AttitudeLevelController
 
     @classmethod
     def for_mav(cls, mav_name: str) -> "AttitudeLevelController":
@@ -119,14 +125,3 @@ class AttitudeLevelController:
 
     def set_rate_thrust(self, angular_velocity_B: Sequence[float], thrust_N: float) -> None:
         self._c.set_rate_thrust(np.asarray(angular_velocity_B, float), float(thrust_N))
-
-    def rotor_speeds(self, odometry: Odometry) -> np.ndarray:
-        return _answer(self._c, odometry)
-
-    @property
-    def engine(self) -> Any:
-        return self._c
-
-    @property
-    def vehicle(self) -> dict:
-        return self._c.vehicle

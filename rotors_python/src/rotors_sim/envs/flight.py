@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import gymnasium as gym
 import numpy as np
 
 from rotors_sim.controllers import AttitudeLevelController
@@ -111,3 +112,23 @@ class Flight:
         if odometry is None:
             raise SimError(f"no odometry from /{self.ns}/odometry_sensor1/odometry yet")
         return odometry
+
+
+class FlightEnv(gym.Env):
+    """What the environments share: an action goes to the motors, the world steps one control
+    period, the subclass's end_step() observes and scores. The vector environment calls
+    begin_step() and end_step() itself around one step of every world."""
+
+    metadata = {"render_modes": []}
+    flight: Flight
+
+    def step(self, action):
+        self.begin_step(action)
+        self.flight.world.step(self.flight.substeps)
+        return self.end_step()
+
+    def begin_step(self, action) -> None:
+        self.flight.apply(action)
+
+    def end_step(self):
+        raise NotImplementedError

@@ -17,7 +17,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from rotors_sim.envs.flight import Flight, FlightConfig, rotate
+from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, rotate
 
 OBSERVATION_HIGH = np.array([5.0] * 3 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
 OBSERVATION_SIZE = len(OBSERVATION_HIGH)
@@ -35,9 +35,7 @@ def hover_reward(obs: np.ndarray) -> float:
     return float(-np.linalg.norm(obs[0:3]) - 0.1 * np.linalg.norm(obs[3:6]) - 0.05 * np.linalg.norm(obs[10:13]))
 
 
-class HoverEnv(gym.Env):
-    metadata = {"render_modes": []}
-
+class HoverEnv(FlightEnv):
     def __init__(self, mav_name: str = "firefly", action_type: str = "motor", target=(0.0, 0.0, 1.0),
                  episode_s: float = 10.0, physics_hz: float = 500.0, control_hz: float = 100.0, sensor_seed: int = 0):
         self.flight = Flight(FlightConfig(mav_name=mav_name, action_type=action_type, physics_hz=physics_hz,
@@ -55,15 +53,6 @@ class HoverEnv(gym.Env):
         odometry = self.flight.reset(start, yaw=float(self.np_random.uniform(-np.pi, np.pi)))
         self.steps = 0
         return hover_observation(odometry, self.target), {"time_s": odometry.time_s}
-
-    def step(self, action):
-        self.begin_step(action)
-        self.flight.world.step(self.flight.substeps)
-        return self.end_step()
-
-    def begin_step(self, action) -> None:
-        """The action goes to the motors (the vector environment steps the worlds in between)."""
-        self.flight.apply(action)
 
     def end_step(self):
         obs = hover_observation(self.flight.after_step(), self.target)

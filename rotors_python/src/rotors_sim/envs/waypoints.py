@@ -18,15 +18,13 @@ from typing import Any, Sequence
 import gymnasium as gym
 import numpy as np
 
-from rotors_sim.envs.flight import Flight, FlightConfig, rotate
+from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, rotate
 
 OBSERVATION_HIGH = np.array([10.0] * 6 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
 SQUARE = ((0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 1.0, 1.0), (0.0, 1.0, 1.0), (0.0, 0.0, 1.0))
 
 
-class WaypointsEnv(gym.Env):
-    metadata = {"render_modes": []}
-
+class WaypointsEnv(FlightEnv):
     def __init__(self, waypoints: Sequence[Sequence[float]] = SQUARE[1:], start=SQUARE[0], mav_name: str = "firefly",
                  action_type: str = "motor", reach_m: float = 0.3, episode_s: float = 20.0,
                  physics_hz: float = 500.0, control_hz: float = 100.0, sensor_seed: int = 0):
@@ -56,15 +54,6 @@ class WaypointsEnv(gym.Env):
         self.index, self.steps = 0, 0
         self.distance = float(np.linalg.norm(odometry.position_W - self.waypoints[0]))
         return self._observe(odometry), {"waypoint": 0}
-
-    def step(self, action):
-        self.begin_step(action)
-        self.flight.world.step(self.flight.substeps)
-        return self.end_step()
-
-    def begin_step(self, action) -> None:
-        """The action goes to the motors (the vector environment steps the worlds in between)."""
-        self.flight.apply(action)
 
     def end_step(self):
         odometry = self.flight.after_step()
