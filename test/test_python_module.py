@@ -184,3 +184,17 @@ def test_listen_keeps_only_the_topics_asked_for():
     world.listen()
     world.step(5)
     assert world.message("/firefly/imu")[1] == 5
+
+
+def test_an_sdf_model_spawns_from_text_and_falls_as_a_body_should():
+    sdf = """<?xml version="1.0"?><sdf version="1.6"><model name="crate"><link name="body">
+      <inertial><mass>2.0</mass><inertia><ixx>0.1</ixx><iyy>0.1</iyy><izz>0.1</izz></inertia></inertial>
+      <collision name="c"><geometry><box><size>0.4 0.4 0.4</size></box></geometry></collision>
+      </link></model></sdf>"""
+    world = rs.World("basic")
+    assert world.spawn(sdf, "crate", xyz=(0.0, 0.0, 10.0)) == "crate"
+    n, dt, g = 50, world.step_size, 9.8
+    world.step(n)  # free fall from rest, ODE's semi-implicit Euler: z_n = z_0 - g dt^2 n (n + 1) / 2
+    z = world.link_state("crate")[0][2]
+    assert abs(z - (10.0 - g * dt**2 * n * (n + 1) / 2)) < 1e-9
+    assert abs(z - (10.0 - g * (n * dt) ** 2 / 2)) < g * dt * n * dt  # the continuous fall, within one step's error
