@@ -97,6 +97,10 @@ def test_sensors_messages_and_contacts():
     assert abs(gps.latitude - 47.3667) < 0.01  # basic.world's spherical coordinates (Zurich)
     contacts = world.contacts()
     assert any("firefly::" in c["collision1"] + c["collision2"] for c in contacts)  # standing on the ground
+    assert world.in_contact("firefly")
+    world.set_model_state("firefly", [0.0, 0.0, 5.0])
+    world.step()
+    assert not world.in_contact("firefly")
     assert world.rotor_speeds("firefly").shape == (6,)
 
 

@@ -265,6 +265,15 @@ class PyWorld {
     return out;
   }
 
+  /// True when a contact of the last step involves a collision of `model` (names "model::link::collision").
+  bool InContact(const std::string& model) const {
+    const std::string prefix = model + "::";
+    for (const auto& c : world_->Contacts())
+      if (c.collision1.compare(0, prefix.size(), prefix) == 0 || c.collision2.compare(0, prefix.size(), prefix) == 0)
+        return true;
+    return false;
+  }
+
   std::vector<std::string> ModelNames() const {
     std::vector<std::string> names;
     for (const auto& m : world_->Models()) names.push_back(m->GetName());
@@ -388,7 +397,8 @@ void BindWorld(py::module_& m) {
       .def("camera_image", &PyWorld::CameraImage, py::arg("model"), py::arg("sensor"), py::arg("index") = 0,
            py::arg("depth") = false)
       .def("laser_scan", &PyWorld::LaserScan, py::arg("model"), py::arg("sensor"))
-      .def("contacts", &PyWorld::Contacts);
+      .def("contacts", &PyWorld::Contacts)
+      .def("in_contact", &PyWorld::InContact, py::arg("model"));
 
   m.def("step_all", &StepAll, py::arg("worlds"), py::arg("n"), py::arg("threads") = 0,
         "Steps every world n times on `threads` threads (0: one per core), the GIL released.");

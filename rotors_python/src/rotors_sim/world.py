@@ -158,6 +158,10 @@ class World:
     def contacts(self) -> list[dict]:
         return self._w.contacts()
 
+    def in_contact(self, model: str) -> bool:
+        """Whether the model touched anything (another model, the ground) in the last step."""
+        return self._w.in_contact(model)
+
     # --- sensors ---
     def topics(self) -> list[tuple[str, str, int]]:
         """(topic, message type, messages so far) of everything the plugins publish."""

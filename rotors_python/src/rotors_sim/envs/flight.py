@@ -103,9 +103,7 @@ class Flight:
         return self.odometry
 
     def collided(self) -> bool:
-        prefix = self.ns + "::"
-        return any(c["collision1"].startswith(prefix) or c["collision2"].startswith(prefix)
-                   for c in self.world.contacts())
+        return self.world.in_contact(self.ns)
 
     def _read(self) -> Odometry:
         odometry = self.world.odometry(self.ns)
