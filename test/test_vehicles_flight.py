@@ -10,7 +10,8 @@ import yaml
 
 from conftest import RosGraph, launch, package_path, stop_launch, wait_sim_time
 
-LEE_KP_Z = {"hummingbird": 4, "pelican": 4, "iris": 6, "neo11": 17, "asymmetric_quadrotor": 4, "firefly": 6}
+LEE_KP_Z = {"hummingbird": 4, "pelican": 4, "iris": 6, "neo11": 17, "asymmetric_quadrotor": 4, "firefly": 6,
+            "ardrone": 6, "neo9": 17}
 
 
 def simulated_mass(ros: RosGraph, mav: str) -> float:
@@ -28,7 +29,7 @@ def ground_truth(ros: RosGraph, ns: str) -> dict:
     """)
 
 
-@pytest.mark.parametrize("mav", ["hummingbird", "pelican", "iris", "neo11", "asymmetric_quadrotor"])
+@pytest.mark.parametrize("mav", ["hummingbird", "pelican", "iris", "neo11", "asymmetric_quadrotor", "ardrone", "neo9"])
 def test_vehicle_hovers_at_the_offset_its_parameters_predict(ros: RosGraph, mav: str):
     m_ctrl = yaml.safe_load((package_path("rotors_gazebo") / "resource" / f"{mav}.yaml").read_text())["mass"]
     m_sim = simulated_mass(ros, mav)
@@ -44,8 +45,8 @@ def test_vehicle_hovers_at_the_offset_its_parameters_predict(ros: RosGraph, mav:
     finally:
         stop_launch(proc)
     assert s["z"] == pytest.approx(1.0 + dz, abs=0.01), (s, dz)
-    # Horizontal offsets come from mismatches the upstream parameters carry (neo11: the yaml ignores
-    # the 5 deg rotor tilt; asymmetric quadrotor: the rotor masses move the CoG; the base-link inertia
+    # Horizontal offsets come from mismatches the upstream parameters carry (neo11, neo9: the yaml
+    # ignores the 5 deg rotor tilt; asymmetric quadrotor: the rotor masses move the CoG; the base-link inertia
     # everywhere, see urdf_overrides.yaml) and no integral action: the hover is steady, near the set point.
     assert math.hypot(s["x"], s["y"]) < 0.15, s
     assert math.dist((s["x"], s["y"], s["z"]), (later["x"], later["y"], later["z"])) < 0.005, (s, later)
@@ -125,5 +126,5 @@ def test_unknown_vehicle_name_is_one_clear_line(ros: RosGraph):
     res = subprocess.run(["roslaunch", "-p", str(ros.port), "rotors_gazebo", "spawn_mav.launch", "mav_name:=bumblebee"],
                          capture_output=True, text=True, env=ros.env, timeout=60)
     assert res.returncode != 0
-    assert "rotors_xacro: unknown vehicle mav_name:=bumblebee (known: asymmetric_quadrotor firefly hummingbird iris " \
-           "neo11 pelican)" in res.stdout + res.stderr
+    assert "rotors_xacro: unknown vehicle mav_name:=bumblebee (known: ardrone asymmetric_quadrotor firefly hummingbird " \
+           "iris neo11 neo9 pelican)" in res.stdout + res.stderr
