@@ -91,6 +91,8 @@ def test_bad_actions_raise_one_clear_exception_and_the_env_keeps_working(action,
         HoverEnv(mav_name="ufo")
     with pytest.raises(rs.SimError, match="action_type 'rpm' unknown"):
         HoverEnv(action_type="rpm")
+    with pytest.raises(rs.SimError, match="attitude actions need roll_pitch_yawrate_thrust_controller_neo9.yaml"):
+        HoverEnv(mav_name="neo9", action_type="attitude")
 
 
 def test_the_vector_environment_steps_every_world_in_one_call_with_autoreset():

@@ -15,9 +15,10 @@ from dataclasses import dataclass
 import gymnasium as gym
 import numpy as np
 
-from rotors_sim.controllers import AttitudeLevelController
+from rotors_sim.controllers import AttitudeLevelController, LeePositionController
 from rotors_sim.world import Odometry, World
 from rotors_sim._engine import SimError
+from rotors_sim.paths import resource
 
 ACTION_TYPES = ("motor", "attitude")
 
@@ -56,8 +57,14 @@ class Flight:
         self.world.spawn_mav(config.mav_name, xyz=(0.0, 0.0, 0.1), random_seed=config.sensor_seed,
                              odometry_divisor=self.substeps)
         self.world.listen([f"/{self.ns}/odometry_sensor1/odometry"])
-        self.attitude = AttitudeLevelController.for_mav(config.mav_name)
-        vehicle = self.attitude.vehicle
+        self.attitude: AttitudeLevelController | None = None
+        if config.action_type == "attitude":
+            gains = resource(f"roll_pitch_yawrate_thrust_controller_{config.mav_name}.yaml")
+            if not gains.exists():
+                raise SimError(f"attitude actions need {gains.name}, which {config.mav_name} does not have "
+                               "(RotorS ships none); use action_type='motor'")
+            self.attitude = AttitudeLevelController.for_mav(config.mav_name)
+        vehicle = (self.attitude or LeePositionController.for_mav(config.mav_name)).vehicle
         self.rotor_count = len(vehicle["rotors"])
         limits = [r["max_rot_velocity_rad_s"] for r in vehicle["rotors"]]
         if not all(limit > 0 for limit in limits):
