@@ -56,14 +56,19 @@ def engine_only(urdf: Path, with_ros: bool, runs: int = 5) -> Dict:
     return {"steps_per_s": statistics.median(r["steps_per_s"] for r in results), "plugins": results[0]["plugins"]}
 
 
-def rotorpy_hover_wall_s() -> float:
-    """The same 20 s hover simulated by RotorPy (SE3 controller, 1 kHz), in its own venv."""
+def rotorpy_python() -> Path:
     venv = OUT / "rotorpy-venv"
-    if not (venv / "bin" / "python").exists():
+    if not (venv / "bin" / "python").exists() or subprocess.run(
+            [str(venv / "bin" / "python"), "-c", "import rotorpy"], capture_output=True).returncode != 0:
         subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
         subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "--disable-pip-version-check", "rotorpy==3.0.0"],
                        check=True, stderr=subprocess.DEVNULL)
-    out = subprocess.run([str(venv / "bin" / "python"), str(ROOT / "scripts" / "peers" / "rotorpy_hover.py")],
+    return venv / "bin" / "python"
+
+
+def rotorpy_hover_wall_s() -> float:
+    """The same 20 s hover simulated by RotorPy (SE3 controller, 1 kHz), in its own venv."""
+    out = subprocess.run([str(rotorpy_python()), str(ROOT / "scripts" / "peers" / "rotorpy_hover.py")],
                          capture_output=True, text=True, check=True, cwd=OUT).stdout
     return float(out.split()[-1])
 
@@ -347,6 +352,8 @@ def peer_python(peer: str) -> Path:
 def hover_drone_s_per_s(peer: str, worlds: int, seconds: float) -> Dict:
     """One closed-loop hover run of a peer script (scripts/peers/<peer>_hover.py): its JSON line."""
     python = sys.executable if peer == "rotors_sim" else str(peer_python(peer))
+    if peer == "rotorpy":
+        python = str(rotorpy_python())
     out = subprocess.run([python, str(ROOT / "scripts" / "peers" / f"{peer}_hover.py"), str(worlds), str(seconds)],
                          capture_output=True, text=True, timeout=1800)
     lines = [line for line in out.stdout.splitlines() if line.startswith("{")]
@@ -358,8 +365,8 @@ def hover_drone_s_per_s(peer: str, worlds: int, seconds: float) -> Dict:
 def python_peers() -> Dict:
     """Hover, closed loop, 500 Hz physics and 100 Hz control, for 1 and 64 worlds: best of 3 runs each."""
     table: Dict = {}
-    for peer, seconds in (("rotors_sim", 20.0), ("crazyflow", 20.0), ("pyflyt", 5.0)):  # PyFlyt: ~3 x real time
-        for worlds in (1, 64):
+    for peer, seconds in (("rotors_sim", 20.0), ("crazyflow", 20.0), ("pyflyt", 5.0), ("rotorpy", 5.0)):
+        for worlds in ((1,) if peer == "rotorpy" else (1, 64)):  # RotorPy: no batch of worlds
             sim_s = seconds if worlds == 1 or peer != "pyflyt" else 1.0  # 64 PyFlyt drones: well below real time
             runs = [hover_drone_s_per_s(peer, worlds, sim_s) for _ in range(3)]
             table[f"{peer}/{worlds}"] = max(runs, key=lambda r: r["drone_s_per_s"])
@@ -370,11 +377,13 @@ def python_peer_rows(t: Dict) -> List:
     rows = []
     notes = {"rotors_sim": "firefly, 12 RotorS plugins, Lee controller library attached, worlds on threads",
              "crazyflow": "Crazyflie, onboard state controller, JAX on the CPU (vmap over worlds)",
-             "pyflyt": "QuadX in position mode; 64 = 64 drones in one Aviary (no batch of worlds)"}
-    for peer in ("rotors_sim", "crazyflow", "pyflyt"):
-        one, many = t[f"{peer}/1"], t[f"{peer}/64"]
+             "pyflyt": "QuadX in position mode; 64 = 64 drones in one Aviary (no batch of worlds)",
+             "rotorpy": "SE3 controller at the physics rate, 500 Hz (no separate control rate); no batch of worlds"}
+    for peer in ("rotors_sim", "crazyflow", "pyflyt", "rotorpy"):
+        one, many = t[f"{peer}/1"], t.get(f"{peer}/64")
+        many_text = f"{many['drone_s_per_s']:,.0f} drone-s/s" if many else "not run (no batch of worlds)"
         rows += [(f"hover, 500 Hz physics, 100 Hz control: {peer} ({notes[peer]})",
-                  f"1 world {one['drone_s_per_s']:,.1f} x real time; 64 worlds {many['drone_s_per_s']:,.0f} drone-s/s", "")]
+                  f"1 world {one['drone_s_per_s']:,.1f} x real time; 64 worlds {many_text}", "")]
     ours1, ours64 = t["rotors_sim/1"]["drone_s_per_s"], t["rotors_sim/64"]["drone_s_per_s"]
     rows += [("  ratio, one world: rotors_sim / PyFlyt", f"{ours1 / t['pyflyt/1']['drone_s_per_s']:,.0f} x", ">= 200"),
              ("  ratio, one world: rotors_sim / crazyflow", f"{ours1 / t['crazyflow/1']['drone_s_per_s']:.1f} x", ">= 10"),
