@@ -127,4 +127,4 @@ def test_unknown_vehicle_name_is_one_clear_line(ros: RosGraph):
                          capture_output=True, text=True, env=ros.env, timeout=60)
     assert res.returncode != 0
     assert "rotors_xacro: unknown vehicle mav_name:=bumblebee (known: ardrone asymmetric_quadrotor firefly hummingbird " \
-           "iris neo11 neo9 pelican)" in res.stdout + res.stderr
+           "iris neo11 neo9 pelican techpod)" in res.stdout + res.stderr

@@ -47,6 +47,7 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   services_.push_back(private_nh_.advertiseService("spawn_sdf_model", &SimServer::OnSpawn, this));
   services_.push_back(private_nh_.advertiseService("delete_model", &SimServer::OnDelete, this));
   services_.push_back(private_nh_.advertiseService("get_model_state", &SimServer::OnGetModelState, this));
+  services_.push_back(private_nh_.advertiseService("set_model_state", &SimServer::OnSetModelState, this));
   nodelets_ = std::make_unique<NodeletHost>(private_nh_, ros::getGlobalCallbackQueue());
   clock_flush_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), [this](const ros::WallTimerEvent&) {
     if (world_->SimTime().Nanoseconds() != clock_published_ns_) PublishClock(true);
@@ -233,6 +234,38 @@ bool SimServer::OnGetModelState(gazebo_msgs::GetModelState::Request& req, gazebo
   res.twist = TwistMsg(v_R, w_R);
   res.success = true;
   res.status_message = "GetModelState: got properties";
+  return true;
+}
+
+/// Gazebo's set_model_state for poses and twists in the world frame (reference_frame empty, "world"
+/// or "map"); the model moves as one rigid body. Another reference frame is refused by name.
+bool SimServer::OnSetModelState(gazebo_msgs::SetModelState::Request& req, gazebo_msgs::SetModelState::Response& res) {
+  const gazebo_msgs::ModelState& s = req.model_state;
+  const physics::ModelPtr model = world_->ModelByName(s.model_name);
+  res.success = false;
+  if (!model) {
+    res.status_message = "SetModelState: model '" + s.model_name + "' does not exist";
+    return true;
+  }
+  if (!(s.reference_frame.empty() || s.reference_frame == "world" || s.reference_frame == "map")) {
+    res.status_message = "SetModelState: reference_frame '" + s.reference_frame +
+                         "' is not supported (give \"world\", \"map\" or nothing: the world frame)";
+    return true;
+  }
+  const auto& p = s.pose.position;
+  const auto& q = s.pose.orientation;
+  const auto& v = s.twist.linear;
+  const auto& w = s.twist.angular;
+  const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  if (!std::isfinite(p.x + p.y + p.z + v.x + v.y + v.z + w.x + w.y + w.z) || !(n > 1e-9) || !std::isfinite(n)) {
+    res.status_message = "SetModelState: the pose and twist must be finite and the quaternion non-zero";
+    return true;
+  }
+  model->SetWorldPose(
+      physics::Pose3d(physics::Vector3d(p.x, p.y, p.z), physics::Quaterniond(q.w / n, q.x / n, q.y / n, q.z / n)));
+  model->SetWorldTwist(physics::Vector3d(v.x, v.y, v.z), physics::Vector3d(w.x, w.y, w.z));
+  res.success = true;
+  res.status_message = "SetModelState: set model state";
   return true;
 }
 

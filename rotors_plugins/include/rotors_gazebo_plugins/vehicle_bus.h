@@ -31,6 +31,10 @@ struct VehicleBus {
   int rotor_count = 0;                                        ///< number of motor models registered
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
   std::vector<MotorFault> motor_faults;                       ///< per motor number (healthy by default)
+  /// Fixed wings: RotorS' normalized actuator command (mav_msgs/Actuators.normalized, by channel).
+  std::vector<double> normalized_command;  ///< empty until the first valid command
+  uint64_t normalized_command_count = 0;
+  int normalized_channels = 0;  ///< how many channels the vehicle's fixed-wing plugin reads (0: none)
 
   /// The bus of a namespace in a world, shared by the plugins of the vehicle that hold it. It lives
   /// as long as one of them: a model deleted and re-spawned under the same namespace (with another
@@ -42,6 +46,9 @@ struct VehicleBus {
   /// "" and the command in force, or the reason it was refused (wrong length, NaN, inf, negative),
   /// the last valid command staying in force.
   std::string SetMotorCommand(const std::vector<double>& speeds_rad_s);
+  /// The one way in for a fixed wing's normalized command (surfaces and throttle by channel): "" or
+  /// why it was refused (no fixed-wing plugin, too few channels, NaN or inf).
+  std::string SetNormalizedCommand(const std::vector<double>& normalized);
   /// The factor motor `motor_number`'s command is scaled by at sim time t_s.
   double SpeedFactor(int motor_number, double t_s) const {
     if (motor_number >= static_cast<int>(motor_faults.size())) return 1.0;

@@ -52,4 +52,22 @@ std::string VehicleBus::SetMotorCommand(const std::vector<double>& speeds_rad_s)
   return {};
 }
 
+std::string VehicleBus::SetNormalizedCommand(const std::vector<double>& normalized) {
+  std::ostringstream why;
+  if (normalized_channels == 0) return "is for a fixed wing; this vehicle has no fixed-wing plugin";
+  if (static_cast<int>(normalized.size()) < normalized_channels) {
+    why << "has " << normalized.size() << " normalized values, the vehicle reads " << normalized_channels
+        << " channels";
+    return why.str();
+  }
+  for (size_t i = 0; i < normalized.size(); ++i)
+    if (!std::isfinite(normalized[i])) {
+      why << "normalized[" << i << "] = " << normalized[i] << " must be finite";
+      return why.str();
+    }
+  normalized_command = normalized;
+  ++normalized_command_count;
+  return {};
+}
+
 }  // namespace rotors_gazebo_plugins

@@ -99,11 +99,13 @@ FixedWingAeroParams FixedWingAeroParams::FromYaml(const std::string& path) {
 
 std::string FixedWingAeroParams::Validate() const {
   // the terms the model uses: [0..2] for drag in alpha, [1..2] for beta and the surfaces, [1] for the rest
-  const std::pair<const char*, const std::vector<double>*> need[] = {
-      {"c_drag_alpha", &c_drag_alpha},     {"c_drag_beta", &c_drag_beta},
-      {"c_drag_delta_ail", &c_drag_delta_ail}, {"c_drag_delta_flp", &c_drag_delta_flp}};
+  const std::pair<const char*, const std::vector<double>*> need[] = {{"c_drag_alpha", &c_drag_alpha},
+                                                                     {"c_drag_beta", &c_drag_beta},
+                                                                     {"c_drag_delta_ail", &c_drag_delta_ail},
+                                                                     {"c_drag_delta_flp", &c_drag_delta_flp}};
   for (const auto& n : need)
-    if (n.second->size() < 3) return std::string(n.first) + " needs 3 coefficients, has " + std::to_string(n.second->size());
+    if (n.second->size() < 3)
+      return std::string(n.first) + " needs 3 coefficients, has " + std::to_string(n.second->size());
   if (c_lift_alpha.size() < 4) return "c_lift_alpha needs 4 coefficients, has " + std::to_string(c_lift_alpha.size());
   if (c_thrust.size() < 3) return "c_thrust needs 3 coefficients, has " + std::to_string(c_thrust.size());
   const std::pair<const char*, const std::vector<double>*> two[] = {
@@ -122,7 +124,8 @@ std::string FixedWingAeroParams::Validate() const {
       {"c_yaw_moment_r", &c_yaw_moment_r},
       {"c_yaw_moment_delta_rud", &c_yaw_moment_delta_rud}};
   for (const auto& n : two)
-    if (n.second->size() < 2) return std::string(n.first) + " needs 2 coefficients, has " + std::to_string(n.second->size());
+    if (n.second->size() < 2)
+      return std::string(n.first) + " needs 2 coefficients, has " + std::to_string(n.second->size());
   if (!(alpha_min_rad < alpha_max_rad)) return "alpha_min must be below alpha_max";
   return {};
 }

@@ -18,6 +18,7 @@
 #include "rotors_control/attitude_controllers.h"
 #include "rotors_control/lee_position_controller.h"
 #include "rotors_control/parameter_loading.h"
+#include "rotors_gazebo_plugins/models/fixed_wing_model.h"
 #include "rotors_core/error.h"
 #include "rotors_params/map_param_reader.h"
 
@@ -172,6 +173,39 @@ py::dict VehicleDict(const rotors_control::VehicleParameters& v) {
 }  // namespace
 
 void BindControllers(py::module_& m) {
+  // RotorS' fixed-wing model (engine-free), e.g. for trim computations with the simulator's coefficients
+  py::class_<rotors_gazebo_plugins::FixedWingModel>(m, "FixedWingModel")
+      .def(py::init([](const std::string& aero_yaml, const std::string& vehicle_yaml) {
+             try {
+               return rotors_gazebo_plugins::FixedWingModel(
+                   rotors_gazebo_plugins::FixedWingAeroParams::FromYaml(aero_yaml),
+                   rotors_gazebo_plugins::FixedWingVehicleParams::FromYaml(vehicle_yaml));
+             } catch (const std::exception& e) {
+               throw SimError(e.what());
+             }
+           }),
+           py::arg("aero_params_yaml"), py::arg("vehicle_params_yaml"))
+      .def(
+          "compute",
+          [](const rotors_gazebo_plugins::FixedWingModel& model, const Eigen::Vector3d& v_air_B,
+             const Eigen::Vector3d& omega_B, const std::vector<double>& normalized) {
+            rotors_gazebo_plugins::FixedWingInputs u;
+            const std::string why =
+                rotors_gazebo_plugins::FixedWingInputs::FromNormalized(normalized, model.Vehicle(), &u);
+            if (!why.empty()) throw SimError(why);
+            const auto w = model.Compute(v_air_B, omega_B, u);
+            py::dict out;
+            out["force_B"] = w.force_B;
+            out["moment_B"] = w.moment_B;
+            out["alpha"] = w.alpha_rad;
+            out["beta"] = w.beta_rad;
+            out["airspeed"] = w.airspeed_m_s;
+            out["lift_coefficient"] = w.lift_coefficient;
+            return out;
+          },
+          py::arg("v_air_B"), py::arg("omega_B"), py::arg("normalized"),
+          "Force and moment (body frame FLU) for the airspeed and rates (FLU) and a normalized command.");
+
   const char* state_doc =
       "Rotor speeds [rad/s] for the state as the ROS node takes it from odometry: position_W, "
       "orientation (x, y, z, w), velocity_B and angular_velocity_B in the body frame.";

@@ -170,6 +170,12 @@ class PyWorld {
     if (!why.empty()) throw SimError("motor command for '" + ns + "' " + why);
   }
   std::vector<double> RotorSpeeds(const std::string& ns) const { return Bus(ns)->rotor_speed_rad_s; }
+  /// A fixed wing's normalized command (surfaces and throttle by channel), as Actuators.normalized.
+  void SetActuators(const std::string& ns, const std::vector<double>& normalized) {
+    auto bus = rotors_gazebo_plugins::VehicleBus::For(*world_, ns);
+    const std::string why = bus->SetNormalizedCommand(normalized);
+    if (!why.empty()) throw SimError("actuator command for '" + ns + "' " + why);
+  }
 
   py::object Message(const std::string& topic) const {
     const rotors_sim::TappedMessage* slot = rotors_sim::MessageTaps::Of(*world_).Find(topic);
@@ -387,6 +393,7 @@ void BindWorld(py::module_& m) {
            py::arg("velocity"), py::arg("angular_velocity"))
       .def("set_motor_speeds", &PyWorld::SetMotorSpeeds, py::arg("namespace"), py::arg("speeds"))
       .def("rotor_speeds", &PyWorld::RotorSpeeds, py::arg("namespace"))
+      .def("set_actuators", &PyWorld::SetActuators, py::arg("namespace"), py::arg("normalized"))
       .def("message", &PyWorld::Message, py::arg("topic"))
       .def("odometry_array", &PyWorld::OdometryArray, py::arg("topic"))
       .def("topics", &PyWorld::Topics)

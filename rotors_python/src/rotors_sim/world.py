@@ -152,6 +152,10 @@ class World:
         """The motor command [rad/s], as command/motor_speed would give it (validated the same way)."""
         self._w.set_motor_speeds(namespace, [float(s) for s in np.asarray(speeds, dtype=float).ravel()])
 
+    def set_actuators(self, namespace: str, normalized: Sequence[float]) -> None:
+        """A fixed wing's command: surfaces and throttle by channel, as Actuators.normalized."""
+        self._w.set_actuators(namespace, [float(x) for x in normalized])
+
     def rotor_speeds(self, namespace: str) -> np.ndarray:
         return np.asarray(self._w.rotor_speeds(namespace))
 

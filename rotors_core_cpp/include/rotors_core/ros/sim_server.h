@@ -8,6 +8,7 @@
 
 #include <gazebo_msgs/DeleteModel.h>
 #include <gazebo_msgs/GetModelState.h>
+#include <gazebo_msgs/SetModelState.h>
 #include <gazebo_msgs/SpawnModel.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
@@ -61,6 +62,7 @@ class SimServer {
   bool OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnModel::Response& res);
   bool OnDelete(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::DeleteModel::Response& res);
   bool OnGetModelState(gazebo_msgs::GetModelState::Request& req, gazebo_msgs::GetModelState::Response& res);
+  bool OnSetModelState(gazebo_msgs::SetModelState::Request& req, gazebo_msgs::SetModelState::Response& res);
 
   ros::NodeHandle nh_, private_nh_;
   physics::WorldPtr world_;

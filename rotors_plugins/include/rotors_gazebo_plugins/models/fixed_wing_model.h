@@ -19,7 +19,8 @@ struct ControlSurface {
   double deflection_min_rad = -0.349066, deflection_max_rad = 0.349066;
   /// delta = (max + min) / 2 + (max - min) / 2 * normalized (RotorS: no clamping)
   double Deflection(double normalized) const {
-    return (deflection_max_rad + deflection_min_rad) / 2.0 + (deflection_max_rad - deflection_min_rad) / 2.0 * normalized;
+    return (deflection_max_rad + deflection_min_rad) / 2.0 +
+           (deflection_max_rad - deflection_min_rad) / 2.0 * normalized;
   }
 };
 
@@ -36,9 +37,9 @@ struct FixedWingVehicleParams {
 struct FixedWingAeroParams {
   double alpha_max_rad = 0.27, alpha_min_rad = -0.27;
   std::vector<double> c_drag_alpha, c_drag_beta, c_drag_delta_ail, c_drag_delta_flp, c_side_force_beta, c_lift_alpha,
-      c_lift_delta_ail, c_lift_delta_flp, c_roll_moment_beta, c_roll_moment_p, c_roll_moment_r,
-      c_roll_moment_delta_ail, c_roll_moment_delta_flp, c_pitch_moment_alpha, c_pitch_moment_q,
-      c_pitch_moment_delta_elv, c_yaw_moment_beta, c_yaw_moment_r, c_yaw_moment_delta_rud, c_thrust;
+      c_lift_delta_ail, c_lift_delta_flp, c_roll_moment_beta, c_roll_moment_p, c_roll_moment_r, c_roll_moment_delta_ail,
+      c_roll_moment_delta_flp, c_pitch_moment_alpha, c_pitch_moment_q, c_pitch_moment_delta_elv, c_yaw_moment_beta,
+      c_yaw_moment_r, c_yaw_moment_delta_rud, c_thrust;
   /// Reads RotorS' aerodynamic yaml; throws std::runtime_error naming the file and the key, or a
   /// list that is too short.
   static FixedWingAeroParams FromYaml(const std::string& path);

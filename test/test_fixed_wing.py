@@ -1,0 +1,154 @@
+"""The techpod with RotorS' fixed-wing dynamics (librotors_gazebo_fw_dynamics_plugin.so), flown from
+Python without ROS: trimmed level flight holds altitude and airspeed for 20 s, lift equals weight
+at trim within 2 %, and an aileron step rolls right wing down at the rate the coefficients predict."""
+import math
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+import rotors_sim as rs
+from rotors_sim import _engine
+from rotors_sim.world import run_xacro
+
+URDF = rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"
+FW = rs.paths.resource("fixed_wing")
+SURFACE_MAX = 0.349066  # [rad] every surface of techpod.yaml
+G = 9.8  # the world's gravity
+V_TRIM = 15.0
+
+
+def techpod_mass() -> float:
+    urdf = run_xacro(URDF, {"namespace": "techpod", "mav_name": "techpod"})
+    return sum(float(m.get("value")) for m in ET.fromstring(urdf).iter("mass"))
+
+
+def command(elevator_rad: float = 0.0, throttle: float = 0.0, aileron: float = 0.0) -> list:
+    # channels (techpod.yaml): aileron_right 0, elevator 1, flap 2, rudder 3, aileron_left 4, throttle 5
+    return [-aileron, elevator_rad / SURFACE_MAX, 0.0, 0.0, aileron, throttle]
+
+
+def trim(model, mass: float):
+    """alpha, elevator, throttle of level flight at V_TRIM: world x and z force and the pitch moment zero
+    (Newton with a numerical Jacobian)."""
+    def residual(x):
+        alpha, elevator, throttle = x
+        w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0.0, 0.0, 0.0],
+                          command(elevator, throttle))
+        f, m = np.asarray(w["force_B"]), np.asarray(w["moment_B"])
+        # body pitched nose up by alpha (FLU): world x = cos a f_x - sin a f_z, world z = sin a f_x + cos a f_z
+        fx_W = math.cos(alpha) * f[0] - math.sin(alpha) * f[2]
+        fz_W = math.sin(alpha) * f[0] + math.cos(alpha) * f[2] - mass * G
+        return np.array([fx_W, fz_W, m[1]])
+
+    x = np.array([0.03, 0.0, 0.5])
+    for _ in range(50):
+        r = residual(x)
+        J = np.column_stack([(residual(x + dx) - r) / 1e-7 for dx in np.eye(3) * 1e-7])
+        x = x - np.linalg.solve(J, r)
+        if np.max(np.abs(r)) < 1e-10:
+            break
+    return x
+
+
+def fly_from_trim(world: rs.World, alpha: float, elevator: float, throttle: float, height: float = 50.0) -> None:
+    q = [0.0, math.sin(-alpha / 2), 0.0, math.cos(alpha / 2)]  # nose up by alpha: about +y (left) by -alpha
+    world.set_model_state("techpod", [0.0, 0.0, height], q, velocity=[V_TRIM, 0.0, 0.0])
+    world.set_actuators("techpod", command(elevator, throttle))
+
+
+@pytest.fixture(scope="module")
+def trimmed():
+    model = _engine.FixedWingModel(str(FW / "aero_params_techpod.yaml"), str(FW / "techpod.yaml"))
+    mass = techpod_mass()
+    return model, mass, trim(model, mass)
+
+
+def test_lift_equals_weight_at_trim_within_2_percent(trimmed):
+    model, mass, (alpha, elevator, throttle) = trimmed
+    w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0, 0, 0], command(elevator, throttle))
+    lift = 0.5 * 1.18 * V_TRIM**2 * 0.47 * w["lift_coefficient"]
+    print(f"techpod {mass:.3f} kg at {V_TRIM} m/s: alpha {math.degrees(alpha):.2f} deg, elevator "
+          f"{math.degrees(elevator):.2f} deg, throttle {throttle:.3f}; lift {lift:.2f} N, weight {mass * G:.2f} N")
+    assert abs(mass - 2.81) < 0.01  # RotorS' techpod with its sensors
+    assert abs(lift / (mass * G) - 1.0) < 0.02
+    assert 0.0 < throttle < 1.0 and abs(elevator) < SURFACE_MAX
+
+
+def test_trimmed_level_flight_holds_altitude_and_airspeed_for_20_s(trimmed):
+    _, _, (alpha, elevator, throttle) = trimmed
+    world = rs.World("basic")
+    world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1)
+    fly_from_trim(world, alpha, elevator, throttle)
+    heights, speeds = [], []
+    for _ in range(2000):  # 20 s
+        world.step()
+        p, _, v, _ = world.link_state("techpod")
+        heights.append(p[2])
+        speeds.append(float(np.linalg.norm(v)))
+    print(f"20 s from trim: height {min(heights):.3f}-{max(heights):.3f} m, airspeed {min(speeds):.3f}-"
+          f"{max(speeds):.3f} m/s, flown {p[0]:.1f} m")
+    assert max(abs(h - 50.0) for h in heights) < 1.0
+    assert max(abs(s - V_TRIM) for s in speeds) < 0.5
+    assert p[0] > 250.0  # it flew forward at about 15 m/s
+
+
+def test_an_aileron_step_rolls_right_wing_down_at_the_predicted_rate(trimmed):
+    _, _, (alpha, elevator, throttle) = trimmed
+    world = rs.World("basic")
+    world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1)
+    fly_from_trim(world, alpha, elevator, throttle)
+    world.step(100)
+    world.set_actuators("techpod", command(elevator, throttle, aileron=0.2))  # left aileron down, right up
+    delta_a = 0.2 * SURFACE_MAX - (-0.2 * SURFACE_MAX)  # delta_ail_left - delta_ail_right
+    # steady roll rate where roll damping cancels the aileron: p = -C_l,da Da 2V / (b C_l,p)
+    p_predicted = -0.0117 * delta_a * 2.0 * V_TRIM / (2.59 * -0.1647)
+    # 0.6 s: 3.5 roll time constants (I_xx, about 0.39 kg m^2 with the ailerons 1 m out, over the roll
+    # damping qS b^2 |C_l,p| / 2V = 2.3 N m s: 0.17 s), before the yaw the roll brings on builds up
+    world.step(60)
+    _, q, _, w_W = world.link_state("techpod")
+    x, y, z, qw = q
+    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * qw), 2 * (x * z + y * qw)],
+                  [2 * (x * y + z * qw), 1 - 2 * (x * x + z * z), 2 * (y * z - x * qw)],
+                  [2 * (x * z - y * qw), 2 * (y * z + x * qw), 1 - 2 * (x * x + y * y)]])
+    p_B = (R.T @ w_W)[0]  # FLU roll rate: positive = right wing down
+    print(f"aileron step: roll rate {p_B:.4f} rad/s after 0.6 s, predicted steady {p_predicted:.4f} rad/s")
+    assert p_B > 0.0
+    assert abs(p_B - p_predicted) < 0.1 * p_predicted
+
+
+def test_fixed_wing_with_joy_launches_the_techpod_and_it_flies_on_joystick_commands(ros):
+    # the RotorS command with joystick:=none (no gamepad, no keyboard here): the launcher sets the
+    # techpod flying at 15 m/s at 60 m and unpauses; trimmed stick commands (roll 0, pitch = the
+    # elevator's normalized trim, thrust = the trim throttle) hold it up for 10 s of flight
+    from conftest import launch, stop_launch, wait_sim_time
+
+    model = _engine.FixedWingModel(str(FW / "aero_params_techpod.yaml"), str(FW / "techpod.yaml"))
+    alpha, elevator, throttle = trim(model, techpod_mass())
+    proc = launch(ros, "rotors_gazebo", "fixed_wing_with_joy.launch", "gui:=false", "joystick:=none",
+                  "world_name:=basic", "real_time_factor:=5")
+    try:
+        got = ros.rospy(f"""
+            from mav_msgs.msg import RollPitchYawrateThrust
+            from nav_msgs.msg import Odometry
+            pub = rospy.Publisher('/techpod/command/roll_pitch_yawrate_thrust', RollPitchYawrateThrust, queue_size=1,
+                                  latch=True)
+            cmd = RollPitchYawrateThrust()
+            cmd.pitch, cmd.thrust.x = {elevator / SURFACE_MAX!r}, {throttle!r}
+            pub.publish(cmd)
+            first = rospy.wait_for_message('/techpod/ground_truth/odometry', Odometry, timeout=120)
+            while first.twist.twist.linear.x < 10.0:  # launched
+                first = rospy.wait_for_message('/techpod/ground_truth/odometry', Odometry, timeout=120)
+            t0 = first.header.stamp.to_sec()
+            m = first
+            while m.header.stamp.to_sec() < t0 + 10.0:
+                m = rospy.wait_for_message('/techpod/ground_truth/odometry', Odometry, timeout=120)
+            result.update(z0=first.pose.pose.position.z, z=m.pose.pose.position.z, x=m.pose.pose.position.x,
+                          vx=m.twist.twist.linear.x)
+        """, timeout=240)
+    finally:
+        stop_launch(proc)
+    print(f"fixed_wing_with_joy: after 10 s: flown {got['x']:.0f} m, height {got['z0']:.1f} -> {got['z']:.1f} m, "
+          f"forward speed {got['vx']:.1f} m/s")
+    # (the stick command may reach the plane some steps after the launch: a few metres of height, not more)
+    assert got["x"] > 120.0 and abs(got["z"] - got["z0"]) < 5.0 and got["vx"] > 12.0
