@@ -11,6 +11,8 @@ import rotors_sim as rs
 from rotors_sim import _engine
 from rotors_sim.world import run_xacro
 
+from conftest import launch, stop_launch
+
 URDF = rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"
 FW = rs.paths.resource("fixed_wing")
 SURFACE_MAX = 0.349066  # [rad] every surface of techpod.yaml
@@ -121,8 +123,6 @@ def test_fixed_wing_with_joy_launches_the_techpod_and_it_flies_on_joystick_comma
     # the RotorS command with joystick:=none (no gamepad, no keyboard here): the launcher sets the
     # techpod flying at 15 m/s at 60 m and unpauses; trimmed stick commands (roll 0, pitch = the
     # elevator's normalized trim, thrust = the trim throttle) hold it up for 10 s of flight
-    from conftest import launch, stop_launch, wait_sim_time
-
     model = _engine.FixedWingModel(str(FW / "aero_params_techpod.yaml"), str(FW / "techpod.yaml"))
     alpha, elevator, throttle = trim(model, techpod_mass())
     proc = launch(ros, "rotors_gazebo", "fixed_wing_with_joy.launch", "gui:=false", "joystick:=none",

@@ -56,10 +56,8 @@ class GazeboFwDynamicsPlugin : public rotors_sim::ModelPlugin {
       bus_->normalized_channels = std::max(bus_->normalized_channels, channel + 1);
     node_ = MakeNode(namespace_);
     if (node_) {
-      if (joystick)
-        sub_ = node_->subscribe(rpyt_topic, 1, &GazeboFwDynamicsPlugin::OnRollPitchYawrateThrust, this);
-      else
-        sub_ = node_->subscribe(actuators_topic, 1, &GazeboFwDynamicsPlugin::OnActuators, this);
+      if (joystick) sub_ = node_->subscribe(rpyt_topic, 1, &GazeboFwDynamicsPlugin::OnRollPitchYawrateThrust, this);
+      else sub_ = node_->subscribe(actuators_topic, 1, &GazeboFwDynamicsPlugin::OnActuators, this);
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
         [this](const rotors_sim::common::UpdateInfo&) { OnUpdate(); });
