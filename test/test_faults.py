@@ -152,6 +152,7 @@ def test_simulator_killed_leaves_nodes_idle_and_the_bag_recoverable(ros: RosGrap
     assert summary["position_rms"] < 0.06
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_reset_world_and_reset_simulation_mid_flight(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=1")
     try:

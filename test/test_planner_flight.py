@@ -187,6 +187,7 @@ def box_distance(p: np.ndarray, lo, hi) -> np.ndarray:
     return np.linalg.norm(np.maximum(0.0, np.maximum(np.asarray(lo) - p, p - np.asarray(hi))), axis=1)
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_reactive_avoidance_steers_around_the_wall_to_the_goal_with_a_2d_laser(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_reactive_avoidance.launch", "gui:=false", "enable_logging:=true",
                   "lockstep:=true", "real_time_factor:=2")

@@ -113,6 +113,7 @@ def check_small_sweep(out: Path, res: subprocess.CompletedProcess) -> list:
     return table
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_local_ray_sweep_records_the_injected_crash_evaluates_the_rest_and_resumes(tmp_path: Path):
     (tmp_path / "small.yaml").write_text(SMALL)
     out = tmp_path / "out"

@@ -11,6 +11,7 @@ import numpy as np
 import yaml
 from PIL import Image
 
+import pytest
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
@@ -25,6 +26,7 @@ def stamps(bag: FlightBag, topic: str):
     return [m.header.stamp.sec * 10**9 + m.header.stamp.nanosec for m, _, _ in bag.messages(topic)]
 
 
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_vi_sensor_flight_records_synchronised_stereo_and_exports_euroc(ros: RosGraph, tmp_path: Path):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example_with_vi_sensor.launch", "enable_logging:=true",
                   "lockstep:=true", "real_time_factor:=0", "gui:=false")
