@@ -351,9 +351,12 @@ def peer_python(peer: str) -> Path:
 
 def hover_drone_s_per_s(peer: str, worlds: int, seconds: float) -> Dict:
     """One closed-loop hover run of a peer script (scripts/peers/<peer>_hover.py): its JSON line."""
-    python = sys.executable if peer == "rotors_sim" else str(peer_python(peer))
-    if peer == "rotorpy":
+    if peer == "rotors_sim":
+        python = sys.executable
+    elif peer == "rotorpy":
         python = str(rotorpy_python())
+    else:
+        python = str(peer_python(peer))
     out = subprocess.run([python, str(ROOT / "scripts" / "peers" / f"{peer}_hover.py"), str(worlds), str(seconds)],
                          capture_output=True, text=True, timeout=1800)
     lines = [line for line in out.stdout.splitlines() if line.startswith("{")]
