@@ -136,3 +136,105 @@ def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
     assert climbed > 1.0
     assert moved < -0.5
     assert yawed < -math.radians(20)  # with RotorS' RPYT gains the yaw rate builds up over about 2 s
+
+
+WING_RECORDER = RECORDER.replace("/firefly/", "/techpod/").replace(
+    "m.yaw_rate, m.thrust.z", "m.yaw_rate, m.thrust.x").replace(
+    "math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2))]",
+    "math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2)), "
+    "math.atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x ** 2 + q.y ** 2)), m.pose.pose.position.x]")
+
+
+def plot_wing_flight(odom, cmd, t_climb: float, t_bank: float, out: Path) -> None:
+    """Track, height and bank of the keyboard flight, with the stick commands (README picture)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t0 = odom[0, 0]
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    ax1.plot(odom[:, 5], odom[:, 1], color="tab:blue")
+    ax1.set_xlabel("x [m]")
+    ax1.set_ylabel("y [m]")
+    ax1.set_title("techpod flown by keyboard: track (right turn)")
+    ax1.axis("equal")
+    ax2.plot(odom[:, 0] - t0, odom[:, 2], label="height [m]")
+    ax2.set_xlabel("wall time [s] (real time)")
+    ax3 = ax2.twinx()
+    ax3.plot(odom[:, 0] - t0, np.degrees(odom[:, 4]), color="tab:red", label="bank [deg]")
+    ax3.plot(cmd[:, 0] - t0, 100 * cmd[:, 4], color="tab:green", ls="--", label="throttle [%]")
+    ax3.plot(cmd[:, 0] - t0, 100 * cmd[:, 1], color="tab:purple", ls=":", label="roll stick [%]")
+    low, high = ax2.get_ylim()
+    for k, (t, what) in enumerate(((t_climb, "W, down arrow: climb"), (t_bank, "right arrow x 3: bank"))):
+        ax2.axvline(t - t0, color="grey", lw=0.8)
+        ax2.text(t - t0 + 0.1, low + (0.30 - 0.08 * k) * (high - low), what, fontsize=8)
+    ax2.set_ylabel("height [m]")
+    ax3.set_ylabel("bank [deg], throttle and roll stick [%]")
+    lines = ax2.get_legend_handles_labels()[0] + ax3.get_legend_handles_labels()[0]
+    ax2.legend(lines, [ln.get_label() for ln in lines], fontsize=8, loc="upper left")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+    print(f"plot: {out}")
+
+
+def test_keyboard_flight_of_the_fixed_wing_climbs_banks_and_turns(ros: RosGraph, tmp_path: Path):
+    # fixed_wing_with_joy.launch joystick:=keyboard in a pseudo-terminal: the launcher sets the techpod
+    # flying at 15 m/s; W x 30 opens the throttle to 0.5 (thrust axis -1 + 30 * 0.05, about the
+    # trim); then W x 6 (0.8) and a tap of the down arrow (elevator trailing edge up for 0.5 s): it
+    # climbs; three taps of the right arrow deflect the ailerons (roll axis 0.6 -> +-0.21 rad) and
+    # spring back: it banks right and turns right. Ground truth and stick commands are recorded.
+    master, slave = os.openpty()
+    launch_log = open(tmp_path / "launch.log", "w")
+    proc = subprocess.Popen(["roslaunch", "-p", str(ros.port), "rotors_gazebo", "fixed_wing_with_joy.launch",
+                             "gui:=false", "joystick:=keyboard", "world_name:=basic", "real_time_factor:=1"],
+                            env=ros.env, stdin=slave, stdout=launch_log, stderr=subprocess.STDOUT,
+                            start_new_session=True)
+    proc.log_path = tmp_path / "launch.log"
+    recorder = None
+    try:
+        assert ros.wait_for(lambda: "launched at 15.0 m/s" in proc.log_path.read_text(), 90), \
+            proc.log_path.read_text()[-3000:]
+        recorder = subprocess.Popen([sys.executable, "-c", WING_RECORDER, "15"], env=ros.env, stdout=subprocess.PIPE,
+                                    text=True)
+        assert recorder.stdout.readline().strip() == "READY"
+
+        def keys(key: str, count: int, period: float = 0.05) -> float:
+            t = time.monotonic()
+            for _ in range(count):
+                os.write(master, key.encode())
+                time.sleep(period)
+            return t
+
+        keys("w", 30, 0.02)                      # throttle 0.5
+        time.sleep(2.0)
+        t_climb = keys("w", 6, 0.02)             # throttle 0.8
+        keys("\x1b[B", 1)                        # down arrow: pitch up
+        time.sleep(4.0)
+        t_bank = keys("\x1b[C", 3, 0.2)          # right arrow three times: ailerons 0.6 of full, then back
+        time.sleep(6.0)
+        out, _ = recorder.communicate(timeout=30)
+    finally:
+        if recorder is not None and recorder.poll() is None:
+            recorder.kill()
+        stop_launch(proc)
+        os.close(master)
+        os.close(slave)
+    rec = json.loads(next(line for line in out.splitlines() if line.startswith("RESULT="))[len("RESULT="):])
+    odom, cmd = np.array(rec["odom"]), np.array(rec["cmd"])
+    plot_wing_flight(odom, cmd, t_climb, t_bank, tmp_path / "fixed_wing_keyboard.png")
+
+    def at(series, t):
+        return series[np.argmin(np.abs(series[:, 0] - t))]
+
+    assert cmd[:, 4].max() == pytest.approx(0.8, abs=1e-6)  # throttle from W x 36
+    assert cmd[:, 1].max() == pytest.approx(0.6, abs=1e-6)  # the right arrow's roll command
+    climbed = at(odom, t_bank)[2] - at(odom, t_climb)[2]
+    after = odom[odom[:, 0] > t_bank]
+    bank = np.degrees(after[:, 4]).max()
+    turned = np.degrees(at(odom, t_bank + 6.0)[3] - at(odom, t_bank)[3])
+    print(f"fixed-wing keyboard flight: climbed {climbed:.1f} m in 4 s, banked up to {bank:.1f} deg right, "
+          f"turned {turned:.1f} deg in 6 s")
+    assert climbed > 2.0
+    assert bank > 10.0  # roll about +x (FLU) is right wing down
+    assert turned < -20.0  # a right turn: the heading decreases
