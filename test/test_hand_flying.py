@@ -80,21 +80,23 @@ RECORDER = textwrap.dedent("""
 """)
 
 
-def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
+def keyboard_flight(ros: RosGraph, tmp_path: Path, launch_args: list, ready, ready_s: float, recorder: str,
+                    record_s: float, fly) -> tuple:
+    """Runs `roslaunch rotors_gazebo <launch_args>` with a pseudo-terminal as its stdin (the keyboard
+    joystick reads it), waits up to ready_s for `ready(launch log)`, starts `recorder` for record_s seconds and
+    calls fly(keys), keys(key, count, period) typing a key count times and returning when it
+    started. Returns (the launch log, odometry rows, command rows, what fly returned)."""
     master, slave = os.openpty()
     launch_log = open(tmp_path / "launch.log", "w")
-    proc = subprocess.Popen(["roslaunch", "-p", str(ros.port), "rotors_gazebo", "mav_with_keyboard.launch",
-                             "gui:=false"], env=ros.env, stdin=slave, stdout=launch_log, stderr=subprocess.STDOUT,
-                            start_new_session=True)
+    proc = subprocess.Popen(["roslaunch", "-p", str(ros.port), "rotors_gazebo", *launch_args], env=ros.env,
+                            stdin=slave, stdout=launch_log, stderr=subprocess.STDOUT, start_new_session=True)
     proc.log_path = tmp_path / "launch.log"
-    recorder = None
+    rec_proc = None
     try:
-        assert ros.wait_for(lambda: "rotors_joy_interface" in ros.run(["rosnode", "list"], check=False).stdout
-                            and "Successfully spawned" in proc.log_path.read_text(), 60)
-        recorder = subprocess.Popen([sys.executable, "-c", RECORDER, "14"], env=ros.env, stdout=subprocess.PIPE,
-                                    text=True)
-        assert recorder.stdout.readline().strip() == "READY"
-        time.sleep(1.0)
+        assert ros.wait_for(lambda: ready(proc.log_path.read_text()), ready_s), proc.log_path.read_text()[-3000:]
+        rec_proc = subprocess.Popen([sys.executable, "-c", recorder, str(record_s)], env=ros.env,
+                                    stdout=subprocess.PIPE, text=True)
+        assert rec_proc.stdout.readline().strip() == "READY"
 
         def keys(key: str, count: int, period: float = 0.05) -> float:
             t = time.monotonic()
@@ -103,6 +105,30 @@ def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
                 time.sleep(period)
             return t
 
+        marks = fly(keys)
+        out, _ = rec_proc.communicate(timeout=30)
+    finally:
+        if rec_proc is not None and rec_proc.poll() is None:
+            rec_proc.kill()
+        stop_launch(proc)
+        os.close(master)
+        os.close(slave)
+    rec = json.loads(next(line for line in out.splitlines() if line.startswith("RESULT="))[len("RESULT="):])
+    return proc.log_path.read_text(), np.array(rec["odom"]), np.array(rec["cmd"]), marks
+
+
+def at(series, t):
+    """The row of `series` (time in column 0) nearest to t."""
+    return series[np.argmin(np.abs(series[:, 0] - t))]
+
+
+def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
+    def ready(log: str) -> bool:
+        return ("rotors_joy_interface" in ros.run(["rosnode", "list"], check=False).stdout
+                and "Successfully spawned" in log)
+
+    def fly(keys) -> tuple:
+        time.sleep(1.0)
         t_climb = keys("w", 22)                  # thrust axis -1 + 22 * 0.05 = 0.1: 16.5 N
         time.sleep(2.5)
         keys("s", 2)                             # 15 N, about the weight
@@ -110,20 +136,11 @@ def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
         t_roll = keys("\x1b[C", 30)              # right arrow held 1.5 s: roll +10 deg
         time.sleep(1.5)
         t_yaw = keys("d", 30)                    # D held 1.5 s: yaw rate -45 deg/s
-        out, _ = recorder.communicate(timeout=30)
-    finally:
-        if recorder is not None and recorder.poll() is None:
-            recorder.kill()
-        stop_launch(proc)
-        os.close(master)
-        os.close(slave)
-    log = proc.log_path.read_text()
-    assert "keys: arrows roll/pitch" in log, log[-3000:]
-    rec = json.loads(next(line for line in out.splitlines() if line.startswith("RESULT="))[len("RESULT="):])
-    odom, cmd = np.array(rec["odom"]), np.array(rec["cmd"])
+        return t_climb, t_roll, t_yaw
 
-    def at(series, t):
-        return series[np.argmin(np.abs(series[:, 0] - t))]
+    log, odom, cmd, (t_climb, t_roll, t_yaw) = keyboard_flight(
+        ros, tmp_path, ["mav_with_keyboard.launch", "gui:=false"], ready, 60, RECORDER, 14, fly)
+    assert "keys: arrows roll/pitch" in log, log[-3000:]
 
     assert cmd[:, 4].max() == pytest.approx(16.5, abs=1e-5)          # W x 22
     assert cmd[:, 1].max() == pytest.approx(math.radians(10), abs=1e-6)   # right arrow: roll right
@@ -184,28 +201,7 @@ def test_keyboard_flight_of_the_fixed_wing_climbs_banks_and_turns(ros: RosGraph,
     # trim); then W x 6 (0.8) and a tap of the down arrow (elevator trailing edge up for 0.5 s): it
     # climbs; three taps of the right arrow deflect the ailerons (roll axis 0.6 -> +-0.21 rad) and
     # spring back: it banks right and turns right. Ground truth and stick commands are recorded.
-    master, slave = os.openpty()
-    launch_log = open(tmp_path / "launch.log", "w")
-    proc = subprocess.Popen(["roslaunch", "-p", str(ros.port), "rotors_gazebo", "fixed_wing_with_joy.launch",
-                             "gui:=false", "joystick:=keyboard", "world_name:=basic", "real_time_factor:=1"],
-                            env=ros.env, stdin=slave, stdout=launch_log, stderr=subprocess.STDOUT,
-                            start_new_session=True)
-    proc.log_path = tmp_path / "launch.log"
-    recorder = None
-    try:
-        assert ros.wait_for(lambda: "launched at 15.0 m/s" in proc.log_path.read_text(), 90), \
-            proc.log_path.read_text()[-3000:]
-        recorder = subprocess.Popen([sys.executable, "-c", WING_RECORDER, "15"], env=ros.env, stdout=subprocess.PIPE,
-                                    text=True)
-        assert recorder.stdout.readline().strip() == "READY"
-
-        def keys(key: str, count: int, period: float = 0.05) -> float:
-            t = time.monotonic()
-            for _ in range(count):
-                os.write(master, key.encode())
-                time.sleep(period)
-            return t
-
+    def fly(keys) -> tuple:
         keys("w", 30, 0.02)                      # throttle 0.5
         time.sleep(2.0)
         t_climb = keys("w", 6, 0.02)             # throttle 0.8
@@ -213,20 +209,12 @@ def test_keyboard_flight_of_the_fixed_wing_climbs_banks_and_turns(ros: RosGraph,
         time.sleep(4.0)
         t_bank = keys("\x1b[C", 3, 0.2)          # right arrow three times: ailerons 0.6 of full, then back
         time.sleep(6.0)
-        out, _ = recorder.communicate(timeout=30)
-    finally:
-        if recorder is not None and recorder.poll() is None:
-            recorder.kill()
-        stop_launch(proc)
-        os.close(master)
-        os.close(slave)
-    rec = json.loads(next(line for line in out.splitlines() if line.startswith("RESULT="))[len("RESULT="):])
-    odom, cmd = np.array(rec["odom"]), np.array(rec["cmd"])
+        return t_climb, t_bank
+
+    _, odom, cmd, (t_climb, t_bank) = keyboard_flight(
+        ros, tmp_path, ["fixed_wing_with_joy.launch", "gui:=false", "joystick:=keyboard", "world_name:=basic",
+                        "real_time_factor:=1"], lambda log: "launched at 15.0 m/s" in log, 90, WING_RECORDER, 15, fly)
     plot_wing_flight(odom, cmd, t_climb, t_bank, tmp_path / "fixed_wing_keyboard.png")
-
-    def at(series, t):
-        return series[np.argmin(np.abs(series[:, 0] - t))]
-
     assert cmd[:, 4].max() == pytest.approx(0.8, abs=1e-6)  # throttle from W x 36
     assert cmd[:, 1].max() == pytest.approx(0.6, abs=1e-6)  # the right arrow's roll command
     climbed = at(odom, t_bank)[2] - at(odom, t_climb)[2]
