@@ -6,6 +6,7 @@ into the world's message taps, which `message()` reads as the ROS message classe
 
 from __future__ import annotations
 
+import functools
 import importlib
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,15 +36,11 @@ def run_xacro(path: str | Path, args: dict[str, Any]) -> str:
         raise SimError(f"xacro {Path(path).name}: {e}") from None
 
 
-_message_classes: dict[str, type] = {}
-
-
+@functools.lru_cache(maxsize=None)
 def message_class(datatype: str) -> type:
     """The Python class of a ROS message type, e.g. 'sensor_msgs/Imu'."""
-    if datatype not in _message_classes:
-        package, name = datatype.split("/")
-        _message_classes[datatype] = getattr(importlib.import_module(f"{package}.msg"), name)
-    return _message_classes[datatype]
+    package, name = datatype.split("/")
+    return getattr(importlib.import_module(f"{package}.msg"), name)
 
 
 @dataclass
@@ -57,13 +54,6 @@ class Odometry:
     velocity_B: np.ndarray
     angular_velocity_B: np.ndarray
     count: int
-
-    @classmethod
-    def from_msg(cls, msg: Any, count: int) -> "Odometry":
-        p, q = msg.pose.pose.position, msg.pose.pose.orientation
-        v, w = msg.twist.twist.linear, msg.twist.twist.angular
-        return cls(msg.header.stamp.to_sec(), np.array([p.x, p.y, p.z]), np.array([q.x, q.y, q.z, q.w]),
-                   np.array([v.x, v.y, v.z]), np.array([w.x, w.y, w.z]), count)
 
 
 class World:

@@ -86,8 +86,6 @@ class ListenedPublisher {
 
   /// A ROS publisher or a tap: publish() reaches somebody (now or once they subscribe).
   explicit operator bool() const { return static_cast<bool>(publisher_) || tap_ != nullptr; }
-  /// Somebody takes the message now: a ROS subscriber, a latch or an in-process tap.
-  bool Wanted() { return Tapped() || (publisher_ && Listened()); }
 
  private:
   bool Tapped() const { return tap_ != nullptr && tap_->wanted; }
