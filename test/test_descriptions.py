@@ -8,7 +8,8 @@ import pytest
 
 from conftest import package_path
 
-VEHICLES = ["firefly", "hummingbird", "pelican", "iris", "neo11", "asymmetric_quadrotor", "ardrone", "neo9"]
+VEHICLES = ["firefly", "hummingbird", "pelican", "iris", "neo11", "asymmetric_quadrotor", "ardrone", "neo9", "omav"]
+ROTORS = {"firefly": 6, "neo11": 6, "neo9": 6, "omav": 12}  # 4 otherwise
 
 
 @pytest.mark.parametrize("mav", VEHICLES)
@@ -22,14 +23,14 @@ def test_vehicle_description_parses_with_urdfdom(mav: str, top: str, tmp_path):
     res = subprocess.run(["check_urdf", str(path)], capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr
     assert f"robot name is: {mav}" in res.stdout
-    rotors = 6 if mav in ("firefly", "neo11", "neo9") else 4
-    assert urdf.count("librotors_gazebo_motor_model.so") == rotors
+    servos = 6 if mav == "omav" else 0  # the omav's tilt units: motorType position
+    assert urdf.count("librotors_gazebo_motor_model.so") == ROTORS.get(mav, 4) + servos
     assert "librotors_gazebo_bag_plugin.so" in urdf
 
 
 # rotors_reference.md section 3.1: radius_rotor [m]
 RADIUS_ROTOR = {"firefly": 0.1, "hummingbird": 0.1, "pelican": 0.128, "iris": 0.1, "neo11": 0.1397,
-                "asymmetric_quadrotor": 0.128, "ardrone": 0.1, "neo9": 0.1143}
+                "asymmetric_quadrotor": 0.128, "ardrone": 0.1, "neo9": 0.1143, "omav": 0.1143}
 BODY_MESH = {"firefly": "firefly.ply", "pelican": "pelican.dae"}
 
 
@@ -40,7 +41,7 @@ def test_vehicle_visuals_are_its_body_and_propellers_scaled_by_radius_rotor(mav:
         capture_output=True, text=True, check=True).stdout)
     links = {link.get("name"): link for link in urdf.iter("link")}
     rotors = [name for name in links if name.startswith(f"{mav}/rotor_")]
-    assert len(rotors) == (6 if mav in ("firefly", "neo11", "neo9") else 4)
+    assert len(rotors) == ROTORS.get(mav, 4)
     meshes = package_path("rotors_description") / "meshes"
     for name in rotors:
         mesh = links[name].find("visual/geometry/mesh")
@@ -55,9 +56,11 @@ def test_vehicle_visuals_are_its_body_and_propellers_scaled_by_radius_rotor(mav:
         assert body.find("box") is not None
     for mesh in urdf.iter("mesh"):
         assert (meshes / mesh.get("filename").rsplit("/", 1)[1]).is_file(), mesh.get("filename")
-    # drawn arms carry no mass: the inertial links are the body and the rotors (and the asymmetric arms)
+    # drawn arms carry no mass: the inertial links are the body and the rotors (and the asymmetric arms,
+    # the omav's tilt units)
     massive = {name for name, link in links.items() if link.find("inertial") is not None}
-    assert all(name.endswith("base_link_inertia") or "/rotor_" in name or name.endswith("_link") for name in massive)
+    assert all(name.endswith("base_link_inertia") or "/rotor_" in name or name.endswith("_link") or
+               "/tilt_unit_" in name for name in massive)
 
 
 def test_mavlink_interface_is_refused_clearly():

@@ -147,7 +147,7 @@ def test_the_controllers_read_the_vehicle_yaml_and_name_a_missing_parameter(tmp_
 
 @pytest.mark.parametrize("bad, match", [
     (lambda w: w.spawn_mav("fireflyy"), "unknown vehicle mav_name 'fireflyy'"),
-    (lambda w: w.set_motor_speeds("firefly", [500.0] * 4), "has 4 angular_velocities, the vehicle has 6 rotors"),
+    (lambda w: w.set_motor_speeds("firefly", [500.0] * 4), "has 4 angular_velocities, the vehicle has 6 motors"),
     (lambda w: w.set_motor_speeds("firefly", [float("nan")] * 6), r"angular_velocities\[0\] = nan"),
     (lambda w: w.set_motor_speeds("nobody", [1.0] * 6), "no vehicle with motor models in namespace 'nobody'"),
     (lambda w: w.link_state("nobody"), "no model 'nobody' in the world"),

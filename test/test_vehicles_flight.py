@@ -93,7 +93,7 @@ def test_controller_interface_rejects_bad_commands_and_keeps_the_last_valid_one(
     finally:
         stop_launch(proc)
     log = Path(proc.log_path).read_text()
-    assert "rejected motor command: has 3 angular_velocities, the vehicle has 6 rotors" in log, log[-2000:]
+    assert "rejected motor command: has 3 angular_velocities, the vehicle has 6 motors" in log, log[-2000:]
     assert "angular_velocities[5] = nan must be a finite speed >= 0 rad/s" in log
     assert "angular_velocities[5] = -1 must be a finite speed >= 0 rad/s" in log
     assert result["climb"] > 1.0
@@ -127,4 +127,4 @@ def test_unknown_vehicle_name_is_one_clear_line(ros: RosGraph):
                          capture_output=True, text=True, env=ros.env, timeout=60)
     assert res.returncode != 0
     assert "rotors_xacro: unknown vehicle mav_name:=bumblebee (known: ardrone asymmetric_quadrotor firefly hummingbird " \
-           "iris neo11 neo9 pelican techpod)" in res.stdout + res.stderr
+           "iris neo11 neo9 omav pelican techpod)" in res.stdout + res.stderr

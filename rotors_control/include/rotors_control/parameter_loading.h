@@ -6,6 +6,9 @@
 //   and gravity (announced when absent: 9.81, RotorS' value); attitude_gain and angular_rate_gain
 //   {x, y, z}; position_gain, velocity_gain and the optional max_tilt_angle. Each returns "" or the
 //   reason naming the parameter.
+//   The omav (omav.yaml, omav_pose_controller.yaml; ours): mass, gravity and inertia as above,
+//   tilt_rotor_configuration/<i>/{x, y, z, yaw, rotor_force_constant, upper_moment_constant,
+//   lower_moment_constant, upper_direction, max_rot_velocity}; the four gains {x, y, z}.
 #pragma once
 
 #include <cmath>
@@ -13,6 +16,7 @@
 
 #include "rotors_control/attitude_control_law.h"
 #include "rotors_control/lee_position_controller.h"
+#include "rotors_control/tilt_rotor_controller.h"
 #include "rotors_control/vehicle_parameters.h"
 
 namespace rotors_control {
@@ -78,6 +82,52 @@ std::string LoadLeeParameters(Reader& reader, LeePositionControllerParameters* p
   if (why.empty()) why = LoadVehicleParameters(reader, &p->vehicle);
   if (why.empty()) why = reader.Optional("max_tilt_angle", &p->max_tilt_angle_rad, "no tilt limit");
   return why.empty() ? p->Validate() : why;
+}
+
+template <class Reader>
+std::string LoadTiltRotorParameters(Reader& reader, TiltRotorControllerParameters* p) {
+  // mass, gravity and inertia as every vehicle yaml names them
+  VehicleParameters body;
+  std::string why = reader.Require("mass", &body.mass_kg, parameter_hints::kVehicle);
+  if (why.empty()) why = reader.Optional("gravity", &body.gravity_m_s2, "RotorS' value");
+  const char* keys[3][3] = {{"inertia/xx", "inertia/xy", "inertia/xz"},
+                            {"inertia/xy", "inertia/yy", "inertia/yz"},
+                            {"inertia/xz", "inertia/yz", "inertia/zz"}};
+  for (int i = 0; why.empty() && i < 3; ++i)
+    for (int j = 0; why.empty() && j < 3; ++j)
+      why = i == j ? reader.Require(keys[i][j], &p->inertia_kg_m2(i, j), parameter_hints::kVehicle)
+                   : reader.Optional(keys[i][j], &p->inertia_kg_m2(i, j), "a principal-axes body");
+  if (!why.empty()) return why;
+  p->mass_kg = body.mass_kg;
+  p->gravity_m_s2 = body.gravity_m_s2;
+  p->arms.clear();
+  for (int i = 0; reader.Has("tilt_rotor_configuration/" + std::to_string(i)); ++i) {
+    const std::string base = "tilt_rotor_configuration/" + std::to_string(i) + "/";
+    TiltRotorArm arm;
+    double direction = 0.0;
+    for (const auto& field : {std::make_pair("x", &arm.position_B.x()), std::make_pair("y", &arm.position_B.y()),
+                              std::make_pair("z", &arm.position_B.z()), std::make_pair("yaw", &arm.yaw_rad),
+                              std::make_pair("rotor_force_constant", &arm.rotor_force_constant),
+                              std::make_pair("upper_moment_constant", &arm.upper_moment_constant),
+                              std::make_pair("lower_moment_constant", &arm.lower_moment_constant),
+                              std::make_pair("upper_direction", &direction),
+                              std::make_pair("max_rot_velocity", &arm.max_rot_velocity_rad_s)}) {
+      why = reader.Require(base + field.first, field.second, parameter_hints::kVehicle);
+      if (!why.empty()) return why;
+    }
+    arm.upper_direction = static_cast<int>(std::lround(direction));
+    p->arms.push_back(arm);
+  }
+  if (p->arms.empty())
+    return "missing parameter " + reader.Resolve("tilt_rotor_configuration") + " (load resource/omav.yaml)";
+  for (const auto& gain :
+       {std::make_pair("position_gain", &p->position_gain), std::make_pair("velocity_gain", &p->velocity_gain),
+        std::make_pair("attitude_gain", &p->attitude_gain),
+        std::make_pair("angular_rate_gain", &p->angular_rate_gain)}) {
+    why = reader.RequireVector(gain.first, gain.second, "load resource/omav_pose_controller.yaml");
+    if (!why.empty()) return why;
+  }
+  return p->Validate();
 }
 
 }  // namespace rotors_control

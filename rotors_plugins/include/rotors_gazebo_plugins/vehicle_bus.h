@@ -25,10 +25,11 @@ struct MotorFault {
 };
 
 struct VehicleBus {
-  std::vector<double> motor_command_rad_s;                    ///< empty until the first valid command
-  uint64_t motor_command_count = 0;                           ///< valid commands so far (any source)
-  std::vector<double> rotor_speed_rad_s;                      ///< signed real speed per motor number
-  int rotor_count = 0;                                        ///< number of motor models registered
+  std::vector<double> motor_command_rad_s;  ///< empty until the first valid command
+  uint64_t motor_command_count = 0;         ///< valid commands so far (any source)
+  std::vector<double> rotor_speed_rad_s;    ///< signed real speed per motor number
+  int rotor_count = 0;                      ///< motor models registered (rotors and servos)
+  std::vector<bool> is_servo;               ///< per motor number: a servo (its command and "speed" are angles [rad])
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
   std::vector<MotorFault> motor_faults;                       ///< per motor number (healthy by default)
   /// Fixed wings: RotorS' normalized actuator command (mav_msgs/Actuators.normalized, by channel).
@@ -42,8 +43,10 @@ struct VehicleBus {
   /// worlds in one process with the same vehicle name never share motor commands.
   static std::shared_ptr<VehicleBus> For(rotors_sim::physics::World& world, const std::string& robot_namespace);
   void RegisterRotor(int motor_number);
+  /// A position-controlled motor (the omav's tilt units): its command entry is an angle [rad], any sign.
+  void RegisterServo(int motor_number);
   /// The one way in for motor commands (the controller interface's ROS topics, the Python module):
-  /// "" and the command in force, or the reason it was refused (wrong length, NaN, inf, negative),
+  /// "" and the command in force, or the reason it was refused (wrong length, NaN, inf, a negative rotor speed),
   /// the last valid command staying in force.
   std::string SetMotorCommand(const std::vector<double>& speeds_rad_s);
   /// The one way in for a fixed wing's normalized command (surfaces and throttle by channel): "" or

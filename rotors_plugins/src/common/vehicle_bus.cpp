@@ -33,16 +33,27 @@ void VehicleBus::RegisterRotor(int motor_number) {
   if (motor_number + 1 > rotor_count) rotor_count = motor_number + 1;
   rotor_speed_rad_s.resize(rotor_count, 0.0);
   motor_faults.resize(rotor_count);
+  is_servo.resize(rotor_count, false);
+}
+
+void VehicleBus::RegisterServo(int motor_number) {
+  RegisterRotor(motor_number);
+  is_servo[motor_number] = true;
 }
 
 std::string VehicleBus::SetMotorCommand(const std::vector<double>& speeds_rad_s) {
   std::ostringstream why;
   if (static_cast<int>(speeds_rad_s.size()) != rotor_count) {
-    why << "has " << speeds_rad_s.size() << " angular_velocities, the vehicle has " << rotor_count << " rotors";
+    why << "has " << speeds_rad_s.size() << " angular_velocities, the vehicle has " << rotor_count << " motors";
     return why.str();
   }
   for (size_t i = 0; i < speeds_rad_s.size(); ++i) {
-    if (!std::isfinite(speeds_rad_s[i]) || speeds_rad_s[i] < 0.0) {
+    if (is_servo[i]) {
+      if (!std::isfinite(speeds_rad_s[i])) {
+        why << "angular_velocities[" << i << "] = " << speeds_rad_s[i] << " must be a finite servo angle [rad]";
+        return why.str();
+      }
+    } else if (!std::isfinite(speeds_rad_s[i]) || speeds_rad_s[i] < 0.0) {
       why << "angular_velocities[" << i << "] = " << speeds_rad_s[i] << " must be a finite speed >= 0 rad/s";
       return why.str();
     }

@@ -2,6 +2,9 @@
 // vehicle bus, applies eqs. 1-4 through RotorModel, spins the rotor joint for rviz and publishes
 // the real signed rotor speed [rad/s] on motor_speed/<N>. An injected fault (VehicleBus::SpeedFactor)
 // scales the command the motor follows.
+// With <motorType>position</motorType> (the omav's tilt units) it is a servo instead: its command
+// entry is a joint angle [rad], TiltServoModel's PID (<joint_control_pid>) turns the error into a
+// joint torque, and it publishes the joint angle [rad] on <motorPositionPubTopic>.
 #include <std_msgs/Float32.h>
 
 #include "rotors_core/ros/publish_counts.h"
@@ -14,6 +17,7 @@
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/models/rotor_model.h"
+#include "rotors_gazebo_plugins/models/tilt_servo_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
@@ -34,13 +38,46 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     // RotorS' ROS topics between the plugins: here the command and the wind travel in memory (VehicleBus)
     Params().Accept("commandSubTopic", "the motor command comes over the vehicle bus");
     Params().Accept("windSpeedSubTopic", "the wind comes over the vehicle bus");
-    std::string joint_name, link_name, direction, motor_type = "velocity", speed_topic = "motor_speed";
+    std::string joint_name, motor_type = "velocity";
     RequireParam(Params(), "jointName", &joint_name);
+    RequireParam(Params(), "motorNumber", &motor_number_);
+    ReadParam(Params(), "motorType", &motor_type);
+    if (motor_number_ < 0)
+      throw rotors_sim::SimError("motorNumber = " + std::to_string(motor_number_) + " must be >= 0");
+    joint_ = RequireJoint(model, joint_name);
+    dt_s_ = model->GetWorldRaw()->Physics().max_step_size_s;
+    bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
+    node_ = MakeNode(namespace_);
+    if (motor_type == "velocity") {
+      LoadRotor(model);
+    } else if (motor_type == "position") {
+      LoadServo(model);
+    } else {
+      throw rotors_sim::SimError("motorType = '" + motor_type + "' is not known; use 'velocity' (a rotor) or " +
+                                 "'position' (a servo such as the omav's tilt units)");
+    }
+    connection_ =
+        rotors_sim::event::Events::ConnectWorldUpdateBegin([this](const rotors_sim::common::UpdateInfo& info) {
+          if (rotor_) {
+            OnRotorUpdate(info.simTime.Double());
+          } else {
+            OnServoUpdate();
+          }
+        });
+  }
+
+  void Reset() override {
+    if (rotor_) rotor_->Reset();
+    if (servo_) servo_->Reset();
+    joint_->SetVelocity(0, 0.0);
+  }
+
+ private:
+  void LoadRotor(const rotors_sim::physics::ModelPtr& model) {
+    std::string link_name, direction, speed_topic = "motor_speed";
     RequireParam(Params(), "linkName", &link_name);
     // the rotor's physics has no defaults: a missing constant would silently be another vehicle's
-    RequireParam(Params(), "motorNumber", &motor_number_);
     RequireParam(Params(), "turningDirection", &direction);
-    ReadParam(Params(), "motorType", &motor_type);
     ReadParam(Params(), "motorSpeedPubTopic", &speed_topic);
     RotorParams p;
     RequireParam(Params(), "rotorDragCoefficient", &p.rotor_drag_coefficient);
@@ -58,34 +95,57 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     } else {
       throw rotors_sim::SimError("turningDirection = '" + direction + "' must be 'cw' or 'ccw'");
     }
-    if (motor_type != "velocity")
-      throw rotors_sim::SimError("motorType = '" + motor_type + "' is not supported yet; use 'velocity'");
-    if (motor_number_ < 0)
-      throw rotors_sim::SimError("motorNumber = " + std::to_string(motor_number_) + " must be >= 0");
     if (!(slowdown_ >= 1.0)) throw rotors_sim::SimError("rotorVelocitySlowdownSim must be >= 1");
     ThrowIfInvalid(p.Validate());
     rotor_ = std::make_unique<RotorModel>(p);
-
-    joint_ = RequireJoint(model, joint_name);
     link_ = RequireLink(model, link_name);
     parent_link_ = joint_->GetParent();
-    dt_s_ = model->GetWorldRaw()->Physics().max_step_size_s;
-    bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
     bus_->RegisterRotor(motor_number_);
-
-    node_ = MakeNode(namespace_);
     speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 1);
-    connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
-        [this](const rotors_sim::common::UpdateInfo& info) { OnUpdate(info.simTime.Double()); });
   }
 
-  void Reset() override {
-    rotor_->Reset();
-    joint_->SetVelocity(0, 0.0);
+  void LoadServo(const rotors_sim::physics::ModelPtr& model) {
+    if (joint_->GetType() != rotors_sim::physics::Joint::Type::kRevolute)
+      throw rotors_sim::SimError("motorType 'position' needs a revolute or continuous solver joint; '" +
+                                 joint_->GetName() + "' is not one (a <kinematic_joint> cannot take a torque)");
+    if (!Params().Has("joint_control_pid"))
+      throw rotors_sim::SimError(
+          "motorType 'position' needs <joint_control_pid> with p, i, d, iMax, iMin, cmdMax, "
+          "cmdMin (Gazebo's PID; the omav uses p 1, i 0, d 0.01, iMax 1, iMin -1, cmdMax 2, "
+          "cmdMin -2)");
+    SdfParams pid(Params().Element()->GetElement("joint_control_pid"));
+    TiltServoParams p;
+    pid.Require("p", &p.p);
+    pid.Require("i", &p.i);
+    pid.Require("d", &p.d);
+    pid.Require("iMax", &p.i_max);
+    pid.Require("iMin", &p.i_min);
+    pid.Require("cmdMax", &p.cmd_max);
+    pid.Require("cmdMin", &p.cmd_min);
+    pid.RejectUnread();
+    ThrowIfInvalid(p.Validate());
+    servo_ = std::make_unique<TiltServoModel>(p);
+    std::string position_topic = "motor_position/" + std::to_string(motor_number_);
+    ReadParam(Params(), "motorPositionPubTopic", &position_topic);
+    bus_->RegisterServo(motor_number_);
+    speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, position_topic, *model->GetWorldRaw(), 1);
   }
 
- private:
-  void OnUpdate(double t_s) {
+  void OnServoUpdate() {
+    const auto& cmd = bus_->motor_command_rad_s;
+    // before the first command the servo holds its zero angle (as RotorS' zero-filled command)
+    const double theta_ref = motor_number_ < static_cast<int>(cmd.size()) ? cmd[motor_number_] : 0.0;
+    const double theta = joint_->Position(0);
+    joint_->SetForce(0, servo_->Torque(theta, theta_ref, dt_s_));
+    bus_->rotor_speed_rad_s[motor_number_] = theta;
+    if (speed_pub_ && speed_pub_.getNumSubscribers() > 0) {
+      std_msgs::Float32 msg;
+      msg.data = static_cast<float>(theta);
+      speed_pub_.publish(msg);
+    }
+  }
+
+  void OnRotorUpdate(double t_s) {
     // Forces from the speed reached in the last step (the one-step lag of RotorS, ref. 4.1).
     const auto X_WR = link_->WorldPose();
     const Eigen::Vector3d airspeed_W = ToEigen(link_->WorldLinearVel()) - bus_->wind_velocity_W;
@@ -115,13 +175,14 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
   int motor_number_ = 0;
   double slowdown_ = 10.0;
   double dt_s_ = 0.001;
-  std::unique_ptr<RotorModel> rotor_;
+  std::unique_ptr<RotorModel> rotor_;      ///< a rotor (motorType velocity), or
+  std::unique_ptr<TiltServoModel> servo_;  ///< a servo (motorType position)
   rotors_sim::physics::JointPtr joint_;
   rotors_sim::physics::LinkPtr link_, parent_link_;
   std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins
   std::shared_ptr<ros::NodeHandle> node_;
   // ListenedPublisher: no search through every topic per step
-  rotors_sim::ListenedPublisher speed_pub_;
+  rotors_sim::ListenedPublisher speed_pub_;  ///< rotor speed [rad/s] or servo angle [rad]
   rotors_sim::event::ConnectionPtr connection_;
 };
 

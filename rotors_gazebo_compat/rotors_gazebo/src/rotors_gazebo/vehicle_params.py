@@ -108,6 +108,8 @@ def rigid_body_from_urdf(urdf: str, base_link: str) -> RigidBody:
         if "motor_model" not in plugin.get("filename", ""):
             continue
         text = {child.tag: (child.text or "").strip() for child in plugin}
+        if text.get("motorType") == "position":  # a servo (the omav's tilt units), not a rotor
+            continue
         link = text.get("linkName", "")
         if link not in poses:
             raise VehicleParamsError(f"motor plugin '{plugin.get('name')}': linkName '{link}' is not a link of the URDF")
