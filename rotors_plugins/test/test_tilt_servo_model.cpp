@@ -1,8 +1,12 @@
-// The position-controlled motor (omav tilt units) against Gazebo's PID on RotorS' wrapped error.
+// The position-controlled motor (omav tilt units) and the camera gimbal, both Gazebo's PID on
+// RotorS' wrapped error.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
+#include "rotors_gazebo_plugins/models/gimbal_controller.h"
 #include "rotors_gazebo_plugins/models/tilt_servo_model.h"
 
 using namespace rotors_gazebo_plugins;
@@ -62,4 +66,24 @@ TEST(TiltServoModel, ValidateNamesTheBadGain) {
   p.d = -1.0;
   EXPECT_NE(p.Validate().find("must be >= 0"), std::string::npos);
   EXPECT_EQ(Omav().Validate(), "");
+}
+
+// The gimbal's Z-X-Y Euler angles: R = R_z(yaw) R_x(roll) R_y(pitch) gives back (yaw, roll, pitch);
+// an angle above its command turns its joint back (negative torque), one below forward.
+TEST(GimbalController, EulerZXYRoundTripAndTorqueSigns) {
+  const Eigen::Vector3d ypr(0.7, -0.3, 1.1);
+  const Eigen::Matrix3d R =
+      (Eigen::AngleAxisd(ypr.x(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(ypr.y(), Eigen::Vector3d::UnitX()) *
+       Eigen::AngleAxisd(ypr.z(), Eigen::Vector3d::UnitY()))
+          .toRotationMatrix();
+  EXPECT_LT((GimbalController::EulerZXY(R) - ypr).norm(), 1e-12);
+  GimbalParams p;
+  p.yaw = p.roll = p.pitch = Omav();
+  GimbalController gimbal(p);
+  const Eigen::Vector3d tau = gimbal.Torques(R, Eigen::Vector3d(0.8, -0.3, 1.0), 1e-3);
+  EXPECT_GT(tau.x(), 0.0);           // yaw 0.7 below 0.8
+  EXPECT_NEAR(tau.y(), 0.0, 1e-12);  // roll on its command
+  EXPECT_LT(tau.z(), 0.0);           // pitch 1.1 above 1.0
+  p.pitch.cmd_max = -5.0;
+  EXPECT_NE(p.Validate().find("pitch_pid: joint_control_pid cmdMin"), std::string::npos);
 }

@@ -22,6 +22,8 @@ Joint::~Joint() {
 void Joint::CreateSolverJoint(SolverWorldHandle* world, const Vector3d& anchor_W, const Vector3d& axis_W, double lower,
                               double upper) {
   axis_C_ = child_->WorldPose().Rot().RotateVectorReverse(axis_W);
+  lower_ = lower;
+  upper_ = upper;
   if (type_ == Type::kWelded) return;
   dBodyID child_body = Ode(child_->Body());
   dBodyID parent_body = parent_ ? Ode(parent_->Body()) : nullptr;

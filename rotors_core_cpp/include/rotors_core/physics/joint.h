@@ -46,6 +46,9 @@ class Joint {
   void SetVelocity(unsigned int index, double velocity);
   /// Adds a joint torque/force for the coming step [N m or N].
   void SetForce(unsigned int index, double effort);
+  /// The joint's limits [rad or m] as the description gives them (+-1e16: none, Gazebo's value).
+  double LowerLimit(unsigned int /*index*/ = 0) const { return lower_; }
+  double UpperLimit(unsigned int /*index*/ = 0) const { return upper_; }
 
   bool IsKinematic() const { return type_ == Type::kKinematic; }
 
@@ -68,6 +71,7 @@ class Joint {
   Type type_;
   LinkPtr parent_, child_;
   Vector3d axis_C_{0, 0, 1};
+  double lower_ = -1e16, upper_ = 1e16;
   JointHandle* joint_ = nullptr;
   // kinematic joints
   void PlaceChild();
