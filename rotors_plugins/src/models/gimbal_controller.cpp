@@ -6,8 +6,8 @@
 namespace rotors_gazebo_plugins {
 
 std::string GimbalParams::Validate() const {
-  for (const auto& [axis, p] : {std::make_pair("yaw", &yaw), std::make_pair("roll", &roll),
-                                std::make_pair("pitch", &pitch)}) {
+  for (const auto& [axis, p] :
+       {std::make_pair("yaw", &yaw), std::make_pair("roll", &roll), std::make_pair("pitch", &pitch)}) {
     const std::string why = p->Validate();
     if (!why.empty()) return std::string(axis) + "_pid: " + why;
   }

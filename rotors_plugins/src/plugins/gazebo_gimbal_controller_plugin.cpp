@@ -93,11 +93,12 @@ class GazeboGimbalControllerPlugin : public rotors_sim::ModelPlugin {
     node_ = MakeNode(ns);
     const char* axes[3] = {"yaw", "roll", "pitch"};
     for (int i = 0; i < 3; ++i) {
-      status_pubs_[i] = Advertise<std_msgs::Float64>(node_, ns, std::string("gimbal_") + axes[i] + "_status",
-                                                     *world_, 1);
+      status_pubs_[i] =
+          Advertise<std_msgs::Float64>(node_, ns, std::string("gimbal_") + axes[i] + "_status", *world_, 1);
       if (node_)
-        subs_[i] = node_->subscribe<std_msgs::Float64>(std::string("gimbal_") + axes[i] + "_cmd", 1,
-                                                       [this, i](const std_msgs::Float64ConstPtr& msg) { OnCommand(i, msg->data); });
+        subs_[i] = node_->subscribe<std_msgs::Float64>(
+            std::string("gimbal_") + axes[i] + "_cmd", 1,
+            [this, i](const std_msgs::Float64ConstPtr& msg) { OnCommand(i, msg->data); });
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
         [this](const rotors_sim::common::UpdateInfo& info) { OnUpdate(info.simTime.Double()); });
