@@ -16,6 +16,7 @@ apt_packages=(
   libnodeletlib-dev libnodeletlib-tools libnodelet-dev python3-nodelet pluginlib-dev
   libstereo-msgs-dev python3-stereo-msgs libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   python3-evdev python3-sensor-msgs clang-format libembree-dev pybind11-dev python3-pybind11 python3-rospkg
+  libopencv-video-dev python3-opencv
 )
 missing=()
 for p in "${apt_packages[@]}"; do

@@ -1,8 +1,8 @@
-"""Interface contract: our mav_msgs, rotors_comm, gazebo_msgs, sensor_fusion_comm and octomap_msgs
+"""Interface contract: our mav_msgs, rotors_comm, gazebo_msgs, sensor_fusion_comm, octomap_msgs and mavros_msgs
 definitions have the md5sums of the upstream packages, so bags and nodes from real RotorS set-ups
 interoperate. The values are pinned literals, as the upstream packages' generated code states them
 (rosserial ros_lib getMD5(), gennodejs md5sum(), genlisp md5sum of mav_comm, rotors_simulator,
-gazebo_ros_pkgs and ethzasl_msf, looked up in public repositories), not recomputed from our files."""
+gazebo_ros_pkgs, ethzasl_msf and mavros, looked up in public repositories), not recomputed from our files."""
 import importlib
 import subprocess
 
@@ -22,6 +22,7 @@ UPSTREAM_MSG_MD5 = {
     "sensor_fusion_comm/DoubleArrayStamped": "fb60495edd59d3fcf90e173153ae8a9a",
     "sensor_fusion_comm/DoubleMatrixStamped": "c58f6b7538f12163211fe0ce597bbfd8",
     "octomap_msgs/Octomap": "9a45536b45c5e409cd49f04bb2d9999f",
+    "mavros_msgs/OpticalFlowRad": "65d93e03c6188c7ee30415b2a39ad40d",
 }
 UPSTREAM_SRV_MD5 = {
     "rotors_comm/RecordRosbag": "5504376d5b4669d33bfb29107c817d83",

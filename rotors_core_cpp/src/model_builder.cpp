@@ -21,6 +21,8 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "rotors_core/error.h"
+#include "rotors_core/geometry/ogre_material.h"
+#include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/joint.h"
 #include "rotors_core/physics/link.h"
@@ -192,6 +194,39 @@ void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& mode
   }
 }
 
+/// A <material><script> whose .material files are found (model://, file://, ...): the named OGRE
+/// material's diffuse colour and texture. Gazebo's own scripts (file://media/materials/...) are
+/// not shipped: such a visual keeps its SDF colour (one line says so).
+void ApplyMaterialScript(const sdf::ElementPtr& material, const std::string& sdf_file, geometry::Visual* out) {
+  if (!material || !material->HasElement("script")) return;
+  const sdf::ElementPtr script = material->GetElement("script");
+  const std::string name = script->Get<std::string>("name");
+  std::vector<std::string> folders;
+  for (sdf::ElementPtr uri = script->HasElement("uri") ? script->GetElement("uri") : nullptr; uri;
+       uri = uri->GetNextElement("uri")) {
+    try {
+      folders.push_back(geometry::UriResolver::Resolve(uri->Get<std::string>(), sdf_file));
+    } catch (const SimError&) {
+      // a folder that is not here: the material may still be in another
+    }
+  }
+  if (name.empty() || name == "__default__") return;
+  if (folders.empty()) {
+    static std::set<std::string> told;
+    if (told.insert(name).second)
+      std::cerr << "[rotors_sim] visual '" << out->scoped_name << "': material script '" << name
+                << "' is not available here (none of its <uri>s resolves); drawn in its SDF colour\n";
+    return;
+  }
+  const geometry::OgreMaterial m = geometry::FindOgreMaterial(folders, name);
+  out->rgba = m.diffuse;
+  if (out->shape.type == geometry::Shape::Type::kBox || out->shape.type == geometry::Shape::Type::kPlane) {
+    out->texture_file = m.texture;
+    out->texture_scale = m.scale;
+    out->texture_max_anisotropy = m.max_anisotropy;
+  }
+}
+
 /// <visual> elements, kept for whoever draws the world. URDF <material> colours come through
 /// sdformat as <material><diffuse>.
 void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const physics::LinkPtr& link,
@@ -209,6 +244,7 @@ void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const
       out.rgba = {static_cast<float>(c.R()), static_cast<float>(c.G()), static_cast<float>(c.B()),
                   static_cast<float>(c.A())};
       out.has_material = true;
+      ApplyMaterialScript(visual->Material()->Element(), sdf_file, &out);
     } else if (out.shape.mesh) {
       out.rgba = out.shape.mesh->rgba;
     }

@@ -1,5 +1,5 @@
 // Geometry from files against analytic answers: a trimesh floor, a heightfield, an OctoMap,
-// the occupancy map of known boxes, and one-line errors for bad files.
+// the occupancy map of known boxes, OGRE material scripts, and one-line errors for bad files.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -8,6 +8,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "rotors_core/geometry/ogre_material.h"
 #include "rotors_core/error.h"
 #include "rotors_core/geometry/occupancy_mapper.h"
 #include "rotors_core/geometry/shapes.h"
@@ -165,4 +166,55 @@ TEST(Geometry, BadFilesGiveOneLineNamingTheFile) {
   EXPECT_NE(e.find("corrupt.bt"), std::string::npos) << e;
 
   for (const std::string& message : {e}) EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+// Gazebo's material scripts: RotorS' asphalt material (first pass colours, the texture unit's
+// image and scale), comments and nested blocks; a broken script names its file and line.
+TEST(OgreMaterial, ParsesColoursTextureAndScaleOfTheFirstPass) {
+  const std::string text = R"(// RotorS' asphalt_plane
+material vrc/asphalt
+{
+  technique
+  {
+    pass
+    {
+      ambient 0.5 0.5 0.5 1.0
+      diffuse 0.4 0.5 0.6 1.0
+      specular 0.2 0.2 0.2 1.0 12.5
+      texture_unit
+      {
+        texture tarmac.png
+        filtering anistropic
+        max_anisotropy 16
+        scale 0.1 0.2
+      }
+    }
+    pass
+    {
+      diffuse 1 0 0 1
+    }
+  }
+}
+material plain { technique { pass { diffuse 0.1 0.2 0.3 } } }
+)";
+  const auto materials = rotors_sim::geometry::ParseOgreMaterials(text, "asphalt.material");
+  ASSERT_EQ(materials.size(), 2u);
+  const auto& asphalt = materials.at("vrc/asphalt");
+  EXPECT_FLOAT_EQ(asphalt.diffuse[0], 0.4f);
+  EXPECT_FLOAT_EQ(asphalt.diffuse[2], 0.6f);
+  EXPECT_FLOAT_EQ(asphalt.ambient[1], 0.5f);
+  EXPECT_EQ(asphalt.texture, "tarmac.png");
+  EXPECT_FLOAT_EQ(asphalt.scale[0], 0.1f);
+  EXPECT_FLOAT_EQ(asphalt.scale[1], 0.2f);
+  EXPECT_FLOAT_EQ(asphalt.max_anisotropy, 16.0f);  // RotorS' misspelt "anistropic" filter counts
+  EXPECT_FLOAT_EQ(materials.at("plain").diffuse[1], 0.2f);
+  EXPECT_TRUE(materials.at("plain").texture.empty());
+  EXPECT_FLOAT_EQ(materials.at("plain").max_anisotropy, 1.0f);
+  try {
+    rotors_sim::geometry::ParseOgreMaterials("material m\n{\n  technique\n  {\n    pass\n    {\n      diffuse a b c\n",
+                                             "m.material");
+    FAIL() << "a broken script must be refused";
+  } catch (const rotors_sim::SimError& e) {
+    EXPECT_STREQ(e.what(), "m.material:7: 'diffuse' needs numbers");
+  }
 }

@@ -1,6 +1,7 @@
 #include "rotors_core/rendering/renderer.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <string>
@@ -76,6 +77,7 @@ uniform vec3 albedo;
 uniform bool use_vertex_colour;
 uniform bool use_texture;
 uniform sampler2D texture_image;
+uniform vec2 uv_scale;    // texture repeats per unit of uv (1 / an OGRE texture_unit's scale)
 uniform vec3 to_sun_O;
 uniform float ambient;
 uniform float sun_diffuse;
@@ -100,7 +102,7 @@ float Gaussian(uint channel) {  // Box-Muller from two hashed uniforms
 void main() {
   vec3 c = albedo;
   if (use_vertex_colour) c *= vertex_colour;
-  if (use_texture) c *= texture(texture_image, uv).rgb;
+  if (use_texture) c *= texture(texture_image, uv * uv_scale).rgb;
   if (!background) {
     vec3 n = normalize(n_O);
     if (dot(n, p_O) > 0.0) n = -n;  // light the side the camera sees
@@ -115,6 +117,14 @@ void main() {
   colour = vec4(clamp(c, 0.0, 1.0), 1.0);
   depth_m = background ? -1.0 : p_O.z;
 })";
+
+bool HasExtension(const char* name) {
+  GLint count = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i)
+    if (std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, i)), name) == 0) return true;
+  return false;
+}
 
 GLuint Compile(GLenum type, const char* source) {
   GLuint shader = glCreateShader(type);
@@ -157,8 +167,8 @@ GLint RequireUniform(GLuint program, const char* name) {
 /// one flat, unlit colour, so the compiler drops the lighting and mesh colouring there: those are
 /// looked up without the check (-1: setting them does nothing, as intended).
 struct FragmentUniforms {
-  GLint albedo = -1, use_vertex_colour = -1, use_texture = -1, texture_image = -1, to_sun_O = -1, ambient = -1,
-        sun_diffuse = -1, background = -1, grey = -1, noise = -1, seed = -1;
+  GLint albedo = -1, use_vertex_colour = -1, use_texture = -1, texture_image = -1, uv_scale = -1, to_sun_O = -1,
+        ambient = -1, sun_diffuse = -1, background = -1, grey = -1, noise = -1, seed = -1;
   FragmentUniforms() = default;
   FragmentUniforms(GLuint program, bool draws_meshes) {
     auto mesh_only = [&](const char* name) {
@@ -172,6 +182,7 @@ struct FragmentUniforms {
     use_vertex_colour = mesh_only("use_vertex_colour");
     use_texture = mesh_only("use_texture");
     texture_image = mesh_only("texture_image");
+    uv_scale = mesh_only("uv_scale");
     to_sun_O = mesh_only("to_sun_O");
     ambient = mesh_only("ambient");
     sun_diffuse = mesh_only("sun_diffuse");
@@ -209,6 +220,7 @@ struct Renderer::Impl {
   FragmentUniforms mesh_fragment, background_fragment;
   MeshUniforms mesh_vertex;
   std::map<const void*, GpuMesh> meshes;                      // by source object
+  std::map<std::pair<std::string, float>, GLuint> textures;   // by image file and anisotropy (0: unreadable)
   std::map<std::tuple<int, int, int, bool>, Target> targets;  // by width, height, format, depth
   size_t triangles = 0;
 
@@ -216,6 +228,7 @@ struct Renderer::Impl {
   const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, TriangleSoup soup,
                         const std::string& texture_file = "");
   const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
+  GLuint TextureFor(const std::string& file, float max_anisotropy = 1.0f);
   Target& TargetFor(int width, int height, PixelFormat format, bool depth);
 };
 
@@ -282,33 +295,48 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, soup.indices.size() * sizeof(uint32_t), soup.indices.data(), GL_STATIC_DRAW);
   }
   glBindVertexArray(0);
-  if (!texture_file.empty() && !soup.uvs.empty()) {
-    int w = 0, h = 0, channels = 0;
-    unsigned char* pixels = stbi_load(texture_file.c_str(), &w, &h, &channels, 3);
-    if (!pixels) {
-      // CameraSensor checks textures when it is created; a model spawned later is drawn without
-      std::cerr << "[rotors_sim] camera renderer: texture '" << texture_file << "' cannot be read ("
-                << stbi_failure_reason() << "); the mesh is drawn without it\n";
-    } else {
-      glGenTextures(1, &mesh.texture);
-      glBindTexture(GL_TEXTURE_2D, mesh.texture);
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-      // image row 0 is the top; texture coordinate v = 0 is the bottom
-      std::vector<unsigned char> flipped(static_cast<size_t>(w) * h * 3);
-      for (int r = 0; r < h; ++r)
-        std::copy(pixels + static_cast<size_t>(r) * w * 3, pixels + static_cast<size_t>(r + 1) * w * 3,
-                  flipped.begin() + static_cast<size_t>(h - 1 - r) * w * 3);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, w, h, 0, GL_RGB, GL_UNSIGNED_BYTE, flipped.data());
-      glGenerateMipmap(GL_TEXTURE_2D);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-      stbi_image_free(pixels);
-    }
-  }
+  if (!texture_file.empty() && !soup.uvs.empty()) mesh.texture = TextureFor(texture_file);
   triangles += soup.TriangleCount();
   return meshes.emplace(key, std::move(mesh)).first->second;
+}
+
+/// The image file as a mip-mapped (trilinear), repeating texture, anisotropically filtered up to
+/// max_anisotropy (a material's "filtering anisotropic"): distant texture does not shimmer from frame
+/// to frame. Loaded once; 0 when it cannot be read (said once).
+GLuint Renderer::Impl::TextureFor(const std::string& file, float max_anisotropy) {
+  const auto key = std::make_pair(file, max_anisotropy);
+  const auto found = textures.find(key);
+  if (found != textures.end()) return found->second;
+  GLuint texture = 0;
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load(file.c_str(), &w, &h, &channels, 3);
+  if (!pixels) {
+    // CameraSensor checks textures when it is created; a model spawned later is drawn without
+    std::cerr << "[rotors_sim] camera renderer: texture '" << file << "' cannot be read (" << stbi_failure_reason()
+              << "); drawn without it\n";
+    return textures[key] = 0;
+  }
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // image row 0 is the top; texture coordinate v = 0 is the bottom
+  std::vector<unsigned char> flipped(static_cast<size_t>(w) * h * 3);
+  for (int r = 0; r < h; ++r)
+    std::copy(pixels + static_cast<size_t>(r) * w * 3, pixels + static_cast<size_t>(r + 1) * w * 3,
+              flipped.begin() + static_cast<size_t>(h - 1 - r) * w * 3);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, w, h, 0, GL_RGB, GL_UNSIGNED_BYTE, flipped.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  // anisotropic filtering (OGRE's "filtering anisotropic", max_anisotropy 16) where the driver has it
+  constexpr GLenum kMaxAnisotropy = 0x84FE;  // GL_TEXTURE_MAX_ANISOTROPY(_EXT), core in OpenGL 4.6
+  if (max_anisotropy > 1.0f &&
+      (HasExtension("GL_EXT_texture_filter_anisotropic") || HasExtension("GL_ARB_texture_filter_anisotropic")))
+    glTexParameterf(GL_TEXTURE_2D, kMaxAnisotropy, max_anisotropy);
+  stbi_image_free(pixels);
+  return textures[key] = texture;
 }
 
 /// The GPU mesh of a shape and the scale S that takes the mesh's frame to the visual frame.
@@ -441,7 +469,7 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
               static_cast<float>(in.far_m));
   const GLint loc_T = r.mesh_vertex.T_OV, loc_N = r.mesh_vertex.N_OV;
   const GLint loc_albedo = r.mesh_fragment.albedo, loc_vertex_colour = r.mesh_fragment.use_vertex_colour;
-  const GLint loc_texture = r.mesh_fragment.use_texture;
+  const GLint loc_texture = r.mesh_fragment.use_texture, loc_uv_scale = r.mesh_fragment.uv_scale;
   glActiveTexture(GL_TEXTURE0);
   std::vector<const Chunk*> visible;
   for (const physics::ModelPtr& model : world.Models()) {
@@ -465,12 +493,23 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
       glUniformMatrix3fv(loc_N, 1, GL_FALSE, N.data());
       // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
       const bool own = mesh->own_colours && !visual.has_material;
-      const bool textured = mesh->texture != 0 && !visual.has_material;
+      // a material script's texture on a primitive, or a mesh's own (an SDF/URDF colour replaces it)
+      GLuint texture = visual.has_material ? 0 : mesh->texture;
+      float repeat_u = 1.0f, repeat_v = 1.0f;
+      if (!visual.texture_file.empty()) {
+        texture = r.TextureFor(visual.texture_file, visual.texture_max_anisotropy);
+        repeat_u = 1.0f / visual.texture_scale[0];
+        repeat_v = 1.0f / visual.texture_scale[1];
+      }
+      const bool textured = texture != 0;
       if (own) glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);
       else glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
       glUniform1i(loc_vertex_colour, own);
       glUniform1i(loc_texture, textured);
-      if (textured) glBindTexture(GL_TEXTURE_2D, mesh->texture);
+      if (textured) {
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glUniform2f(loc_uv_scale, repeat_u, repeat_v);
+      }
       glBindVertexArray(mesh->vao);
       for (const Chunk* chunk : visible) {
         const auto first = static_cast<GLint>(3 * chunk->first_triangle);

@@ -107,10 +107,12 @@ void TriangleSoup::Add(const Vector3f& a, const Vector3f& b, const Vector3f& c, 
 }
 
 namespace {
-/// Two triangles a b c, a c d (counter-clockwise seen from the outside).
+/// Two triangles a b c, a c d (counter-clockwise seen from the outside), texture coordinates
+/// (0, 0) (1, 0) (1, 1) (0, 1) at a b c d, as Gazebo's unit box and plane have them per face.
 void AddQuad(TriangleSoup* soup, const Vector3f& a, const Vector3f& b, const Vector3f& c, const Vector3f& d) {
   soup->Add(a, b, c);
   soup->Add(a, c, d);
+  soup->uvs.insert(soup->uvs.end(), {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1});
 }
 
 /// The face of an axis-aligned cube (centre, half size h) whose outward normal is +-axis.

@@ -18,6 +18,7 @@
 
 #include "bindings.h"
 #include "rotors_core/error.h"
+#include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/model_builder.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -353,6 +354,9 @@ void BindWorld(py::module_& m) {
       PyErr_SetString(sim_error.ptr(), e.what());
     }
   });
+
+  m.def("add_model_path", &rotors_sim::geometry::UriResolver::AddModelPath, py::arg("folder"),
+        "A folder of Gazebo model folders for model:// URIs (after GAZEBO_MODEL_PATH).");
 
   py::class_<PyWorld>(m, "World", "One world of the engine (see rotors_sim.World).")
       .def_static(

@@ -61,6 +61,7 @@ class World:
 
     def __init__(self, name_or_path: str | Path = "basic", *, sdf: str | None = None, step_size: float | None = None):
         """`step_size` [s] overrides the world file's max_step_size (e.g. 0.002 for 500 Hz physics)."""
+        _engine.add_model_path(str(package_path("rotors_gazebo") / "models"))  # model://asphalt_plane, ...
         if sdf is not None:
             self._w = _engine.World.load_string(sdf, "<string>")
         else:

@@ -39,6 +39,11 @@ struct Visual {
   Shape shape;
   std::array<float, 4> rgba{0.7f, 0.7f, 0.7f, 1.0f};
   bool has_material = false;  ///< rgba from an SDF/URDF <material>: it overrides a mesh's own colours
+  /// A material script's texture (OGRE texture_unit) on a primitive: its image file, and the
+  /// texture scale (texture coordinates 0..1 per face of a box or over a plane, divided by it)
+  std::string texture_file;
+  std::array<float, 2> texture_scale{1.0f, 1.0f};
+  float texture_max_anisotropy = 1.0f;  ///< 1: trilinear only
 };
 
 }  // namespace geometry

@@ -1,0 +1,91 @@
+// librotors_gazebo_optical_flow_plugin.so: RotorS' optical flow plugin (an external plugin upstream,
+// built only with the PX4 OpticalFlow library): a sensor plugin on a downward camera (RotorS'
+// flow_cam: 64 x 64, 100 Hz) that computes the flow with OpenCV (OpticalFlowModel, focal length from
+// the camera's horizontal_fov) and publishes an integrated sample at <outputRate> (20 Hz, RotorS')
+// as mavros_msgs/OpticalFlowRad on <robotNamespace>/<opticalFlowTopic> (default
+// px4flow/raw/optical_flow_rad, the topic mavros gives a PX4Flow). RotorS' MAVLink interface adds
+// the gyro integrals and the distance: here gyro fields are 0 and distance is -1 (unknown), as
+// MAVLink says for a sensor without them; temperature 20 degC (RotorS' value).
+#include <vector>
+
+#include <mavros_msgs/OpticalFlowRad.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/plugin.h"
+#include "rotors_core/ros/listened_publisher.h"
+#include "rotors_core/sensors/camera_sensor.h"
+#include "rotors_gazebo_plugins/models/optical_flow_model.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/camera_ros.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
+ public:
+  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr /*sdf*/) override {
+    sensor_ = std::dynamic_pointer_cast<rotors_sim::sensors::CameraSensor>(sensor);
+    if (!sensor_ || sensor_->Type() != "camera")
+      throw rotors_sim::SimError(
+          "librotors_gazebo_optical_flow_plugin.so belongs in a <sensor type=\"camera\">, not "
+          "type '" +
+          sensor->Type() + "'");
+    const std::string ns = ReadRobotNamespace(Params());
+    std::string topic = "px4flow/raw/optical_flow_rad";
+    ReadParam(Params(), "opticalFlowTopic", &topic);
+    const rotors_sim::rendering::CameraSpec& camera = sensor_->Camera(0);
+    OpticalFlowParams p;
+    p.focal_length_px = camera.intrinsics.FocalLengthPx();
+    ReadParam(Params(), "outputRate", &p.output_rate_hz);
+    ReadParam(Params(), "maxFeatures", &p.max_features);
+    const std::string why = p.Validate();
+    if (!why.empty()) throw rotors_sim::SimError("optical flow on sensor '" + sensor_->Name() + "': " + why);
+    model_ = std::make_unique<OpticalFlowModel>(p);
+    msg_.header.frame_id = ns + "/" + sensor_->Name();
+    msg_.temperature = 2000;  // centi-degC
+    msg_.distance = -1.0f;
+    node_ = MakeNode(ns);
+    pub_ =
+        Advertise<mavros_msgs::OpticalFlowRad>(node_, ns, topic, *sensor_->ParentLink()->GetModel()->GetWorldRaw(), 10);
+    if (!pub_) return;  // neither ROS nor in-process taps: nobody to publish to
+    connection_ = sensor_->ConnectUpdated([this] { OnFrame(); });
+  }
+
+ private:
+  void OnFrame() {
+    const rotors_sim::rendering::RenderedFrame& frame = sensor_->Frame(0);
+    const int W = frame.width_px, H = frame.height_px;
+    const size_t channels = frame.image.size() / (static_cast<size_t>(W) * H);
+    const uint8_t* grey = frame.image.data();
+    if (channels != 1) {  // an RGB/BGR camera: its luma
+      grey_.resize(static_cast<size_t>(W) * H);
+      for (size_t i = 0; i < grey_.size(); ++i) {
+        const uint8_t* px = &frame.image[i * channels];
+        grey_[i] = static_cast<uint8_t>((299 * px[0] + 587 * px[1] + 114 * px[2]) / 1000);
+      }
+      grey = grey_.data();
+    }
+    const auto sample = model_->AddFrame(grey, W, H, sensor_->LastUpdateTime().Double());
+    if (!sample) return;
+    msg_.header.stamp = ToRos(sensor_->LastUpdateTime());
+    msg_.integration_time_us = sample->integration_time_us;
+    msg_.integrated_x = sample->integrated_x;
+    msg_.integrated_y = sample->integrated_y;
+    msg_.quality = sample->quality;
+    pub_.publish(msg_);
+  }
+
+  rotors_sim::sensors::CameraSensorPtr sensor_;
+  std::unique_ptr<OpticalFlowModel> model_;
+  std::vector<uint8_t> grey_;
+  mavros_msgs::OpticalFlowRad msg_;
+  std::shared_ptr<ros::NodeHandle> node_;
+  rotors_sim::ListenedPublisher pub_;
+  rotors_sim::event::ConnectionPtr connection_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+RSIM_REGISTER_SENSOR_PLUGIN(rotors_gazebo_plugins::GazeboOpticalFlowPlugin)
