@@ -14,7 +14,7 @@ GTESTS = {
     "msf_updates/test_msf_pose_ekf": 10,
     "rotors_control/test_rotors_control": 18,
     "rotors_core/test_rotors_core_engine": 57,
-    "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 52,
+    "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 54,
     "rotors_planning/test_rotors_planning": 9,
 }
 

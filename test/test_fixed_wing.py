@@ -170,3 +170,50 @@ def test_fixed_wing_with_joy_launches_the_techpod_and_it_flies_on_joystick_comma
           f"height {got['z0']:.1f} -> {got['z']:.1f} m, forward speed {got['vx']:.1f} m/s")
     assert got["launched_vx"] > 10.0 and got["reset"]
     assert got["x"] > 120.0 and abs(got["z"] - got["z0"]) < 3.0 and got["vx"] > 12.0
+
+
+@pytest.mark.parametrize("wind_direction, wind_speed", [("-1 0 0", 5.0), ("0 0 1", 1.0)])
+def test_wind_changes_airspeed_and_angle_of_attack_as_the_model_says(trimmed, wind_direction, wind_speed):
+    # trimmed at 15 m/s over the ground, in a 5 m/s headwind (airspeed 20 m/s) or a 1 m/s updraft (angle
+    # of attack up by atan(1 / 15)): the plugin's first acceleration is the model's force at
+    # v_air = v - wind, divided by the mass (the wind plugin's speed reaches the plugin over the bus)
+    model, mass, (alpha, elevator, throttle) = trimmed
+    wind_W = float(wind_speed) * np.array([float(c) for c in wind_direction.split()])
+    world = rs.World("basic")
+    world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1,
+                enable_wind=True, wind_direction=wind_direction, wind_speed_mean=wind_speed)
+    fly_from_trim(world, alpha, elevator, throttle)
+    world.step(1)  # the plugin's forces act from the state of the step before (RotorS' order)
+    _, _, v0, _ = world.link_state("techpod")
+    world.step(1)  # one 10 ms step: the plane's climb soon lowers the angle of attack again
+    _, _, v1, _ = world.link_state("techpod")
+    a_W = (v1 - v0) / world.step_size
+    # the model at the trim attitude (nose up by alpha about -y): body = R^T world
+    c, s = math.cos(alpha), math.sin(alpha)
+    R = np.array([[c, 0.0, -s], [0.0, 1.0, 0.0], [s, 0.0, c]])  # FLU body axes in the world, pitched nose up
+    v_air_B = R.T @ (np.array([V_TRIM, 0.0, 0.0]) - wind_W)
+    w = model.compute(list(v_air_B), [0.0, 0.0, 0.0], command(elevator, throttle))
+    a_model = R @ np.asarray(w["force_B"]) / mass - [0.0, 0.0, G]
+    print(f"wind {wind_W} m/s: airspeed {w['airspeed']:.2f} m/s, alpha {math.degrees(w['alpha']):.2f} deg "
+          f"(trim {math.degrees(alpha):.2f}); acceleration {np.round(a_W, 3)} m/s^2, model {np.round(a_model, 3)}")
+    assert w["airspeed"] == pytest.approx(np.linalg.norm(v_air_B), abs=1e-9)
+    if wind_W[0] != 0.0:
+        assert w["airspeed"] == pytest.approx(V_TRIM + 5.0, abs=0.01)
+    else:
+        assert w["alpha"] == pytest.approx(alpha + math.atan(1.0 / V_TRIM), abs=1e-3)
+    assert a_W[2] > 0.5  # more lift: it climbs
+    # (within 0.2 m/s^2: in the step measured the pitch rate the new moment makes has begun to turn it)
+    assert np.allclose(a_W, a_model, rtol=0.02, atol=0.2)
+
+
+def test_a_deflection_out_of_range_is_one_line_and_changes_nothing(trimmed):
+    _, _, (alpha, elevator, throttle) = trimmed
+    world = rs.World("basic")
+    world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1)
+    fly_from_trim(world, alpha, elevator, throttle)
+    with pytest.raises(rs.SimError, match=r"normalized\[4\] = 1\.5 puts the aileron_left at 0\.523599 rad, outside "
+                                          r"its deflection range \[-0\.349066, 0\.349066\] rad"):
+        world.set_actuators("techpod", command(elevator, throttle, aileron=1.5))
+    world.step(200)  # the trim command stays in force: level flight
+    p, _, v, _ = world.link_state("techpod")
+    assert abs(p[2] - 50.0) < 0.5 and abs(np.linalg.norm(v) - V_TRIM) < 0.3

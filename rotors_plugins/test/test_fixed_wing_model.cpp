@@ -107,3 +107,34 @@ TEST(FixedWingModel, ParameterFilesWithAMissingKeyOrAShortListAreNamed) {
   EXPECT_EQ(p.Validate(), "c_lift_alpha needs 4 coefficients, has 2");
   EXPECT_THROW(FixedWingModel(p, FixedWingVehicleParams{}), std::invalid_argument);
 }
+
+// Stall as RotorS' model has it: the lift polynomial C_L(alpha) peaks where dC_L/dalpha = 10.806 -
+// 93.6648 a + 181.8051 a^2 = 0 (a = 0.1740 rad) and falls beyond it; alpha is clamped at alpha_max
+// (0.27 rad), so from there on the lift stays at C_L(alpha_max).
+TEST(FixedWingModel, LiftPeaksAtTheStallAngleFallsBeyondItAndIsHeldPastAlphaMax) {
+  const FixedWingModel m = Techpod();
+  auto C_L = [&](double alpha) {
+    return m.Compute(Air(15.0, alpha), Eigen::Vector3d::Zero(), FixedWingInputs{}).lift_coefficient;
+  };
+  const double a_stall = (93.6648 - std::sqrt(93.6648 * 93.6648 - 4 * 181.8051 * 10.806)) / (2 * 181.8051);
+  EXPECT_NEAR(a_stall, 0.1740, 1e-3);
+  EXPECT_GT(C_L(a_stall), C_L(a_stall - 0.02));
+  EXPECT_GT(C_L(a_stall), C_L(a_stall + 0.02));
+  EXPECT_LT(C_L(0.25), C_L(a_stall) - 0.05);  // past the stall angle the lift falls
+  EXPECT_DOUBLE_EQ(C_L(0.40), C_L(0.27));     // clamped at alpha_max
+  const auto w = m.Compute(Air(15.0, 0.40), Eigen::Vector3d::Zero(), FixedWingInputs{});
+  EXPECT_DOUBLE_EQ(w.alpha_rad, 0.27);
+}
+
+// A deflection beyond a surface's range and a throttle outside [0, 1] are one line each (RotorS
+// flies them unclamped).
+TEST(FixedWingModel, DeflectionsOutOfRangeAndThrottleOutsideZeroOneAreNamed) {
+  const FixedWingVehicleParams v = FixedWingVehicleParams::FromYaml(kDir + "techpod.yaml");
+  FixedWingInputs u;
+  EXPECT_EQ(FixedWingInputs::FromNormalized({0.0, 1.5, 0.0, 0.0, 0.0, 0.5}, v, &u),
+            "normalized[1] = 1.5 puts the elevator at 0.523599 rad, outside its deflection range [-0.349066, "
+            "0.349066] rad (normalized values are -1 .. 1)");
+  EXPECT_EQ(FixedWingInputs::FromNormalized({0.0, 0.0, 0.0, 0.0, 0.0, 1.2}, v, &u),
+            "normalized[5] = 1.2: the throttle must be in [0, 1]");
+  EXPECT_DOUBLE_EQ(u.elevator_rad, 0.0);  // a refused command changes nothing
+}

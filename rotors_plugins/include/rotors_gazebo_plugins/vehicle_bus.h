@@ -4,6 +4,8 @@
 // injected motor faults (multirotor base's service -> motor models).
 #pragma once
 
+#include <functional>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +38,8 @@ struct VehicleBus {
   std::vector<double> normalized_command;  ///< empty until the first valid command
   uint64_t normalized_command_count = 0;
   int normalized_channels = 0;  ///< how many channels the vehicle's fixed-wing plugin reads (0: none)
+  /// The fixed-wing plugin's check of a normalized command ("" or why not: a deflection out of range)
+  std::function<std::string(const std::vector<double>&)> normalized_check;
 
   /// The bus of a namespace in a world, shared by the plugins of the vehicle that hold it. It lives
   /// as long as one of them: a model deleted and re-spawned under the same namespace (with another

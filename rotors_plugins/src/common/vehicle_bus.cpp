@@ -76,6 +76,10 @@ std::string VehicleBus::SetNormalizedCommand(const std::vector<double>& normaliz
       why << "normalized[" << i << "] = " << normalized[i] << " must be finite";
       return why.str();
     }
+  if (normalized_check) {
+    const std::string why_not = normalized_check(normalized);
+    if (!why_not.empty()) return why_not;
+  }
   normalized_command = normalized;
   ++normalized_command_count;
   return {};

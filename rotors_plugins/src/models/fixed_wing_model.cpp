@@ -1,6 +1,7 @@
 #include "rotors_gazebo_plugins/models/fixed_wing_model.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -139,12 +140,36 @@ std::string FixedWingInputs::FromNormalized(const std::vector<double>& n, const 
              " is needed";
   for (double x : n)
     if (!std::isfinite(x)) return "normalized has NaN or inf";
+  // a surface's normalized value in [-1, 1] is its deflection range; the throttle is in [0, 1]
+  // (RotorS clamps neither: a deflection beyond the surface's limit would silently be flown)
+  constexpr double kSlack = 1e-9;
+  const std::pair<const char*, const ControlSurface*> surfaces[] = {{"aileron_left", &v.aileron_left},
+                                                                    {"aileron_right", &v.aileron_right},
+                                                                    {"elevator", &v.elevator},
+                                                                    {"flap", &v.flap},
+                                                                    {"rudder", &v.rudder}};
+  for (const auto& [name, surface] : surfaces) {
+    const double x = n[surface->channel];
+    if (std::abs(x) > 1.0 + kSlack) {
+      std::ostringstream why;
+      why << "normalized[" << surface->channel << "] = " << x << " puts the " << name << " at "
+          << surface->Deflection(x) << " rad, outside its deflection range [" << surface->deflection_min_rad << ", "
+          << surface->deflection_max_rad << "] rad (normalized values are -1 .. 1)";
+      return why.str();
+    }
+  }
+  const double t = n[v.throttle_channel];
+  if (t < -kSlack || t > 1.0 + kSlack) {
+    std::ostringstream why;
+    why << "normalized[" << v.throttle_channel << "] = " << t << ": the throttle must be in [0, 1]";
+    return why.str();
+  }
   out->aileron_left_rad = v.aileron_left.Deflection(n[v.aileron_left.channel]);
   out->aileron_right_rad = v.aileron_right.Deflection(n[v.aileron_right.channel]);
   out->elevator_rad = v.elevator.Deflection(n[v.elevator.channel]);
   out->flap_rad = v.flap.Deflection(n[v.flap.channel]);
   out->rudder_rad = v.rudder.Deflection(n[v.rudder.channel]);
-  out->throttle = n[v.throttle_channel];
+  out->throttle = t;
   return {};
 }
 

@@ -54,6 +54,11 @@ class GazeboFwDynamicsPlugin : public rotors_sim::ModelPlugin {
     for (int channel : {v.aileron_left.channel, v.aileron_right.channel, v.elevator.channel, v.flap.channel,
                         v.rudder.channel, v.throttle_channel})
       bus_->normalized_channels = std::max(bus_->normalized_channels, channel + 1);
+    // every command (ROS or in process) is checked on the way in: deflections in range, throttle 0..1
+    bus_->normalized_check = [this](const std::vector<double>& normalized) {
+      FixedWingInputs checked;
+      return FixedWingInputs::FromNormalized(normalized, model_->Vehicle(), &checked);
+    };
     node_ = MakeNode(namespace_);
     if (node_) {
       if (joystick) sub_ = node_->subscribe(rpyt_topic, 1, &GazeboFwDynamicsPlugin::OnRollPitchYawrateThrust, this);
@@ -61,6 +66,10 @@ class GazeboFwDynamicsPlugin : public rotors_sim::ModelPlugin {
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
         [this](const rotors_sim::common::UpdateInfo&) { OnUpdate(); });
+  }
+
+  ~GazeboFwDynamicsPlugin() override {
+    if (bus_) bus_->normalized_check = nullptr;  // the bus may outlive this plugin (another holds it)
   }
 
   void Reset() override {
