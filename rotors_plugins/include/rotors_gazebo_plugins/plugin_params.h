@@ -14,6 +14,7 @@
 
 #include "rotors_core/physics/physics_types.h"
 #include "rotors_core/sdf_params.h"
+#include "rotors_gazebo_plugins/models/tilt_servo_model.h"
 
 namespace rotors_gazebo_plugins {
 
@@ -35,6 +36,11 @@ rotors_sim::physics::LinkPtr RequireLink(const rotors_sim::physics::ModelPtr& mo
                                          const char* param = "linkName");
 rotors_sim::physics::JointPtr RequireJoint(const rotors_sim::physics::ModelPtr& model, const std::string& name,
                                            const char* param = "jointName");
+
+/// Gazebo's PID elements (p, i, d, iMax, iMin, cmdMax, cmdMin) below the child element `name`, into
+/// *pid: each required (require_all) or each optional over what *pid holds. False when there is no
+/// such element; an element it does not know is refused by name.
+bool ReadGazeboPid(SdfParams& params, const std::string& name, bool require_all, TiltServoParams* pid);
 
 /// Seed from <randomEngineSeed> if given, else from the clock; returns the seed used.
 uint64_t ReadSeed(SdfParams& params);

@@ -50,4 +50,18 @@ uint64_t ReadSeed(SdfParams& params) {
   return static_cast<uint64_t>(std::chrono::high_resolution_clock::now().time_since_epoch().count());
 }
 
+bool ReadGazeboPid(SdfParams& params, const std::string& name, bool require_all, TiltServoParams* pid) {
+  if (!params.Has(name)) return false;
+  SdfParams nested(params.Element()->GetElement(name));
+  for (const auto& [key, value] :
+       {std::make_pair("p", &pid->p), std::make_pair("i", &pid->i), std::make_pair("d", &pid->d),
+        std::make_pair("iMax", &pid->i_max), std::make_pair("iMin", &pid->i_min),
+        std::make_pair("cmdMax", &pid->cmd_max), std::make_pair("cmdMin", &pid->cmd_min)}) {
+    if (require_all) nested.Require(key, value);
+    else nested.Read(key, value);
+  }
+  nested.RejectUnread();
+  return true;
+}
+
 }  // namespace rotors_gazebo_plugins

@@ -32,16 +32,7 @@ namespace rotors_gazebo_plugins {
 namespace {
 /// Gazebo's PID elements below <name>, each optional over `defaults`.
 TiltServoParams ReadPid(SdfParams& params, const std::string& name, TiltServoParams pid) {
-  if (!params.Has(name)) return pid;
-  SdfParams nested(params.Element()->GetElement(name));
-  nested.Read("p", &pid.p);
-  nested.Read("i", &pid.i);
-  nested.Read("d", &pid.d);
-  nested.Read("iMax", &pid.i_max);
-  nested.Read("iMin", &pid.i_min);
-  nested.Read("cmdMax", &pid.cmd_max);
-  nested.Read("cmdMin", &pid.cmd_min);
-  nested.RejectUnread();
+  ReadGazeboPid(params, name, false, &pid);
   return pid;
 }
 

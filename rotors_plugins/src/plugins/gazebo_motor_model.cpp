@@ -108,21 +108,12 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     if (joint_->GetType() != rotors_sim::physics::Joint::Type::kRevolute)
       throw rotors_sim::SimError("motorType 'position' needs a revolute or continuous solver joint; '" +
                                  joint_->GetName() + "' is not one (a <kinematic_joint> cannot take a torque)");
-    if (!Params().Has("joint_control_pid"))
+    TiltServoParams p;
+    if (!ReadGazeboPid(Params(), "joint_control_pid", true, &p))
       throw rotors_sim::SimError(
           "motorType 'position' needs <joint_control_pid> with p, i, d, iMax, iMin, cmdMax, "
           "cmdMin (Gazebo's PID; the omav uses p 1, i 0, d 0.01, iMax 1, iMin -1, cmdMax 2, "
           "cmdMin -2)");
-    SdfParams pid(Params().Element()->GetElement("joint_control_pid"));
-    TiltServoParams p;
-    pid.Require("p", &p.p);
-    pid.Require("i", &p.i);
-    pid.Require("d", &p.d);
-    pid.Require("iMax", &p.i_max);
-    pid.Require("iMin", &p.i_min);
-    pid.Require("cmdMax", &p.cmd_max);
-    pid.Require("cmdMin", &p.cmd_min);
-    pid.RejectUnread();
     ThrowIfInvalid(p.Validate());
     servo_ = std::make_unique<TiltServoModel>(p);
     std::string position_topic = "motor_position/" + std::to_string(motor_number_);
