@@ -71,7 +71,7 @@ def test_gimbal_pitch_command_over_ros(ros: RosGraph):
             roll = rospy.Publisher('/firefly/gimbal_roll_cmd', Float64, queue_size=1, latch=True)
             while roll.get_num_connections() == 0:
                 time.sleep(0.05)
-            roll.publish(Float64(0.3))
+            roll.publish(Float64(3.0))  # beyond the roll joint's 45 deg: clamped
             time.sleep(3.0)
             from nav_msgs.msg import Odometry
             for axis in ('yaw', 'roll', 'pitch'):
@@ -91,6 +91,7 @@ def test_gimbal_pitch_command_over_ros(ros: RosGraph):
     R_WB = rotation(got["q_WB"])
     R_WC = R_WB @ about("z", got["yaw"]) @ about("x", got["roll"]) @ about("y", got["pitch"])
     ypr = euler_zxy(R_WC)
-    print(f"gimbal over ROS: camera yaw {ypr[0]:.4f}, roll {ypr[1]:.4f} (commanded 0.3), pitch {ypr[2]:.4f} rad "
-          f"(commanded 3.0, clamped to the joint's pi/2: looking straight down); body tilt {tilt_deg(R_WB):.2f} deg")
-    assert np.abs(ypr - [0.0, 0.3, math.pi / 2]).max() < 0.01
+    print(f"gimbal over ROS: camera yaw {ypr[0]:.4f}, roll {ypr[1]:.4f} (commanded 3.0, clamped to the joint's pi/4), "
+          f"pitch {ypr[2]:.4f} rad (commanded 3.0, clamped to the joint's pi/2: straight down); body tilt "
+          f"{tilt_deg(R_WB):.2f} deg")
+    assert np.abs(ypr - [0.0, math.pi / 4, math.pi / 2]).max() < 0.01
