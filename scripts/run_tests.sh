@@ -22,4 +22,5 @@ if [ $# -eq 0 ]; then
     *) echo "ROTORS_TEST_TIER=${ROTORS_TEST_TIER} unknown (quick, long or all)" >&2; exit 2 ;;
   esac
 fi
-exec python -m pytest -q -p no:cacheprovider "$@"
+# the 25 slowest tests are listed at the end: what to move between the tiers (make test under 25 min)
+exec python -m pytest -q -p no:cacheprovider --durations=25 "$@"
