@@ -26,12 +26,14 @@ constexpr char kVehicle[] = "load the vehicle yaml, resource/<mav>.yaml";
 constexpr char kGain[] = "load the controller yaml, e.g. resource/lee_controller_<mav>.yaml";
 }  // namespace parameter_hints
 
+/// mass, gravity (default RotorS' 9.81, announced) and inertia/{xx, ..., yz}: what every vehicle
+/// yaml holds, multirotor or tilt-rotor.
 template <class Reader>
-std::string LoadVehicleParameters(Reader& reader, VehicleParameters* v) {
-  std::string why = reader.Require("mass", &v->mass_kg, parameter_hints::kVehicle);
+std::string LoadRigidBody(Reader& reader, double* mass_kg, double* gravity_m_s2, Eigen::Matrix3d* inertia_kg_m2) {
+  std::string why = reader.Require("mass", mass_kg, parameter_hints::kVehicle);
   if (!why.empty()) return why;
-  v->gravity_m_s2 = VehicleParameters{}.gravity_m_s2;  // the one default, whatever *v held
-  why = reader.Optional("gravity", &v->gravity_m_s2, "RotorS' value; the world's may differ, as in the book's example");
+  *gravity_m_s2 = VehicleParameters{}.gravity_m_s2;  // the one default, whatever it held
+  why = reader.Optional("gravity", gravity_m_s2, "RotorS' value; the world's may differ, as in the book's example");
   if (!why.empty()) return why;
   const char* keys[3][3] = {{"inertia/xx", "inertia/xy", "inertia/xz"},
                             {"inertia/xy", "inertia/yy", "inertia/yz"},
@@ -42,8 +44,15 @@ std::string LoadVehicleParameters(Reader& reader, VehicleParameters* v) {
       why = i == j ? reader.Require(keys[i][j], &value, parameter_hints::kVehicle)
                    : reader.Optional(keys[i][j], &value, "a principal-axes body");
       if (!why.empty()) return why;
-      v->inertia_kg_m2(i, j) = value;
+      (*inertia_kg_m2)(i, j) = value;
     }
+  return {};
+}
+
+template <class Reader>
+std::string LoadVehicleParameters(Reader& reader, VehicleParameters* v) {
+  std::string why = LoadRigidBody(reader, &v->mass_kg, &v->gravity_m_s2, &v->inertia_kg_m2);
+  if (!why.empty()) return why;
   v->rotors.clear();
   for (int i = 0; reader.Has("rotor_configuration/" + std::to_string(i)); ++i) {
     const std::string base = "rotor_configuration/" + std::to_string(i) + "/";
@@ -86,20 +95,8 @@ std::string LoadLeeParameters(Reader& reader, LeePositionControllerParameters* p
 
 template <class Reader>
 std::string LoadTiltRotorParameters(Reader& reader, TiltRotorControllerParameters* p) {
-  // mass, gravity and inertia as every vehicle yaml names them
-  VehicleParameters body;
-  std::string why = reader.Require("mass", &body.mass_kg, parameter_hints::kVehicle);
-  if (why.empty()) why = reader.Optional("gravity", &body.gravity_m_s2, "RotorS' value");
-  const char* keys[3][3] = {{"inertia/xx", "inertia/xy", "inertia/xz"},
-                            {"inertia/xy", "inertia/yy", "inertia/yz"},
-                            {"inertia/xz", "inertia/yz", "inertia/zz"}};
-  for (int i = 0; why.empty() && i < 3; ++i)
-    for (int j = 0; why.empty() && j < 3; ++j)
-      why = i == j ? reader.Require(keys[i][j], &p->inertia_kg_m2(i, j), parameter_hints::kVehicle)
-                   : reader.Optional(keys[i][j], &p->inertia_kg_m2(i, j), "a principal-axes body");
+  std::string why = LoadRigidBody(reader, &p->mass_kg, &p->gravity_m_s2, &p->inertia_kg_m2);
   if (!why.empty()) return why;
-  p->mass_kg = body.mass_kg;
-  p->gravity_m_s2 = body.gravity_m_s2;
   p->arms.clear();
   for (int i = 0; reader.Has("tilt_rotor_configuration/" + std::to_string(i)); ++i) {
     const std::string base = "tilt_rotor_configuration/" + std::to_string(i) + "/";

@@ -30,7 +30,7 @@ std::optional<OpticalFlowSample> OpticalFlowModel::AddFrame(const uint8_t* grey,
   const cv::Mat frame = cv::Mat(height, width, CV_8UC1, const_cast<uint8_t*>(grey)).clone();
   if (previous_.empty() || previous_.size() != frame.size()) {
     previous_ = frame;
-    previous_t_s_ = interval_start_s_ = t_s;
+    interval_start_s_ = t_s;
     return std::nullopt;
   }
   std::vector<cv::Point2f> corners, tracked;
@@ -56,7 +56,6 @@ std::optional<OpticalFlowSample> OpticalFlowModel::AddFrame(const uint8_t* grey,
   quality_sum_ += std::min(quality, 1.0);
   ++frames_;
   previous_ = frame;
-  previous_t_s_ = t_s;
   if (t_s - interval_start_s_ + 1e-9 < 1.0 / params_.output_rate_hz) return std::nullopt;
   OpticalFlowSample sample;
   sample.integration_time_us = static_cast<uint32_t>(std::lround((t_s - interval_start_s_) * 1e6));

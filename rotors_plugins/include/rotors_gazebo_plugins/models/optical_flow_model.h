@@ -43,7 +43,7 @@ class OpticalFlowModel {
  private:
   OpticalFlowParams params_;
   cv::Mat previous_;
-  double previous_t_s_ = 0.0, interval_start_s_ = 0.0;
+  double interval_start_s_ = 0.0;  ///< [s] start of the output interval under way
   double flow_x_rad_ = 0.0, flow_y_rad_ = 0.0, quality_sum_ = 0.0;
   int frames_ = 0;
 };
