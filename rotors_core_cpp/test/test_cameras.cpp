@@ -28,11 +28,11 @@ using ignition::math::Pose3d;
 namespace {
 
 std::string Camera(const std::string& name, const Pose3d& X_SC, int w, int h, double hfov, const std::string& format,
-                   double stddev = 0.0, double far = 100.0) {
+                   double stddev = 0.0, double far = 100.0, const std::string& distortion = "") {
   std::ostringstream s;
   s << "<camera name='" << name << "'><pose>" << PoseText(X_SC) << "</pose><horizontal_fov>" << hfov
     << "</horizontal_fov><image><width>" << w << "</width><height>" << h << "</height><format>" << format
-    << "</format></image><clip><near>0.02</near><far>" << far << "</far></clip>";
+    << "</format></image><clip><near>0.02</near><far>" << far << "</far></clip>" << distortion;
   if (stddev > 0) s << "<noise><type>gaussian</type><mean>0</mean><stddev>" << stddev << "</stddev></noise>";
   s << "</camera>";
   return s.str();
@@ -361,6 +361,81 @@ TEST(Camera, UpdatesAtItsRateInSimTime) {
   EXPECT_DOUBLE_EQ(stamps.back(), cam->LastUpdateTime().Double());
 }
 
+TEST(Camera, LensDistortionIsOpenCvsBrownModelAndUndistortInvertsIt) {
+  rendering::LensDistortion lens;
+  lens.k1 = -0.28;
+  lens.k2 = 0.07;
+  lens.k3 = -0.004;
+  lens.p1 = 0.0012;
+  lens.p2 = -0.0009;
+  // by hand at x = (0.3, -0.2): r^2 = 0.13, radial = 1 - 0.28 * 0.13 + 0.07 * 0.0169 - 0.004 * 0.002197
+  const double r2 = 0.13, radial = 1 - 0.28 * r2 + 0.07 * r2 * r2 - 0.004 * r2 * r2 * r2;
+  const Eigen::Vector2d d = lens.Distort(Eigen::Vector2d(0.3, -0.2));
+  EXPECT_NEAR(d.x(), 0.3 * radial + 2 * 0.0012 * 0.3 * -0.2 - 0.0009 * (r2 + 2 * 0.09), 1e-15);
+  EXPECT_NEAR(d.y(), -0.2 * radial + 0.0012 * (r2 + 2 * 0.04) + 2 * -0.0009 * 0.3 * -0.2, 1e-15);
+  for (double x = -0.8; x <= 0.8; x += 0.1)
+    for (double y = -0.6; y <= 0.6; y += 0.1) {
+      Eigen::Vector2d ideal;
+      ASSERT_TRUE(lens.Undistort(lens.Distort(Eigen::Vector2d(x, y)), &ideal)) << x << " " << y;
+      EXPECT_NEAR((ideal - Eigen::Vector2d(x, y)).norm(), 0.0, 1e-8) << x << " " << y;
+    }
+  EXPECT_EQ(lens.Validate(1.0), "");
+  rendering::LensDistortion folding;
+  folding.k1 = -0.6;  // r (1 - 0.6 r^2) peaks at r = 0.745
+  const std::string why = folding.Validate(1.0);
+  EXPECT_NE(why.find("folds the image over at r = 0.74"), std::string::npos) << why;
+}
+
+TEST(Camera, ADistortedCameraIsTheRemappedPinholeImageAndItsCentreCanMove) {
+  // the same box as BoxCornerAppearsWhereThePinholeModelPutsIt, seen through a barrel lens whose
+  // centre is off the image centre: the corner appears at K distort(x / z) with c at the centre
+  const Pose3d X_WC = X_SC + (X_LS + X_WM);
+  const Pose3d X_WB = Pose3d(4, 0.5, 0.3, 0, 0, 0) + X_WC;
+  const std::string lens =
+      "<distortion><k1>-0.25</k1><k2>0.06</k2><k3>0</k3><p1>0.001</p1><p2>-0.002</p2><center>0.53 0.46</center>"
+      "</distortion>";
+  WorldGuard g{WorldLoader::LoadString(
+      World(BoxModel("box", X_WB, 1, 1, 1) +
+            Rig(X_WM, X_LS, "camera", 30, Camera("", X_SC, 752, 480, 1.3962634, "L8", 0.0, 100.0, lens))),
+      "distorted")};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  const rendering::CameraSpec& spec = cam->Camera(0);
+  EXPECT_NEAR(spec.intrinsics.Cx(), 0.53 * 752 - 0.5, 1e-12);
+  EXPECT_NEAR(spec.intrinsics.Cy(), 0.46 * 480 - 0.5, 1e-12);
+  const rendering::RenderedFrame& f = cam->Frame(0);
+  ASSERT_EQ(f.image.size(), 752u * 480u);
+  const Eigen::Matrix3d K = spec.intrinsics.K();
+  const Eigen::Isometry3d T_WO = ToEigen(X_WC) * T_CO();
+  auto project = [&](const Eigen::Vector3d& p_C) {
+    const Eigen::Vector3d p_O = T_WO.inverse() * (ToEigen(X_WC) * p_C);
+    const Eigen::Vector2d x_d = spec.distortion.Distort(p_O.head<2>() / p_O.z());
+    return Eigen::Vector2d(K(0, 0) * x_d.x() + K(0, 2), K(1, 1) * x_d.y() + K(1, 2));
+  };
+  // the box's upper left corner and a point of its left edge and of its top edge just beside it
+  const Eigen::Vector2d corner = project(Eigen::Vector3d(3.5, 1.0, 0.8));
+  const Eigen::Vector2d on_left = project(Eigen::Vector3d(3.5, 1.0, 0.7));
+  const Eigen::Vector2d on_top = project(Eigen::Vector3d(3.5, 0.9, 0.8));
+  const int row = static_cast<int>(std::lround(on_left.y())), column = static_cast<int>(std::lround(on_top.x()));
+  // the edges are curved: where they cross that row and column, interpolated between the points
+  const Eigen::Vector2d below = project(Eigen::Vector3d(3.5, 1.0, 0.6));
+  const double u_expected = on_left.x() + (row - on_left.y()) * (below.x() - on_left.x()) / (below.y() - on_left.y());
+  const Eigen::Vector2d right = project(Eigen::Vector3d(3.5, 0.8, 0.8));
+  const double v_expected = on_top.y() + (column - on_top.x()) * (right.y() - on_top.y()) / (right.x() - on_top.x());
+  const double u_measured = LeftEdge(f, row), v_measured = TopEdge(f, column);
+  std::printf(
+      "corner at (%.2f, %.2f) px; left edge at row %d: predicted %.3f, measured %.1f; top edge at column "
+      "%d: predicted %.3f, measured %.1f\n",
+      corner.x(), corner.y(), row, u_expected, u_measured, column, v_expected, v_measured);
+  // the remap blends neighbours (bilinear): the 50 % crossing lies within a pixel of the edge
+  EXPECT_LE(std::abs(u_measured - u_expected), 1.0);
+  EXPECT_LE(std::abs(v_measured - v_expected), 1.0);
+  // not where the pinhole model (no lens) puts it: the lens moves the corner by many pixels
+  const Eigen::Vector3d p_O = T_WO.inverse() * (ToEigen(X_WC) * Eigen::Vector3d(3.5, 1.0, 0.8));
+  const Eigen::Vector2d pinhole = (K * p_O / p_O.z()).head<2>();
+  EXPECT_GT((pinhole - corner).norm(), 5.0) << pinhole.transpose();
+}
+
 TEST(Camera, BadDeclarationsAreOneLineErrorsNamingTheSensor) {
   auto error_of = [&](const std::string& cameras, const std::string& type = "camera") -> std::string {
     try {
@@ -381,7 +456,15 @@ TEST(Camera, BadDeclarationsAreOneLineErrorsNamingTheSensor) {
   EXPECT_NE(fov.find("horizontal_fov 3.5"), std::string::npos) << fov;
   const std::string none = error_of("", "multicamera");
   EXPECT_NE(none.find("has no <camera> element"), std::string::npos) << none;
-  for (const std::string& e : {format, size, fov, none}) EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  const std::string fold =
+      error_of(Camera("", Pose3d(), 64, 48, 1.5, "L8", 0.0, 100.0, "<distortion><k1>-0.9</k1></distortion>"));
+  EXPECT_NE(fold.find("sensor 'cam'"), std::string::npos) << fold;
+  EXPECT_NE(fold.find("k1 -0.9"), std::string::npos) << fold;
+  EXPECT_NE(fold.find("coefficients out of range"), std::string::npos) << fold;
+  const std::string centre = error_of(Camera("", Pose3d(), 64, 48, 1.0, "L8", 0.0, 100.0,
+                                             "<distortion><k1>0.1</k1><center>1.5 0.5</center></distortion>"));
+  EXPECT_NE(centre.find("distortion center 1.5"), std::string::npos) << centre;
+  for (const std::string& e : {format, size, fov, none, fold, centre}) EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
 namespace {

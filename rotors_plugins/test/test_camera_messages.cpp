@@ -125,3 +125,25 @@ TEST(CameraMessages, APlainCameraRefusesTheDepthCamerasParameters) {
   EXPECT_NE(error.find("this plugin reads: "), std::string::npos) << error;
   EXPECT_EQ(error.find('\n'), std::string::npos) << error;
 }
+
+TEST(CameraMessages, CameraInfoCarriesTheLensAsPlumbBobAndThePrincipalPointAtItsCentre) {
+  rendering::CameraSpec camera;
+  camera.intrinsics.width_px = 752;
+  camera.intrinsics.height_px = 480;
+  camera.intrinsics.horizontal_fov_rad = 1.3962634;
+  camera.intrinsics.center_u = 0.52;
+  camera.intrinsics.center_v = 0.47;
+  camera.distortion.k1 = -0.28;
+  camera.distortion.k2 = 0.07;
+  camera.distortion.k3 = -0.004;
+  camera.distortion.p1 = 0.0012;
+  camera.distortion.p2 = -0.0009;
+  const sensor_msgs::CameraInfo info = CameraInfoMsg(camera, 0.0);
+  EXPECT_EQ(info.distortion_model, "plumb_bob");
+  // ROS' plumb_bob order: k1 k2 p1 p2 k3 (OpenCV's distCoeffs)
+  EXPECT_EQ(info.D, (std::vector<double>{-0.28, 0.07, 0.0012, -0.0009, -0.004}));
+  EXPECT_DOUBLE_EQ(info.K[2], 0.52 * 752 - 0.5);
+  EXPECT_DOUBLE_EQ(info.K[5], 0.47 * 480 - 0.5);
+  EXPECT_DOUBLE_EQ(info.P[2], info.K[2]);
+  EXPECT_DOUBLE_EQ(info.P[6], info.K[5]);
+}

@@ -1,5 +1,6 @@
 #include "rotors_core/rendering/camera_model.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "rotors_core/error.h"
@@ -36,15 +37,16 @@ Eigen::Matrix3d CameraIntrinsics::K() const {
 
 bool CameraIntrinsics::MaySee(const Eigen::Vector3d& c_O, double r) const {
   if (c_O.z() < near_m - r || c_O.z() > far_m + r) return false;
-  // side planes through the optical centre and the image edges: a point is inside when
-  // |x| f <= z W/2 and |y| f <= z H/2 (a pixel of margin)
+  // side planes through the optical centre and the image edges (a pixel of margin): a point is
+  // inside when -(c + 1/2 + 1) <= f x / z <= (W - 1/2 - c) + 1, likewise for y
   const double f = FocalLengthPx();
-  const double half_w = width_px / 2.0 + 1.0, half_h = height_px / 2.0 + 1.0;
-  // signed distance of the centre beyond each side plane; the sphere is outside when beyond by r
-  auto beyond = [&](double lateral_m, double half_px) {
-    return (std::abs(lateral_m) * f - c_O.z() * half_px) / std::hypot(f, half_px) > r;
+  // signed distance of the centre beyond the plane of an edge `edge_px` pixels from the principal
+  // point; the sphere is outside when beyond by r
+  auto beyond = [&](double lateral_m, double edge_px) {
+    return (lateral_m * f - c_O.z() * edge_px) / std::hypot(f, edge_px) > r;
   };
-  return !beyond(c_O.x(), half_w) && !beyond(c_O.y(), half_h);
+  return !beyond(c_O.x(), width_px - 0.5 - Cx() + 1.0) && !beyond(-c_O.x(), Cx() + 1.5) &&
+         !beyond(c_O.y(), height_px - 0.5 - Cy() + 1.0) && !beyond(-c_O.y(), Cy() + 1.5);
 }
 
 std::string CameraIntrinsics::Validate() const {
@@ -54,6 +56,55 @@ std::string CameraIntrinsics::Validate() const {
     return "horizontal_fov " + std::to_string(horizontal_fov_rad) + " rad must be in (0, pi)";
   if (!(near_m > 0.0 && far_m > near_m))
     return "clip near " + std::to_string(near_m) + " m, far " + std::to_string(far_m) + " m: need 0 < near < far";
+  if (!(center_u > 0.0 && center_u < 1.0 && center_v > 0.0 && center_v < 1.0))
+    return "distortion center " + std::to_string(center_u) + " " + std::to_string(center_v) +
+           " must lie inside the image (each in (0, 1))";
+  return "";
+}
+
+Eigen::Vector2d LensDistortion::Distort(const Eigen::Vector2d& x_ideal) const {
+  const double x = x_ideal.x(), y = x_ideal.y();
+  const double r2 = x * x + y * y;
+  // radial factor 1 + k1 r^2 + k2 r^4 + k3 r^6, then the tangential (decentring) terms
+  const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
+  return {x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x),
+          y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y};
+}
+
+bool LensDistortion::Undistort(const Eigen::Vector2d& x_distorted, Eigen::Vector2d* x_ideal) const {
+  // x = (x_d - tangential(x)) / radial(x), iterated from x = x_d
+  Eigen::Vector2d x = x_distorted;
+  for (int i = 0; i < 100; ++i) {
+    const Eigen::Vector2d residual = Distort(x) - x_distorted;
+    if (residual.norm() < 1e-9) {
+      *x_ideal = x;
+      return true;
+    }
+    const double r2 = x.squaredNorm();
+    const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
+    if (!(radial > 0.0)) return false;
+    x -= residual / radial;
+  }
+  return false;
+}
+
+std::string LensDistortion::Validate(double max_radius) const {
+  auto radial = [&](double r) { return 1.0 + r * r * (k1 + r * r * (k2 + r * r * k3)); };
+  // r_d = r radial(r) must rise from 0 until it covers the image's farthest corner
+  const double dr = 1e-3;
+  double r_d = 0.0;
+  for (double r = dr; r_d < max_radius; r += dr) {
+    const double next = r * radial(r);
+    if (!(radial(r) > 0.0) || next <= r_d)
+      return "distortion k1 " + std::to_string(k1) + " k2 " + std::to_string(k2) + " k3 " + std::to_string(k3) +
+             " folds the image over at r = " + std::to_string(r) + " (r_d stops rising at " + std::to_string(r_d) +
+             ", the farthest corner is at r_d = " + std::to_string(max_radius) + "): coefficients out of range";
+    if (r > 100.0) return "distortion: the image corners have no undistorted preimage (r > 100): out of range";
+    r_d = next;
+  }
+  if (std::abs(p1) > 0.1 || std::abs(p2) > 0.1)
+    return "distortion p1 " + std::to_string(p1) + " p2 " + std::to_string(p2) +
+           ": tangential coefficients beyond +-0.1 are out of range for a real lens";
   return "";
 }
 
@@ -83,8 +134,28 @@ CameraSpec ParseCamera(const sdf::ElementPtr& camera) {
   sdf::ElementPtr clip = camera->HasElement("clip") ? camera->GetElement("clip") : nullptr;
   in.near_m = Child<double>(clip, "near", in.near_m);
   in.far_m = Child<double>(clip, "far", in.far_m);
+  if (camera->HasElement("distortion")) {
+    sdf::ElementPtr d = camera->GetElement("distortion");
+    LensDistortion& lens = spec.distortion;
+    lens.k1 = Child<double>(d, "k1", 0.0);
+    lens.k2 = Child<double>(d, "k2", 0.0);
+    lens.k3 = Child<double>(d, "k3", 0.0);
+    lens.p1 = Child<double>(d, "p1", 0.0);
+    lens.p2 = Child<double>(d, "p2", 0.0);
+    const auto center = Child<ignition::math::Vector2d>(d, "center", ignition::math::Vector2d(0.5, 0.5));
+    in.center_u = center.X();
+    in.center_v = center.Y();
+  }
   const std::string why = in.Validate();
   if (!why.empty()) throw SimError(label + ": " + why);
+  if (!spec.distortion.IsIdentity()) {
+    // the farthest image corner from the principal point, in coordinates normalised by f
+    const double f = in.FocalLengthPx();
+    const double dx = std::max(in.Cx() + 0.5, in.width_px - 0.5 - in.Cx());
+    const double dy = std::max(in.Cy() + 0.5, in.height_px - 0.5 - in.Cy());
+    const std::string lens_why = spec.distortion.Validate(std::hypot(dx, dy) / f);
+    if (!lens_why.empty()) throw SimError(label + ": " + lens_why);
+  }
   if (camera->HasElement("noise")) {
     sdf::ElementPtr noise = camera->GetElement("noise");
     const std::string type = Child<std::string>(noise, "type", "none");

@@ -1,9 +1,13 @@
 #include "rotors_core/rendering/renderer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
+#include <random>
 #include <string>
 #include <tuple>
 
@@ -20,6 +24,7 @@
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
+#include "rotors_core/rendering/distortion_map.h"
 #include "rotors_core/rendering/tessellation.h"
 #include "physics/pose_math.h"
 
@@ -37,6 +42,7 @@ layout(location = 3) in vec2 uv_V;
 uniform mat4 T_OV;        // visual frame -> optical frame (x right, y down, z forward)
 uniform mat3 N_OV;        // normals visual -> optical: inverse transpose of T_OV's linear part
 uniform vec4 projection;  // 2 f / W, 2 f / H, near, far
+uniform vec2 principal;   // the principal point in NDC: 2 (c + 1/2) / W - 1, 2 (c_y + 1/2) / H - 1
 out vec3 p_O;
 out vec3 n_O;
 out vec3 vertex_colour;
@@ -48,8 +54,8 @@ void main() {
   vertex_colour = colour_V;
   uv = uv_V;
   float near = projection.z, far = projection.w;
-  // x_ndc = 2 f x / (W z), y_ndc = 2 f y / (H z): pixel u = f x / z + (W - 1) / 2, rows top down
-  gl_Position = vec4(projection.x * p.x, projection.y * p.y,
+  // x_ndc = 2 f x / (W z) + principal.x, likewise y: pixel u = f x / z + c_x, rows top down
+  gl_Position = vec4(projection.x * p.x + principal.x * p.z, projection.y * p.y + principal.y * p.z,
                      (far + near) / (far - near) * p.z - 2.0 * far * near / (far - near), p.z);
 })";
 
@@ -191,12 +197,13 @@ struct FragmentUniforms {
 
 /// The mesh vertex shader's uniforms, resolved once.
 struct MeshUniforms {
-  GLint T_OV = -1, N_OV = -1, projection = -1;
+  GLint T_OV = -1, N_OV = -1, projection = -1, principal = -1;
   explicit MeshUniforms(GLuint program = 0) {
     if (!program) return;
     T_OV = RequireUniform(program, "T_OV");
     N_OV = RequireUniform(program, "N_OV");
     projection = RequireUniform(program, "projection");
+    principal = RequireUniform(program, "principal");
   }
 };
 
@@ -222,6 +229,8 @@ struct Renderer::Impl {
   std::map<const void*, GpuMesh> meshes;                      // by source object
   std::map<std::pair<std::string, float>, GLuint> textures;   // by image file and anisotropy (0: unreadable)
   std::map<std::tuple<int, int, int, bool>, Target> targets;  // by width, height, format, depth
+  std::map<std::string, std::unique_ptr<DistortionMap>> distortion_maps;  // by DistortionKey
+  RenderedFrame pinhole_frame;                                            // scratch of distorted cameras
   size_t triangles = 0;
 
   void CreateContext();
@@ -429,8 +438,55 @@ Renderer::~Renderer() {
 
 size_t Renderer::CachedTriangles() const { return impl_->triangles; }
 
+namespace {
+/// Everything a distortion map depends on, printed exactly.
+std::string DistortionKey(const CameraSpec& camera) {
+  const CameraIntrinsics& in = camera.intrinsics;
+  const LensDistortion& d = camera.distortion;
+  char key[256];
+  std::snprintf(key, sizeof(key), "%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g", in.width_px, in.height_px,
+                in.horizontal_fov_rad, in.center_u, in.center_v, d.k1, d.k2, d.k3, d.p1, d.p2);
+  return key;
+}
+
+/// Gaussian pixel noise on a remapped image (the shader's noise would be blurred by the remap):
+/// deterministic in the seed.
+void AddNoise(const CameraSpec& camera, uint64_t seed, std::vector<uint8_t>* image) {
+  if (camera.noise_stddev <= 0.0 && camera.noise_mean == 0.0) return;
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> gaussian(camera.noise_mean, camera.noise_stddev);
+  for (uint8_t& value : *image)
+    value = static_cast<uint8_t>(std::clamp(std::lround(value + 255.0 * gaussian(random)), 0L, 255L));
+}
+}  // namespace
+
 void Renderer::Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
                       uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
+  if (camera.distortion.IsIdentity()) {
+    RenderPinhole(world, X_WC, camera, noise_seed, want_image, want_depth, out);
+    return;
+  }
+  Impl& r = *impl_;
+  std::unique_ptr<DistortionMap>& map = r.distortion_maps[DistortionKey(camera)];
+  if (!map) map = std::make_unique<DistortionMap>(camera);
+  CameraSpec pinhole = camera;
+  pinhole.intrinsics = map->Pinhole();
+  pinhole.distortion = LensDistortion();
+  pinhole.noise_mean = pinhole.noise_stddev = 0.0;
+  RenderPinhole(world, X_WC, pinhole, 0, want_image, want_depth, &r.pinhole_frame);
+  out->width_px = camera.intrinsics.width_px;
+  out->height_px = camera.intrinsics.height_px;
+  out->image.clear();
+  out->depth_m.clear();
+  if (want_image) {
+    map->RemapImage(r.pinhole_frame.image, BytesPerPixel(camera.format), &out->image);
+    AddNoise(camera, noise_seed, &out->image);
+  }
+  if (want_depth) map->RemapDepth(r.pinhole_frame.depth_m, &out->depth_m);
+}
+
+void Renderer::RenderPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
+                             uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
   Impl& r = *impl_;
   // each world's renderer has its own context; several worlds may render from one thread
   if (eglGetCurrentContext() != r.context && !eglMakeCurrent(r.display, EGL_NO_SURFACE, EGL_NO_SURFACE, r.context))
@@ -467,6 +523,8 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   glUseProgram(r.mesh_program);
   glUniform4f(r.mesh_vertex.projection, 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
               static_cast<float>(in.far_m));
+  glUniform2f(r.mesh_vertex.principal, static_cast<float>(2.0 * (in.Cx() + 0.5) / W - 1.0),
+              static_cast<float>(2.0 * (in.Cy() + 0.5) / H - 1.0));
   const GLint loc_T = r.mesh_vertex.T_OV, loc_N = r.mesh_vertex.N_OV;
   const GLint loc_albedo = r.mesh_fragment.albedo, loc_vertex_colour = r.mesh_fragment.use_vertex_colour;
   const GLint loc_texture = r.mesh_fragment.use_texture, loc_uv_scale = r.mesh_fragment.uv_scale;

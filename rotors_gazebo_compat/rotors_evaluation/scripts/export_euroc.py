@@ -71,11 +71,14 @@ def _write_camera(bag: FlightBag, mav: str, side: str, out: Path, from_png) -> i
     T_BS[:3, 3] = P_L_CAM[side] - P_L_IMU
     rate = (len(stamps) - 1) / ((stamps[-1] - stamps[0]) * 1e-9) if len(stamps) > 1 else 0.0
     K = info.K
+    D = list(info.D) + [0.0] * (5 - len(info.D))  # plumb_bob: k1 k2 p1 p2 k3
+    if D[4] != 0.0:
+        raise BagError(f"{info_topic}: k3 = {D[4]!r}; EuRoC's radial-tangential model has k1 k2 p1 p2 only")
     (folder / "sensor.yaml").write_text(
         f"sensor_type: camera\ncomment: VI-sensor {side} camera (simulated, {bag.path.name})\n"
         f"T_BS:\n{_matrix_yaml(T_BS)}rate_hz: {rate:.3f}\nresolution: [{info.width}, {info.height}]\n"
         f"camera_model: pinhole\nintrinsics: [{K[0]!r}, {K[4]!r}, {K[2]!r}, {K[5]!r}]\n"
-        "distortion_model: radial-tangential\ndistortion_coefficients: [0.0, 0.0, 0.0, 0.0]\n")
+        f"distortion_model: radial-tangential\ndistortion_coefficients: [{D[0]!r}, {D[1]!r}, {D[2]!r}, {D[3]!r}]\n")
     return len(rows)
 
 

@@ -40,8 +40,9 @@ CameraRosParams CameraRosParams::Read(rotors_sim::SdfParams& params, const rotor
     ReadParam(params, zero, &value);
     if (value != 0.0)
       throw SimError(std::string("<") + zero + "> " + std::to_string(value) +
-                     " is not supported: the image is an ideal pinhole image with K from horizontal_fov and size "
-                     "(leave it 0 or remove it)");
+                     " is not supported: camera_info is what the image shows, K from horizontal_fov, size and the "
+                     "camera's <distortion><center>, D from its <distortion> k1 k2 k3 p1 p2 (put the lens there; "
+                     "leave this 0 or remove it)");
   }
   if (depth_plugin) {
     ReadParam(params, "depthImageTopicName", &p.depth_topic);
@@ -66,7 +67,7 @@ sensor_msgs::CameraInfo CameraInfoMsg(const CameraSpec& camera, double baseline_
   info.width = in.width_px;
   info.height = in.height_px;
   info.distortion_model = "plumb_bob";
-  info.D.assign(5, 0.0);
+  info.D = camera.distortion.PlumbBob();  // k1 k2 p1 p2 k3, as the image is distorted
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
       info.K[3 * r + c] = K(r, c);

@@ -31,7 +31,8 @@ class Renderer {
   ~Renderer();
 
   /// Renders every visual of every model of `world` from the camera at X_WC (camera frame:
-  /// x forward, z up). noise_seed picks the noise pattern (same seed, same image).
+  /// x forward, z up). noise_seed picks the noise pattern (same seed, same image). A camera with
+  /// lens distortion is a larger pinhole rendering remapped through its DistortionMap.
   void Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
               uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out);
 
@@ -40,6 +41,8 @@ class Renderer {
 
  private:
   Renderer();
+  void RenderPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
+                     uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -20,8 +20,8 @@
 
 namespace rotors_gazebo_plugins {
 
-/// gazebo_ros_camera_utils' parameters. Distortion and principal-point overrides are refused
-/// (the renderer draws an ideal pinhole image) rather than silently ignored.
+/// gazebo_ros_camera_utils' parameters. The plugin's distortion and principal-point overrides are
+/// refused rather than silently ignored: camera_info follows the camera's own <distortion>.
 struct CameraRosParams {
   std::string robot_namespace;  ///< <robotNamespace>, else the model's name (the spawn namespace)
   std::string camera_name;      ///< <cameraName>
@@ -40,7 +40,8 @@ struct CameraRosParams {
                               bool depth_plugin);
 };
 
-/// K from the intrinsics, P = [K | (-f b, 0, 0)], R = I, no distortion (plumb_bob, zeros).
+/// K from the intrinsics (principal point at the <distortion><center>), P = [K | (-f b, 0, 0)], R = I,
+/// D = the camera's plumb_bob coefficients (k1 k2 p1 p2 k3; zeros without <distortion>).
 sensor_msgs::CameraInfo CameraInfoMsg(const rotors_sim::rendering::CameraSpec& camera, double baseline_m);
 void ToImageMsg(const rotors_sim::rendering::RenderedFrame& frame, rotors_sim::rendering::PixelFormat format,
                 sensor_msgs::Image* msg);
