@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Dict, List
 
 from rotors_evaluation import watchers
-from rotors_evaluation.processes import stop_process_group
+from rotors_evaluation.processes import restore_sigint, stop_process_group
 from rotors_evaluation.ros_master import start_own_master
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -96,7 +96,7 @@ class Graph:
 
     def __exit__(self, *exc) -> None:
         for proc in (self.proc, self.master):
-            if not stop_process_group(proc, 30):  # seen once with rosmaster; the figure is already taken
+            if not stop_process_group(proc, 30):  # the figure is already taken
                 print(f"bench: {proc.args[0]} ignored Ctrl-C for 30 s; killed", file=sys.stderr)
 
 
@@ -414,6 +414,7 @@ def rng(m: Dict, fmt: str = "{:.1f}") -> str:
 
 
 def main() -> int:
+    restore_sigint()  # started as a background job, the ROS processes would ignore the Ctrl-C that stops them
     OUT.mkdir(parents=True, exist_ok=True)
     only = set(SECTIONS)
     if "--soak-only" in sys.argv:  # make bench runs it too; this runs it alone

@@ -2,7 +2,7 @@
 # Builds the C++ tests and runs the suite (C++ gtests, Python unit and ROS integration tests) in one
 # pytest run, so there is one summary line. The tier comes from ROTORS_TEST_TIER: quick (make test:
 # every test but those marked long), long (make test-long: only those) or all (make test-all).
-# Arguments, when given, replace the test paths (and the tier's selection).
+# Arguments, when given, replace the test paths (and the tier's selection); they run in one process.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 export PATH="$root/build/venv/bin:$PATH"
@@ -16,7 +16,9 @@ unset DISPLAY
 cd "$root"
 if [ $# -eq 0 ]; then
   case "${ROTORS_TEST_TIER:-all}" in
-    quick) set -- test rotors_gazebo_compat/rotors_evaluation/test -m "not long" ;;
+    # two workers (pytest-xdist): each test waits a good part of its time on ROS start-up and on
+    # sim time, so two share this 2-core machine well; ROTORS_TEST_WORKERS changes the number
+    quick) set -- test rotors_gazebo_compat/rotors_evaluation/test -m "not long" -n "${ROTORS_TEST_WORKERS:-2}" ;;
     long) set -- test -m long ;;
     all) set -- test rotors_gazebo_compat/rotors_evaluation/test ;;
     *) echo "ROTORS_TEST_TIER=${ROTORS_TEST_TIER} unknown (quick, long or all)" >&2; exit 2 ;;

@@ -11,13 +11,14 @@ from pathlib import Path
 from typing import Dict, Iterator, List
 
 import pytest
-from rotors_evaluation.processes import stop_process_group
+from rotors_evaluation.processes import restore_sigint, stop_process_group
 from rotors_evaluation.ros_master import start_own_master
 
 REPO = Path(__file__).resolve().parents[1]
 
 
 def pytest_configure(config):
+    restore_sigint()  # run as a background job (nohup make test &), the ROS processes would ignore Ctrl-C
     config.addinivalue_line("markers", "long: the long tier (minutes each): run by make test-all and make test-long, "
                                        "not by make test")
 WS = REPO / "build" / "ws"

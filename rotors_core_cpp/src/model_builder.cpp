@@ -195,8 +195,9 @@ void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& mode
 }
 
 /// A <material><script> whose .material files are found (model://, file://, ...): the named OGRE
-/// material's diffuse colour and texture. Gazebo's own scripts (file://media/materials/...) are
-/// not shipped: such a visual keeps its SDF colour (one line says so).
+/// material's diffuse colour and texture. Gazebo's built-in names (file://media/materials/scripts/
+/// gazebo.material) come from the engine's own copy of their colours; a script none of whose
+/// <uri>s resolves keeps its SDF colour (one line says so).
 void ApplyMaterialScript(const sdf::ElementPtr& material, const std::string& sdf_file, geometry::Visual* out) {
   if (!material || !material->HasElement("script")) return;
   const sdf::ElementPtr script = material->GetElement("script");

@@ -218,3 +218,34 @@ material plain { technique { pass { diffuse 0.1 0.2 0.3 } } }
     EXPECT_STREQ(e.what(), "m.material:7: 'diffuse' needs numbers");
   }
 }
+
+// Gazebo's built-in material names (file://media/materials/scripts/gazebo.material) in Gazebo's
+// colours, from SDF scripts and from a URDF's <gazebo><material>; an unknown name is one line
+// naming it and the files searched.
+TEST(OgreMaterial, GazebosBuiltInNamesHaveGazebosColours) {
+  auto scripted = [](const std::string& name) {
+    return "<model name='m'><static>true</static><link name='link'><visual name='v'><geometry><box><size>1 1 1"
+           "</size></box></geometry><material><script><uri>file://media/materials/scripts/gazebo.material</uri>"
+           "<name>" +
+           name + "</name></script></material></visual></link></model>";
+  };
+  WorldGuard g{WorldLoader::LoadString(World(scripted("Gazebo/Orange")), "builtin")};
+  const auto& orange = g.world->ModelByName("m")->Visuals().at(0).rgba;
+  EXPECT_FLOAT_EQ(orange[0], 1.0f);
+  EXPECT_FLOAT_EQ(orange[1], 0.5088f);
+  EXPECT_FLOAT_EQ(orange[2], 0.0468f);
+
+  SpawnRequest urdf;
+  urdf.xml = R"(<robot name="crate"><link name="body"><visual><geometry><box size="1 1 1"/></geometry></visual>
+    <inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    <gazebo reference="body"><material>Gazebo/SkyBlue</material></gazebo></robot>)";
+  const auto crate = ModelBuilder::Spawn(g.world, urdf);
+  const auto& sky_blue = crate->Visuals().at(0).rgba;
+  EXPECT_FLOAT_EQ(sky_blue[0], 0.0f);  // Gazebo's diffuse of SkyBlue is 0 0 1 (its ambient 0.13 0.44 0.70)
+  EXPECT_FLOAT_EQ(sky_blue[2], 1.0f);
+
+  const std::string e = LoadError(World(scripted("Gazebo/NoSuchColour")));
+  EXPECT_NE(e.find("material 'Gazebo/NoSuchColour' is in none of the .material files"), std::string::npos) << e;
+  EXPECT_NE(e.find("gazebo.material"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}

@@ -71,6 +71,12 @@ std::vector<std::string> UriResolver::ModelPaths() {
   return paths;
 }
 
+std::vector<std::string> UriResolver::ResourcePaths() {
+  std::vector<std::string> paths = SplitPathList(std::getenv("GAZEBO_RESOURCE_PATH"));
+  paths.push_back(ROTORS_CORE_RESOURCE_DIR);
+  return paths;
+}
+
 std::string UriResolver::Resolve(const std::string& uri, const std::string& base_file) {
   std::vector<std::string> searched;
   std::string candidate;
@@ -104,6 +110,16 @@ std::string UriResolver::Resolve(const std::string& uri, const std::string& base
     candidate = (fs::path(dir) / rest.substr(std::min(rest.size(), package.size() + 1))).string();
   } else if (StartsWith(uri, "file://")) {
     candidate = uri.substr(7);
+    // Gazebo reads a relative file:// (file://media/materials/scripts/gazebo.material) under its
+    // resource paths: GAZEBO_RESOURCE_PATH, then this engine's own media (Gazebo's built-in materials)
+    if (!candidate.empty() && candidate[0] != '/' && !fs::exists(candidate)) {
+      for (const auto& folder : ResourcePaths()) {
+        searched.push_back(folder);
+        if (fs::exists(fs::path(folder) / candidate)) return (fs::path(folder) / candidate).string();
+      }
+      throw SimError("'" + uri + "' cannot be resolved: no such file under the resource paths " + Join(searched) +
+                     " (set GAZEBO_RESOURCE_PATH)");
+    }
   } else if (!uri.empty() && uri[0] == '/') {
     candidate = uri;
   } else {

@@ -15,6 +15,9 @@ class UriResolver {
   static void AddModelPath(const std::string& folder);
   /// Every model folder searched, in order (environment first).
   static std::vector<std::string> ModelPaths();
+  /// Where a relative file:// URI is looked for: GAZEBO_RESOURCE_PATH, then the engine's own
+  /// resource folder (rotors_core_cpp/ holding media/materials/scripts/gazebo.material).
+  static std::vector<std::string> ResourcePaths();
   /// The file a URI names, or throws SimError naming the URI and where it was looked for.
   /// model://NAME/... not found on the model paths is looked up in ROS package NAME (sdformat
   /// writes a URDF's package:// as model://).

@@ -6,6 +6,15 @@ import subprocess
 from typing import Optional
 
 
+def restore_sigint() -> None:
+    """Makes SIGINT interrupt again in this process and in the processes it starts. A shell starts
+    a background job (`cmd &`, nohup) with SIGINT ignored, and an ignored signal stays ignored
+    across exec: every ROS process started from there would ignore the Ctrl-C that stops it
+    cleanly (roslaunch closing its bags), and each stop would wait out its grace time and SIGKILL."""
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
 def stop_process_group(proc: Optional[subprocess.Popen], grace_s: float, first_signal: int = signal.SIGINT) -> bool:
     """Sends first_signal to proc's process group (proc must lead one: start_new_session=True or
     setsid) and waits up to grace_s; then SIGKILL. True when it stopped within the grace time."""
