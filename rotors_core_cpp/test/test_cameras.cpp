@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include "rotors_core/error.h"
+#include "rotors_core/geometry/shapes.h"
 #include "rotors_core/model_builder.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
@@ -522,6 +523,43 @@ TEST(Camera, MeshTexturesAreDrawn) {
   expect_near(rgb(100 + q, 100 - q), {0, 255, 0}, "top right: green");
   expect_near(rgb(100 - q, 100 + q), {0, 0, 255}, "bottom left: blue");
   expect_near(rgb(100 + q, 100 + q), {255, 255, 255}, "bottom right: white");
+  std::filesystem::remove_all(folder);
+}
+
+// A mesh with several textures (as RotorS' Collada boxes: a side, a front, a barcode image): the
+// left half of a square has one material and texture, the right half another.
+TEST(Camera, EachPartOfAMeshIsDrawnWithItsOwnTexture) {
+  const std::string folder =
+      std::filesystem::temp_directory_path().string() + "/rotors_two_textures_" + std::to_string(getpid());
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder + "/halves.mtl") << "newmtl left\nKd 1 1 1\nmap_Kd orange.ppm\n"
+                                        << "newmtl right\nKd 1 1 1\nmap_Kd teal.ppm\n";
+  // seen from a camera on the -x side: +y is left, z up
+  std::ofstream(folder + "/halves.obj") << "mtllib halves.mtl\nv 0 1 -1\nv 0 0 -1\nv 0 0 1\nv 0 1 1\n"
+                                        << "v 0 -1 -1\nv 0 -1 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                        << "usemtl left\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
+                                        << "usemtl right\nf 2/1 5/2 6/3\nf 2/1 6/3 3/4\n";
+  auto one_colour = [&](const std::string& name, int r, int g, int b) {
+    std::ofstream ppm(folder + "/" + name, std::ios::binary);
+    ppm << "P6\n1 1\n255\n" << static_cast<char>(r) << static_cast<char>(g) << static_cast<char>(b);
+  };
+  one_colour("orange.ppm", 255, 128, 0);
+  one_colour("teal.ppm", 0, 128, 128);
+  const auto mesh = geometry::LoadMesh(folder + "/halves.obj", {1, 1, 1});
+  ASSERT_EQ(mesh->parts.size(), 2u);
+  EXPECT_EQ(mesh->parts[0].triangles + mesh->parts[1].triangles, mesh->TriangleCount());
+  WorldGuard g{WorldLoader::LoadString(
+      World(MeshModel("halves", folder + "/halves.obj", Pose3d(3, 0, 0, 0, 0, 0)) +
+            Rig(Pose3d(), Pose3d(), "camera", 30, Camera("", Pose3d(), 200, 200, 1.2, "R8G8B8"))),
+      "two_textures")};
+  g.world->Step(1);
+  const auto& f = TheCamera(g.world)->Frame(0);
+  auto rgb = [&](int u, int v) {
+    const uint8_t* p = &f.image[(static_cast<size_t>(v) * 200 + u) * 3];
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  EXPECT_EQ(rgb(76, 100), (std::array<int, 3>{255, 128, 0}));  // the left half: orange
+  EXPECT_EQ(rgb(124, 100), (std::array<int, 3>{0, 128, 128}));  // the right half: teal
   std::filesystem::remove_all(folder);
 }
 

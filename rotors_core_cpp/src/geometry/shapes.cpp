@@ -55,33 +55,49 @@ std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const std:
   auto mesh = std::make_shared<TriangleMesh>();
   bool any_uv = false;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) any_uv = any_uv || scene->mMeshes[m]->HasTextureCoords(0);
+  // each assimp mesh's diffuse texture; the meshes are appended texture by texture, so that each
+  // texture's triangles form one part
+  std::map<std::string, std::vector<unsigned>> by_texture;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* am = scene->mMeshes[m];
     const aiMaterial* material =
         scene->mNumMaterials > am->mMaterialIndex ? scene->mMaterials[am->mMaterialIndex] : nullptr;
-    aiColor4D diffuse(0.7f, 0.7f, 0.7f, 1.0f);
-    if (material) material->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse);
     aiString texture;
-    if (material && mesh->texture_file.empty() &&
-        material->GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS && texture.length > 0 &&
-        texture.C_Str()[0] != '*') {  // '*n': embedded, not supported
-      mesh->texture_file = (std::filesystem::path(path).parent_path() / texture.C_Str()).lexically_normal().string();
-    }
-    const uint32_t base = static_cast<uint32_t>(mesh->vertices_m.size() / 3);
-    for (unsigned v = 0; v < am->mNumVertices; ++v) {
-      for (int k = 0; k < 3; ++k) mesh->vertices_m.push_back(am->mVertices[v][k] * scale[k]);
-      const aiColor4D c = am->HasVertexColors(0) ? am->mColors[0][v] : diffuse;
-      mesh->colours.insert(mesh->colours.end(), {c.r, c.g, c.b});
-      if (any_uv) {
-        const bool has = am->HasTextureCoords(0);
-        mesh->uvs.insert(mesh->uvs.end(),
-                         {has ? am->mTextureCoords[0][v].x : 0.0f, has ? am->mTextureCoords[0][v].y : 0.0f});
+    std::string file;
+    if (material && am->HasTextureCoords(0) && material->GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS &&
+        texture.length > 0 && texture.C_Str()[0] != '*')  // '*n': embedded, not supported
+      file = (std::filesystem::path(path).parent_path() / texture.C_Str()).lexically_normal().string();
+    by_texture[file].push_back(m);
+  }
+  for (const auto& [texture_file, meshes] : by_texture) {
+    MeshPart part;
+    part.first_triangle = mesh->indices.size() / 3;
+    part.texture_file = texture_file;
+    for (unsigned m : meshes) {
+      const aiMesh* am = scene->mMeshes[m];
+      const aiMaterial* material =
+          scene->mNumMaterials > am->mMaterialIndex ? scene->mMaterials[am->mMaterialIndex] : nullptr;
+      aiColor4D diffuse(0.7f, 0.7f, 0.7f, 1.0f);
+      if (material) material->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse);
+      const uint32_t base = static_cast<uint32_t>(mesh->vertices_m.size() / 3);
+      for (unsigned v = 0; v < am->mNumVertices; ++v) {
+        for (int k = 0; k < 3; ++k) mesh->vertices_m.push_back(am->mVertices[v][k] * scale[k]);
+        // a textured material's diffuse colour is what the texture shows through (white unless set)
+        const aiColor4D c = am->HasVertexColors(0) ? am->mColors[0][v] : diffuse;
+        mesh->colours.insert(mesh->colours.end(), {c.r, c.g, c.b});
+        if (any_uv) {
+          const bool has = am->HasTextureCoords(0);
+          mesh->uvs.insert(mesh->uvs.end(),
+                           {has ? am->mTextureCoords[0][v].x : 0.0f, has ? am->mTextureCoords[0][v].y : 0.0f});
+        }
+      }
+      for (unsigned f = 0; f < am->mNumFaces; ++f) {
+        if (am->mFaces[f].mNumIndices != 3) continue;  // points and lines
+        for (int k = 0; k < 3; ++k) mesh->indices.push_back(base + am->mFaces[f].mIndices[k]);
       }
     }
-    for (unsigned f = 0; f < am->mNumFaces; ++f) {
-      if (am->mFaces[f].mNumIndices != 3) continue;  // points and lines
-      for (int k = 0; k < 3; ++k) mesh->indices.push_back(base + am->mFaces[f].mIndices[k]);
-    }
+    part.triangles = mesh->indices.size() / 3 - part.first_triangle;
+    if (part.triangles > 0) mesh->parts.push_back(part);
   }
   if (mesh->indices.empty()) throw SimError("mesh '" + path + "' holds no triangles");
   if (scene->mNumMaterials > 0 && scene->mNumMeshes > 0) {

@@ -207,11 +207,23 @@ struct MeshUniforms {
   }
 };
 
+/// Triangles drawn with one texture (a mesh's part), in compact runs each culled on its own.
+struct GpuPart {
+  GLuint texture = 0;  // 0: none
+  std::vector<Chunk> chunks;
+};
+
+/// A soup to upload as one part, and the image file of its texture ("" for none).
+struct PartSoup {
+  TriangleSoup soup;
+  std::string texture_file;
+};
+
 struct GpuMesh {
-  GLuint vao = 0, vbo = 0, ebo = 0, texture = 0;  // ebo 0: not indexed; texture 0: none
-  bool own_colours = false;                       // per-vertex colours from the mesh file
-  std::vector<Chunk> chunks;                      // compact runs of triangles, each culled on its own
-  std::shared_ptr<const void> source;             // keeps the key's object alive
+  GLuint vao = 0, vbo = 0, ebo = 0;    // ebo 0: not indexed
+  bool own_colours = false;            // per-vertex colours from the mesh file
+  std::vector<GpuPart> parts;          // one per texture of the mesh
+  std::shared_ptr<const void> source;  // keeps the key's object alive
 };
 
 struct Target {
@@ -234,8 +246,12 @@ struct Renderer::Impl {
   size_t triangles = 0;
 
   void CreateContext();
-  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, TriangleSoup soup,
-                        const std::string& texture_file = "");
+  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, std::vector<PartSoup> parts);
+  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, TriangleSoup soup) {
+    std::vector<PartSoup> one(1);
+    one[0].soup = std::move(soup);
+    return Upload(key, std::move(source), std::move(one));
+  }
   const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
   GLuint TextureFor(const std::string& file, float max_anisotropy = 1.0f);
   Target& TargetFor(int width, int height, PixelFormat format, bool depth);
@@ -268,24 +284,40 @@ void Renderer::Impl::CreateContext() {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
 
-const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source, TriangleSoup soup,
-                                      const std::string& texture_file) {
+const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source,
+                                      std::vector<PartSoup> parts) {
   GpuMesh mesh;
   mesh.source = std::move(source);
-  mesh.own_colours = !soup.colours.empty();
-  mesh.chunks = SortIntoChunks(&soup);
+  bool any_colours = false, any_uvs = false;
+  for (const PartSoup& p : parts) {
+    any_colours = any_colours || !p.soup.colours.empty();
+    any_uvs = any_uvs || !p.soup.uvs.empty();
+  }
+  if (parts.size() > 1)
+    for (const PartSoup& p : parts)
+      if (!p.soup.indices.empty()) throw SimError("camera renderer: only an unindexed soup may come in parts");
+  mesh.own_colours = any_colours;
   constexpr int kFloats = 11;  // position, normal, colour, uv
   std::vector<float> interleaved;
-  interleaved.reserve(soup.VertexCount() * kFloats);
-  for (size_t i = 0; i < soup.VertexCount(); ++i) {
-    interleaved.insert(interleaved.end(), soup.positions_m.begin() + 3 * i, soup.positions_m.begin() + 3 * i + 3);
-    interleaved.insert(interleaved.end(), soup.normals.begin() + 3 * i, soup.normals.begin() + 3 * i + 3);
-    if (mesh.own_colours)
-      interleaved.insert(interleaved.end(), soup.colours.begin() + 3 * i, soup.colours.begin() + 3 * i + 3);
-    else interleaved.insert(interleaved.end(), {1.0f, 1.0f, 1.0f});
-    if (!soup.uvs.empty())
-      interleaved.insert(interleaved.end(), soup.uvs.begin() + 2 * i, soup.uvs.begin() + 2 * i + 2);
-    else interleaved.insert(interleaved.end(), {0.0f, 0.0f});
+  size_t first_triangle = 0;
+  for (PartSoup& p : parts) {
+    TriangleSoup& soup = p.soup;
+    GpuPart part;
+    part.chunks = SortIntoChunks(&soup);
+    for (Chunk& chunk : part.chunks) chunk.first_triangle += first_triangle;  // in the one buffer of all parts
+    for (size_t i = 0; i < soup.VertexCount(); ++i) {
+      interleaved.insert(interleaved.end(), soup.positions_m.begin() + 3 * i, soup.positions_m.begin() + 3 * i + 3);
+      interleaved.insert(interleaved.end(), soup.normals.begin() + 3 * i, soup.normals.begin() + 3 * i + 3);
+      if (!soup.colours.empty())
+        interleaved.insert(interleaved.end(), soup.colours.begin() + 3 * i, soup.colours.begin() + 3 * i + 3);
+      else interleaved.insert(interleaved.end(), {1.0f, 1.0f, 1.0f});
+      if (!soup.uvs.empty())
+        interleaved.insert(interleaved.end(), soup.uvs.begin() + 2 * i, soup.uvs.begin() + 2 * i + 2);
+      else interleaved.insert(interleaved.end(), {0.0f, 0.0f});
+    }
+    if (!p.texture_file.empty() && !soup.uvs.empty()) part.texture = TextureFor(p.texture_file);
+    first_triangle += soup.TriangleCount();
+    mesh.parts.push_back(std::move(part));
   }
   glGenVertexArrays(1, &mesh.vao);
   glBindVertexArray(mesh.vao);
@@ -298,14 +330,14 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
     glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offset * sizeof(float)));
     glEnableVertexAttribArray(a);
   }
-  if (!soup.indices.empty()) {
+  if (parts.size() == 1 && !parts[0].soup.indices.empty()) {
+    const std::vector<uint32_t>& indices = parts[0].soup.indices;
     glGenBuffers(1, &mesh.ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.ebo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, soup.indices.size() * sizeof(uint32_t), soup.indices.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(uint32_t), indices.data(), GL_STATIC_DRAW);
   }
   glBindVertexArray(0);
-  if (!texture_file.empty() && !soup.uvs.empty()) mesh.texture = TextureFor(texture_file);
-  triangles += soup.TriangleCount();
+  triangles += first_triangle;
   return meshes.emplace(key, std::move(mesh)).first->second;
 }
 
@@ -374,11 +406,13 @@ const GpuMesh* Renderer::Impl::MeshFor(const Shape& shape, Eigen::Matrix4d* S) {
           Eigen::Vector3d(shape.plane_size_m.X(), shape.plane_size_m.Y(), 1).asDiagonal();
       return (mesh = cached(&kUnitSquare)) ? mesh : &Upload(&kUnitSquare, nullptr, UnitSquare());
     }
-    case Shape::Type::kMesh:
+    case Shape::Type::kMesh: {
       if (!shape.mesh) return nullptr;
-      return (mesh = cached(shape.mesh.get()))
-                 ? mesh
-                 : &Upload(shape.mesh.get(), shape.mesh, FromMesh(*shape.mesh), shape.mesh->texture_file);
+      if ((mesh = cached(shape.mesh.get()))) return mesh;
+      std::vector<PartSoup> parts;
+      for (const geometry::MeshPart& part : shape.mesh->parts) parts.push_back({FromMesh(*shape.mesh, part), part.texture_file});
+      return &Upload(shape.mesh.get(), shape.mesh, std::move(parts));
+    }
     case Shape::Type::kHeightmap:
       if (!shape.heightfield) return nullptr;
       return (mesh = cached(shape.heightfield.get()))
@@ -540,41 +574,49 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
       // the chunks in view only (a vehicle's own body behind its camera is skipped)
       const Eigen::Matrix3d A = T_OV.topLeftCorner<3, 3>();
       const double scale = A.colwise().norm().maxCoeff();
-      visible.clear();
-      for (const Chunk& chunk : mesh->chunks)
-        if (in.MaySee(A * chunk.centre_m.cast<double>() + T_OV.topRightCorner<3, 1>(), scale * chunk.radius_m))
-          visible.push_back(&chunk);
-      if (visible.empty()) continue;
+      auto in_view = [&](const Chunk& chunk) {
+        return in.MaySee(A * chunk.centre_m.cast<double>() + T_OV.topRightCorner<3, 1>(), scale * chunk.radius_m);
+      };
+      bool any = false;
+      for (const GpuPart& part : mesh->parts)
+        for (const Chunk& chunk : part.chunks) any = any || in_view(chunk);
+      if (!any) continue;
       const Eigen::Matrix4f T = T_OV.cast<float>();
       const Eigen::Matrix3f N = A.inverse().transpose().cast<float>();
       glUniformMatrix4fv(loc_T, 1, GL_FALSE, T.data());
       glUniformMatrix3fv(loc_N, 1, GL_FALSE, N.data());
       // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
       const bool own = mesh->own_colours && !visual.has_material;
-      // a material script's texture on a primitive, or a mesh's own (an SDF/URDF colour replaces it)
-      GLuint texture = visual.has_material ? 0 : mesh->texture;
-      float repeat_u = 1.0f, repeat_v = 1.0f;
-      if (!visual.texture_file.empty()) {
-        texture = r.TextureFor(visual.texture_file, visual.texture_max_anisotropy);
-        repeat_u = 1.0f / visual.texture_scale[0];
-        repeat_v = 1.0f / visual.texture_scale[1];
-      }
-      const bool textured = texture != 0;
       if (own) glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);
       else glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
       glUniform1i(loc_vertex_colour, own);
-      glUniform1i(loc_texture, textured);
-      if (textured) {
-        glBindTexture(GL_TEXTURE_2D, texture);
-        glUniform2f(loc_uv_scale, repeat_u, repeat_v);
-      }
       glBindVertexArray(mesh->vao);
-      for (const Chunk* chunk : visible) {
-        const auto first = static_cast<GLint>(3 * chunk->first_triangle);
-        const auto count = static_cast<GLsizei>(3 * chunk->triangles);
-        if (mesh->ebo)
-          glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
-        else glDrawArrays(GL_TRIANGLES, first, count);
+      for (const GpuPart& part : mesh->parts) {
+        visible.clear();
+        for (const Chunk& chunk : part.chunks)
+          if (in_view(chunk)) visible.push_back(&chunk);
+        if (visible.empty()) continue;
+        // a material script's texture on a primitive, or the mesh part's own (an SDF/URDF colour replaces it)
+        GLuint texture = visual.has_material ? 0 : part.texture;
+        float repeat_u = 1.0f, repeat_v = 1.0f;
+        if (!visual.texture_file.empty()) {
+          texture = r.TextureFor(visual.texture_file, visual.texture_max_anisotropy);
+          repeat_u = 1.0f / visual.texture_scale[0];
+          repeat_v = 1.0f / visual.texture_scale[1];
+        }
+        const bool textured = texture != 0;
+        glUniform1i(loc_texture, textured);
+        if (textured) {
+          glBindTexture(GL_TEXTURE_2D, texture);
+          glUniform2f(loc_uv_scale, repeat_u, repeat_v);
+        }
+        for (const Chunk* chunk : visible) {
+          const auto first = static_cast<GLint>(3 * chunk->first_triangle);
+          const auto count = static_cast<GLsizei>(3 * chunk->triangles);
+          if (mesh->ebo)
+            glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
+          else glDrawArrays(GL_TRIANGLES, first, count);
+        }
       }
     }
   }

@@ -172,10 +172,16 @@ TriangleSoup UnitSquare() {
 }
 
 TriangleSoup FromMesh(const geometry::TriangleMesh& mesh) {
+  geometry::MeshPart all;
+  all.triangles = mesh.TriangleCount();
+  return FromMesh(mesh, all);
+}
+
+TriangleSoup FromMesh(const geometry::TriangleMesh& mesh, const geometry::MeshPart& part) {
   TriangleSoup soup;
   const auto& v = mesh.vertices_m;
   auto vertex = [&](uint32_t i) { return Vector3f(v[3 * i], v[3 * i + 1], v[3 * i + 2]); };
-  for (size_t t = 0; t < mesh.TriangleCount(); ++t) {
+  for (size_t t = part.first_triangle; t < part.first_triangle + part.triangles; ++t) {
     const uint32_t* index = &mesh.indices[3 * t];
     soup.Add(vertex(index[0]), vertex(index[1]), vertex(index[2]));
     for (int k = 0; k < 3; ++k) {

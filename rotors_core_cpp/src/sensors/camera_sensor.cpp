@@ -40,11 +40,13 @@ CameraSensor::CameraSensor(std::string name, std::string type, physics::LinkPtr 
     throw SimError(label + " has " + std::to_string(cameras_.size()) + " <camera> elements; only a multicamera may");
   // what it will draw must be drawable: the textures of the meshes in the world so far
   auto check_textures = [&](const physics::Model& model) {
-    for (const geometry::Visual& v : model.Visuals())
-      if (v.shape.mesh && !v.shape.mesh->texture_file.empty() && !v.shape.mesh->uvs.empty() &&
-          !std::filesystem::exists(v.shape.mesh->texture_file))
-        throw SimError(label + ": texture '" + v.shape.mesh->texture_file + "' of visual '" + v.scoped_name +
-                       "' does not exist");
+    for (const geometry::Visual& v : model.Visuals()) {
+      if (!v.shape.mesh || v.shape.mesh->uvs.empty()) continue;
+      for (const geometry::MeshPart& part : v.shape.mesh->parts)
+        if (!part.texture_file.empty() && !std::filesystem::exists(part.texture_file))
+          throw SimError(label + ": texture '" + part.texture_file + "' of visual '" + v.scoped_name +
+                         "' does not exist");
+    }
   };
   const physics::Model& own = *ParentLink()->GetModel();
   check_textures(own);

@@ -16,6 +16,12 @@ class OcTree;
 namespace rotors_sim {
 namespace geometry {
 
+/// A run of a mesh's triangles drawn with one diffuse texture (a Collada or OBJ file may hold several).
+struct MeshPart {
+  size_t first_triangle = 0, triangles = 0;
+  std::string texture_file;  ///< resolved path (may not exist), or empty: no texture
+};
+
 /// Triangles in the mesh's own frame, already scaled.
 struct TriangleMesh {
   std::vector<double> vertices_m;                     ///< x0 y0 z0 x1 y1 z1 ... [m]
@@ -23,7 +29,9 @@ struct TriangleMesh {
   std::array<float, 4> rgba{0.7f, 0.7f, 0.7f, 1.0f};  ///< diffuse colour of the first material
   std::vector<float> colours;  ///< r g b per vertex (its material's diffuse or vertex colour), for renderers
   std::vector<float> uvs;      ///< u v per vertex when the file has texture coordinates, else empty
-  std::string texture_file;    ///< the first diffuse texture (resolved path; may not exist), else empty
+  /// The triangles by diffuse texture, in order and covering them all: one part per texture (and
+  /// one for the untextured ones)
+  std::vector<MeshPart> parts;
   size_t TriangleCount() const { return indices.size() / 3; }
 };
 

@@ -46,6 +46,8 @@ TriangleSoup UnitCylinder(int slices = 32);
 TriangleSoup UnitSquare();
 
 TriangleSoup FromMesh(const geometry::TriangleMesh& mesh);
+/// The triangles of one part of a mesh (those drawn with one texture).
+TriangleSoup FromMesh(const geometry::TriangleMesh& mesh, const geometry::MeshPart& part);
 /// One quad per pair of neighbouring samples, normals from the height gradient.
 TriangleSoup FromHeightField(const geometry::HeightField& field);
 /// The occupied cells' faces that border free or unknown space (inner faces are never seen).
