@@ -339,12 +339,37 @@ physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const Spaw
   return Build(world, *sdf_model, name, Compose(request.X_WM, sdf_model->RawPose()), request.skip_broken_sensors);
 }
 
+std::vector<physics::ModelPtr> ModelBuilder::BuildTree(const physics::WorldPtr& world, const sdf::Model& sdf_model,
+                                                      const std::string& name, const Pose3d& X_WM,
+                                                      bool skip_broken_sensors, bool static_from_parent) {
+  const bool is_static = sdf_model.Static() || static_from_parent;
+  std::vector<physics::ModelPtr> built;
+  if (sdf_model.LinkCount() > 0 || sdf_model.ModelCount() == 0)
+    built.push_back(Build(world, sdf_model, name, X_WM, skip_broken_sensors, is_static));
+  // nested models (an <include> inside a <model>, as RotorS' pallet_full) become models of their
+  // own, "parent::child", at the parent's pose composed with theirs; no joint may join them
+  for (uint64_t i = 0; i < sdf_model.JointCount(); ++i)
+    if (sdf_model.ModelCount() > 0 && (sdf_model.JointByIndex(i)->ParentLinkName().find("::") != std::string::npos ||
+                                       sdf_model.JointByIndex(i)->ChildLinkName().find("::") != std::string::npos))
+      throw SimError("model '" + name + "', joint '" + sdf_model.JointByIndex(i)->Name() +
+                     "': joints into nested models are not supported (flatten the model)");
+  for (uint64_t i = 0; i < sdf_model.ModelCount(); ++i) {
+    const sdf::Model& nested = *sdf_model.ModelByIndex(i);
+    for (auto& m : BuildTree(world, nested, name + "::" + nested.Name(), Compose(X_WM, nested.RawPose()),
+                             skip_broken_sensors, is_static))
+      built.push_back(std::move(m));
+  }
+  return built;
+}
+
 physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf::Model& sdf_model,
-                                      const std::string& name, const Pose3d& X_WM, bool skip_broken_sensors) {
+                                      const std::string& name, const Pose3d& X_WM, bool skip_broken_sensors,
+                                      bool static_from_parent) {
+  const bool is_static = sdf_model.Static() || static_from_parent;
   if (name.empty()) throw SimError("a model needs a name");
   if (world->ModelByName(name)) throw SimError("model '" + name + "': a model of that name already exists");
   if (sdf_model.LinkCount() == 0) throw SimError("model '" + name + "': it has no links");
-  auto model = std::make_shared<physics::Model>(name, world.get(), sdf_model.Static());
+  auto model = std::make_shared<physics::Model>(name, world.get(), is_static);
   const std::string sdf_file = sdf_model.Element() ? sdf_model.Element()->FilePath() : "";
   model->SetSDF(sdf_model.Element());
   model->SetInitialPose(X_WM);
@@ -399,7 +424,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
     std::map<std::string, std::pair<dBodyID, Pose3d>> bodies;  // owner -> body, X_MB
     for (const auto& link_name : order) {
       const std::string& o = owner[link_name];
-      if (o != link_name || sdf_model.Static()) continue;
+      if (o != link_name || is_static) continue;
       const Pose3d X_MO = X_ML[o];
       physics::Inertial total;
       std::string members;
@@ -432,7 +457,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
       bodies[o] = {body, X_MB};
     }
     for (const auto& link_name : order) {
-      if (sdf_model.Static()) {
+      if (is_static) {
         links[link_name]->SetStaticPose(Compose(X_WM, X_ML[link_name]));
         continue;
       }
@@ -454,7 +479,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
         sdf::Errors errors = j.Axis(0)->ResolveXyz(axis_M, "__model__");
         if (!errors.empty()) throw SimError(where + ": cannot resolve its axis: " + errors.front().Message());
       }
-      if (spec.type == physics::Joint::Type::kKinematic && !sdf_model.Static()) {
+      if (spec.type == physics::Joint::Type::kKinematic && !is_static) {
         const Pose3d X_PC0 = Compose(Inverse(X_ML[j.ParentLinkName()]), X_ML[j.ChildLinkName()]);
         const Vector3d axis_C = X_ML[j.ChildLinkName()].Rot().RotateVectorReverse(axis_M).Normalized();
         // J_a = a^T J_cog a + m (|c|^2 - (c . a)^2): the child's inertia about the axis through its origin
@@ -462,7 +487,7 @@ physics::ModelPtr ModelBuilder::Build(const physics::WorldPtr& world, const sdf:
         const Eigen::Vector3d a = ode_convert::ToEigen(axis_C), c = in.CoG();
         const double J_a = a.dot(in.MOI() * a) + in.Mass() * (c.squaredNorm() - c.dot(a) * c.dot(a));
         joint->MakeKinematic(X_PC0, axis_C, J_a);
-      } else if (!sdf_model.Static()) {
+      } else if (!is_static) {
         joint->CreateSolverJoint(world->SolverWorld(), X_WJ.Pos(), X_WM.Rot().RotateVector(axis_M), spec.lower,
                                  spec.upper);
       }

@@ -11,6 +11,7 @@
 #include <sdf/ParserConfig.hh>
 #include <sdf/Physics.hh>
 #include <sdf/Root.hh>
+#include <sdf/SDFImpl.hh>
 #include <sdf/World.hh>
 #include <ignition/math/SphericalCoordinates.hh>
 #include <sdf/Light.hh>
@@ -101,7 +102,7 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
   try {
     for (uint64_t i = 0; i < sdf_world.ModelCount(); ++i) {
       const sdf::Model& m = *sdf_world.ModelByIndex(i);
-      ModelBuilder::Build(world, m, m.Name(), m.RawPose(), options.skip_broken_sensors);
+      ModelBuilder::BuildTree(world, m, m.Name(), m.RawPose(), options.skip_broken_sensors);
     }
     sdf::ElementPtr element = sdf_world.Element();
     if (element->HasElement("plugin")) {
@@ -135,6 +136,18 @@ sdf::ParserConfig Config() {
   SilenceSdformatConsole();
   sdf::ParserConfig config;
   for (const auto& folder : geometry::UriResolver::ModelPaths()) config.AddURIPath("model://", folder);
+  // includes inside an included model (RotorS' pallet_full includes europallet and small_box) are
+  // looked up by sdformat 12 through its process-wide find callback, not the parser's: both ask
+  // the UriResolver (itself process-wide: the model paths)
+  auto find = [](const std::string& uri) {
+    try {
+      return geometry::UriResolver::Resolve(uri);
+    } catch (const SimError&) {
+      return std::string();
+    }
+  };
+  config.SetFindCallback(find);
+  sdf::setFindCallback(find);
   return config;
 }
 

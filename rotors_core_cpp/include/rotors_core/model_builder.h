@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <sdf/Model.hh>
 
@@ -25,8 +26,16 @@ class ModelBuilder {
   /// Throws SimError with one line naming the model and the problem.
   static physics::ModelPtr Spawn(const physics::WorldPtr& world, const SpawnRequest& request);
   /// Builds an already parsed SDF model (used for the models of a world file).
+  /// `static_from_parent`: static because an enclosing model is.
   static physics::ModelPtr Build(const physics::WorldPtr& world, const sdf::Model& sdf_model, const std::string& name,
-                                 const physics::Pose3d& X_WM, bool skip_broken_sensors = false);
+                                 const physics::Pose3d& X_WM, bool skip_broken_sensors = false,
+                                 bool static_from_parent = false);
+  /// A model and its nested models (<include> inside <model>), each nested one a model of its own
+  /// named "parent::child" (static when an enclosing model is); a model of nested models only
+  /// is not built itself. Joints into nested models are refused.
+  static std::vector<physics::ModelPtr> BuildTree(const physics::WorldPtr& world, const sdf::Model& sdf_model,
+                                                  const std::string& name, const physics::Pose3d& X_WM,
+                                                  bool skip_broken_sensors = false, bool static_from_parent = false);
 };
 
 }  // namespace rotors_sim

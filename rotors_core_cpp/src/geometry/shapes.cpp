@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <assimp/Importer.hpp>
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <octomap/OcTree.h>
@@ -48,7 +49,10 @@ std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const std:
 
   if (!std::filesystem::exists(path)) throw SimError("mesh '" + path + "' does not exist");
   Assimp::Importer importer;
-  // node transforms (and a Collada file's up axis) baked into the vertices
+  // a Collada file's <up_axis> is ignored, as Gazebo's and rviz' loaders do (assimp would turn a
+  // Z_UP file, RotorS' warehouse models, on its side to make Y up)
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  // node transforms baked into the vertices
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                      aiProcess_PreTransformVertices | aiProcess_SortByPType);
   if (!scene || !scene->mRootNode) throw SimError("mesh '" + path + "' does not parse: " + importer.GetErrorString());
