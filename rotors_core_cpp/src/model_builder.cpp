@@ -340,8 +340,8 @@ physics::ModelPtr ModelBuilder::Spawn(const physics::WorldPtr& world, const Spaw
 }
 
 std::vector<physics::ModelPtr> ModelBuilder::BuildTree(const physics::WorldPtr& world, const sdf::Model& sdf_model,
-                                                      const std::string& name, const Pose3d& X_WM,
-                                                      bool skip_broken_sensors, bool static_from_parent) {
+                                                       const std::string& name, const Pose3d& X_WM,
+                                                       bool skip_broken_sensors, bool static_from_parent) {
   const bool is_static = sdf_model.Static() || static_from_parent;
   std::vector<physics::ModelPtr> built;
   if (sdf_model.LinkCount() > 0 || sdf_model.ModelCount() == 0)

@@ -558,7 +558,7 @@ TEST(Camera, EachPartOfAMeshIsDrawnWithItsOwnTexture) {
     const uint8_t* p = &f.image[(static_cast<size_t>(v) * 200 + u) * 3];
     return std::array<int, 3>{p[0], p[1], p[2]};
   };
-  EXPECT_EQ(rgb(76, 100), (std::array<int, 3>{255, 128, 0}));  // the left half: orange
+  EXPECT_EQ(rgb(76, 100), (std::array<int, 3>{255, 128, 0}));   // the left half: orange
   EXPECT_EQ(rgb(124, 100), (std::array<int, 3>{0, 128, 128}));  // the right half: teal
   std::filesystem::remove_all(folder);
 }

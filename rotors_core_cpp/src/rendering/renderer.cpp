@@ -410,7 +410,8 @@ const GpuMesh* Renderer::Impl::MeshFor(const Shape& shape, Eigen::Matrix4d* S) {
       if (!shape.mesh) return nullptr;
       if ((mesh = cached(shape.mesh.get()))) return mesh;
       std::vector<PartSoup> parts;
-      for (const geometry::MeshPart& part : shape.mesh->parts) parts.push_back({FromMesh(*shape.mesh, part), part.texture_file});
+      for (const geometry::MeshPart& part : shape.mesh->parts)
+        parts.push_back({FromMesh(*shape.mesh, part), part.texture_file});
       return &Upload(shape.mesh.get(), shape.mesh, std::move(parts));
     }
     case Shape::Type::kHeightmap:
