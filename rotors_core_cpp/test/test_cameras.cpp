@@ -83,6 +83,12 @@ sensors::CameraSensorPtr TheCamera(const physics::WorldPtr& world) {
   return sensor;
 }
 
+/// The colour of pixel (u, v) of an R8G8B8 frame.
+std::array<int, 3> Rgb(const rendering::RenderedFrame& f, int u, int v) {
+  const uint8_t* p = &f.image[(static_cast<size_t>(v) * f.width_px + u) * 3];
+  return {p[0], p[1], p[2]};
+}
+
 uint8_t Pixel(const rendering::RenderedFrame& f, int u, int v) {
   return f.image[static_cast<size_t>(v) * f.width_px + u];
 }
@@ -508,10 +514,7 @@ TEST(Camera, MeshTexturesAreDrawn) {
       "texture")};
   g.world->Step(1);
   const auto& f = TheCamera(g.world)->Frame(0);
-  auto rgb = [&](int u, int v) {
-    const uint8_t* p = &f.image[(static_cast<size_t>(v) * 200 + u) * 3];
-    return std::array<int, 3>{p[0], p[1], p[2]};
-  };
+  auto rgb = [&](int u, int v) { return Rgb(f, u, v); };
   // the square spans 2 m at 3 m: f = 100 / tan(0.6) = 146 px, half width 146 / 3 = 49 px around the
   // centre; a quadrant's centre is 24 px from it
   const int q = 24;
@@ -554,10 +557,7 @@ TEST(Camera, EachPartOfAMeshIsDrawnWithItsOwnTexture) {
       "two_textures")};
   g.world->Step(1);
   const auto& f = TheCamera(g.world)->Frame(0);
-  auto rgb = [&](int u, int v) {
-    const uint8_t* p = &f.image[(static_cast<size_t>(v) * 200 + u) * 3];
-    return std::array<int, 3>{p[0], p[1], p[2]};
-  };
+  auto rgb = [&](int u, int v) { return Rgb(f, u, v); };
   EXPECT_EQ(rgb(76, 100), (std::array<int, 3>{255, 128, 0}));   // the left half: orange
   EXPECT_EQ(rgb(124, 100), (std::array<int, 3>{0, 128, 128}));  // the right half: teal
   std::filesystem::remove_all(folder);
