@@ -74,11 +74,18 @@ physics::Pose3d CameraSensor::CameraWorldPose(size_t i) const { return cameras_.
 
 void CameraSensor::OnUpdate(const common::Time& /*sim_time*/) { ++update_count_; }
 
+void CameraSensor::SetGroundTruthDepth(bool on) {
+  if (on == ground_truth_depth_) return;
+  ground_truth_depth_ = on;
+  rendered_update_.assign(cameras_.size(), 0);  // this update's frames again, with or without depth
+}
+
 const rendering::RenderedFrame& CameraSensor::Frame(size_t i) {
   if (rendered_update_.at(i) != update_count_) {
     physics::World& world = *ParentLink()->GetModel()->GetWorldRaw();
     rendering::Renderer::Of(world).Render(world, CameraWorldPose(i), cameras_[i],
-                                          seed_ * 1000003u + update_count_ * 16u + i, true, IsDepth(), &frames_[i]);
+                                          seed_ * 1000003u + update_count_ * 16u + i, true, RendersDepth(),
+                                          &frames_[i]);
     rendered_update_[i] = update_count_;
   }
   return frames_[i];

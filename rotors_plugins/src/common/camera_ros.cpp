@@ -44,6 +44,10 @@ CameraRosParams CameraRosParams::Read(rotors_sim::SdfParams& params, const rotor
                      "camera's <distortion><center>, D from its <distortion> k1 k2 k3 p1 p2 (put the lens there; "
                      "leave this 0 or remove it)");
   }
+  if (!depth_plugin) {
+    ReadParam(params, "groundTruthDepth", &p.ground_truth_depth);
+    ReadParam(params, "groundTruthDepthTopicName", &p.ground_truth_depth_topic);
+  }
   if (depth_plugin) {
     ReadParam(params, "depthImageTopicName", &p.depth_topic);
     ReadParam(params, "depthImageCameraInfoTopicName", &p.depth_info_topic);
@@ -172,16 +176,25 @@ CameraChannel::CameraChannel(ros::NodeHandle& node, const CameraRosParams& param
   info_pub_ = node.advertise<sensor_msgs::CameraInfo>(JoinTopic(prefix, params.info_topic), 2);
   info_ = CameraInfoMsg(camera, baseline_m);
   info_.header.frame_id = frame_id_;
+  if (params.ground_truth_depth)
+    depth_pub_ = node.advertise<sensor_msgs::Image>(JoinTopic(prefix, params.ground_truth_depth_topic), 2);
 }
 
 void CameraChannel::Publish(rotors_sim::sensors::CameraSensor& sensor, const ros::Time& stamp) {
   info_.header.stamp = stamp;
   info_pub_.publish(info_);
-  if (image_pub_.getNumSubscribers() == 0) return;
-  sensor_msgs::ImagePtr image(new sensor_msgs::Image);
-  ToImageMsg(sensor.Frame(index_), format_, image.get());
-  image->header = info_.header;
-  image_pub_.publish(image);
+  if (image_pub_.getNumSubscribers() > 0) {
+    sensor_msgs::ImagePtr image(new sensor_msgs::Image);
+    ToImageMsg(sensor.Frame(index_), format_, image.get());
+    image->header = info_.header;
+    image_pub_.publish(image);
+  }
+  if (depth_pub_ && depth_pub_.getNumSubscribers() > 0) {
+    sensor_msgs::ImagePtr depth(new sensor_msgs::Image);
+    ToDepthMsg(sensor.Frame(index_), 0.0, 0.0, depth.get());  // the whole clip range
+    depth->header = info_.header;
+    depth_pub_.publish(depth);
+  }
 }
 
 }  // namespace rotors_gazebo_plugins

@@ -16,6 +16,7 @@ class GazeboRosCamera : public rotors_sim::SensorPlugin {
       throw rotors_sim::SimError("libgazebo_ros_camera.so belongs in a <sensor type=\"camera\">, not type '" +
                                  sensor->Type() + "'");
     const CameraRosParams params = CameraRosParams::Read(Params(), *sensor_, false);
+    sensor_->SetGroundTruthDepth(params.ground_truth_depth);
     limiter_ = RateLimiter(params.update_rate_hz);
     node_ = MakeNode(params.robot_namespace);
     if (!node_) return;  // no ROS in this process: nothing to publish

@@ -18,6 +18,7 @@ class GazeboRosMultiCamera : public rotors_sim::SensorPlugin {
       throw rotors_sim::SimError("libgazebo_ros_multicamera.so belongs in a <sensor type=\"multicamera\">, not type '" +
                                  sensor->Type() + "'");
     const CameraRosParams params = CameraRosParams::Read(Params(), *sensor_, false);
+    sensor_->SetGroundTruthDepth(params.ground_truth_depth);
     for (size_t i = 0; i < sensor_->CameraCount(); ++i)
       if (sensor_->Camera(i).name.empty())
         throw rotors_sim::SimError("camera " + std::to_string(i) + " of multicamera '" + sensor_->Name() +

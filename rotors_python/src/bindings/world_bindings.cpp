@@ -226,12 +226,12 @@ class PyWorld {
                    "' (sensors: " + (names.empty() ? "none" : names) + ")");
   }
 
-  py::array CameraImage(const std::string& model, const std::string& sensor, size_t index, bool depth) const {
+  py::array CameraImage(const std::string& model, const std::string& sensor, size_t index, bool depth) {
     auto camera = SensorOf<rotors_sim::sensors::CameraSensor>(model, sensor, "camera");
     if (index >= camera->CameraCount())
       throw SimError("camera index " + std::to_string(index) + " out of range: sensor '" + sensor + "' has " +
                      std::to_string(camera->CameraCount()) + " camera(s)");
-    if (depth && !camera->IsDepth()) throw SimError("sensor '" + sensor + "' is not a depth camera");
+    if (depth) camera->SetGroundTruthDepth(true);  // a plain camera renders its depth from now on
     const auto& frame = camera->Frame(index);
     const py::ssize_t h = frame.height_px, w = frame.width_px;
     if (depth) return View(frame.depth_m.data(), {h, w}, camera);

@@ -202,7 +202,9 @@ class World:
         return self._w.camera_image(model, sensor, index, False)
 
     def camera_depth(self, model: str, sensor: str, index: int = 0) -> np.ndarray:
-        """A depth camera's last depth image [m] (H x W float32, NaN out of range); a view, as camera_image."""
+        """The camera's last depth image [m] (H x W float32, NaN where nothing is in range), aligned with
+        its image; a view, as camera_image. A plain camera (a VI-sensor's left or right) renders its
+        ground-truth depth from the first ask on."""
         return self._w.camera_image(model, sensor, index, True)
 
     def laser_scan(self, model: str, sensor: str) -> dict:

@@ -30,12 +30,16 @@ class CameraSensor : public Sensor {
     return type == "camera" || type == "multicamera" || type == "depth";
   }
   bool IsDepth() const { return Type() == "depth"; }
+  /// A ground-truth depth image beside each camera's image (off by default; a depth sensor always
+  /// has one): optical-axis distance per pixel, aligned with the image.
+  void SetGroundTruthDepth(bool on);
+  bool RendersDepth() const { return IsDepth() || ground_truth_depth_; }
 
   size_t CameraCount() const { return cameras_.size(); }
   const rendering::CameraSpec& Camera(size_t i) const { return cameras_.at(i); }
   /// Camera frame (x forward, z up) in the world, now.
   physics::Pose3d CameraWorldPose(size_t i) const;
-  /// The frame of camera i at the last update (rendered now if not yet); depth only for depth sensors.
+  /// The frame of camera i at the last update (rendered now if not yet); depth when RendersDepth().
   const rendering::RenderedFrame& Frame(size_t i);
   /// Number of the last update (the noise seed of its frames with the sensor's seed).
   uint64_t UpdateCount() const { return update_count_; }
@@ -50,6 +54,7 @@ class CameraSensor : public Sensor {
   std::vector<uint64_t> rendered_update_;  ///< update count of frames_[i]; 0 = never
   uint64_t update_count_ = 0;
   uint64_t seed_ = 0;
+  bool ground_truth_depth_ = false;
 };
 using CameraSensorPtr = std::shared_ptr<CameraSensor>;
 

@@ -29,6 +29,10 @@ struct CameraRosParams {
   std::string frame_name;        ///< <frameName>; empty: the plugin names the optical frame
   double update_rate_hz = 0.0;   ///< <updateRate>; 0: every sensor update
   double hack_baseline_m = 0.0;  ///< <hackBaseline>: P[3] = -f b of the second camera
+  /// ours, camera and multicamera: <groundTruthDepth> publishes a 32FC1 depth image aligned with
+  /// each camera's image on <prefix>/<groundTruthDepthTopicName> (default "depth")
+  bool ground_truth_depth = false;
+  std::string ground_truth_depth_topic = "depth";
   // openni_kinect
   std::string depth_topic = "depth/image_raw", depth_info_topic = "depth/camera_info";
   std::string points_topic = "depth/points", disparity_topic;
@@ -70,6 +74,7 @@ class CameraChannel {
   ros::Publisher image_pub_, info_pub_;
   sensor_msgs::CameraInfo info_;
   rotors_sim::rendering::PixelFormat format_;
+  ros::Publisher depth_pub_;  ///< ground-truth depth, when asked for
 };
 
 /// <updateRate> of a plugin below its sensor's rate: true when the next message is due.
