@@ -508,7 +508,7 @@ def main() -> int:
         rows += [("ratio: power plant world / basic world", f"{flight_steps['powerplant'] / flight_steps['basic']:.0%}",
                   ">= 50 %")]
     if "cameras" in only:
-        cameras = {world: camera_fps(world) for world in ("basic", "powerplant")}
+        cameras = {world: camera_fps(world) for world in ("basic", "powerplant", "warehouse")}
         res["camera_fps"] = cameras
         for world, fps in cameras.items():
             rows += [(f"VI-sensor stereo pair, 2 x 752 x 480 L8 with noise, {world} world",

@@ -63,7 +63,9 @@ int main(int argc, char** argv) {
   world_sdf.insert(world_sdf.rfind("</world>"), kRig);
   physics::WorldPtr world;
   try {
-    world = WorldLoader::LoadString(world_sdf, argv[1]);
+    WorldLoadOptions options;  // as the server and the Python module: RotorS' ROS bridge has nothing to do here
+    options.skipped_plugins["librotors_gazebo_ros_interface_plugin.so"] = "not needed for rendering";
+    world = WorldLoader::LoadString(world_sdf, argv[1], options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rotors_camera_bench: %s\n", e.what());
     return 1;
