@@ -19,6 +19,12 @@ def left_image(world: rs.World) -> np.ndarray:
     return world.camera_image("firefly", STEREO, 0).reshape(H, W).copy()
 
 
+def frame_at(world: rs.World, x: float, y: float, yaw: float) -> None:
+    """Puts the firefly 1.5 m up at (x, y) facing yaw and steps to the camera's next update (30 Hz)."""
+    world.set_model_state("firefly", [x, y, 1.5], [0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2)])
+    world.step(int(np.ceil(1.0 / 30.0 / world.step_size)) + 1)
+
+
 def test_the_warehouse_loads_with_its_models_and_the_vi_sensor_sees_corners_and_tracks():
     world = rs.World("warehouse")
     models = world.models()
@@ -28,18 +34,14 @@ def test_the_warehouse_loads_with_its_models_and_the_vi_sensor_sees_corners_and_
     assert any(m.endswith("::small_box_1_lvl_1") for m in models)
     assert {"grey_wall", "first_2015_trash_can", "asphalt_plane", "ground_plane"} <= set(models)
     world.spawn_mav("firefly", model=VI_SENSOR, random_seed=3, xyz=(0.0, 0.0, 20.0))
-    frame_steps = int(np.ceil(1.0 / 30.0 / world.step_size)) + 1  # steps to the camera's next update (30 Hz)
     corners, tracks = [], []
     for x, y, yaw in VIEWS:
-        world.set_model_state("firefly", [x, y, 1.5], [0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2)])
-        world.step(frame_steps)  # a camera update at the new pose
+        frame_at(world, x, y, yaw)
         first = left_image(world)
         found = cv2.goodFeaturesToTrack(first, maxCorners=1000, qualityLevel=0.01, minDistance=10)
         corners.append(0 if found is None else len(found))
         # 5 cm sideways, as between two frames of a flight at 1.5 m/s
-        world.set_model_state("firefly", [x - 0.05 * np.sin(yaw), y + 0.05 * np.cos(yaw), 1.5],
-                              [0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2)])
-        world.step(frame_steps)
+        frame_at(world, x - 0.05 * np.sin(yaw), y + 0.05 * np.cos(yaw), yaw)
         second = left_image(world)
         assert np.abs(second.astype(int) - first).mean() > 1.0  # a new frame
         forward, ok, _ = cv2.calcOpticalFlowPyrLK(first, second, found, None)
@@ -65,15 +67,13 @@ def test_stereo_sgbm_depth_at_the_corners_matches_the_ground_truth_depth():
     world = rs.World("warehouse")
     world.spawn_mav("firefly", model=VI_SENSOR, random_seed=3, xyz=(0.0, 0.0, 20.0),
                     enable_vi_ground_truth_depth=True)
-    frame_steps = int(np.ceil(1.0 / 30.0 / world.step_size)) + 1
     f_px, baseline_m = W / (2.0 * np.tan(1.3962634 / 2.0)), 0.11
     sgbm = cv2.StereoSGBM_create(minDisparity=0, numDisparities=96, blockSize=5, P1=8 * 25, P2=32 * 25,
                                  uniquenessRatio=10, speckleWindowSize=100, speckleRange=2,
                                  mode=cv2.STEREO_SGBM_MODE_SGBM_3WAY)
     within, matched, total, relative = 0, 0, 0, []
     for x, y, yaw in VIEWS:
-        world.set_model_state("firefly", [x, y, 1.5], [0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2)])
-        world.step(frame_steps)
+        frame_at(world, x, y, yaw)
         left = left_image(world)
         right = world.camera_image("firefly", STEREO, 1).reshape(H, W).copy()
         depth_gt = world.camera_depth("firefly", STEREO, 0)

@@ -343,16 +343,18 @@ std::vector<physics::ModelPtr> ModelBuilder::BuildTree(const physics::WorldPtr& 
                                                        const std::string& name, const Pose3d& X_WM,
                                                        bool skip_broken_sensors, bool static_from_parent) {
   const bool is_static = sdf_model.Static() || static_from_parent;
+  // nested models (an <include> inside a <model>, as RotorS' pallet_full) become models of their
+  // own, "parent::child", at the parent's pose composed with theirs; no joint may join them
+  if (sdf_model.ModelCount() > 0)
+    for (uint64_t i = 0; i < sdf_model.JointCount(); ++i) {
+      const sdf::Joint& j = *sdf_model.JointByIndex(i);
+      if (j.ParentLinkName().find("::") != std::string::npos || j.ChildLinkName().find("::") != std::string::npos)
+        throw SimError("model '" + name + "', joint '" + j.Name() +
+                       "': joints into nested models are not supported (flatten the model)");
+    }
   std::vector<physics::ModelPtr> built;
   if (sdf_model.LinkCount() > 0 || sdf_model.ModelCount() == 0)
     built.push_back(Build(world, sdf_model, name, X_WM, skip_broken_sensors, is_static));
-  // nested models (an <include> inside a <model>, as RotorS' pallet_full) become models of their
-  // own, "parent::child", at the parent's pose composed with theirs; no joint may join them
-  for (uint64_t i = 0; i < sdf_model.JointCount(); ++i)
-    if (sdf_model.ModelCount() > 0 && (sdf_model.JointByIndex(i)->ParentLinkName().find("::") != std::string::npos ||
-                                       sdf_model.JointByIndex(i)->ChildLinkName().find("::") != std::string::npos))
-      throw SimError("model '" + name + "', joint '" + sdf_model.JointByIndex(i)->Name() +
-                     "': joints into nested models are not supported (flatten the model)");
   for (uint64_t i = 0; i < sdf_model.ModelCount(); ++i) {
     const sdf::Model& nested = *sdf_model.ModelByIndex(i);
     for (auto& m : BuildTree(world, nested, name + "::" + nested.Name(), Compose(X_WM, nested.RawPose()),

@@ -61,11 +61,13 @@ std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const std:
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) any_uv = any_uv || scene->mMeshes[m]->HasTextureCoords(0);
   // each assimp mesh's diffuse texture; the meshes are appended texture by texture, so that each
   // texture's triangles form one part
+  auto material_of = [&](const aiMesh* am) -> const aiMaterial* {
+    return scene->mNumMaterials > am->mMaterialIndex ? scene->mMaterials[am->mMaterialIndex] : nullptr;
+  };
   std::map<std::string, std::vector<unsigned>> by_texture;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* am = scene->mMeshes[m];
-    const aiMaterial* material =
-        scene->mNumMaterials > am->mMaterialIndex ? scene->mMaterials[am->mMaterialIndex] : nullptr;
+    const aiMaterial* material = material_of(am);
     aiString texture;
     std::string file;
     if (material && am->HasTextureCoords(0) && material->GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS &&
@@ -79,8 +81,7 @@ std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const std:
     part.texture_file = texture_file;
     for (unsigned m : meshes) {
       const aiMesh* am = scene->mMeshes[m];
-      const aiMaterial* material =
-          scene->mNumMaterials > am->mMaterialIndex ? scene->mMaterials[am->mMaterialIndex] : nullptr;
+      const aiMaterial* material = material_of(am);
       aiColor4D diffuse(0.7f, 0.7f, 0.7f, 1.0f);
       if (material) material->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse);
       const uint32_t base = static_cast<uint32_t>(mesh->vertices_m.size() / 3);

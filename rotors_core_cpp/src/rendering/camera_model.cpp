@@ -65,8 +65,8 @@ std::string CameraIntrinsics::Validate() const {
 Eigen::Vector2d LensDistortion::Distort(const Eigen::Vector2d& x_ideal) const {
   const double x = x_ideal.x(), y = x_ideal.y();
   const double r2 = x * x + y * y;
-  // radial factor 1 + k1 r^2 + k2 r^4 + k3 r^6, then the tangential (decentring) terms
-  const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
+  // the radial factor, then the tangential (decentring) terms
+  const double radial = Radial(r2);
   return {x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x),
           y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y};
 }
@@ -80,8 +80,7 @@ bool LensDistortion::Undistort(const Eigen::Vector2d& x_distorted, Eigen::Vector
       *x_ideal = x;
       return true;
     }
-    const double r2 = x.squaredNorm();
-    const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
+    const double radial = Radial(x.squaredNorm());
     if (!(radial > 0.0)) return false;
     x -= residual / radial;
   }
@@ -89,7 +88,7 @@ bool LensDistortion::Undistort(const Eigen::Vector2d& x_distorted, Eigen::Vector
 }
 
 std::string LensDistortion::Validate(double max_radius) const {
-  auto radial = [&](double r) { return 1.0 + r * r * (k1 + r * r * (k2 + r * r * k3)); };
+  auto radial = [&](double r) { return Radial(r * r); };
   // r_d = r radial(r) must rise from 0 until it covers the image's farthest corner
   const double dr = 1e-3;
   double r_d = 0.0;

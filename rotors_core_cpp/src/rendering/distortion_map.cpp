@@ -9,21 +9,21 @@
 namespace rotors_sim {
 namespace rendering {
 
-DistortionMap::DistortionMap(const CameraSpec& camera)
-    : width_px_(camera.intrinsics.width_px), height_px_(camera.intrinsics.height_px) {
+DistortionMap::DistortionMap(const CameraSpec& camera) {
   const CameraIntrinsics& in = camera.intrinsics;
+  const int width_px = in.width_px, height_px = in.height_px;
   const double f = in.FocalLengthPx(), cx = in.Cx(), cy = in.Cy();
-  const size_t n = static_cast<size_t>(width_px_) * height_px_;
+  const size_t n = static_cast<size_t>(width_px) * height_px;
   // the ideal (pinhole) point of every output pixel: x = undistort((u - cx) / f, (v - cy) / f)
   std::vector<Eigen::Vector2d> ideal(n);
   Eigen::Vector2d lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max()), hi = -lo;
-  for (int v = 0; v < height_px_; ++v)
-    for (int u = 0; u < width_px_; ++u) {
+  for (int v = 0; v < height_px; ++v)
+    for (int u = 0; u < width_px; ++u) {
       Eigen::Vector2d x;
       if (!camera.distortion.Undistort(Eigen::Vector2d((u - cx) / f, (v - cy) / f), &x))
         throw SimError("camera '" + camera.name + "': distortion has no undistorted preimage for pixel (" +
                        std::to_string(u) + ", " + std::to_string(v) + "): coefficients out of range");
-      ideal[static_cast<size_t>(v) * width_px_ + u] = x;
+      ideal[static_cast<size_t>(v) * width_px + u] = x;
       lo = lo.cwiseMin(x);
       hi = hi.cwiseMax(x);
     }
@@ -31,10 +31,10 @@ DistortionMap::DistortionMap(const CameraSpec& camera)
   const double margin_px = 2.0;
   const int W = static_cast<int>(std::ceil(f * (hi.x() - lo.x()) + 2 * margin_px)) + 1;
   const int H = static_cast<int>(std::ceil(f * (hi.y() - lo.y()) + 2 * margin_px)) + 1;
-  if (W > 4 * width_px_ || H > 4 * height_px_)
+  if (W > 4 * width_px || H > 4 * height_px)
     throw SimError("camera '" + camera.name + "': its distortion needs a pinhole image of " + std::to_string(W) +
-                   " x " + std::to_string(H) + " px to fill " + std::to_string(width_px_) + " x " +
-                   std::to_string(height_px_) + " (more than 4 times): coefficients out of range");
+                   " x " + std::to_string(H) + " px to fill " + std::to_string(width_px) + " x " +
+                   std::to_string(height_px) + " (more than 4 times): coefficients out of range");
   const double cx_pinhole = margin_px - f * lo.x(), cy_pinhole = margin_px - f * lo.y();
   pinhole_ = in;
   pinhole_.width_px = W;

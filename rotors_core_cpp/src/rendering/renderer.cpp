@@ -288,11 +288,8 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
                                       std::vector<PartSoup> parts) {
   GpuMesh mesh;
   mesh.source = std::move(source);
-  bool any_colours = false, any_uvs = false;
-  for (const PartSoup& p : parts) {
-    any_colours = any_colours || !p.soup.colours.empty();
-    any_uvs = any_uvs || !p.soup.uvs.empty();
-  }
+  bool any_colours = false;
+  for (const PartSoup& p : parts) any_colours = any_colours || !p.soup.colours.empty();
   if (parts.size() > 1)
     for (const PartSoup& p : parts)
       if (!p.soup.indices.empty()) throw SimError("camera renderer: only an unindexed soup may come in parts");
@@ -564,7 +561,7 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
   const GLint loc_albedo = r.mesh_fragment.albedo, loc_vertex_colour = r.mesh_fragment.use_vertex_colour;
   const GLint loc_texture = r.mesh_fragment.use_texture, loc_uv_scale = r.mesh_fragment.uv_scale;
   glActiveTexture(GL_TEXTURE0);
-  std::vector<const Chunk*> visible;
+  std::vector<std::pair<size_t, const Chunk*>> visible;  // part, chunk
   for (const physics::ModelPtr& model : world.Models()) {
     for (const geometry::Visual& visual : model->Visuals()) {
       Eigen::Matrix4d S;
@@ -572,16 +569,15 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
       if (!mesh) continue;
       const ignition::math::Pose3d X_WV = visual.X_LV + visual.link->WorldPose();
       const Eigen::Matrix4d T_OV = (T_OW * ToIsometry(X_WV)).matrix() * S;
-      // the chunks in view only (a vehicle's own body behind its camera is skipped)
       const Eigen::Matrix3d A = T_OV.topLeftCorner<3, 3>();
       const double scale = A.colwise().norm().maxCoeff();
-      auto in_view = [&](const Chunk& chunk) {
-        return in.MaySee(A * chunk.centre_m.cast<double>() + T_OV.topRightCorner<3, 1>(), scale * chunk.radius_m);
-      };
-      bool any = false;
-      for (const GpuPart& part : mesh->parts)
-        for (const Chunk& chunk : part.chunks) any = any || in_view(chunk);
-      if (!any) continue;
+      // the chunks in view, part by part (a vehicle's own body behind its camera is skipped)
+      visible.clear();
+      for (size_t p = 0; p < mesh->parts.size(); ++p)
+        for (const Chunk& chunk : mesh->parts[p].chunks)
+          if (in.MaySee(A * chunk.centre_m.cast<double>() + T_OV.topRightCorner<3, 1>(), scale * chunk.radius_m))
+            visible.push_back({p, &chunk});
+      if (visible.empty()) continue;
       const Eigen::Matrix4f T = T_OV.cast<float>();
       const Eigen::Matrix3f N = A.inverse().transpose().cast<float>();
       glUniformMatrix4fv(loc_T, 1, GL_FALSE, T.data());
@@ -591,33 +587,32 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
       if (own) glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);
       else glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
       glUniform1i(loc_vertex_colour, own);
+      // a material script's texture on a primitive replaces the mesh parts' own (an SDF/URDF colour removes them)
+      const GLuint script_texture =
+          visual.texture_file.empty() ? 0 : r.TextureFor(visual.texture_file, visual.texture_max_anisotropy);
       glBindVertexArray(mesh->vao);
-      for (const GpuPart& part : mesh->parts) {
-        visible.clear();
-        for (const Chunk& chunk : part.chunks)
-          if (in_view(chunk)) visible.push_back(&chunk);
-        if (visible.empty()) continue;
-        // a material script's texture on a primitive, or the mesh part's own (an SDF/URDF colour replaces it)
-        GLuint texture = visual.has_material ? 0 : part.texture;
-        float repeat_u = 1.0f, repeat_v = 1.0f;
-        if (!visual.texture_file.empty()) {
-          texture = r.TextureFor(visual.texture_file, visual.texture_max_anisotropy);
-          repeat_u = 1.0f / visual.texture_scale[0];
-          repeat_v = 1.0f / visual.texture_scale[1];
+      for (size_t k = 0; k < visible.size(); ++k) {
+        const auto [p, chunk] = visible[k];
+        if (k == 0 || visible[k - 1].first != p) {  // a new part: its texture
+          GLuint texture = visual.has_material ? 0 : mesh->parts[p].texture;
+          float repeat_u = 1.0f, repeat_v = 1.0f;
+          if (!visual.texture_file.empty()) {
+            texture = script_texture;
+            repeat_u = 1.0f / visual.texture_scale[0];
+            repeat_v = 1.0f / visual.texture_scale[1];
+          }
+          const bool textured = texture != 0;
+          glUniform1i(loc_texture, textured);
+          if (textured) {
+            glBindTexture(GL_TEXTURE_2D, texture);
+            glUniform2f(loc_uv_scale, repeat_u, repeat_v);
+          }
         }
-        const bool textured = texture != 0;
-        glUniform1i(loc_texture, textured);
-        if (textured) {
-          glBindTexture(GL_TEXTURE_2D, texture);
-          glUniform2f(loc_uv_scale, repeat_u, repeat_v);
-        }
-        for (const Chunk* chunk : visible) {
-          const auto first = static_cast<GLint>(3 * chunk->first_triangle);
-          const auto count = static_cast<GLsizei>(3 * chunk->triangles);
-          if (mesh->ebo)
-            glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
-          else glDrawArrays(GL_TRIANGLES, first, count);
-        }
+        const auto first = static_cast<GLint>(3 * chunk->first_triangle);
+        const auto count = static_cast<GLsizei>(3 * chunk->triangles);
+        if (mesh->ebo)
+          glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
+        else glDrawArrays(GL_TRIANGLES, first, count);
       }
     }
   }

@@ -50,6 +50,8 @@ struct LensDistortion {
   double k1 = 0.0, k2 = 0.0, k3 = 0.0, p1 = 0.0, p2 = 0.0;
 
   bool IsIdentity() const { return k1 == 0.0 && k2 == 0.0 && k3 == 0.0 && p1 == 0.0 && p2 == 0.0; }
+  /// The radial factor 1 + k1 r^2 + k2 r^4 + k3 r^6 at r^2 = `r2`.
+  double Radial(double r2) const { return 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3)); }
   /// An ideal (pinhole) point to where the lens shows it.
   Eigen::Vector2d Distort(const Eigen::Vector2d& x_ideal) const;
   /// The inverse of Distort by fixed-point iteration (as cv::undistortPoints); false when it does

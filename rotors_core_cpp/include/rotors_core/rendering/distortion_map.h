@@ -20,9 +20,6 @@ class DistortionMap {
   /// The pinhole camera to render: the same focal length, wide enough that every output pixel's
   /// ray lands at least one pixel inside it.
   const CameraIntrinsics& Pinhole() const { return pinhole_; }
-  /// Output pixel (u, v) shows pinhole pixel (SourceU(i), SourceV(i)), i = v W + u.
-  float SourceU(size_t i) const { return source_u_[i]; }
-  float SourceV(size_t i) const { return source_v_[i]; }
 
   /// The distorted image: each pixel bilinear in the pinhole image (`channels` bytes per pixel).
   void RemapImage(const std::vector<uint8_t>& pinhole, int channels, std::vector<uint8_t>* out) const;
@@ -30,8 +27,8 @@ class DistortionMap {
   void RemapDepth(const std::vector<float>& pinhole, std::vector<float>* out) const;
 
  private:
-  int width_px_, height_px_;
   CameraIntrinsics pinhole_;
+  /// output pixel i = v W + u shows pinhole pixel (source_u_[i], source_v_[i])
   std::vector<float> source_u_, source_v_;
 };
 
