@@ -221,7 +221,9 @@ void ApplyMaterialScript(const sdf::ElementPtr& material, const std::string& sdf
   }
   const geometry::OgreMaterial m = geometry::FindOgreMaterial(folders, name);
   out->rgba = m.diffuse;
-  if (out->shape.type == geometry::Shape::Type::kBox || out->shape.type == geometry::Shape::Type::kPlane) {
+  // the shapes with texture coordinates of the renderer's own making (an octree's are metres)
+  using Type = geometry::Shape::Type;
+  if (out->shape.type == Type::kBox || out->shape.type == Type::kPlane || out->shape.type == Type::kOcTree) {
     out->texture_file = m.texture;
     out->texture_scale = m.scale;
     out->texture_max_anisotropy = m.max_anisotropy;

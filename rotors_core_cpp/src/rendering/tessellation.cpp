@@ -272,6 +272,18 @@ TriangleSoup FromOcTree(const octomap::OcTree& tree) {
       else AddQuad(&soup, a, d, c, b);
     }
   }
+  // texture coordinates in metres of the octree's frame, so that a material's texture keeps its
+  // size on every face and runs on across neighbouring rectangles: (x, y) on horizontal faces,
+  // (the horizontal coordinate, z) on walls
+  const size_t n = soup.VertexCount();
+  for (size_t i = 0; i < n; ++i) {
+    const float* p = &soup.positions_m[3 * i];
+    const float* normal = &soup.normals[3 * i];
+    float* uv = &soup.uvs[2 * i];
+    const bool horizontal = std::abs(normal[2]) > 0.5f, faces_x = std::abs(normal[0]) > 0.5f;
+    uv[0] = horizontal || !faces_x ? p[0] : p[1];
+    uv[1] = horizontal ? p[1] : p[2];
+  }
   return soup;
 }
 

@@ -50,7 +50,8 @@ TriangleSoup FromMesh(const geometry::TriangleMesh& mesh);
 TriangleSoup FromMesh(const geometry::TriangleMesh& mesh, const geometry::MeshPart& part);
 /// One quad per pair of neighbouring samples, normals from the height gradient.
 TriangleSoup FromHeightField(const geometry::HeightField& field);
-/// The occupied cells' faces that border free or unknown space (inner faces are never seen).
+/// The occupied cells' faces that border free or unknown space (inner faces are never seen), with
+/// texture coordinates in metres: (x, y) on horizontal faces, (x or y, z) on walls.
 TriangleSoup FromOcTree(const octomap::OcTree& tree);
 
 }  // namespace rendering
