@@ -1,13 +1,16 @@
 // Frames per second of the headless renderer: the VI-sensor's stereo pair (2 x 752 x 480 L8) and
 // its depth camera (640 x 480, depth read back), in a world file given on the command line, with
-// a firefly-sized scene in view. Prints one JSON line.
-//   rotors_camera_bench <world file> [frames] [folder: writes left.pgm, right.pgm, depth.pgm]
+// a firefly-sized scene in view. The rig moves 1 cm per frame, as in a flight: the sun's shadow map
+// (when the world has shadows) is drawn again for each stereo pair. Prints one JSON line.
+//   rotors_camera_bench <world file> [frames] [folder: writes left.pgm, right.pgm, depth.pgm] [--no-shadows]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
@@ -47,17 +50,22 @@ double Fps(const std::function<void()>& render, int frames) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: rotors_camera_bench <world file> [frames]\n");
+  std::vector<std::string> args(argv + 1, argv + argc);
+  const auto no_shadows = std::find(args.begin(), args.end(), "--no-shadows");
+  const bool shadows = no_shadows == args.end();
+  if (!shadows) args.erase(no_shadows);
+  if (args.empty()) {
+    std::fprintf(stderr, "usage: rotors_camera_bench <world file> [frames] [folder] [--no-shadows]\n");
     return 2;
   }
-  const int frames = argc > 2 ? std::atoi(argv[2]) : 100;
-  std::ifstream in(argv[1]);
+  const int frames = args.size() > 1 ? std::atoi(args[1].c_str()) : 100;
+  std::ifstream in(args[0]);
   std::stringstream text;
   text << in.rdbuf();
   std::string world_sdf = text.str();
   if (!in || world_sdf.rfind("</world>") == std::string::npos) {
-    std::fprintf(stderr, "rotors_camera_bench: '%s' is no world file (cannot be read or has no </world>)\n", argv[1]);
+    std::fprintf(stderr, "rotors_camera_bench: '%s' is no world file (cannot be read or has no </world>)\n",
+                 args[0].c_str());
     return 1;
   }
   world_sdf.insert(world_sdf.rfind("</world>"), kRig);
@@ -65,7 +73,8 @@ int main(int argc, char** argv) {
   try {
     WorldLoadOptions options;  // as the server and the Python module: RotorS' ROS bridge has nothing to do here
     options.skipped_plugins["librotors_gazebo_ros_interface_plugin.so"] = "not needed for rendering";
-    world = WorldLoader::LoadString(world_sdf, argv[1], options);
+    options.shadows = shadows;
+    world = WorldLoader::LoadString(world_sdf, args[0], options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rotors_camera_bench: %s\n", e.what());
     return 1;
@@ -74,8 +83,11 @@ int main(int argc, char** argv) {
   auto stereo = std::dynamic_pointer_cast<sensors::CameraSensor>(model->Sensors().at(0));
   auto depth = std::dynamic_pointer_cast<sensors::CameraSensor>(model->Sensors().at(1));
   world->Step(1);
+  ignition::math::Pose3d X_WR = model->WorldPose();
   const double pair_fps = Fps(
       [&] {
+        X_WR.Pos().X() += 0.01;
+        model->SetWorldPose(X_WR);
         world->Step(34);  // one sensor period at 1 ms steps: a new update, new frames
         stereo->Frame(0);
         stereo->Frame(1);
@@ -87,9 +99,9 @@ int main(int argc, char** argv) {
         depth->Frame(0);
       },
       frames);
-  if (argc > 3) {
+  if (args.size() > 2) {
     auto write = [&](const std::string& name, int w, int h, const std::vector<uint8_t>& grey) {
-      std::ofstream f(std::string(argv[3]) + "/" + name, std::ios::binary);
+      std::ofstream f(args[2] + "/" + name, std::ios::binary);
       f << "P5\n" << w << " " << h << "\n255\n";
       f.write(reinterpret_cast<const char*>(grey.data()), grey.size());
     };

@@ -242,6 +242,7 @@ void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const
     sdf::Errors errors = visual->SemanticPose().Resolve(out.X_LV, sdf_link.Name());
     if (!errors.empty()) throw SimError("visual '" + out.scoped_name + "': " + errors.front().Message());
     out.shape = ReadShape(*visual->Geom(), "visual '" + out.scoped_name + "'", sdf_file);
+    out.cast_shadows = visual->CastShadows();
     if (visual->Material()) {
       const auto c = visual->Material()->Diffuse();
       out.rgba = {static_cast<float>(c.R()), static_cast<float>(c.G()), static_cast<float>(c.B()),

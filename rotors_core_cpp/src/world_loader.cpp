@@ -59,22 +59,27 @@ physics::PhysicsParams ReadPhysics(const sdf::World& world) {
   return p;
 }
 
-/// The first directional light is the sun; <scene> gives ambient and background (grey levels).
-geometry::Lighting ReadLighting(const sdf::World& world) {
+/// The first directional light is the sun; <scene> gives ambient and background (grey levels) and
+/// whether the sun's shadows are drawn (Gazebo's default: yes, if the sun casts them).
+geometry::Lighting ReadLighting(const sdf::World& world, const WorldLoadOptions& options) {
   geometry::Lighting lighting;
+  bool sun_casts_shadows = false, scene_shadows = true;
   for (uint64_t i = 0; i < world.LightCount(); ++i) {
     const sdf::Light& light = *world.LightByIndex(i);
     if (light.Type() != sdf::LightType::DIRECTIONAL) continue;
     lighting.sun_direction_W = light.Direction();
     const auto d = light.Diffuse();
     lighting.sun_diffuse = static_cast<float>((d.R() + d.G() + d.B()) / 3.0);
+    sun_casts_shadows = light.CastShadows();
     break;
   }
   if (const sdf::Scene* scene = world.Scene()) {
     const auto a = scene->Ambient(), b = scene->Background();
     lighting.ambient = static_cast<float>((a.R() + a.G() + a.B()) / 3.0);
     lighting.background = {static_cast<float>(b.R()), static_cast<float>(b.G()), static_cast<float>(b.B())};
+    scene_shadows = scene->Shadows();
   }
+  lighting.shadows = sun_casts_shadows && scene_shadows && options.shadows;
   return lighting;
 }
 
@@ -98,7 +103,7 @@ physics::WorldPtr Build(const sdf::Root& root, const sdf::Errors& errors, const 
     origin.heading_deg = sc->HeadingOffset().Degree();
     world->SetOrigin(origin);
   }
-  world->SetLighting(ReadLighting(sdf_world));
+  world->SetLighting(ReadLighting(sdf_world, options));
   try {
     for (uint64_t i = 0; i < sdf_world.ModelCount(); ++i) {
       const sdf::Model& m = *sdf_world.ModelByIndex(i);

@@ -13,6 +13,8 @@ struct WorldLoadOptions {
   std::map<std::string, std::string> skipped_plugins;
   /// The world's models load without a sensor that cannot be built (see SpawnRequest).
   bool skip_broken_sensors = false;
+  /// false: no shadows whatever the world says (cameras render faster); true: as the world says
+  bool shadows = true;
 };
 
 class WorldLoader {

@@ -67,6 +67,8 @@ int main(int argc, char** argv) {
       }
     } else if (arg == "--skip-broken-sensors") {
       options.skip_broken_sensors = true;
+    } else if (arg == "--no-shadows") {
+      options.shadows = false;
     } else if (arg == "--lockstep-lenient") {
       options.lockstep.mode = rotors_sim::LockstepOptions::Mode::kLenient;
     } else if (!arg.empty() && arg[0] != '-') {
@@ -74,13 +76,13 @@ int main(int argc, char** argv) {
     } else {
       std::cerr << "[rotors_sim] error: unknown option '" << arg
                 << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] "
-                   "[--lockstep-lenient] [--skip-broken-sensors])\n";
+                   "[--lockstep-lenient] [--skip-broken-sensors] [--no-shadows])\n";
       return 2;
     }
   }
   if (options.world_file.empty()) {
     std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep "
-                 "A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors])\n";
+                 "A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors] [--no-shadows])\n";
     return 2;
   }
   try {

@@ -43,13 +43,16 @@ uniform mat4 T_OV;        // visual frame -> optical frame (x right, y down, z f
 uniform mat3 N_OV;        // normals visual -> optical: inverse transpose of T_OV's linear part
 uniform vec4 projection;  // 2 f / W, 2 f / H, near, far
 uniform vec2 principal;   // the principal point in NDC: 2 (c + 1/2) / W - 1, 2 (c_y + 1/2) / H - 1
+uniform mat4 T_SV;        // visual frame -> shadow-map coordinates (s, t, depth in 0..1)
 out vec3 p_O;
 out vec3 n_O;
 out vec3 vertex_colour;
 out vec2 uv;
+out vec3 p_S;
 void main() {
   vec4 p = T_OV * vec4(p_V, 1.0);
   p_O = p.xyz;
+  p_S = (T_SV * vec4(p_V, 1.0)).xyz;
   n_O = N_OV * n_V;
   vertex_colour = colour_V;
   uv = uv_V;
@@ -64,6 +67,7 @@ out vec3 p_O;
 out vec3 n_O;
 out vec3 vertex_colour;
 out vec2 uv;
+out vec3 p_S;
 void main() {
   // one triangle covering the viewport, on the far plane
   vec2 corner = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
@@ -71,14 +75,25 @@ void main() {
   n_O = vec3(0.0);
   vertex_colour = vec3(1.0);
   uv = vec2(0.0);
+  p_S = vec3(0.0);
   gl_Position = vec4(corner, 1.0, 1.0);
 })";
+
+// The sun's shadow map: depth only, in the sun's orthographic view
+const char* kShadowVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 p_V;
+uniform mat4 T_clip_V;  // visual frame -> the sun's clip space
+void main() { gl_Position = T_clip_V * vec4(p_V, 1.0); })";
+
+const char* kShadowFragmentShader = R"(#version 330 core
+void main() {})";
 
 const char* kFragmentShader = R"(#version 330 core
 in vec3 p_O;
 in vec3 n_O;
 in vec3 vertex_colour;
 in vec2 uv;
+in vec3 p_S;
 uniform vec3 albedo;
 uniform bool use_vertex_colour;
 uniform bool use_texture;
@@ -87,6 +102,8 @@ uniform vec2 uv_scale;    // texture repeats per unit of uv (1 / an OGRE texture
 uniform vec3 to_sun_O;
 uniform float ambient;
 uniform float sun_diffuse;
+uniform bool use_shadows;
+uniform sampler2DShadow shadow_map;
 uniform bool background;
 uniform bool grey;
 uniform vec2 noise;       // mean, stddev (full scale 1)
@@ -105,6 +122,13 @@ float Gaussian(uint channel) {  // Box-Muller from two hashed uniforms
   return sqrt(-2.0 * log(Uniform01(k))) * cos(6.28318530718 * Uniform01(k ^ 0x68e31da4u));
 }
 
+// The share of the sun this fragment gets: 1 outside the shadow map, else the comparison with the
+// 2 x 2 nearest texels, interpolated (one lookup: more taps cost a third of the frame rate on llvmpipe)
+float SunLit() {
+  if (!use_shadows || any(lessThan(p_S, vec3(0.0))) || any(greaterThan(p_S, vec3(1.0)))) return 1.0;
+  return texture(shadow_map, p_S);
+}
+
 void main() {
   vec3 c = albedo;
   if (use_vertex_colour) c *= vertex_colour;
@@ -112,7 +136,8 @@ void main() {
   if (!background) {
     vec3 n = normalize(n_O);
     if (dot(n, p_O) > 0.0) n = -n;  // light the side the camera sees
-    c *= ambient + sun_diffuse * max(dot(n, to_sun_O), 0.0);
+    float n_dot_sun = dot(n, to_sun_O);
+    c *= ambient + sun_diffuse * max(n_dot_sun, 0.0) * (n_dot_sun > 0.0 ? SunLit() : 1.0);
   }
   if (grey) c = vec3(dot(c, vec3(0.299, 0.587, 0.114)));
   if (noise.y > 0.0 || noise.x != 0.0) {
@@ -174,7 +199,8 @@ GLint RequireUniform(GLuint program, const char* name) {
 /// looked up without the check (-1: setting them does nothing, as intended).
 struct FragmentUniforms {
   GLint albedo = -1, use_vertex_colour = -1, use_texture = -1, texture_image = -1, uv_scale = -1, to_sun_O = -1,
-        ambient = -1, sun_diffuse = -1, background = -1, grey = -1, noise = -1, seed = -1;
+        ambient = -1, sun_diffuse = -1, use_shadows = -1, shadow_map = -1, background = -1, grey = -1, noise = -1,
+        seed = -1;
   FragmentUniforms() = default;
   FragmentUniforms(GLuint program, bool draws_meshes) {
     auto mesh_only = [&](const char* name) {
@@ -192,15 +218,18 @@ struct FragmentUniforms {
     to_sun_O = mesh_only("to_sun_O");
     ambient = mesh_only("ambient");
     sun_diffuse = mesh_only("sun_diffuse");
+    use_shadows = mesh_only("use_shadows");
+    shadow_map = mesh_only("shadow_map");
   }
 };
 
 /// The mesh vertex shader's uniforms, resolved once.
 struct MeshUniforms {
-  GLint T_OV = -1, N_OV = -1, projection = -1, principal = -1;
+  GLint T_OV = -1, N_OV = -1, projection = -1, principal = -1, T_SV = -1;
   explicit MeshUniforms(GLuint program = 0) {
     if (!program) return;
     T_OV = RequireUniform(program, "T_OV");
+    T_SV = RequireUniform(program, "T_SV");
     N_OV = RequireUniform(program, "N_OV");
     projection = RequireUniform(program, "projection");
     principal = RequireUniform(program, "principal");
@@ -230,14 +259,48 @@ struct Target {
   GLuint fbo = 0, colour = 0, depth_out = 0, depth_buffer = 0;
 };
 
+/// The sun's shadow map around a camera's view: depth seen from the sun (orthographic), and the
+/// transform from the world to its coordinates (s, t, depth, each 0..1 over the map).
+struct ShadowMap {
+  static constexpr int kTexels = 2048;               // per side
+  static constexpr double kViewDistance_m = 30.0;    // shadows are drawn up to this far from a camera
+  static constexpr double kCastersAbove_m = 200.0;   // casters this far towards the sun beyond the view still count
+  static constexpr int kSnapTexels = 32;             // the map moves in steps of this many texels
+  GLuint fbo = 0, depth = 0;
+  Eigen::Matrix4d T_SW = Eigen::Matrix4d::Identity();
+  size_t drawn_for = 0;  // SceneKey of the scene and region last drawn; 0: none
+};
+
+/// A hash of everything a shadow map depends on: the pose of every visual's link and the region.
+size_t SceneKey(const physics::World& world, const Eigen::Vector3d& region_centre_L, double region_half_m) {
+  size_t key = 0x9e3779b97f4a7c15ull;
+  auto mix = [&key](double value) {
+    uint64_t bits = 0;
+    std::memcpy(&bits, &value, sizeof(bits));
+    key ^= std::hash<uint64_t>()(bits) + 0x9e3779b97f4a7c15ull + (key << 6) + (key >> 2);
+  };
+  for (int i = 0; i < 3; ++i) mix(region_centre_L[i]);
+  mix(region_half_m);
+  for (const physics::ModelPtr& model : world.Models())
+    for (const geometry::Visual& visual : model->Visuals()) {
+      const ignition::math::Pose3d X_WL = visual.link->WorldPose();
+      for (double v : {X_WL.Pos().X(), X_WL.Pos().Y(), X_WL.Pos().Z(), X_WL.Rot().W(), X_WL.Rot().X(),
+                       X_WL.Rot().Y(), X_WL.Rot().Z()})
+        mix(v);
+    }
+  return key == 0 ? 1 : key;
+}
+
 }  // namespace
 
 struct Renderer::Impl {
   EGLDisplay display = EGL_NO_DISPLAY;
   EGLContext context = EGL_NO_CONTEXT;
-  GLuint mesh_program = 0, background_program = 0, empty_vao = 0;
+  GLuint mesh_program = 0, background_program = 0, shadow_program = 0, empty_vao = 0;
+  GLint shadow_T_clip_V = -1;
   FragmentUniforms mesh_fragment, background_fragment;
   MeshUniforms mesh_vertex;
+  ShadowMap shadow;
   std::map<const void*, GpuMesh> meshes;                      // by source object
   std::map<std::pair<std::string, float>, GLuint> textures;   // by image file and anisotropy (0: unreadable)
   std::map<std::tuple<int, int, int, bool>, Target> targets;  // by width, height, format, depth
@@ -255,6 +318,8 @@ struct Renderer::Impl {
   const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
   GLuint TextureFor(const std::string& file, float max_anisotropy = 1.0f);
   Target& TargetFor(int width, int height, PixelFormat format, bool depth);
+  const ShadowMap* ShadowFor(const physics::World& world, const ignition::math::Pose3d& X_WC,
+                             const CameraIntrinsics& in);
 };
 
 void Renderer::Impl::CreateContext() {
@@ -278,6 +343,8 @@ void Renderer::Impl::CreateContext() {
   mesh_fragment = FragmentUniforms(mesh_program, true);
   background_fragment = FragmentUniforms(background_program, false);
   mesh_vertex = MeshUniforms(mesh_program);
+  shadow_program = Link(kShadowVertexShader, kShadowFragmentShader);
+  shadow_T_clip_V = RequireUniform(shadow_program, "T_clip_V");
   glGenVertexArrays(1, &empty_vao);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // meshes of unknown winding; the optical frame mirrors GL's anyway
@@ -452,6 +519,109 @@ Target& Renderer::Impl::TargetFor(int width, int height, PixelFormat format, boo
   return targets.emplace(key, t).first->second;
 }
 
+/// The shadow map for a camera at X_WC, drawn unless the one drawn last covers the same region of
+/// the same scene (the other camera of a stereo pair, usually); nullptr when the world has no shadows.
+const ShadowMap* Renderer::Impl::ShadowFor(const physics::World& world, const ignition::math::Pose3d& X_WC,
+                                           const CameraIntrinsics& in) {
+  const geometry::Lighting& light = world.GetLighting();
+  if (!light.shadows) return nullptr;
+  // the sun's frame L: z towards the sun
+  const Eigen::Vector3d to_sun_W =
+      -Eigen::Vector3d(light.sun_direction_W.X(), light.sun_direction_W.Y(), light.sun_direction_W.Z()).normalized();
+  const Eigen::Matrix3d R_WL = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), to_sun_W).toRotationMatrix();
+  // the smallest sphere around the camera's view up to D: centred a along the optical axis, it
+  // reaches the camera (radius a) and the far corners (radius^2 = (D - a)^2 + D^2 k)
+  const double D = std::min(in.far_m, ShadowMap::kViewDistance_m), f = in.FocalLengthPx();
+  const double k = std::pow(in.width_px / (2 * f), 2) + std::pow(in.height_px / (2 * f), 2);
+  const double a = std::min(D, D * (1 + k) / 2);
+  const double radius = std::max(a, std::sqrt((D - a) * (D - a) + D * D * k));
+  const Eigen::Isometry3d T_WC = ToIsometry(X_WC);
+  const Eigen::Vector3d centre_L = R_WL.transpose() * (T_WC * Eigen::Vector3d(a, 0, 0));
+  // the region's centre on a grid of kSnapTexels texels: the texels stay put in the world while the
+  // camera moves (shadow edges do not crawl from frame to frame) and cameras close together share
+  // a map; the region is as much larger as the snapping moves it: h = radius + grid step
+  const double half = radius / (1.0 - 2.0 * ShadowMap::kSnapTexels / ShadowMap::kTexels);
+  const double grid = 2.0 * half * ShadowMap::kSnapTexels / ShadowMap::kTexels;
+  const Eigen::Vector3d snapped_L = (centre_L / grid).array().round().matrix() * grid;
+  const size_t key = SceneKey(world, snapped_L, half);
+  if (shadow.drawn_for == key) return &shadow;
+
+  // orthographic clip space: x, y over the region, depth from the top (towards the sun) to the bottom
+  const double z_top = snapped_L.z() + half + ShadowMap::kCastersAbove_m, z_bottom = snapped_L.z() - half;
+  Eigen::Matrix4d T_clip_L = Eigen::Matrix4d::Identity();
+  T_clip_L(0, 0) = T_clip_L(1, 1) = 1.0 / half;
+  T_clip_L(0, 3) = -snapped_L.x() / half;
+  T_clip_L(1, 3) = -snapped_L.y() / half;
+  T_clip_L(2, 2) = -2.0 / (z_top - z_bottom);  // z_clip = (z_top + z_bottom - 2 z_L) / (z_top - z_bottom)
+  T_clip_L(2, 3) = (z_top + z_bottom) / (z_top - z_bottom);
+  Eigen::Matrix4d T_LW = Eigen::Matrix4d::Identity();
+  T_LW.topLeftCorner<3, 3>() = R_WL.transpose();
+  const Eigen::Matrix4d T_clip_W = T_clip_L * T_LW;
+  Eigen::Matrix4d T_S_clip = Eigen::Matrix4d::Identity();  // clip -1..1 -> texture 0..1
+  T_S_clip.topLeftCorner<3, 3>() *= 0.5;
+  T_S_clip.topRightCorner<3, 1>().setConstant(0.5);
+  shadow.T_SW = T_S_clip * T_clip_W;
+
+  if (!shadow.fbo) {
+    glGenTextures(1, &shadow.depth);
+    glBindTexture(GL_TEXTURE_2D, shadow.depth);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, ShadowMap::kTexels, ShadowMap::kTexels, 0,
+                 GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // with the compare: 2 x 2 filtering
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);  // lit where no caster is nearer the sun
+    glGenFramebuffers(1, &shadow.fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadow.fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow.depth, 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw SimError("camera renderer: cannot make the sun's shadow map");
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, shadow.fbo);
+  glViewport(0, 0, ShadowMap::kTexels, ShadowMap::kTexels);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glUseProgram(shadow_program);
+  glEnable(GL_POLYGON_OFFSET_FILL);  // the surface itself stays lit (no shadow acne), slope by slope
+  glPolygonOffset(2.0f, 4.0f);
+  glEnable(GL_DEPTH_CLAMP);  // casters beyond the top still cast
+  for (const physics::ModelPtr& model : world.Models())
+    for (const geometry::Visual& visual : model->Visuals()) {
+      if (!visual.cast_shadows) continue;
+      Eigen::Matrix4d S;
+      const GpuMesh* mesh = MeshFor(visual.shape, &S);
+      if (!mesh) continue;
+      const Eigen::Matrix4d T_clip_V = T_clip_W * ToIsometry(visual.X_LV + visual.link->WorldPose()).matrix() * S;
+      const double scale = T_clip_V.topLeftCorner<2, 3>().colwise().norm().maxCoeff();
+      const Eigen::Matrix4f T = T_clip_V.cast<float>();
+      bool bound = false;
+      for (const GpuPart& part : mesh->parts)
+        for (const Chunk& chunk : part.chunks) {
+          const Eigen::Vector4d c = T_clip_V * Eigen::Vector4d(chunk.centre_m.x(), chunk.centre_m.y(), chunk.centre_m.z(), 1);
+          const double r = scale * chunk.radius_m;
+          if (std::abs(c.x()) > 1 + r || std::abs(c.y()) > 1 + r || c.z() > 1 + r) continue;  // beside or below
+          if (!bound) {
+            glUniformMatrix4fv(shadow_T_clip_V, 1, GL_FALSE, T.data());
+            glBindVertexArray(mesh->vao);
+            bound = true;
+          }
+          const auto first = static_cast<GLint>(3 * chunk.first_triangle);
+          const auto count = static_cast<GLsizei>(3 * chunk.triangles);
+          if (mesh->ebo)
+            glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
+          else glDrawArrays(GL_TRIANGLES, first, count);
+        }
+    }
+  glDisable(GL_DEPTH_CLAMP);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glBindVertexArray(0);
+  shadow.drawn_for = key;
+  return &shadow;
+}
+
 Renderer& Renderer::Of(physics::World& world) {
   std::shared_ptr<void>& state = world.PluginState("rotors_sim/renderer");
   if (!state) state = std::shared_ptr<Renderer>(new Renderer());
@@ -526,6 +696,7 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
   const CameraIntrinsics& in = camera.intrinsics;
   const int W = in.width_px, H = in.height_px;
   const PixelFormat format = camera.format;
+  const ShadowMap* shadow = want_image ? r.ShadowFor(world, X_WC, in) : nullptr;  // depth needs no shadows
   Target& target = r.TargetFor(W, H, format, want_depth);
   glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
   glViewport(0, 0, W, H);
@@ -546,6 +717,8 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
     glUniform3f(u.to_sun_O, to_sun_O.x(), to_sun_O.y(), to_sun_O.z());
     glUniform1f(u.ambient, light.ambient);
     glUniform1f(u.sun_diffuse, light.sun_diffuse);
+    glUniform1i(u.use_shadows, shadow != nullptr);
+    glUniform1i(u.shadow_map, 1);
     glUniform1i(u.grey, format == PixelFormat::kL8);
     glUniform2f(u.noise, static_cast<float>(camera.noise_mean), static_cast<float>(camera.noise_stddev));
     glUniform2ui(u.seed, static_cast<GLuint>(noise_seed), static_cast<GLuint>(noise_seed >> 32));
@@ -560,6 +733,10 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
   const GLint loc_T = r.mesh_vertex.T_OV, loc_N = r.mesh_vertex.N_OV;
   const GLint loc_albedo = r.mesh_fragment.albedo, loc_vertex_colour = r.mesh_fragment.use_vertex_colour;
   const GLint loc_texture = r.mesh_fragment.use_texture, loc_uv_scale = r.mesh_fragment.uv_scale;
+  if (shadow) {
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, shadow->depth);
+  }
   glActiveTexture(GL_TEXTURE0);
   std::vector<std::pair<size_t, const Chunk*>> visible;  // part, chunk
   for (const physics::ModelPtr& model : world.Models()) {
@@ -568,7 +745,8 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
       const GpuMesh* mesh = r.MeshFor(visual.shape, &S);
       if (!mesh) continue;
       const ignition::math::Pose3d X_WV = visual.X_LV + visual.link->WorldPose();
-      const Eigen::Matrix4d T_OV = (T_OW * ToIsometry(X_WV)).matrix() * S;
+      const Eigen::Matrix4d T_WV = ToIsometry(X_WV).matrix() * S;
+      const Eigen::Matrix4d T_OV = T_OW.matrix() * T_WV;
       const Eigen::Matrix3d A = T_OV.topLeftCorner<3, 3>();
       const double scale = A.colwise().norm().maxCoeff();
       // the chunks in view, part by part (a vehicle's own body behind its camera is skipped)
@@ -582,6 +760,10 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
       const Eigen::Matrix3f N = A.inverse().transpose().cast<float>();
       glUniformMatrix4fv(loc_T, 1, GL_FALSE, T.data());
       glUniformMatrix3fv(loc_N, 1, GL_FALSE, N.data());
+      if (shadow) {
+        const Eigen::Matrix4f T_SV = (shadow->T_SW * T_WV).cast<float>();
+        glUniformMatrix4fv(r.mesh_vertex.T_SV, 1, GL_FALSE, T_SV.data());
+      }
       // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
       const bool own = mesh->own_colours && !visual.has_material;
       if (own) glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);

@@ -28,6 +28,7 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   // RotorS' worlds load its ROS bridge plugin; here every plugin talks ROS itself
   load.skipped_plugins["librotors_gazebo_ros_interface_plugin.so"] = "not needed, plugins publish on ROS directly";
   load.skip_broken_sensors = skip_broken_sensors_ = options.skip_broken_sensors;
+  load.shadows = options.shadows;
   world_ = WorldLoader::LoadFile(options.world_file, load);
   if (options.real_time_factor >= 0.0) world_->SetRealTimeFactor(options.real_time_factor);
   pacer_.SetRealTimeFactor(world_->Physics().real_time_factor);

@@ -67,8 +67,9 @@ class PyWorld {
   ~PyWorld() {
     if (world_) world_->Fini();
   }
-  static rotors_sim::WorldLoadOptions Options() {
+  static rotors_sim::WorldLoadOptions Options(bool shadows) {
     rotors_sim::WorldLoadOptions load;
+    load.shadows = shadows;
     load.skipped_plugins["librotors_gazebo_ros_interface_plugin.so"] = "not needed, no ROS";
     return load;
   }
@@ -361,16 +362,17 @@ void BindWorld(py::module_& m) {
   py::class_<PyWorld>(m, "World", "One world of the engine (see rotors_sim.World).")
       .def_static(
           "load_file",
-          [](const std::string& path) {
-            return std::make_unique<PyWorld>(rotors_sim::WorldLoader::LoadFile(path, PyWorld::Options()));
+          [](const std::string& path, bool shadows) {
+            return std::make_unique<PyWorld>(rotors_sim::WorldLoader::LoadFile(path, PyWorld::Options(shadows)));
           },
-          py::arg("path"))
+          py::arg("path"), py::arg("shadows") = true)
       .def_static(
           "load_string",
-          [](const std::string& sdf, const std::string& name) {
-            return std::make_unique<PyWorld>(rotors_sim::WorldLoader::LoadString(sdf, name, PyWorld::Options()));
+          [](const std::string& sdf, const std::string& name, bool shadows) {
+            return std::make_unique<PyWorld>(
+                rotors_sim::WorldLoader::LoadString(sdf, name, PyWorld::Options(shadows)));
           },
-          py::arg("sdf"), py::arg("source_name") = "<string>")
+          py::arg("sdf"), py::arg("source_name") = "<string>", py::arg("shadows") = true)
       .def("spawn", &PyWorld::Spawn, py::arg("xml"), py::arg("name"), py::arg("xyz"), py::arg("rpy"))
       .def("remove_model", [](PyWorld& w, const std::string& name) { return w.W().RemoveModel(name); })
       .def("step", &PyWorld::Step, py::arg("n") = 1)

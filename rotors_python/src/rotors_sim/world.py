@@ -59,13 +59,15 @@ class Odometry:
 class World:
     """A world from rotors_gazebo/worlds (by name), a .world file, or SDF text (`sdf=`)."""
 
-    def __init__(self, name_or_path: str | Path = "basic", *, sdf: str | None = None, step_size: float | None = None):
-        """`step_size` [s] overrides the world file's max_step_size (e.g. 0.002 for 500 Hz physics)."""
+    def __init__(self, name_or_path: str | Path = "basic", *, sdf: str | None = None, step_size: float | None = None,
+                 shadows: bool = True):
+        """`step_size` [s] overrides the world file's max_step_size (e.g. 0.002 for 500 Hz physics);
+        `shadows=False` draws no shadows whatever the world says (faster cameras)."""
         _engine.add_model_path(str(package_path("rotors_gazebo") / "models"))  # model://asphalt_plane, ...
         if sdf is not None:
-            self._w = _engine.World.load_string(sdf, "<string>")
+            self._w = _engine.World.load_string(sdf, "<string>", shadows)
         else:
-            self._w = _engine.World.load_file(str(world_file(str(name_or_path))))
+            self._w = _engine.World.load_file(str(world_file(str(name_or_path))), shadows)
         if step_size is not None:
             self._w.step_size = float(step_size)
         self._vehicles: dict[str, str] = {}  # namespace -> model name

@@ -44,6 +44,7 @@ struct Visual {
   std::string texture_file;
   std::array<float, 2> texture_scale{1.0f, 1.0f};
   float texture_max_anisotropy = 1.0f;  ///< 1: trilinear only
+  bool cast_shadows = true;             ///< <cast_shadows>: drawn into the sun's shadow map
 };
 
 }  // namespace geometry
@@ -58,6 +59,8 @@ struct Lighting {
   float sun_diffuse = 0.8f;                                   ///< grey level of the sun's diffuse colour
   float ambient = 0.4f;                                       ///< <scene><ambient>
   std::array<float, 3> background{0.7f, 0.7f, 0.7f};          ///< <scene><background>
+  /// The sun casts shadows: <scene><shadows> (true unless set) and the sun's <cast_shadows>
+  bool shadows = false;
 };
 
 }  // namespace geometry

@@ -33,6 +33,7 @@ struct SimServerOptions {
   std::vector<LockstepParticipant> lockstep_participants;  ///< see Lockstep; empty: free running
   LockstepOptions lockstep;
   bool skip_broken_sensors = false;  ///< models load without a sensor that cannot be built (SpawnRequest)
+  bool shadows = true;               ///< false: no shadows whatever the world says (WorldLoadOptions)
 };
 
 class SimServer {
