@@ -1,0 +1,105 @@
+"""Smooth camera flights for the perception tests: straight legs flown at a cruise speed with a
+trapezoidal speed profile, and turns on the spot with a cosine yaw profile, sampled with the
+velocity, acceleration and yaw-rate feed-forward the Lee position controller takes.
+
+A path is a start (x, y, z, yaw) and a list of corners (x, y, z): the MAV first turns to face the
+first leg, flies it facing along it, turns on the spot at each corner, and so on; or, given a fixed
+`facing` yaw, turns to it once and keeps it (flying sideways past what it looks at)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import List, Sequence, Tuple
+
+import numpy as np
+
+# RotorS' warehouse, 1.5 m up: down the aisle between the shelf rows at y 3.4 and y -1.5, across the
+# open end beside the grey wall (x -8.35), back up the aisle between the rows at y -2.8 and y -7.8,
+# and across the far end (37 m in all)
+WAREHOUSE_START = (0.0, 0.8, 1.5, np.pi)
+WAREHOUSE_LOOP = [(-7.5, 0.8, 1.5), (-7.5, -5.3, 1.5), (5.0, -5.3, 1.5), (5.0, 0.8, 1.5), (0.0, 0.8, 1.5)]
+
+# The power plant: sideways past its 12 m high south face (x -1), 3 m off and looking at it (+x),
+# 2 m up from y 4 to y -13, then back 5 m up (34 m in all)
+POWERPLANT_START = (-4.0, 4.0, 2.0, 0.0)
+POWERPLANT_PATH = [(-4.0, -13.0, 2.0), (-4.0, -13.0, 5.0), (-4.0, 4.0, 5.0)]
+POWERPLANT_FACING = 0.0
+
+
+@dataclass
+class Trajectory:
+    t_s: np.ndarray         # (N,)
+    p_W: np.ndarray         # (N, 3)
+    v_W: np.ndarray         # (N, 3)
+    a_W: np.ndarray         # (N, 3)
+    yaw: np.ndarray         # (N,) unwrapped
+    yaw_rate: np.ndarray    # (N,)
+
+    @property
+    def duration_s(self) -> float:
+        return float(self.t_s[-1])
+
+    def length_m(self) -> float:
+        return float(np.sum(np.linalg.norm(np.diff(self.p_W, axis=0), axis=1)))
+
+
+def _straight(length: float, v_max: float, a_max: float, dt: float) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Distance, speed and acceleration along a leg at dt: accelerate, cruise, brake (a triangle if short)."""
+    v_peak = min(v_max, np.sqrt(length * a_max))
+    t_ramp = v_peak / a_max
+    t_cruise = (length - v_peak * t_ramp) / v_peak
+    total = 2 * t_ramp + t_cruise
+    t = np.arange(0.0, total + 1e-9, dt)
+    s, v, a = np.zeros_like(t), np.zeros_like(t), np.zeros_like(t)
+    up = t < t_ramp
+    cruise = (t >= t_ramp) & (t < t_ramp + t_cruise)
+    down = t >= t_ramp + t_cruise
+    s[up], v[up], a[up] = 0.5 * a_max * t[up] ** 2, a_max * t[up], a_max
+    s[cruise] = 0.5 * a_max * t_ramp**2 + v_peak * (t[cruise] - t_ramp)
+    v[cruise] = v_peak
+    td = t[down] - t_ramp - t_cruise
+    s[down] = length - 0.5 * a_max * (t_ramp - td) ** 2
+    v[down], a[down] = a_max * (t_ramp - td), -a_max
+    return np.minimum(s, length), np.maximum(v, 0.0), a
+
+
+def _turn(delta: float, yaw_rate_max: float, dt: float) -> Tuple[np.ndarray, np.ndarray]:
+    """Yaw change and rate of a turn by delta: (1 - cos(pi t / T)) / 2 of it, peak rate yaw_rate_max."""
+    T = max(np.pi * abs(delta) / (2 * yaw_rate_max), dt)
+    t = np.arange(0.0, T + 1e-9, dt)
+    return delta * (1 - np.cos(np.pi * t / T)) / 2, delta * np.pi / (2 * T) * np.sin(np.pi * t / T)
+
+
+def sample(start: Sequence[float], corners: Sequence[Sequence[float]], speed: float = 1.2, accel: float = 0.8,
+           yaw_rate: float = 0.6, dt: float = 0.02, hold_s: float = 1.0, facing: float | None = None) -> Trajectory:
+    """The path sampled every dt, ending with hold_s on the last corner."""
+    p = np.array(start[:3], float)
+    yaw = float(start[3])
+    rows: List[Tuple] = []  # t-less rows: p, v, a, yaw, yaw_rate
+
+    def hold(seconds: float) -> None:
+        for _ in range(int(round(seconds / dt))):
+            rows.append((p.copy(), np.zeros(3), np.zeros(3), yaw, 0.0))
+
+    hold(hold_s)
+    for corner in corners:
+        corner = np.array(corner, float)
+        leg = corner - p
+        length = float(np.linalg.norm(leg))
+        if length < 1e-6:
+            continue
+        if np.linalg.norm(leg[:2]) > 1e-6:  # face the leg (or `facing`): the shortest turn there
+            heading = np.arctan2(leg[1], leg[0]) if facing is None else facing
+            delta = (heading - yaw + np.pi) % (2 * np.pi) - np.pi
+            if abs(delta) > 1e-3:
+                d_yaw, rate = _turn(delta, yaw_rate, dt)
+                rows += [(p.copy(), np.zeros(3), np.zeros(3), yaw + dy, r) for dy, r in zip(d_yaw, rate)]
+                yaw += delta
+        s, v, a = _straight(length, speed, accel, dt)
+        e = leg / length
+        rows += [(p + si * e, vi * e, ai * e, yaw, 0.0) for si, vi, ai in zip(s, v, a)]
+        p = corner
+        hold(0.3)
+    hold(hold_s)
+    t = dt * np.arange(len(rows))
+    return Trajectory(t, np.array([r[0] for r in rows]), np.array([r[1] for r in rows]),
+                      np.array([r[2] for r in rows]), np.array([r[3] for r in rows]), np.array([r[4] for r in rows]))
