@@ -12,11 +12,11 @@ from typing import List, Sequence, Tuple
 
 import numpy as np
 
-# RotorS' warehouse, 1.5 m up: down the aisle between the shelf rows at y 3.4 and y -1.5, across the
-# open end beside the grey wall (x -8.35), back up the aisle between the rows at y -2.8 and y -7.8,
-# and across the far end (37 m in all)
-WAREHOUSE_START = (0.0, 0.8, 1.5, np.pi)
-WAREHOUSE_LOOP = [(-7.5, 0.8, 1.5), (-7.5, -5.3, 1.5), (5.0, -5.3, 1.5), (5.0, 0.8, 1.5), (0.0, 0.8, 1.5)]
+# RotorS' warehouse, 1.5 m up: down the aisle between the shelf rows (x -4.2 to 6.0) at y 3.4 and
+# y -1.5, across the open end 2.2 m from the grey wall (x -8.35), back along the aisle between the rows
+# at y -2.8 and y -7.8, across the far end and back to the start (39.5 m in all)
+WAREHOUSE_START = (0.0, 1.55, 1.5, np.pi)
+WAREHOUSE_LOOP = [(-6.0, 1.55, 1.5), (-6.0, -4.7, 1.5), (7.5, -4.7, 1.5), (7.5, 1.55, 1.5), (0.0, 1.55, 1.5)]
 
 # The power plant: sideways past its 12 m high south face (x -1), 3 m off and looking at it (+x),
 # 2 m up from y 4 to y -13, then back 5 m up (34 m in all)
