@@ -12,10 +12,13 @@ from typing import List, Sequence, Tuple
 
 import numpy as np
 
-# RotorS' warehouse, 1.5 m up: down the aisle between the shelf rows (x -4.2 to 6.0) at y 3.4 and
-# y -1.5, across the open end 2.2 m from the grey wall (x -8.35), back along the aisle between the rows
-# at y -2.8 and y -7.8, across the far end and back to the start (39.5 m in all)
+# RotorS' warehouse, 1.5 m up, always facing -x (the world is open beyond x 10, and a camera facing
+# there sees only sky and a plain ground plane): down the aisle between the shelf rows (x -4.2 to 6.0)
+# at y 3.4 and y -1.5 towards the grey wall (x -8.35), sideways across the open end 2.2 m from it,
+# backwards along the aisle between the rows at y -2.8 and y -7.8, sideways across the far end
+# looking at the rows' ends, and backwards to the start (39.5 m in all)
 WAREHOUSE_START = (0.0, 1.55, 1.5, np.pi)
+WAREHOUSE_FACING = np.pi
 WAREHOUSE_LOOP = [(-6.0, 1.55, 1.5), (-6.0, -4.7, 1.5), (7.5, -4.7, 1.5), (7.5, 1.55, 1.5), (0.0, 1.55, 1.5)]
 
 # The power plant: sideways past its 12 m high south face (x -1), 3 m off and looking at it (+x),

@@ -202,3 +202,25 @@ def test_an_sdf_model_spawns_from_text_and_falls_as_a_body_should():
     z = world.link_state("crate")[0][2]
     assert abs(z - (10.0 - g * dt**2 * n * (n + 1) / 2)) < 1e-9
     assert abs(z - (10.0 - g * (n * dt) ** 2 / 2)) < g * dt * n * dt  # the continuous fall, within one step's error
+
+
+def test_set_model_state_moves_a_static_model_with_its_collision_as_gazebo_does():
+    """A static 1 m table moved from x 5 to the origin: its pose follows, and a crate dropped on the
+    origin comes to rest on its top (z 1.2) instead of the ground; reset puts the table back."""
+    table = """<?xml version="1.0"?><sdf version="1.6"><model name="table"><static>true</static><link name="top">
+      <collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision>
+      <visual name="v"><geometry><box><size>1 1 1</size></box></geometry></visual></link></model></sdf>"""
+    crate = """<?xml version="1.0"?><sdf version="1.6"><model name="crate"><link name="body">
+      <inertial><mass>2.0</mass><inertia><ixx>0.1</ixx><iyy>0.1</iyy><izz>0.1</izz></inertia></inertial>
+      <collision name="c"><geometry><box><size>0.4 0.4 0.4</size></box></geometry></collision>
+      </link></model></sdf>"""
+    world = rs.World("basic")
+    world.spawn(table, "table", xyz=(5.0, 0.0, 0.5))
+    world.set_model_state("table", [0.0, 0.0, 0.5], [0.0, 0.0, math.sin(0.3), math.cos(0.3)])
+    position, orientation = world.link_state("table")[:2]
+    assert np.allclose(position, [0.0, 0.0, 0.5]) and np.allclose(orientation, [0.0, 0.0, math.sin(0.3), math.cos(0.3)])
+    world.spawn(crate, "crate", xyz=(0.0, 0.0, 2.0))
+    world.step(int(2.0 / world.step_size))
+    assert abs(world.link_state("crate")[0][2] - 1.2) < 0.01  # on the table's top, not on the ground (0.2)
+    world.reset()
+    assert np.allclose(world.link_state("table")[0], [5.0, 0.0, 0.5])

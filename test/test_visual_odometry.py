@@ -22,7 +22,7 @@ import pytest
 import yaml
 
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
-from flight_paths import WAREHOUSE_LOOP, WAREHOUSE_START, sample
+from flight_paths import WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 TRAJECTORY_DUE_S = 6.0  # from take-off on the ground (it replaces the hovering example's waypoint)
 KLT = dict(winSize=(21, 21), maxLevel=3, criteria=(cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 30, 0.01))
@@ -128,8 +128,9 @@ def fly_and_export(ros: RosGraph, tmp_path: Path):
     """The flight's EuRoC folder (mav0) and the sim time [s] at which the loop begins (after take-off,
     facing down the first aisle)."""
     path = sample((0.0, 0.0, 0.1, 0.0), [(0.0, 0.0, WAREHOUSE_START[2]), WAREHOUSE_START[:3]] + WAREHOUSE_LOOP,
-                  speed=1.5, accel=1.0, yaw_rate=0.8)
-    at_start = (np.linalg.norm(path.p_W - WAREHOUSE_START[:3], axis=1) < 1e-6) & (np.abs(path.yaw - WAREHOUSE_START[3]) < 1e-6)
+                  speed=1.5, accel=1.0, yaw_rate=0.8, facing=WAREHOUSE_FACING)
+    facing_start = np.abs(np.angle(np.exp(1j * (path.yaw - WAREHOUSE_START[3])))) < 1e-6
+    at_start = (np.linalg.norm(path.p_W - WAREHOUSE_START[:3], axis=1) < 1e-6) & facing_start
     loop_begins_s = TRAJECTORY_DUE_S + float(path.t_s[np.argmax(at_start)])
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example_with_vi_sensor.launch", "world_name:=warehouse",
                   "enable_logging:=true", "lockstep:=true", "real_time_factor:=0", "gui:=false")

@@ -185,11 +185,7 @@ void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& mode
       ode_convert::ToOde(X_BG.Rot(), q);
       dGeomSetOffsetQuaternion(geom, q);
     } else {
-      const Pose3d X_WG = Compose(X_WC, created.X_CG);
-      dGeomSetPosition(geom, X_WG.Pos().X(), X_WG.Pos().Y(), X_WG.Pos().Z());
-      dQuaternion q;
-      ode_convert::ToOde(X_WG.Rot(), q);
-      dGeomSetQuaternion(geom, q);
+      ode_convert::SetGeomPose(geom, Compose(X_WC, created.X_CG));
     }
   }
 }

@@ -1,5 +1,7 @@
 #include "rotors_core/physics/model.h"
 
+#include <iostream>
+
 #include "rotors_core/event.h"
 #include "rotors_core/physics/joint.h"
 #include "rotors_core/physics/link.h"
@@ -83,6 +85,10 @@ void Model::AddJoint(const JointPtr& joint) {
 }
 
 void Model::SetWorldPose(const Pose3d& X_WM) {
+  if (bodies_.empty()) {  // a static model moves as a whole, as in Gazebo: links, visuals, collisions
+    MoveStatic(X_WM);
+    return;
+  }
   for (const auto& joint : kinematic_joints_) joint->ResetKinematic();
   for (const auto& b : bodies_) {
     ode_convert::SetBodyPose(Ode(b.body), Compose(X_WM, b.X_MB));
@@ -92,6 +98,23 @@ void Model::SetWorldPose(const Pose3d& X_WM) {
   }
   for (auto& b : bodies_) b.before.dt_s = 0.0;  // at rest: no acceleration until the next step
   for (const auto& link : links_) link->InvalidatePose();
+}
+
+void Model::MoveStatic(const Pose3d& X_WM) {
+  const Pose3d X_MW_old = Inverse(WorldPose());
+  for (const auto& link : links_) link->SetStaticPose(Compose(X_WM, Compose(X_MW_old, link->WorldPose())));
+  for (const auto& [handle, info] : geoms_) {
+    dGeomID geom = Ode(handle);
+    const int geom_class = dGeomGetClass(geom);
+    if (geom_class == dPlaneClass || !dGeomGetSpace(geom) || geom_class >= dFirstUserClass) {
+      // an infinite plane or an octree stays where it was built (said once per model)
+      if (!told_immovable_) std::cerr << "[rotors_sim] model '" << name_ << "': its plane and octree collisions do not move "
+                                         "with it (only its other collisions, links and visuals do)\n";
+      told_immovable_ = true;
+      continue;
+    }
+    ode_convert::SetGeomPose(geom, Compose(info->link->WorldPose(), info->X_LG));
+  }
 }
 
 void Model::SetWorldTwist(const Vector3d& v_W, const Vector3d& omega_W) {

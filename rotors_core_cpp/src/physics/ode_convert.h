@@ -30,6 +30,14 @@ inline void SetBodyPose(dBodyID body, const ignition::math::Pose3d& X_WB) {
   dBodySetQuaternion(body, q);
 }
 
+/// Places a geom that is on no body (a static model's collision).
+inline void SetGeomPose(dGeomID geom, const ignition::math::Pose3d& X_WG) {
+  dGeomSetPosition(geom, X_WG.Pos().X(), X_WG.Pos().Y(), X_WG.Pos().Z());
+  dQuaternion q;
+  ToOde(X_WG.Rot(), q);
+  dGeomSetQuaternion(geom, q);
+}
+
 inline Eigen::Vector3d ToEigen(const ignition::math::Vector3d& v) { return {v.X(), v.Y(), v.Z()}; }
 inline ignition::math::Vector3d FromEigen(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 inline Eigen::Matrix3d ToEigen(const ignition::math::Quaterniond& q) {

@@ -40,7 +40,8 @@ class Model {
   Pose3d WorldPose() const;
   Vector3d WorldLinearVel() const;
   Vector3d WorldAngularVel() const;
-  /// Moves the model rigidly to X_WM and zeroes every velocity (reset and teleport).
+  /// Moves the model rigidly to X_WM and zeroes every velocity (reset and teleport); a static model
+  /// moves its links, visuals and collisions (but not a plane's or an octree's).
   void SetWorldPose(const Pose3d& X_WM);
   /// Moves the model as one rigid body: each body's velocity v_W + omega_W x (p_body - p_model).
   void SetWorldTwist(const Vector3d& v_W, const Vector3d& omega_W);
@@ -87,6 +88,7 @@ class Model {
   void Fini();
 
  private:
+  void MoveStatic(const Pose3d& X_WM);
   struct BodyRecord {
     BodyHandle* body;
     Pose3d X_MB;  ///< body frame in the model frame at spawn
@@ -103,6 +105,7 @@ class Model {
   std::vector<std::pair<GeomHandle*, std::unique_ptr<GeomInfo>>> geoms_;
   std::vector<geometry::Visual> visuals_;
   Pose3d X_WM_initial_;
+  bool told_immovable_ = false;  ///< MoveStatic said that a plane or octree collision stays
   std::vector<std::unique_ptr<ModelPlugin>> plugins_;
   std::vector<sensors::SensorPtr> sensors_;
   std::vector<std::unique_ptr<SensorPlugin>> sensor_plugins_;
