@@ -104,6 +104,15 @@ def fly_and_measure(world_name: str, start, corners, facing=None, every_s: float
     return figures
 
 
+def test_the_warehouse_loads_with_rotors_models_nested_models_and_the_stand_ins():
+    models = rs.World("warehouse").models()
+    # RotorS' world: 12 shelves, pallets with boxes (nested models built as models of their own),
+    # the stand-ins, the asphalt and the ground
+    assert sum(m.startswith("shelves ") for m in models) == 12
+    assert any(m.endswith("::small_box_1_lvl_1") for m in models)
+    assert {"grey_wall", "first_2015_trash_can", "asphalt_plane", "ground_plane"} <= set(models)
+
+
 @pytest.mark.parametrize("world_name", ["warehouse", "powerplant"])
 def test_a_vi_sensor_flight_gives_corners_tracks_and_stereo_depth(world_name):
     start, corners, facing = {"warehouse": (WAREHOUSE_START, WAREHOUSE_LOOP, WAREHOUSE_FACING),

@@ -108,8 +108,10 @@ void Model::MoveStatic(const Pose3d& X_WM) {
     const int geom_class = dGeomGetClass(geom);
     if (geom_class == dPlaneClass || !dGeomGetSpace(geom) || geom_class >= dFirstUserClass) {
       // an infinite plane or an octree stays where it was built (said once per model)
-      if (!told_immovable_) std::cerr << "[rotors_sim] model '" << name_ << "': its plane and octree collisions do not move "
-                                         "with it (only its other collisions, links and visuals do)\n";
+      if (!told_immovable_)
+        std::cerr << "[rotors_sim] model '" << name_
+                  << "': its plane and octree collisions do not move "
+                     "with it (only its other collisions, links and visuals do)\n";
       told_immovable_ = true;
       continue;
     }

@@ -262,10 +262,10 @@ struct Target {
 /// The sun's shadow map around a camera's view: depth seen from the sun (orthographic), and the
 /// transform from the world to its coordinates (s, t, depth, each 0..1 over the map).
 struct ShadowMap {
-  static constexpr int kTexels = 2048;               // per side
-  static constexpr double kViewDistance_m = 30.0;    // shadows are drawn up to this far from a camera
-  static constexpr double kCastersAbove_m = 200.0;   // casters this far towards the sun beyond the view still count
-  static constexpr int kSnapTexels = 32;             // the map moves in steps of this many texels
+  static constexpr int kTexels = 2048;              // per side
+  static constexpr double kViewDistance_m = 30.0;   // shadows are drawn up to this far from a camera
+  static constexpr double kCastersAbove_m = 200.0;  // casters this far towards the sun beyond the view still count
+  static constexpr int kSnapTexels = 32;            // the map moves in steps of this many texels
   GLuint fbo = 0, depth = 0;
   Eigen::Matrix4d T_SW = Eigen::Matrix4d::Identity();
   size_t drawn_for = 0;  // SceneKey of the scene and region last drawn; 0: none
@@ -284,8 +284,8 @@ size_t SceneKey(const physics::World& world, const Eigen::Vector3d& region_centr
   for (const physics::ModelPtr& model : world.Models())
     for (const geometry::Visual& visual : model->Visuals()) {
       const ignition::math::Pose3d X_WL = visual.link->WorldPose();
-      for (double v : {X_WL.Pos().X(), X_WL.Pos().Y(), X_WL.Pos().Z(), X_WL.Rot().W(), X_WL.Rot().X(),
-                       X_WL.Rot().Y(), X_WL.Rot().Z()})
+      for (double v : {X_WL.Pos().X(), X_WL.Pos().Y(), X_WL.Pos().Z(), X_WL.Rot().W(), X_WL.Rot().X(), X_WL.Rot().Y(),
+                       X_WL.Rot().Z()})
         mix(v);
     }
   return key == 0 ? 1 : key;
@@ -528,7 +528,8 @@ const ShadowMap* Renderer::Impl::ShadowFor(const physics::World& world, const ig
   // the sun's frame L: z towards the sun
   const Eigen::Vector3d to_sun_W =
       -Eigen::Vector3d(light.sun_direction_W.X(), light.sun_direction_W.Y(), light.sun_direction_W.Z()).normalized();
-  const Eigen::Matrix3d R_WL = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), to_sun_W).toRotationMatrix();
+  const Eigen::Matrix3d R_WL =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), to_sun_W).toRotationMatrix();
   // the smallest sphere around the camera's view up to D: centred a along the optical axis, it
   // reaches the camera (radius a) and the far corners (radius^2 = (D - a)^2 + D^2 k)
   const double D = std::min(in.far_m, ShadowMap::kViewDistance_m), f = in.FocalLengthPx();
@@ -565,8 +566,8 @@ const ShadowMap* Renderer::Impl::ShadowFor(const physics::World& world, const ig
   if (!shadow.fbo) {
     glGenTextures(1, &shadow.depth);
     glBindTexture(GL_TEXTURE_2D, shadow.depth);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, ShadowMap::kTexels, ShadowMap::kTexels, 0,
-                 GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, ShadowMap::kTexels, ShadowMap::kTexels, 0, GL_DEPTH_COMPONENT,
+                 GL_FLOAT, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // with the compare: 2 x 2 filtering
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -600,7 +601,8 @@ const ShadowMap* Renderer::Impl::ShadowFor(const physics::World& world, const ig
       bool bound = false;
       for (const GpuPart& part : mesh->parts)
         for (const Chunk& chunk : part.chunks) {
-          const Eigen::Vector4d c = T_clip_V * Eigen::Vector4d(chunk.centre_m.x(), chunk.centre_m.y(), chunk.centre_m.z(), 1);
+          const Eigen::Vector4d c =
+              T_clip_V * Eigen::Vector4d(chunk.centre_m.x(), chunk.centre_m.y(), chunk.centre_m.z(), 1);
           const double r = scale * chunk.radius_m;
           if (std::abs(c.x()) > 1 + r || std::abs(c.y()) > 1 + r || c.z() > 1 + r) continue;  // beside or below
           if (!bound) {

@@ -369,8 +369,7 @@ void BindWorld(py::module_& m) {
       .def_static(
           "load_string",
           [](const std::string& sdf, const std::string& name, bool shadows) {
-            return std::make_unique<PyWorld>(
-                rotors_sim::WorldLoader::LoadString(sdf, name, PyWorld::Options(shadows)));
+            return std::make_unique<PyWorld>(rotors_sim::WorldLoader::LoadString(sdf, name, PyWorld::Options(shadows)));
           },
           py::arg("sdf"), py::arg("source_name") = "<string>", py::arg("shadows") = true)
       .def("spawn", &PyWorld::Spawn, py::arg("xml"), py::arg("name"), py::arg("xyz"), py::arg("rpy"))
