@@ -7,7 +7,7 @@ the dataset.
 
 The odometry: keyframes whose Shi-Tomasi corners are matched into the right image by KLT along the
 row (stereo depth Z = f b / d); the corners are tracked by KLT from frame to frame, and each frame's
-pose relative to its keyframe comes from solvePnPRansac and a refining solvePnP on the inliers. A new
+pose relative to its keyframe comes from solvePnPRansac and solvePnPRefineLM on the inliers. A new
 keyframe is taken when fewer than 200 corners remain or the camera has moved 1 m from the keyframe."""
 import csv
 import json
@@ -104,15 +104,17 @@ class StereoVO:
             keep = ((ok.ravel() == 1) & (ok_back.ravel() == 1)
                     & (np.linalg.norm(back.reshape(-1, 2) - uv, axis=1) < 1.0))
             uv, X = tracked.reshape(-1, 2)[keep], X[keep]
-            rvec, _ = cv2.Rodrigues(T_C_K[:3, :3])
-            found, rvec, tvec, inliers = cv2.solvePnPRansac(X, uv, self.K, None, rvec, T_C_K[:3, 3].copy(),
-                                                             useExtrinsicGuess=True, iterationsCount=200,
+            found, rvec, tvec, inliers = cv2.solvePnPRansac(X, uv, self.K, None, iterationsCount=200,
                                                              reprojectionError=1.0, confidence=0.999)
             assert found and inliers is not None and len(inliers) >= 20, "the VO lost track"
             inliers = inliers.ravel()
-            _, rvec, tvec = cv2.solvePnP(X[inliers], uv[inliers], self.K, None, rvec, tvec, useExtrinsicGuess=True,
-                                         flags=cv2.SOLVEPNP_ITERATIVE)
-            T_C_K = transform(cv2.Rodrigues(rvec)[0], tvec.ravel())  # keyframe points into this camera
+            rvec, tvec = cv2.solvePnPRefineLM(X[inliers], uv[inliers], self.K, None, rvec, tvec)
+            T_new = transform(cv2.Rodrigues(rvec)[0], tvec.ravel())  # keyframe points into this camera
+            # 1/30 s after the last frame: a jump of more than 0.2 m or 5 deg is a wrong solution
+            step = T_new @ np.linalg.inv(T_C_K)
+            turned_deg = np.degrees(np.arccos(np.clip((np.trace(step[:3, :3]) - 1) / 2, -1, 1)))
+            assert np.linalg.norm(step[:3, 3]) < 0.2 and turned_deg < 5.0, "the VO jumped"
+            T_C_K = T_new
             poses.append(T_W_K @ np.linalg.inv(T_C_K))
             uv, X = uv[inliers], X[inliers]
             if len(uv) < 200 or np.linalg.norm(T_C_K[:3, 3]) > 1.0:
