@@ -103,7 +103,9 @@ uniform vec3 to_sun_O;
 uniform float ambient;
 uniform float sun_diffuse;
 uniform bool use_shadows;
-uniform sampler2DShadow shadow_map;
+uniform sampler2DShadow shadow_map;         // static models' casters
+uniform bool use_moving_shadows;
+uniform sampler2DShadow moving_shadow_map;  // the other models' (vehicles), same region
 uniform bool background;
 uniform bool grey;
 uniform vec2 noise;       // mean, stddev (full scale 1)
@@ -122,11 +124,13 @@ float Gaussian(uint channel) {  // Box-Muller from two hashed uniforms
   return sqrt(-2.0 * log(Uniform01(k))) * cos(6.28318530718 * Uniform01(k ^ 0x68e31da4u));
 }
 
-// The share of the sun this fragment gets: 1 outside the shadow map, else the comparison with the
-// 2 x 2 nearest texels, interpolated (one lookup: more taps cost a third of the frame rate on llvmpipe)
+// The share of the sun this fragment gets: 1 outside the shadow maps, else the comparison with the
+// 2 x 2 nearest texels, interpolated (one lookup per map: more taps cost a third of the frame rate on llvmpipe)
 float SunLit() {
   if (!use_shadows || any(lessThan(p_S, vec3(0.0))) || any(greaterThan(p_S, vec3(1.0)))) return 1.0;
-  return texture(shadow_map, p_S);
+  float lit = texture(shadow_map, p_S);
+  if (use_moving_shadows) lit = min(lit, texture(moving_shadow_map, p_S));
+  return lit;
 }
 
 void main() {
@@ -199,8 +203,8 @@ GLint RequireUniform(GLuint program, const char* name) {
 /// looked up without the check (-1: setting them does nothing, as intended).
 struct FragmentUniforms {
   GLint albedo = -1, use_vertex_colour = -1, use_texture = -1, texture_image = -1, uv_scale = -1, to_sun_O = -1,
-        ambient = -1, sun_diffuse = -1, use_shadows = -1, shadow_map = -1, background = -1, grey = -1, noise = -1,
-        seed = -1;
+        ambient = -1, sun_diffuse = -1, use_shadows = -1, shadow_map = -1, use_moving_shadows = -1,
+        moving_shadow_map = -1, background = -1, grey = -1, noise = -1, seed = -1;
   FragmentUniforms() = default;
   FragmentUniforms(GLuint program, bool draws_meshes) {
     auto mesh_only = [&](const char* name) {
@@ -220,6 +224,8 @@ struct FragmentUniforms {
     sun_diffuse = mesh_only("sun_diffuse");
     use_shadows = mesh_only("use_shadows");
     shadow_map = mesh_only("shadow_map");
+    use_moving_shadows = mesh_only("use_moving_shadows");
+    moving_shadow_map = mesh_only("moving_shadow_map");
   }
 };
 
@@ -259,20 +265,34 @@ struct Target {
   GLuint fbo = 0, colour = 0, depth_out = 0, depth_buffer = 0;
 };
 
+/// Depth seen from the sun over a shadow map's region, drawn from some of the models' visuals.
+struct ShadowLayer {
+  int texels = 0;  // per side
+  GLuint fbo = 0, depth = 0;
+  size_t drawn_for = 0;  // SceneKey of what it was last drawn from; 0: nothing yet
+  bool empty = true;     // no caster in the region
+};
+
 /// The sun's shadow map around a camera's view: depth seen from the sun (orthographic), and the
-/// transform from the world to its coordinates (s, t, depth, each 0..1 over the map).
+/// transform from the world to its coordinates (s, t, depth, each 0..1 over the map). Static
+/// models' casters are drawn into one layer, again only when the region moves or one of them is
+/// moved; the other models' (vehicles) into a second, coarser layer, again whenever they move.
 struct ShadowMap {
-  static constexpr int kTexels = 2048;              // per side
+  static constexpr int kTexels = 2048;              // per side, the static layer
+  static constexpr int kMovingTexels = 1024;        // per side, the layer of the other models
   static constexpr double kViewDistance_m = 30.0;   // shadows are drawn up to this far from a camera
   static constexpr double kCastersAbove_m = 200.0;  // casters this far towards the sun beyond the view still count
   static constexpr int kSnapTexels = 32;            // the map moves in steps of this many texels
-  GLuint fbo = 0, depth = 0;
+  ShadowLayer fixed{kTexels}, moving{kMovingTexels};
+  Eigen::Vector3d region_centre_L = Eigen::Vector3d::Zero();  // in the sun's frame
+  double region_half_m = 0.0;                                 // 0: no region yet
   Eigen::Matrix4d T_SW = Eigen::Matrix4d::Identity();
-  size_t drawn_for = 0;  // SceneKey of the scene and region last drawn; 0: none
 };
 
-/// A hash of everything a shadow map depends on: the pose of every visual's link and the region.
-size_t SceneKey(const physics::World& world, const Eigen::Vector3d& region_centre_L, double region_half_m) {
+/// A hash of everything a shadow layer depends on: the pose of every visual's link of the static
+/// models (or of the others), and the region.
+size_t SceneKey(const physics::World& world, bool static_models, const Eigen::Vector3d& region_centre_L,
+                double region_half_m) {
   size_t key = 0x9e3779b97f4a7c15ull;
   auto mix = [&key](double value) {
     uint64_t bits = 0;
@@ -281,13 +301,15 @@ size_t SceneKey(const physics::World& world, const Eigen::Vector3d& region_centr
   };
   for (int i = 0; i < 3; ++i) mix(region_centre_L[i]);
   mix(region_half_m);
-  for (const physics::ModelPtr& model : world.Models())
+  for (const physics::ModelPtr& model : world.Models()) {
+    if (model->IsStatic() != static_models) continue;
     for (const geometry::Visual& visual : model->Visuals()) {
       const ignition::math::Pose3d X_WL = visual.link->WorldPose();
       for (double v : {X_WL.Pos().X(), X_WL.Pos().Y(), X_WL.Pos().Z(), X_WL.Rot().W(), X_WL.Rot().X(), X_WL.Rot().Y(),
                        X_WL.Rot().Z()})
         mix(v);
     }
+  }
   return key == 0 ? 1 : key;
 }
 
@@ -309,17 +331,23 @@ struct Renderer::Impl {
   size_t triangles = 0;
 
   void CreateContext();
-  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, std::vector<PartSoup> parts);
-  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, TriangleSoup soup) {
+  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, std::vector<PartSoup> parts,
+                        std::map<const void*, GpuMesh>* into = nullptr);
+  const GpuMesh& Upload(const void* key, std::shared_ptr<const void> source, TriangleSoup soup,
+                        std::map<const void*, GpuMesh>* into = nullptr) {
     std::vector<PartSoup> one(1);
     one[0].soup = std::move(soup);
-    return Upload(key, std::move(source), std::move(one));
+    return Upload(key, std::move(source), std::move(one), into);
   }
   const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
   GLuint TextureFor(const std::string& file, float max_anisotropy = 1.0f);
   Target& TargetFor(int width, int height, PixelFormat format, bool depth);
   const ShadowMap* ShadowFor(const physics::World& world, const ignition::math::Pose3d& X_WC,
                              const CameraIntrinsics& in);
+  void DrawCasters(const physics::World& world, const Eigen::Matrix4d& T_clip_W, bool static_models,
+                   ShadowLayer* layer);
+  const GpuMesh* ShadowMeshFor(const Shape& shape, Eigen::Matrix4d* S);
+  std::map<const void*, GpuMesh> shadow_proxies;  // simplified copies of large meshes, by source object
 };
 
 void Renderer::Impl::CreateContext() {
@@ -351,8 +379,8 @@ void Renderer::Impl::CreateContext() {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
 
-const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source,
-                                      std::vector<PartSoup> parts) {
+const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source, std::vector<PartSoup> parts,
+                                      std::map<const void*, GpuMesh>* into) {
   GpuMesh mesh;
   mesh.source = std::move(source);
   bool any_colours = false;
@@ -402,7 +430,7 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
   }
   glBindVertexArray(0);
   triangles += first_triangle;
-  return meshes.emplace(key, std::move(mesh)).first->second;
+  return (into ? into : &meshes)->emplace(key, std::move(mesh)).first->second;
 }
 
 /// The image file as a mip-mapped (trilinear), repeating texture, anisotropically filtered up to
@@ -538,15 +566,17 @@ const ShadowMap* Renderer::Impl::ShadowFor(const physics::World& world, const ig
   const double radius = std::max(a, std::sqrt((D - a) * (D - a) + D * D * k));
   const Eigen::Isometry3d T_WC = ToIsometry(X_WC);
   const Eigen::Vector3d centre_L = R_WL.transpose() * (T_WC * Eigen::Vector3d(a, 0, 0));
-  // the region's centre on a grid of kSnapTexels texels: the texels stay put in the world while the
-  // camera moves (shadow edges do not crawl from frame to frame) and cameras close together share
-  // a map; the region is as much larger as the snapping moves it: h = radius + grid step
+  // the region: a little larger than the sphere, kept while the sphere fits in it (the texels stay put
+  // in the world while the camera moves, so shadow edges do not crawl from frame to frame, and
+  // cameras close together share the map); else centred on the sphere, snapped to a grid of
+  // kSnapTexels texels
   const double half = radius / (1.0 - 2.0 * ShadowMap::kSnapTexels / ShadowMap::kTexels);
   const double grid = 2.0 * half * ShadowMap::kSnapTexels / ShadowMap::kTexels;
-  const Eigen::Vector3d snapped_L = (centre_L / grid).array().round().matrix() * grid;
-  const size_t key = SceneKey(world, snapped_L, half);
-  if (shadow.drawn_for == key) return &shadow;
-
+  if (shadow.region_half_m != half || (centre_L - shadow.region_centre_L).cwiseAbs().maxCoeff() > half - radius) {
+    shadow.region_centre_L = (centre_L / grid).array().round().matrix() * grid;
+    shadow.region_half_m = half;
+  }
+  const Eigen::Vector3d snapped_L = shadow.region_centre_L;
   // orthographic clip space: x, y over the region, depth from the top (towards the sun) to the bottom
   const double z_top = snapped_L.z() + half + ShadowMap::kCastersAbove_m, z_bottom = snapped_L.z() - half;
   Eigen::Matrix4d T_clip_L = Eigen::Matrix4d::Identity();
@@ -562,38 +592,53 @@ const ShadowMap* Renderer::Impl::ShadowFor(const physics::World& world, const ig
   T_S_clip.topLeftCorner<3, 3>() *= 0.5;
   T_S_clip.topRightCorner<3, 1>().setConstant(0.5);
   shadow.T_SW = T_S_clip * T_clip_W;
+  for (bool static_models : {true, false}) {
+    ShadowLayer& layer = static_models ? shadow.fixed : shadow.moving;
+    const size_t key = SceneKey(world, static_models, snapped_L, half);
+    if (layer.drawn_for == key) continue;
+    DrawCasters(world, T_clip_W, static_models, &layer);
+    layer.drawn_for = key;
+  }
+  glBindVertexArray(0);
+  return &shadow;
+}
 
-  if (!shadow.fbo) {
-    glGenTextures(1, &shadow.depth);
-    glBindTexture(GL_TEXTURE_2D, shadow.depth);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, ShadowMap::kTexels, ShadowMap::kTexels, 0, GL_DEPTH_COMPONENT,
-                 GL_FLOAT, nullptr);
+/// Clears a shadow layer and draws the casting visuals of the static models (or of the others) into it.
+void Renderer::Impl::DrawCasters(const physics::World& world, const Eigen::Matrix4d& T_clip_W, bool static_models,
+                                 ShadowLayer* layer) {
+  if (!layer->fbo) {
+    glGenTextures(1, &layer->depth);
+    glBindTexture(GL_TEXTURE_2D, layer->depth);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, layer->texels, layer->texels, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                 nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // with the compare: 2 x 2 filtering
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);  // lit where no caster is nearer the sun
-    glGenFramebuffers(1, &shadow.fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, shadow.fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow.depth, 0);
+    glGenFramebuffers(1, &layer->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, layer->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, layer->depth, 0);
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw SimError("camera renderer: cannot make the sun's shadow map");
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, shadow.fbo);
-  glViewport(0, 0, ShadowMap::kTexels, ShadowMap::kTexels);
+  glBindFramebuffer(GL_FRAMEBUFFER, layer->fbo);
+  glViewport(0, 0, layer->texels, layer->texels);
   glClear(GL_DEPTH_BUFFER_BIT);
   glUseProgram(shadow_program);
   glEnable(GL_POLYGON_OFFSET_FILL);  // the surface itself stays lit (no shadow acne), slope by slope
   glPolygonOffset(2.0f, 4.0f);
   glEnable(GL_DEPTH_CLAMP);  // casters beyond the top still cast
-  for (const physics::ModelPtr& model : world.Models())
+  layer->empty = true;
+  for (const physics::ModelPtr& model : world.Models()) {
+    if (model->IsStatic() != static_models) continue;
     for (const geometry::Visual& visual : model->Visuals()) {
       if (!visual.cast_shadows) continue;
       Eigen::Matrix4d S;
-      const GpuMesh* mesh = MeshFor(visual.shape, &S);
+      const GpuMesh* mesh = ShadowMeshFor(visual.shape, &S);
       if (!mesh) continue;
       const Eigen::Matrix4d T_clip_V = T_clip_W * ToIsometry(visual.X_LV + visual.link->WorldPose()).matrix() * S;
       const double scale = T_clip_V.topLeftCorner<2, 3>().colwise().norm().maxCoeff();
@@ -610,6 +655,7 @@ const ShadowMap* Renderer::Impl::ShadowFor(const physics::World& world, const ig
             glBindVertexArray(mesh->vao);
             bound = true;
           }
+          layer->empty = false;
           const auto first = static_cast<GLint>(3 * chunk.first_triangle);
           const auto count = static_cast<GLsizei>(3 * chunk.triangles);
           if (mesh->ebo)
@@ -617,11 +663,26 @@ const ShadowMap* Renderer::Impl::ShadowFor(const physics::World& world, const ig
           else glDrawArrays(GL_TRIANGLES, first, count);
         }
     }
+  }
   glDisable(GL_DEPTH_CLAMP);
   glDisable(GL_POLYGON_OFFSET_FILL);
-  glBindVertexArray(0);
-  shadow.drawn_for = key;
-  return &shadow;
+}
+
+/// What a visual's shadow is drawn from: the shape's mesh, or for a mesh of more than 4,096 triangles
+/// (a vehicle's body) a simplified copy on a grid of 1/64 of its size: the shadow map's texels are
+/// centimetres, and every vehicle is drawn into it again each time it moves.
+const GpuMesh* Renderer::Impl::ShadowMeshFor(const Shape& shape, Eigen::Matrix4d* S) {
+  constexpr size_t kMaxTriangles = 4096;
+  if (shape.type != Shape::Type::kMesh || !shape.mesh || shape.mesh->TriangleCount() <= kMaxTriangles)
+    return MeshFor(shape, S);
+  S->setIdentity();
+  const auto found = shadow_proxies.find(shape.mesh.get());
+  if (found != shadow_proxies.end()) return &found->second;
+  const geometry::TriangleMesh& mesh = *shape.mesh;
+  const Eigen::Map<const Eigen::Matrix3Xd> p(mesh.vertices_m.data(), 3,
+                                             static_cast<Eigen::Index>(mesh.vertices_m.size() / 3));
+  const auto size_m = static_cast<float>((p.rowwise().maxCoeff() - p.rowwise().minCoeff()).norm());
+  return &Upload(shape.mesh.get(), shape.mesh, Simplified(mesh, std::max(size_m / 64.0f, 1e-4f)), &shadow_proxies);
 }
 
 Renderer& Renderer::Of(physics::World& world) {
@@ -721,6 +782,8 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
     glUniform1f(u.sun_diffuse, light.sun_diffuse);
     glUniform1i(u.use_shadows, shadow != nullptr);
     glUniform1i(u.shadow_map, 1);
+    glUniform1i(u.use_moving_shadows, shadow != nullptr && !shadow->moving.empty);
+    glUniform1i(u.moving_shadow_map, 2);
     glUniform1i(u.grey, format == PixelFormat::kL8);
     glUniform2f(u.noise, static_cast<float>(camera.noise_mean), static_cast<float>(camera.noise_stddev));
     glUniform2ui(u.seed, static_cast<GLuint>(noise_seed), static_cast<GLuint>(noise_seed >> 32));
@@ -737,7 +800,9 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
   const GLint loc_texture = r.mesh_fragment.use_texture, loc_uv_scale = r.mesh_fragment.uv_scale;
   if (shadow) {
     glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, shadow->depth);
+    glBindTexture(GL_TEXTURE_2D, shadow->fixed.depth);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, shadow->moving.depth);
   }
   glActiveTexture(GL_TEXTURE0);
   std::vector<std::pair<size_t, const Chunk*>> visible;  // part, chunk

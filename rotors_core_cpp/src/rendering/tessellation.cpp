@@ -1,6 +1,7 @@
 #include "rotors_core/rendering/tessellation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -191,6 +192,41 @@ TriangleSoup FromMesh(const geometry::TriangleMesh& mesh, const geometry::MeshPa
       if (!mesh.uvs.empty())
         soup.uvs.insert(soup.uvs.end(), mesh.uvs.begin() + 2 * index[k], mesh.uvs.begin() + 2 * index[k] + 2);
     }
+  }
+  return soup;
+}
+
+TriangleSoup Simplified(const geometry::TriangleMesh& mesh, float cell_m) {
+  const size_t n = mesh.vertices_m.size() / 3;
+  const Eigen::Matrix3Xf p =
+      Eigen::Map<const Eigen::Matrix3Xd>(mesh.vertices_m.data(), 3, static_cast<Eigen::Index>(n)).cast<float>();
+  const Vector3f lo = n ? Vector3f(p.rowwise().minCoeff()) : Vector3f::Zero();
+  // each vertex's cell, and each cell's mean position
+  std::map<std::tuple<int, int, int>, uint32_t> cell_ids;
+  std::vector<uint32_t> cell_of(n);
+  std::vector<Vector3f> sum;
+  std::vector<int> count;
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3i c = ((p.col(i) - lo) / cell_m).array().floor().cast<int>();
+    const auto [it, added] = cell_ids.emplace(std::make_tuple(c.x(), c.y(), c.z()), static_cast<uint32_t>(sum.size()));
+    if (added) {
+      sum.push_back(Vector3f::Zero());
+      count.push_back(0);
+    }
+    cell_of[i] = it->second;
+    sum[it->second] += p.col(i);
+    ++count[it->second];
+  }
+  TriangleSoup soup;
+  std::set<std::array<uint32_t, 3>> kept;
+  for (size_t t = 0; t < mesh.indices.size() / 3; ++t) {
+    std::array<uint32_t, 3> c = {cell_of[mesh.indices[3 * t]], cell_of[mesh.indices[3 * t + 1]],
+                                 cell_of[mesh.indices[3 * t + 2]]};
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;  // collapsed
+    std::array<uint32_t, 3> key = c;
+    std::sort(key.begin(), key.end());
+    if (!kept.insert(key).second) continue;  // already there (either winding: a shadow has no side)
+    soup.Add(sum[c[0]] / count[c[0]], sum[c[1]] / count[c[1]], sum[c[2]] / count[c[2]]);
   }
   return soup;
 }

@@ -50,6 +50,10 @@ TriangleSoup FromMesh(const geometry::TriangleMesh& mesh);
 TriangleSoup FromMesh(const geometry::TriangleMesh& mesh, const geometry::MeshPart& part);
 /// One quad per pair of neighbouring samples, normals from the height gradient.
 TriangleSoup FromHeightField(const geometry::HeightField& field);
+/// A coarse copy of a mesh for drawing its shadow: vertex clustering (Rossignac and Borrel) on a
+/// grid of cell_m, each cell's vertices merged into their mean, triangles that collapse dropped,
+/// each remaining triangle once. Positions only (the normals are flat).
+TriangleSoup Simplified(const geometry::TriangleMesh& mesh, float cell_m);
 /// The occupied cells' faces that border free or unknown space (inner faces are never seen), with
 /// texture coordinates in metres: (x, y) on horizontal faces, (x or y, z) on walls.
 TriangleSoup FromOcTree(const octomap::OcTree& tree);
