@@ -359,7 +359,7 @@ def hover_drone_s_per_s(peer: str, worlds: int, seconds: float) -> Dict:
     else:
         python = str(peer_python(peer))
     out = subprocess.run([python, str(ROOT / "scripts" / "peers" / f"{peer}_hover.py"), str(worlds), str(seconds)],
-                         capture_output=True, text=True, timeout=1800)
+                         capture_output=True, text=True, timeout=1800, cwd=OUT)  # MuJoCo writes its log to cwd
     lines = [line for line in out.stdout.splitlines() if line.startswith("{")]
     if out.returncode != 0 or not lines:
         raise RuntimeError(f"{peer} hover ({worlds} worlds) failed: {(out.stderr or out.stdout)[-800:]}")

@@ -49,6 +49,7 @@ out vec3 n_O;
 out vec3 vertex_colour;
 out vec2 uv;
 out vec3 p_S;
+invariant gl_Position;  // the depth pre-pass and the shading pass give the same depth, bit for bit
 void main() {
   vec4 p = T_OV * vec4(p_V, 1.0);
   p_O = p.xyz;
@@ -87,6 +88,10 @@ void main() { gl_Position = T_clip_V * vec4(p_V, 1.0); })";
 
 const char* kShadowFragmentShader = R"(#version 330 core
 void main() {})";
+
+// The depth pre-pass draws the meshes with this (and kMeshVertexShader): depth only, so that the
+// shading pass then shades each pixel once, for the nearest surface (no overdraw)
+const char* kDepthOnlyFragmentShader = kShadowFragmentShader;
 
 const char* kFragmentShader = R"(#version 330 core
 in vec3 p_O;
@@ -242,6 +247,17 @@ struct MeshUniforms {
   }
 };
 
+/// The depth pre-pass program's uniforms (kMeshVertexShader's that set the position), resolved once.
+struct DepthUniforms {
+  GLint T_OV = -1, projection = -1, principal = -1;
+  explicit DepthUniforms(GLuint program = 0) {
+    if (!program) return;
+    T_OV = RequireUniform(program, "T_OV");
+    projection = RequireUniform(program, "projection");
+    principal = RequireUniform(program, "principal");
+  }
+};
+
 /// Triangles drawn with one texture (a mesh's part), in compact runs each culled on its own.
 struct GpuPart {
   GLuint texture = 0;  // 0: none
@@ -259,6 +275,15 @@ struct GpuMesh {
   bool own_colours = false;            // per-vertex colours from the mesh file
   std::vector<GpuPart> parts;          // one per texture of the mesh
   std::shared_ptr<const void> source;  // keeps the key's object alive
+};
+
+/// One visual in a camera's view: its transforms, and its chunks in view (Impl::visible[first, end)).
+struct VisualDraw {
+  const geometry::Visual* visual = nullptr;
+  const GpuMesh* mesh = nullptr;
+  Eigen::Matrix4f T_OV, T_SV;
+  Eigen::Matrix3f N_OV;
+  size_t first = 0, end = 0;
 };
 
 struct Target {
@@ -318,11 +343,14 @@ size_t SceneKey(const physics::World& world, bool static_models, const Eigen::Ve
 struct Renderer::Impl {
   EGLDisplay display = EGL_NO_DISPLAY;
   EGLContext context = EGL_NO_CONTEXT;
-  GLuint mesh_program = 0, background_program = 0, shadow_program = 0, empty_vao = 0;
+  GLuint mesh_program = 0, background_program = 0, shadow_program = 0, depth_program = 0, empty_vao = 0;
   GLint shadow_T_clip_V = -1;
   FragmentUniforms mesh_fragment, background_fragment;
   MeshUniforms mesh_vertex;
+  DepthUniforms depth_vertex;
   ShadowMap shadow;
+  std::vector<VisualDraw> draws;                              // scratch of a frame: the visuals in view
+  std::vector<std::pair<size_t, const Chunk*>> visible;       // and their chunks in view (part, chunk)
   std::map<const void*, GpuMesh> meshes;                      // by source object
   std::map<std::pair<std::string, float>, GLuint> textures;   // by image file and anisotropy (0: unreadable)
   std::map<std::tuple<int, int, int, bool>, Target> targets;  // by width, height, format, depth
@@ -371,6 +399,8 @@ void Renderer::Impl::CreateContext() {
   mesh_fragment = FragmentUniforms(mesh_program, true);
   background_fragment = FragmentUniforms(background_program, false);
   mesh_vertex = MeshUniforms(mesh_program);
+  depth_program = Link(kMeshVertexShader, kDepthOnlyFragmentShader);
+  depth_vertex = DepthUniforms(depth_program);
   shadow_program = Link(kShadowVertexShader, kShadowFragmentShader);
   shadow_T_clip_V = RequireUniform(shadow_program, "T_clip_V");
   glGenVertexArrays(1, &empty_vao);
@@ -790,22 +820,12 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
     glUniform1i(u.background, program == r.background_program);
   }
 
-  glUseProgram(r.mesh_program);
-  glUniform4f(r.mesh_vertex.projection, 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
-              static_cast<float>(in.far_m));
-  glUniform2f(r.mesh_vertex.principal, static_cast<float>(2.0 * (in.Cx() + 0.5) / W - 1.0),
-              static_cast<float>(2.0 * (in.Cy() + 0.5) / H - 1.0));
-  const GLint loc_T = r.mesh_vertex.T_OV, loc_N = r.mesh_vertex.N_OV;
-  const GLint loc_albedo = r.mesh_fragment.albedo, loc_vertex_colour = r.mesh_fragment.use_vertex_colour;
-  const GLint loc_texture = r.mesh_fragment.use_texture, loc_uv_scale = r.mesh_fragment.uv_scale;
-  if (shadow) {
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, shadow->fixed.depth);
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, shadow->moving.depth);
-  }
-  glActiveTexture(GL_TEXTURE0);
-  std::vector<std::pair<size_t, const Chunk*>> visible;  // part, chunk
+  // what is in view: each visual's transforms and its chunks in view, part by part (a vehicle's own
+  // body behind its camera is skipped)
+  std::vector<VisualDraw>& draws = r.draws;
+  std::vector<std::pair<size_t, const Chunk*>>& visible = r.visible;  // part, chunk
+  draws.clear();
+  visible.clear();
   for (const physics::ModelPtr& model : world.Models()) {
     for (const geometry::Visual& visual : model->Visuals()) {
       Eigen::Matrix4d S;
@@ -816,53 +836,94 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
       const Eigen::Matrix4d T_OV = T_OW.matrix() * T_WV;
       const Eigen::Matrix3d A = T_OV.topLeftCorner<3, 3>();
       const double scale = A.colwise().norm().maxCoeff();
-      // the chunks in view, part by part (a vehicle's own body behind its camera is skipped)
-      visible.clear();
+      VisualDraw draw;
+      draw.first = visible.size();
       for (size_t p = 0; p < mesh->parts.size(); ++p)
         for (const Chunk& chunk : mesh->parts[p].chunks)
           if (in.MaySee(A * chunk.centre_m.cast<double>() + T_OV.topRightCorner<3, 1>(), scale * chunk.radius_m))
             visible.push_back({p, &chunk});
-      if (visible.empty()) continue;
-      const Eigen::Matrix4f T = T_OV.cast<float>();
-      const Eigen::Matrix3f N = A.inverse().transpose().cast<float>();
-      glUniformMatrix4fv(loc_T, 1, GL_FALSE, T.data());
-      glUniformMatrix3fv(loc_N, 1, GL_FALSE, N.data());
-      if (shadow) {
-        const Eigen::Matrix4f T_SV = (shadow->T_SW * T_WV).cast<float>();
-        glUniformMatrix4fv(r.mesh_vertex.T_SV, 1, GL_FALSE, T_SV.data());
-      }
-      // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
-      const bool own = mesh->own_colours && !visual.has_material;
-      if (own) glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);
-      else glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
-      glUniform1i(loc_vertex_colour, own);
-      // a material script's texture on a primitive replaces the mesh parts' own (an SDF/URDF colour removes them)
-      const GLuint script_texture =
-          visual.texture_file.empty() ? 0 : r.TextureFor(visual.texture_file, visual.texture_max_anisotropy);
-      glBindVertexArray(mesh->vao);
-      for (size_t k = 0; k < visible.size(); ++k) {
-        const auto [p, chunk] = visible[k];
-        if (k == 0 || visible[k - 1].first != p) {  // a new part: its texture
-          GLuint texture = visual.has_material ? 0 : mesh->parts[p].texture;
-          float repeat_u = 1.0f, repeat_v = 1.0f;
-          if (!visual.texture_file.empty()) {
-            texture = script_texture;
-            repeat_u = 1.0f / visual.texture_scale[0];
-            repeat_v = 1.0f / visual.texture_scale[1];
-          }
-          const bool textured = texture != 0;
-          glUniform1i(loc_texture, textured);
-          if (textured) {
-            glBindTexture(GL_TEXTURE_2D, texture);
-            glUniform2f(loc_uv_scale, repeat_u, repeat_v);
-          }
+      if (visible.size() == draw.first) continue;
+      draw.end = visible.size();
+      draw.visual = &visual;
+      draw.mesh = mesh;
+      draw.T_OV = T_OV.cast<float>();
+      draw.N_OV = A.inverse().transpose().cast<float>();
+      if (shadow) draw.T_SV = (shadow->T_SW * T_WV).cast<float>();
+      draws.push_back(draw);
+    }
+  }
+  auto draw_chunk = [](const GpuMesh& mesh, const Chunk& chunk) {
+    const auto first = static_cast<GLint>(3 * chunk.first_triangle);
+    const auto count = static_cast<GLsizei>(3 * chunk.triangles);
+    if (mesh.ebo)
+      glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
+    else glDrawArrays(GL_TRIANGLES, first, count);
+  };
+
+  // the depth pre-pass: the nearest surface's depth at each pixel, no shading
+  glUseProgram(r.depth_program);
+  glUniform4f(r.depth_vertex.projection, 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
+              static_cast<float>(in.far_m));
+  glUniform2f(r.depth_vertex.principal, static_cast<float>(2.0 * (in.Cx() + 0.5) / W - 1.0),
+              static_cast<float>(2.0 * (in.Cy() + 0.5) / H - 1.0));
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  for (const VisualDraw& draw : draws) {
+    glUniformMatrix4fv(r.depth_vertex.T_OV, 1, GL_FALSE, draw.T_OV.data());
+    glBindVertexArray(draw.mesh->vao);
+    for (size_t k = draw.first; k < draw.end; ++k) draw_chunk(*draw.mesh, *visible[k].second);
+  }
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+
+  // the shading pass: only the fragments at the pre-pass's depth (each pixel shaded once)
+  glUseProgram(r.mesh_program);
+  glDepthFunc(GL_EQUAL);
+  glDepthMask(GL_FALSE);
+  glUniform4f(r.mesh_vertex.projection, 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
+              static_cast<float>(in.far_m));
+  glUniform2f(r.mesh_vertex.principal, static_cast<float>(2.0 * (in.Cx() + 0.5) / W - 1.0),
+              static_cast<float>(2.0 * (in.Cy() + 0.5) / H - 1.0));
+  const GLint loc_albedo = r.mesh_fragment.albedo, loc_vertex_colour = r.mesh_fragment.use_vertex_colour;
+  const GLint loc_texture = r.mesh_fragment.use_texture, loc_uv_scale = r.mesh_fragment.uv_scale;
+  if (shadow) {
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, shadow->fixed.depth);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, shadow->moving.depth);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  for (const VisualDraw& draw : draws) {
+    const geometry::Visual& visual = *draw.visual;
+    const GpuMesh& mesh = *draw.mesh;
+    glUniformMatrix4fv(r.mesh_vertex.T_OV, 1, GL_FALSE, draw.T_OV.data());
+    glUniformMatrix3fv(r.mesh_vertex.N_OV, 1, GL_FALSE, draw.N_OV.data());
+    if (shadow) glUniformMatrix4fv(r.mesh_vertex.T_SV, 1, GL_FALSE, draw.T_SV.data());
+    // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
+    const bool own = mesh.own_colours && !visual.has_material;
+    if (own) glUniform3f(loc_albedo, 1.0f, 1.0f, 1.0f);
+    else glUniform3f(loc_albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
+    glUniform1i(loc_vertex_colour, own);
+    // a material script's texture on a primitive replaces the mesh parts' own (an SDF/URDF colour removes them)
+    const GLuint script_texture =
+        visual.texture_file.empty() ? 0 : r.TextureFor(visual.texture_file, visual.texture_max_anisotropy);
+    glBindVertexArray(mesh.vao);
+    for (size_t k = draw.first; k < draw.end; ++k) {
+      const auto [p, chunk] = visible[k];
+      if (k == draw.first || visible[k - 1].first != p) {  // a new part: its texture
+        GLuint texture = visual.has_material ? 0 : mesh.parts[p].texture;
+        float repeat_u = 1.0f, repeat_v = 1.0f;
+        if (!visual.texture_file.empty()) {
+          texture = script_texture;
+          repeat_u = 1.0f / visual.texture_scale[0];
+          repeat_v = 1.0f / visual.texture_scale[1];
         }
-        const auto first = static_cast<GLint>(3 * chunk->first_triangle);
-        const auto count = static_cast<GLsizei>(3 * chunk->triangles);
-        if (mesh->ebo)
-          glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, reinterpret_cast<void*>(first * sizeof(uint32_t)));
-        else glDrawArrays(GL_TRIANGLES, first, count);
+        const bool textured = texture != 0;
+        glUniform1i(loc_texture, textured);
+        if (textured) {
+          glBindTexture(GL_TEXTURE_2D, texture);
+          glUniform2f(loc_uv_scale, repeat_u, repeat_v);
+        }
       }
+      draw_chunk(mesh, *chunk);
     }
   }
   // the sky last, on the far plane where nothing was drawn (early depth test: no overdraw), through
@@ -870,7 +931,6 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
   glUseProgram(r.background_program);
   glUniform3f(r.background_fragment.albedo, light.background[0], light.background[1], light.background[2]);
   glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
   glBindVertexArray(r.empty_vao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthMask(GL_TRUE);
