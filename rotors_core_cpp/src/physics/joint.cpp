@@ -124,8 +124,32 @@ void Joint::ApplySpinMoment(double dt_s) {
 }
 
 void Joint::AdvanceKinematic(double dt_s) {
-  q_ = std::remainder(q_ + qdot_ * dt_s, 2.0 * M_PI);  // (-pi, pi], as a hinge angle
+  // q in (-pi, pi], as a hinge angle (one turn at most per step: |qdot dt| < pi)
+  q_ += qdot_ * dt_s;
+  if (q_ > M_PI || q_ <= -M_PI) q_ = std::remainder(q_, 2.0 * M_PI);
   PlaceChild();
+}
+
+void Joint::FindTurningGeoms() {
+  Model* model = child_->GetModel();
+  turning_geoms_.clear();
+  geoms_seen_ = model ? model->Geoms().size() : 0;
+  if (!model) return;
+  constexpr double kTolerance = 1e-9;
+  for (const auto& g : model->Geoms()) {
+    if (g.second->link != child_.get()) continue;
+    const Pose3d& X_LG = g.second->X_LG;
+    // R(a, q) X_LG = X_LG (up to the shape's own symmetry) when the geom's centre lies on the axis and
+    // the shape is a sphere, or a cylinder or capsule whose own axis (z) is the joint's
+    const bool centre_on_axis = X_LG.Pos().Cross(axis_C_).Length() < kTolerance;
+    const int shape = dGeomGetClass(Ode(g.first));
+    const bool round_about_z = shape == dCylinderClass || shape == dCapsuleClass;
+    const bool symmetric =
+        centre_on_axis &&
+        (shape == dSphereClass ||
+         (round_about_z && X_LG.Rot().RotateVectorReverse(axis_C_).Cross(Vector3d::UnitZ).Length() < kTolerance));
+    if (!symmetric) turning_geoms_.push_back({g.first, X_LG});
+  }
 }
 
 void Joint::PlaceChild() {
@@ -135,13 +159,20 @@ void Joint::PlaceChild() {
   child_->MoveOnBody(X_BC, axis_C_ * qdot_);
   Model* model = child_->GetModel();
   if (!model) return;
-  for (const auto& g : model->Geoms()) {
-    if (g.second->link != child_.get()) continue;
-    const Pose3d X_BG = Compose(X_BC, g.second->X_LG);
-    dGeomSetOffsetPosition(Ode(g.first), X_BG.Pos().X(), X_BG.Pos().Y(), X_BG.Pos().Z());
+  const bool place_all = model->Geoms().size() != geoms_seen_;  // new geoms: every one placed once
+  if (place_all) FindTurningGeoms();
+  auto place = [&X_BC](GeomHandle* geom, const Pose3d& X_LG) {
+    const Pose3d X_BG = Compose(X_BC, X_LG);
+    dGeomSetOffsetPosition(Ode(geom), X_BG.Pos().X(), X_BG.Pos().Y(), X_BG.Pos().Z());
     dQuaternion q;
     ode_convert::ToOde(X_BG.Rot(), q);
-    dGeomSetOffsetQuaternion(Ode(g.first), q);
+    dGeomSetOffsetQuaternion(Ode(geom), q);
+  };
+  if (place_all) {
+    for (const auto& g : model->Geoms())
+      if (g.second->link == child_.get()) place(g.first, g.second->X_LG);
+  } else {
+    for (const auto& [geom, X_LG] : turning_geoms_) place(geom, X_LG);
   }
 }
 

@@ -33,27 +33,35 @@ ImuNoiseModel::ImuNoiseModel(const ImuNoiseParams& params, uint64_t seed) : para
     accelerometer_turn_on_bias_[i] = params_.accelerometer_turn_on_bias_sigma * standard_normal_(rng_);
 }
 
-void ImuNoiseModel::PropagateBias(Eigen::Vector3d* bias, double random_walk, double tau_s, double dt_s) {
-  const double phi = std::exp(-dt_s / tau_s);
-  // -expm1(-2dt/tau) = 1 - exp(-2 dt / tau), computed without cancellation for tau >> dt
-  const double sigma_bd = std::sqrt(random_walk * random_walk * tau_s / 2.0 * -std::expm1(-2.0 * dt_s / tau_s));
+ImuNoiseModel::Discrete::Discrete(const ImuNoiseParams& p, double dt) : dt_s(dt) {
+  const double sqrt_dt = std::sqrt(dt);
+  // discrete white noise: sigma_d = sigma_c / sqrt(dt)
+  sigma_gd = p.gyroscope_noise_density / sqrt_dt;
+  sigma_ad = p.accelerometer_noise_density / sqrt_dt;
+  auto gauss_markov = [dt](double random_walk, double tau_s, double* phi, double* sigma_bd) {
+    *phi = std::exp(-dt / tau_s);
+    // -expm1(-2dt/tau) = 1 - exp(-2 dt / tau), computed without cancellation for tau >> dt
+    *sigma_bd = std::sqrt(random_walk * random_walk * tau_s / 2.0 * -std::expm1(-2.0 * dt / tau_s));
+  };
+  gauss_markov(p.gyroscope_random_walk, p.gyroscope_bias_correlation_time_s, &phi_g, &sigma_bgd);
+  gauss_markov(p.accelerometer_random_walk, p.accelerometer_bias_correlation_time_s, &phi_a, &sigma_bad);
+}
+
+void ImuNoiseModel::PropagateBias(Eigen::Vector3d* bias, double phi, double sigma_bd) {
   for (int i = 0; i < 3; ++i) (*bias)[i] = phi * (*bias)[i] + sigma_bd * standard_normal_(rng_);
 }
 
 ImuSample ImuNoiseModel::Corrupt(const ImuSample& truth, double dt_s) {
   ImuSample m = truth;
   if (!(dt_s > 0.0)) return m;
-  const double sqrt_dt = std::sqrt(dt_s);
-  // discrete white noise: sigma_d = sigma_c / sqrt(dt)
-  const double sigma_gd = params_.gyroscope_noise_density / sqrt_dt;
-  const double sigma_ad = params_.accelerometer_noise_density / sqrt_dt;
-  PropagateBias(&gyroscope_bias_, params_.gyroscope_random_walk, params_.gyroscope_bias_correlation_time_s, dt_s);
-  PropagateBias(&accelerometer_bias_, params_.accelerometer_random_walk, params_.accelerometer_bias_correlation_time_s,
-                dt_s);
+  if (dt_s != discrete_.dt_s) discrete_ = Discrete(params_, dt_s);  // the sensor's period, usually constant
+  const Discrete& d = discrete_;
+  PropagateBias(&gyroscope_bias_, d.phi_g, d.sigma_bgd);
+  PropagateBias(&accelerometer_bias_, d.phi_a, d.sigma_bad);
   for (int i = 0; i < 3; ++i) {
-    m.angular_velocity_I[i] += gyroscope_bias_[i] + gyroscope_turn_on_bias_[i] + sigma_gd * standard_normal_(rng_);
+    m.angular_velocity_I[i] += gyroscope_bias_[i] + gyroscope_turn_on_bias_[i] + d.sigma_gd * standard_normal_(rng_);
     m.linear_acceleration_I[i] +=
-        accelerometer_bias_[i] + accelerometer_turn_on_bias_[i] + sigma_ad * standard_normal_(rng_);
+        accelerometer_bias_[i] + accelerometer_turn_on_bias_[i] + d.sigma_ad * standard_normal_(rng_);
   }
   return m;
 }

@@ -29,7 +29,7 @@ std::string OdometryNoiseParams::Validate() const {
 
 Eigen::Vector3d OdometryNoise::Draw(const Eigen::Vector3d& sigma, const Eigen::Vector3d& bound) {
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  std::normal_distribution<double> normal(0.0, 1.0);
+  StandardNormal normal(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   for (int i = 0; i < 3; ++i) {
     if (sigma[i] > 0.0) n[i] += sigma[i] * normal(rng_);

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "rotors_core/physics/physics_types.h"
 #include "rotors_core/physics/solver_handles.h"
@@ -75,6 +77,11 @@ class Joint {
   JointHandle* joint_ = nullptr;
   // kinematic joints
   void PlaceChild();
+  /// The child's geoms whose pose changes as the child turns (a rotor's disc about its own axis does
+  /// not: it is placed once); found again when the model's geoms change.
+  void FindTurningGeoms();
+  std::vector<std::pair<GeomHandle*, Pose3d>> turning_geoms_;  ///< geom, X_LG
+  size_t geoms_seen_ = static_cast<size_t>(-1);                ///< the model's geom count they were found for
   Pose3d X_PC0_;
   double spin_inertia_ = 0.0;  ///< [kg m^2] J_a
   double q_ = 0.0;             ///< [rad]

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include "rotors_gazebo_plugins/models/standard_normal.h"
+
 namespace rotors_gazebo_plugins {
 
 /// Defaults are the ADIS16448 values of RotorS (reference section 4.4).
@@ -48,11 +50,22 @@ class ImuNoiseModel {
  private:
   /// One axis-triple step of: b_k = exp(-dt/tau) b_{k-1} + sigma_bd N(0,1),
   /// sigma_bd = sqrt(-sigma_b^2 tau / 2 (exp(-2 dt / tau) - 1))   (Kalibr; -> sigma_b sqrt(dt) as tau -> inf)
-  void PropagateBias(Eigen::Vector3d* bias, double random_walk, double tau_s, double dt_s);
+  void PropagateBias(Eigen::Vector3d* bias, double phi, double sigma_bd);
+
+  /// The discrete-time coefficients for one sample period dt (computed again when dt changes).
+  struct Discrete {
+    Discrete() = default;
+    Discrete(const ImuNoiseParams& p, double dt);
+    double dt_s = -1.0;
+    double sigma_gd = 0.0, sigma_ad = 0.0;  ///< white noise, discrete: sigma_c / sqrt(dt)
+    double phi_g = 1.0, sigma_bgd = 0.0;    ///< gyroscope bias: exp(-dt/tau), sigma_bd
+    double phi_a = 1.0, sigma_bad = 0.0;    ///< accelerometer bias
+  };
 
   ImuNoiseParams params_;
+  Discrete discrete_;
   std::mt19937_64 rng_;
-  std::normal_distribution<double> standard_normal_{0.0, 1.0};
+  StandardNormal standard_normal_{0.0, 1.0};
   Eigen::Vector3d gyroscope_bias_ = Eigen::Vector3d::Zero(), accelerometer_bias_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gyroscope_turn_on_bias_, accelerometer_turn_on_bias_;
 };

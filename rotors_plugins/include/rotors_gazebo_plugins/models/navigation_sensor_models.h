@@ -12,6 +12,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "rotors_gazebo_plugins/models/standard_normal.h"
+
 namespace rotors_gazebo_plugins {
 
 /// Where the world origin is on the Earth and how the world is turned (SDF <spherical_coordinates>).
@@ -45,7 +47,7 @@ class GpsModel {
   GpsParams params_;
   GeodeticOrigin origin_;
   std::mt19937_64 rng_;
-  std::normal_distribution<double> unit_normal_{0.0, 1.0};
+  StandardNormal unit_normal_{0.0, 1.0};
 };
 
 struct MagnetometerParams {
@@ -69,7 +71,7 @@ class MagnetometerModel {
   MagnetometerParams params_;
   std::mt19937_64 rng_;
   Eigen::Vector3d bias_B_T_;
-  std::normal_distribution<double> unit_normal_{0.0, 1.0};
+  StandardNormal unit_normal_{0.0, 1.0};
 };
 
 struct PressureParams {
@@ -91,7 +93,7 @@ class PressureModel {
  private:
   PressureParams params_;
   std::mt19937_64 rng_;
-  std::normal_distribution<double> unit_normal_{0.0, 1.0};
+  StandardNormal unit_normal_{0.0, 1.0};
 };
 
 }  // namespace rotors_gazebo_plugins
