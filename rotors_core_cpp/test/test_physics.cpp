@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <ode/ode.h>
 
 #include "rotors_core/model_builder.h"
 #include "rotors_core/physics/joint.h"
@@ -247,4 +248,62 @@ TEST(Physics, KinematicRotorConservesMomentumLikeAFreeHingedRotor) {
       << "free hinged " << free_hinged.omega_W.transpose() << ", gyrostat " << omega_W_gyrostat.transpose();
   // the rotor turned 100 rad/s x 2.001 s, wrapped to (-pi, pi]
   EXPECT_NEAR(kinematic.rotor_angle_rad, std::remainder(100.0 * 2.001, 2 * M_PI), 1e-6);
+}
+
+// A kinematic rotor's collision geoms turn with it: a blade (box) off the axis is carried round the
+// axis step by step, while the disc (a cylinder about the axis, which turning leaves as it is, so it is
+// placed once) stays centred on the axis with its own axis along the joint's.
+TEST(Physics, KinematicRotorCarriesItsOffAxisGeomsRound) {
+  WorldGuard g{WorldLoader::LoadString(WorldSdf(0.001, 0.0, false, "world"), "blades")};
+  SpawnRequest r;
+  r.xml =
+      "<robot name='m'><link name='base'><inertial><mass value='1.5'/><inertia ixx='0.03' iyy='0.04' izz='0.09' "
+      "ixy='0' ixz='0' iyz='0'/></inertial></link>"
+      "<link name='rotor'><inertial><mass value='0.05'/><inertia ixx='1e-4' iyy='1e-4' izz='2e-4' ixy='0' ixz='0' "
+      "iyz='0'/></inertial>"
+      "<collision name='disc'><geometry><cylinder radius='0.1' length='0.005'/></geometry></collision>"
+      "<collision name='blade'><origin xyz='0.1 0 0'/><geometry><box size='0.02 0.02 0.02'/></geometry></collision>"
+      "</link><joint name='rotor_joint' type='continuous'><parent link='base'/><child link='rotor'/>"
+      "<origin xyz='0.2 0 0.05'/><axis xyz='0 0 1'/></joint>"
+      "<gazebo><kinematic_joint>rotor_joint</kinematic_joint></gazebo></robot>";
+  r.X_WM = physics::Pose3d(0, 0, 10, 0, 0, 0);
+  auto model = ModelBuilder::Spawn(g.world, r);
+  auto base = model->GetLink("base");
+  auto joint = model->GetJoint("rotor_joint");
+  ASSERT_TRUE(joint->IsKinematic());
+  dGeomID disc = nullptr, blade = nullptr;
+  for (const auto& geom : model->Geoms()) {
+    if (geom.second->scoped_name.find("disc") != std::string::npos) disc = reinterpret_cast<dGeomID>(geom.first);
+    if (geom.second->scoped_name.find("blade") != std::string::npos) blade = reinterpret_cast<dGeomID>(geom.first);
+  }
+  ASSERT_TRUE(disc && blade);
+  auto position = [](dGeomID geom) {
+    const dReal* p = dGeomGetPosition(geom);
+    return Eigen::Vector3d(p[0], p[1], p[2]);
+  };
+  // a quarter turn in 100 steps, then three quarters more
+  for (const double turns : {0.25, 1.0}) {
+    const int steps = 100;
+    const double q_before = joint->Position(0), q_after = 2 * M_PI * turns;
+    for (int i = 0; i < steps; ++i) {
+      joint->SetVelocity(0, (q_after - (i == 0 ? q_before : joint->Position(0))) / ((steps - i) * 0.001));
+      g.world->Step(1);
+    }
+    const double q = joint->Position(0);
+    EXPECT_NEAR(std::cos(q), std::cos(q_after), 1e-6);
+    EXPECT_NEAR(std::sin(q), std::sin(q_after), 1e-6);
+    const auto X_WB = base->WorldPose();
+    const Eigen::Quaterniond R_WB(X_WB.Rot().W(), X_WB.Rot().X(), X_WB.Rot().Y(), X_WB.Rot().Z());
+    const Eigen::Vector3d p_WB(X_WB.Pos().X(), X_WB.Pos().Y(), X_WB.Pos().Z()), p_BJ(0.2, 0, 0.05);
+    // p_blade = p_B + R_WB (p_BJ + R_z(q) (0.1, 0, 0))
+    const Eigen::Vector3d blade_expected =
+        p_WB + R_WB * (p_BJ + Eigen::AngleAxisd(q, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d(0.1, 0, 0));
+    EXPECT_LT((position(blade) - blade_expected).norm(), 1e-9) << position(blade).transpose();
+    EXPECT_LT((position(disc) - (p_WB + R_WB * p_BJ)).norm(), 1e-9) << position(disc).transpose();
+    dQuaternion q_disc;
+    dGeomGetQuaternion(disc, q_disc);
+    const Eigen::Vector3d disc_axis_W =
+        Eigen::Quaterniond(q_disc[0], q_disc[1], q_disc[2], q_disc[3]) * Eigen::Vector3d::UnitZ();
+    EXPECT_LT((disc_axis_W - R_WB * Eigen::Vector3d::UnitZ()).norm(), 1e-9);
+  }
 }
