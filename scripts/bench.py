@@ -334,31 +334,53 @@ def soak_rows(k: Dict) -> List:
 PEER_VENVS = {
     "pyflyt": ["pyflyt==0.29.0"],
     "crazyflow": ["crazyflow==0.0.2", "mujoco==3.3.7", "mujoco-mjx==3.3.7", "jax[cpu]==0.7.0", "numpy<2"],
+    # what its CtrlAviary and DSL PID controller import (its pyproject also asks for stable-baselines3,
+    # control, matplotlib and pytest, for learning, examples and tests); itself from a clone, below
+    "gym_pybullet_drones": ["pybullet==3.2.7", "gymnasium==1.4.0", "numpy>=2.2,<3", "scipy>=1.15", "pillow",
+                            "transforms3d==0.4.2"],
 }
+
+# gym-pybullet-drones is not on PyPI: its README installs a clone (`pip install -e .`)
+GYM_PYBULLET_DRONES_SRC = Path(os.environ.get("ROTORS_BENCH_GYM_PYBULLET_DRONES", OUT / "gym-pybullet-drones"))
+
+
+def source_commit(src: Path) -> str:
+    out = subprocess.run(["git", "-C", str(src), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    return out.stdout.strip() if out.returncode == 0 else "no git"
 
 
 def peer_python(peer: str) -> Path:
     venv = OUT / f"{peer}-venv"
     stamp = venv / ".installed"
     want = " ".join(PEER_VENVS[peer])
+    if peer == "gym_pybullet_drones":
+        want += f" {GYM_PYBULLET_DRONES_SRC}@{source_commit(GYM_PYBULLET_DRONES_SRC)}"
     if not stamp.exists() or stamp.read_text() != want:
         print(f"[bench] installing {peer} into {venv} (once)", file=sys.stderr)
+        pip = [str(venv / "bin" / "pip"), "install", "-q", "--disable-pip-version-check"]
         subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
-        subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "--disable-pip-version-check", *PEER_VENVS[peer]],
-                       check=True)
+        subprocess.run([*pip, *PEER_VENVS[peer]], check=True)
+        if peer == "gym_pybullet_drones":
+            subprocess.run([*pip, "--no-deps", "-e", str(GYM_PYBULLET_DRONES_SRC)], check=True)
         stamp.write_text(want)
     return venv / "bin" / "python"
 
 
-def hover_drone_s_per_s(peer: str, worlds: int, seconds: float) -> Dict:
-    """One closed-loop hover run of a peer script (scripts/peers/<peer>_hover.py): its JSON line."""
+def peer_available(peer: str) -> bool:
+    return peer != "gym_pybullet_drones" or (GYM_PYBULLET_DRONES_SRC / "gym_pybullet_drones").is_dir()
+
+
+def hover_drone_s_per_s(peer: str, worlds: int, seconds: float, rates_hz=()) -> Dict:
+    """One closed-loop hover run of a peer script (scripts/peers/<peer>_hover.py): its JSON line.
+    rates_hz: (physics, control) where the script takes them (gym-pybullet-drones), else 500 / 100."""
     if peer == "rotors_sim":
         python = sys.executable
     elif peer == "rotorpy":
         python = str(rotorpy_python())
     else:
         python = str(peer_python(peer))
-    out = subprocess.run([python, str(ROOT / "scripts" / "peers" / f"{peer}_hover.py"), str(worlds), str(seconds)],
+    args = [str(worlds), str(seconds), *(str(hz) for hz in rates_hz)]
+    out = subprocess.run([python, str(ROOT / "scripts" / "peers" / f"{peer}_hover.py"), *args],
                          capture_output=True, text=True, timeout=1800, cwd=OUT)  # MuJoCo writes its log to cwd
     lines = [line for line in out.stdout.splitlines() if line.startswith("{")]
     if out.returncode != 0 or not lines:
@@ -366,12 +388,19 @@ def hover_drone_s_per_s(peer: str, worlds: int, seconds: float) -> Dict:
     return json.loads(lines[-1])
 
 
+PYTHON_PEERS = (("rotors_sim", 20.0), ("crazyflow", 20.0), ("pyflyt", 5.0), ("gym_pybullet_drones", 5.0),
+                ("rotorpy", 5.0))
+
+
 def python_peers() -> Dict:
     """Hover, closed loop, 500 Hz physics and 100 Hz control, for 1 and 64 worlds: best of 3 runs each."""
     table: Dict = {}
-    for peer, seconds in (("rotors_sim", 20.0), ("crazyflow", 20.0), ("pyflyt", 5.0), ("rotorpy", 5.0)):
+    for peer, seconds in PYTHON_PEERS:
+        if not peer_available(peer):
+            continue
         for worlds in ((1,) if peer == "rotorpy" else (1, 64)):  # RotorPy: no batch of worlds
-            sim_s = seconds if worlds == 1 or peer != "pyflyt" else 1.0  # 64 PyFlyt drones: well below real time
+            slow = peer in ("pyflyt", "gym_pybullet_drones")  # 64 PyBullet drones: well below real time
+            sim_s = seconds if worlds == 1 or not slow else 1.0
             runs = [hover_drone_s_per_s(peer, worlds, sim_s) for _ in range(3)]
             table[f"{peer}/{worlds}"] = max(runs, key=lambda r: r["drone_s_per_s"])
     return table
@@ -382,13 +411,21 @@ def python_peer_rows(t: Dict) -> List:
     notes = {"rotors_sim": "firefly, 12 RotorS plugins, Lee controller library attached, worlds on threads",
              "crazyflow": "Crazyflie, onboard state controller, JAX on the CPU (vmap over worlds)",
              "pyflyt": "QuadX in position mode; 64 = 64 drones in one Aviary (no batch of worlds)",
+             "gym_pybullet_drones": f"CtrlAviary, Crazyflie 2.X, DSL PID controller, clone {source_commit(GYM_PYBULLET_DRONES_SRC)}; "
+                                    "64 = 64 drones in one aviary (no batch of worlds)",
              "rotorpy": "SE3 controller at the physics rate, 500 Hz (no separate control rate); no batch of worlds"}
-    for peer in ("rotors_sim", "crazyflow", "pyflyt", "rotorpy"):
+    for peer, _ in PYTHON_PEERS:
+        if f"{peer}/1" not in t:
+            rows += [(f"hover, 500 Hz physics, 100 Hz control: {peer}", "not measured", "")]
+            continue
         one, many = t[f"{peer}/1"], t.get(f"{peer}/64")
         many_text = f"{many['drone_s_per_s']:,.0f} drone-s/s" if many else "not run (no batch of worlds)"
         rows += [(f"hover, 500 Hz physics, 100 Hz control: {peer} ({notes[peer]})",
                   f"1 world {one['drone_s_per_s']:,.1f} x real time; 64 worlds {many_text}", "")]
     ours1, ours64 = t["rotors_sim/1"]["drone_s_per_s"], t["rotors_sim/64"]["drone_s_per_s"]
+    if "gym_pybullet_drones/1" in t:
+        rows += [("  ratio, one world: rotors_sim / gym-pybullet-drones",
+                  f"{ours1 / t['gym_pybullet_drones/1']['drone_s_per_s']:,.0f} x", "")]
     rows += [("  ratio, one world: rotors_sim / PyFlyt", f"{ours1 / t['pyflyt/1']['drone_s_per_s']:,.0f} x", ">= 200"),
              ("  ratio, one world: rotors_sim / crazyflow", f"{ours1 / t['crazyflow/1']['drone_s_per_s']:.1f} x", ">= 10"),
              ("  ratio, 64 worlds: rotors_sim / crazyflow (aggregate drone-s/s)",
@@ -396,9 +433,10 @@ def python_peer_rows(t: Dict) -> List:
     return rows
 
 
-GYM_PYBULLET_DRONES = ("gym-pybullet-drones: not measured. It is not on PyPI (its README installs it from a git "
-                       "clone: pip install -e .) and GitHub is not reachable from this machine; pybullet itself is "
-                       "(3.2.7), but the peer is its drone environment and DSL PID controller, not the physics library")
+GYM_PYBULLET_DRONES_MISSING = (
+    f"gym-pybullet-drones: not measured. It is not on PyPI; its README installs a clone. Clone "
+    f"https://github.com/utiasDSL/gym-pybullet-drones into {GYM_PYBULLET_DRONES_SRC} (or point "
+    "ROTORS_BENCH_GYM_PYBULLET_DRONES at a clone) and the bench installs it into a venv of its own")
 
 SECTIONS = ("engine", "peers", "python_peers", "closed_loop", "swarm", "startup", "estimator", "waypoints", "cameras", "vi_sensor",
             "lasers", "planning", "sweep", "soak")
@@ -474,8 +512,20 @@ def main() -> int:
         if "closed_loop_rtf_lockstep_in_process" in res:
             rows += [("ratio: our closed loop in process (lockstep, 10 ms) / RotorPy (1 kHz)",
                       f"{res['closed_loop_rtf_lockstep_in_process'] / (20.0 / rotorpy_s):.0f} x", "")]
-        res["not_measured"].append(GYM_PYBULLET_DRONES)
-        rows += [("ratio to gym-pybullet-drones (hover, DSL PID, 240/48 Hz and 1000/100 Hz)", "not measured", ">= 5 x")]
+        if not peer_available("gym_pybullet_drones"):
+            res["not_measured"].append(GYM_PYBULLET_DRONES_MISSING)
+            rows += [("ratio to gym-pybullet-drones (hover, DSL PID)", "not measured", ">= 5 x")]
+        else:  # its hover at its default rates and at ours (the basic world's 10 ms step, control every step)
+            for physics_hz, control_hz in ((240, 48), (100, 100)):
+                gpd = max((hover_drone_s_per_s("gym_pybullet_drones", 1, 20.0, (physics_hz, control_hz))
+                           for _ in range(3)), key=lambda r: r["drone_s_per_s"])
+                res[f"gym_pybullet_drones_rtf_{physics_hz}_{control_hz}_hz"] = gpd["drone_s_per_s"]
+                rows += [(f"gym-pybullet-drones, 20 s hover, DSL PID, {physics_hz} Hz physics, {control_hz} Hz "
+                          "control (best of 3)", f"{gpd['drone_s_per_s']:.1f} x real time", "")]
+                if "closed_loop_rtf_lockstep_in_process" in res:
+                    rows += [(f"ratio: our closed loop in process (lockstep, 10 ms) / gym-pybullet-drones at "
+                              f"{physics_hz}/{control_hz} Hz",
+                              f"{res['closed_loop_rtf_lockstep_in_process'] / gpd['drone_s_per_s']:.1f} x", ">= 5 x")]
     if "python_peers" in only:
         res["python_peers"] = python_peers()
         rows += python_peer_rows(res["python_peers"])
