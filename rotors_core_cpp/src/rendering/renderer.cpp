@@ -860,12 +860,16 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
     else glDrawArrays(GL_TRIANGLES, first, count);
   };
 
+  // the pinhole projection, the same in both passes (kMeshVertexShader's projection and principal)
+  auto set_projection = [&](GLint projection, GLint principal) {
+    glUniform4f(projection, 2 * f / W, 2 * f / H, static_cast<float>(in.near_m), static_cast<float>(in.far_m));
+    glUniform2f(principal, static_cast<float>(2.0 * (in.Cx() + 0.5) / W - 1.0),
+                static_cast<float>(2.0 * (in.Cy() + 0.5) / H - 1.0));
+  };
+
   // the depth pre-pass: the nearest surface's depth at each pixel, no shading
   glUseProgram(r.depth_program);
-  glUniform4f(r.depth_vertex.projection, 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
-              static_cast<float>(in.far_m));
-  glUniform2f(r.depth_vertex.principal, static_cast<float>(2.0 * (in.Cx() + 0.5) / W - 1.0),
-              static_cast<float>(2.0 * (in.Cy() + 0.5) / H - 1.0));
+  set_projection(r.depth_vertex.projection, r.depth_vertex.principal);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   for (const VisualDraw& draw : draws) {
     glUniformMatrix4fv(r.depth_vertex.T_OV, 1, GL_FALSE, draw.T_OV.data());
@@ -878,10 +882,7 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
   glUseProgram(r.mesh_program);
   glDepthFunc(GL_EQUAL);
   glDepthMask(GL_FALSE);
-  glUniform4f(r.mesh_vertex.projection, 2 * f / W, 2 * f / H, static_cast<float>(in.near_m),
-              static_cast<float>(in.far_m));
-  glUniform2f(r.mesh_vertex.principal, static_cast<float>(2.0 * (in.Cx() + 0.5) / W - 1.0),
-              static_cast<float>(2.0 * (in.Cy() + 0.5) / H - 1.0));
+  set_projection(r.mesh_vertex.projection, r.mesh_vertex.principal);
   const GLint loc_albedo = r.mesh_fragment.albedo, loc_vertex_colour = r.mesh_fragment.use_vertex_colour;
   const GLint loc_texture = r.mesh_fragment.use_texture, loc_uv_scale = r.mesh_fragment.uv_scale;
   if (shadow) {
