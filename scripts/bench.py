@@ -466,6 +466,8 @@ def main() -> int:
                   file=sys.stderr)
             return 2
     res: Dict = {"not_measured": []}
+    if only & {"peers", "python_peers"} and not peer_available("gym_pybullet_drones"):
+        res["not_measured"].append(GYM_PYBULLET_DRONES_MISSING)  # why both sections' rows say "not measured"
     rows: List = []
     if "engine" in only:
         lumped_urdf = bench_urdf(lump_rotors=True)
@@ -513,7 +515,6 @@ def main() -> int:
             rows += [("ratio: our closed loop in process (lockstep, 10 ms) / RotorPy (1 kHz)",
                       f"{res['closed_loop_rtf_lockstep_in_process'] / (20.0 / rotorpy_s):.0f} x", "")]
         if not peer_available("gym_pybullet_drones"):
-            res["not_measured"].append(GYM_PYBULLET_DRONES_MISSING)
             rows += [("ratio to gym-pybullet-drones (hover, DSL PID)", "not measured", ">= 5 x")]
         else:  # its hover at its default rates and at ours (the basic world's 10 ms step, control every step)
             for physics_hz, control_hz in ((240, 48), (100, 100)):
