@@ -6,6 +6,8 @@
 
 #include <stb_image.h>
 
+#include "rotors_gazebo_plugins/models/standard_normal.h"
+
 namespace rotors_gazebo_plugins {
 
 std::string OdometryNoiseParams::Validate() const {

@@ -9,8 +9,6 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "rotors_gazebo_plugins/models/standard_normal.h"
-
 namespace rotors_gazebo_plugins {
 
 struct OdometryNoiseParams {
