@@ -529,6 +529,37 @@ TEST(Camera, MeshTexturesAreDrawn) {
   std::filesystem::remove_all(folder);
 }
 
+// A grey image (the power plant's concrete) is kept as one channel and read as (g, g, g): drawn
+// exactly as the same image stored as RGB.
+TEST(Camera, AGreyTextureIsDrawnAsItsRgbCopy) {
+  const std::string folder =
+      std::filesystem::temp_directory_path().string() + "/rotors_grey_texture_" + std::to_string(getpid());
+  const std::string obj = TexturedSquare(folder, false);
+  const unsigned char grey[] = {30, 90, 160, 250};  // 2 x 2 texels
+  auto render = [&](bool as_grey) {
+    std::ofstream ppm(folder + "/quadrants.ppm", std::ios::binary | std::ios::trunc);
+    ppm << (as_grey ? "P5" : "P6") << "\n2 2\n255\n";
+    for (unsigned char g : grey)
+      for (int k = 0; k < (as_grey ? 1 : 3); ++k) ppm << static_cast<char>(g);
+    ppm.close();
+    WorldGuard g{WorldLoader::LoadString(
+        World(MeshModel("square", obj, Pose3d(3, 0, 0, 0, 0, 0)) +
+              Rig(Pose3d(), Pose3d(), "camera", 30, Camera("", Pose3d(), 200, 200, 1.2, "R8G8B8"))),
+        as_grey ? "grey_texture" : "rgb_texture")};
+    g.world->Step(1);
+    return TheCamera(g.world)->Frame(0).image;
+  };
+  const std::vector<uint8_t> from_grey = render(true), from_rgb = render(false);
+  ASSERT_EQ(from_grey.size(), 200u * 200u * 3u);
+  EXPECT_TRUE(from_grey == from_rgb);
+  // the top left quadrant's centre (as in MeshTexturesAreDrawn) shows the file's first texel
+  const size_t centre_of_top_left = 3 * (76 * 200 + 76);
+  EXPECT_NEAR(from_grey[centre_of_top_left], grey[0], 16);
+  EXPECT_EQ(from_grey[centre_of_top_left], from_grey[centre_of_top_left + 1]);
+  EXPECT_EQ(from_grey[centre_of_top_left], from_grey[centre_of_top_left + 2]);
+  std::filesystem::remove_all(folder);
+}
+
 // A mesh with several textures (as RotorS' Collada boxes: a side, a front, a barcode image): the
 // left half of a square has one material and texture, the right half another.
 TEST(Camera, EachPartOfAMeshIsDrawnWithItsOwnTexture) {

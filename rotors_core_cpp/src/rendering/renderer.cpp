@@ -465,14 +465,18 @@ const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const voi
 
 /// The image file as a mip-mapped (trilinear), repeating texture, anisotropically filtered up to
 /// max_anisotropy (a material's "filtering anisotropic"): distant texture does not shimmer from frame
-/// to frame. Loaded once; 0 when it cannot be read (said once).
+/// to frame. A grey image is kept as one channel read as (g, g, g): the same colours, a third of the
+/// filtering work. Loaded once; 0 when it cannot be read (said once).
 GLuint Renderer::Impl::TextureFor(const std::string& file, float max_anisotropy) {
   const auto key = std::make_pair(file, max_anisotropy);
   const auto found = textures.find(key);
   if (found != textures.end()) return found->second;
   GLuint texture = 0;
   int w = 0, h = 0, channels = 0;
-  unsigned char* pixels = stbi_load(file.c_str(), &w, &h, &channels, 3);
+  // grey (with or without alpha) as one channel, the rest as RGB; the alpha is not drawn
+  const bool grey = stbi_info(file.c_str(), &w, &h, &channels) && channels <= 2;
+  const int kept = grey ? 1 : 3;
+  unsigned char* pixels = stbi_load(file.c_str(), &w, &h, &channels, kept);
   if (!pixels) {
     // CameraSensor checks textures when it is created; a model spawned later is drawn without
     std::cerr << "[rotors_sim] camera renderer: texture '" << file << "' cannot be read (" << stbi_failure_reason()
@@ -483,11 +487,17 @@ GLuint Renderer::Impl::TextureFor(const std::string& file, float max_anisotropy)
   glBindTexture(GL_TEXTURE_2D, texture);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   // image row 0 is the top; texture coordinate v = 0 is the bottom
-  std::vector<unsigned char> flipped(static_cast<size_t>(w) * h * 3);
+  const size_t row = static_cast<size_t>(w) * kept;
+  std::vector<unsigned char> flipped(row * h);
   for (int r = 0; r < h; ++r)
-    std::copy(pixels + static_cast<size_t>(r) * w * 3, pixels + static_cast<size_t>(r + 1) * w * 3,
-              flipped.begin() + static_cast<size_t>(h - 1 - r) * w * 3);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, w, h, 0, GL_RGB, GL_UNSIGNED_BYTE, flipped.data());
+    std::copy(pixels + r * row, pixels + (r + 1) * row, flipped.begin() + (h - 1 - r) * row);
+  if (grey) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, w, h, 0, GL_RED, GL_UNSIGNED_BYTE, flipped.data());
+    const GLint rrr1[] = {GL_RED, GL_RED, GL_RED, GL_ONE};
+    glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, rrr1);
+  } else {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, w, h, 0, GL_RGB, GL_UNSIGNED_BYTE, flipped.data());
+  }
   glGenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
