@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -306,6 +307,44 @@ TEST(Camera, StereoDisparityIsFocalLengthTimesBaselineOverDepth) {
   const double disparity = LeftEdge(left, row) - LeftEdge(right, row);
   std::printf("disparity %.1f px, f b / Z = %.3f px\n", disparity, fpx * b / 2.5);
   EXPECT_LE(std::abs(disparity - fpx * b / 2.5), 1.0 + 1e-6);  // two edges, each within half a pixel
+}
+
+// A stereo pair rendered in one batch (each camera drawn while the one before is rasterised) is
+// the pair rendered one camera at a time, byte for byte; the sensor batches the cameras asked for
+// at the update before.
+TEST(Camera, APairRenderedTogetherIsThePairRenderedOneByOne) {
+  const double b = 0.11;
+  const std::string cameras = Camera("left", Pose3d(0, b / 2, 0, 0, 0, 0), 752, 480, 1.3962634, "L8", 0.007) +
+                              Camera("right", Pose3d(0, -b / 2, 0, 0, 0, 0), 752, 480, 1.3962634, "L8", 0.007);
+  WorldGuard g{WorldLoader::LoadString(World(BoxModel("box", Pose3d(3.0, 0.3, 0.2, 0, 0, 0.4) + X_WM, 1, 1, 1) +
+                                             Rig(X_WM, X_LS, "multicamera", 30, cameras)),
+                                       "stereo_batch")};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  rendering::Renderer& renderer = rendering::Renderer::Of(*g.world);
+  rendering::RenderedFrame one[2], together[2];
+  std::vector<rendering::FrameRequest> pair;
+  for (size_t i = 0; i < 2; ++i) {
+    renderer.Render(*g.world, cam->CameraWorldPose(i), cam->Camera(i), 7 + i, true, true, &one[i]);
+    pair.push_back({cam->CameraWorldPose(i), &cam->Camera(i), 7 + i, true, true, &together[i]});
+  }
+  renderer.RenderAll(*g.world, pair);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_TRUE(one[i].image == together[i].image) << "camera " << i;
+    ASSERT_EQ(one[i].depth_m.size(), together[i].depth_m.size());
+    EXPECT_EQ(std::memcmp(one[i].depth_m.data(), together[i].depth_m.data(), one[i].depth_m.size() * sizeof(float)), 0);
+  }
+  EXPECT_FALSE(one[0].image == one[1].image);  // two views, not one image twice
+
+  // through the sensor: both asked at one update, so the next update renders them together
+  const std::vector<uint8_t> first_left = cam->Frame(0).image, first_right = cam->Frame(1).image;
+  while (cam->UpdateCount() < 2) g.world->Step(1);
+  const std::vector<uint8_t> left = cam->Frame(0).image, right = cam->Frame(1).image;
+  rendering::RenderedFrame expected;
+  const uint64_t seed_right = cam->NoiseSeedOf(1);
+  renderer.Render(*g.world, cam->CameraWorldPose(1), cam->Camera(1), seed_right, true, false, &expected);
+  EXPECT_TRUE(right == expected.image);
+  EXPECT_FALSE(left == first_left);  // a new update: new noise
 }
 
 TEST(Camera, NoiseOfAFlatGreyImageHasTheDeclaredSigmaAndIsDeterministic) {

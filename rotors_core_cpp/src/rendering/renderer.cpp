@@ -349,11 +349,12 @@ struct Renderer::Impl {
   MeshUniforms mesh_vertex;
   DepthUniforms depth_vertex;
   ShadowMap shadow;
-  std::vector<VisualDraw> draws;                              // scratch of a frame: the visuals in view
-  std::vector<std::pair<size_t, const Chunk*>> visible;       // and their chunks in view (part, chunk)
-  std::map<const void*, GpuMesh> meshes;                      // by source object
-  std::map<std::pair<std::string, float>, GLuint> textures;   // by image file and anisotropy (0: unreadable)
-  std::map<std::tuple<int, int, int, bool>, Target> targets;  // by width, height, format, depth
+  std::vector<VisualDraw> draws;                             // scratch of a frame: the visuals in view
+  std::vector<std::pair<size_t, const Chunk*>> visible;      // and their chunks in view (part, chunk)
+  std::map<const void*, GpuMesh> meshes;                     // by source object
+  std::map<std::pair<std::string, float>, GLuint> textures;  // by image file and anisotropy (0: unreadable)
+  // by width, height, format, depth, slot (each camera of a batch draws into its own)
+  std::map<std::tuple<int, int, int, bool, size_t>, Target> targets;
   std::map<std::string, std::unique_ptr<DistortionMap>> distortion_maps;  // by DistortionKey
   RenderedFrame pinhole_frame;                                            // scratch of distorted cameras
   size_t triangles = 0;
@@ -369,7 +370,7 @@ struct Renderer::Impl {
   }
   const GpuMesh* MeshFor(const Shape& shape, Eigen::Matrix4d* S);
   GLuint TextureFor(const std::string& file, float max_anisotropy = 1.0f);
-  Target& TargetFor(int width, int height, PixelFormat format, bool depth);
+  Target& TargetFor(int width, int height, PixelFormat format, bool depth, size_t slot);
   const ShadowMap* ShadowFor(const physics::World& world, const ignition::math::Pose3d& X_WC,
                              const CameraIntrinsics& in);
   void DrawCasters(const physics::World& world, const Eigen::Matrix4d& T_clip_W, bool static_models,
@@ -489,8 +490,7 @@ GLuint Renderer::Impl::TextureFor(const std::string& file, float max_anisotropy)
   // image row 0 is the top; texture coordinate v = 0 is the bottom
   const size_t row = static_cast<size_t>(w) * kept;
   std::vector<unsigned char> flipped(row * h);
-  for (int r = 0; r < h; ++r)
-    std::copy(pixels + r * row, pixels + (r + 1) * row, flipped.begin() + (h - 1 - r) * row);
+  for (int r = 0; r < h; ++r) std::copy(pixels + r * row, pixels + (r + 1) * row, flipped.begin() + (h - 1 - r) * row);
   if (grey) {
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, w, h, 0, GL_RED, GL_UNSIGNED_BYTE, flipped.data());
     const GLint rrr1[] = {GL_RED, GL_RED, GL_RED, GL_ONE};
@@ -559,8 +559,8 @@ const GpuMesh* Renderer::Impl::MeshFor(const Shape& shape, Eigen::Matrix4d* S) {
   return nullptr;
 }
 
-Target& Renderer::Impl::TargetFor(int width, int height, PixelFormat format, bool depth) {
-  const auto key = std::make_tuple(width, height, static_cast<int>(format), depth);
+Target& Renderer::Impl::TargetFor(int width, int height, PixelFormat format, bool depth, size_t slot) {
+  const auto key = std::make_tuple(width, height, static_cast<int>(format), depth, slot);
   auto it = targets.find(key);
   if (it != targets.end()) return it->second;
   Target t;
@@ -768,7 +768,8 @@ void AddNoise(const CameraSpec& camera, uint64_t seed, std::vector<uint8_t>* ima
 void Renderer::Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
                       uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
   if (camera.distortion.IsIdentity()) {
-    RenderPinhole(world, X_WC, camera, noise_seed, want_image, want_depth, out);
+    ReadPinhole(DrawPinhole(world, X_WC, camera, noise_seed, want_image, want_depth, 0), camera, want_image, want_depth,
+                out);
     return;
   }
   Impl& r = *impl_;
@@ -778,7 +779,8 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   pinhole.intrinsics = map->Pinhole();
   pinhole.distortion = LensDistortion();
   pinhole.noise_mean = pinhole.noise_stddev = 0.0;
-  RenderPinhole(world, X_WC, pinhole, 0, want_image, want_depth, &r.pinhole_frame);
+  ReadPinhole(DrawPinhole(world, X_WC, pinhole, 0, want_image, want_depth, 0), pinhole, want_image, want_depth,
+              &r.pinhole_frame);
   out->width_px = camera.intrinsics.width_px;
   out->height_px = camera.intrinsics.height_px;
   out->image.clear();
@@ -790,8 +792,25 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   if (want_depth) map->RemapDepth(r.pinhole_frame.depth_m, &out->depth_m);
 }
 
-void Renderer::RenderPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
-                             uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
+void Renderer::RenderAll(const physics::World& world, const std::vector<FrameRequest>& requests) {
+  // each pinhole camera's drawing goes to the rasteriser (glFlush) before the next one is prepared,
+  // and all are read back after: llvmpipe's threads draw one camera while this thread sets up the next
+  std::vector<std::pair<const FrameRequest*, const void*>> drawn;
+  for (const FrameRequest& q : requests) {
+    if (!q.camera->distortion.IsIdentity()) continue;
+    drawn.emplace_back(&q,
+                       DrawPinhole(world, q.X_WC, *q.camera, q.noise_seed, q.want_image, q.want_depth, drawn.size()));
+    glFlush();
+  }
+  for (const auto& [q, target] : drawn) ReadPinhole(target, *q->camera, q->want_image, q->want_depth, q->out);
+  for (const FrameRequest& q : requests)
+    if (!q.camera->distortion.IsIdentity())
+      Render(world, q.X_WC, *q.camera, q.noise_seed, q.want_image, q.want_depth, q.out);
+}
+
+const void* Renderer::DrawPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC,
+                                  const CameraSpec& camera, uint64_t noise_seed, bool want_image, bool want_depth,
+                                  size_t slot) {
   Impl& r = *impl_;
   // each world's renderer has its own context; several worlds may render from one thread
   if (eglGetCurrentContext() != r.context && !eglMakeCurrent(r.display, EGL_NO_SURFACE, EGL_NO_SURFACE, r.context))
@@ -800,7 +819,7 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
   const int W = in.width_px, H = in.height_px;
   const PixelFormat format = camera.format;
   const ShadowMap* shadow = want_image ? r.ShadowFor(world, X_WC, in) : nullptr;  // depth needs no shadows
-  Target& target = r.TargetFor(W, H, format, want_depth);
+  Target& target = r.TargetFor(W, H, format, want_depth, slot);
   glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
   glViewport(0, 0, W, H);
   glClear(GL_DEPTH_BUFFER_BIT);  // to 1: the far plane
@@ -947,7 +966,15 @@ void Renderer::RenderPinhole(const physics::World& world, const ignition::math::
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
   glBindVertexArray(0);
+  return &target;
+}
 
+void Renderer::ReadPinhole(const void* drawn, const CameraSpec& camera, bool want_image, bool want_depth,
+                           RenderedFrame* out) {
+  const Target& target = *static_cast<const Target*>(drawn);
+  const int W = camera.intrinsics.width_px, H = camera.intrinsics.height_px;
+  const PixelFormat format = camera.format;
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
   out->width_px = W;
   out->height_px = H;
   out->image.clear();

@@ -54,6 +54,7 @@ CameraSensor::CameraSensor(std::string name, std::string type, physics::LinkPtr 
     if (m.get() != &own) check_textures(*m);
   frames_.resize(cameras_.size());
   rendered_update_.assign(cameras_.size(), 0);
+  asked_update_.assign(cameras_.size(), kNever);
   seed_ = std::hash<std::string>()(ParentLink()->GetModel()->GetName() + "::" + Name());
 }
 
@@ -82,12 +83,20 @@ void CameraSensor::SetGroundTruthDepth(bool on) {
 
 const rendering::RenderedFrame& CameraSensor::Frame(size_t i) {
   if (rendered_update_.at(i) != update_count_) {
+    // the cameras asked for at the last update too (a stereo pair's other one) are rendered with
+    // this one, in one batch
+    std::vector<rendering::FrameRequest> requests;
+    for (size_t j = 0; j < cameras_.size(); ++j) {
+      const bool asked_last = asked_update_[j] != kNever && asked_update_[j] + 1 == update_count_;
+      const bool wanted = j == i || (asked_last && rendered_update_[j] != update_count_);
+      if (!wanted) continue;
+      requests.push_back({CameraWorldPose(j), &cameras_[j], NoiseSeedOf(j), true, RendersDepth(), &frames_[j]});
+      rendered_update_[j] = update_count_;
+    }
     physics::World& world = *ParentLink()->GetModel()->GetWorldRaw();
-    rendering::Renderer::Of(world).Render(world, CameraWorldPose(i), cameras_[i],
-                                          seed_ * 1000003u + update_count_ * 16u + i, true, RendersDepth(),
-                                          &frames_[i]);
-    rendered_update_[i] = update_count_;
+    rendering::Renderer::Of(world).RenderAll(world, requests);
   }
+  asked_update_[i] = update_count_;
   return frames_[i];
 }
 

@@ -23,6 +23,15 @@ struct RenderedFrame {
   std::vector<float> depth_m;  ///< optical-axis distance per pixel, NaN where nothing is in range
 };
 
+/// One camera's frame to render (Render's arguments).
+struct FrameRequest {
+  ignition::math::Pose3d X_WC;
+  const CameraSpec* camera = nullptr;
+  uint64_t noise_seed = 0;
+  bool want_image = true, want_depth = false;
+  RenderedFrame* out = nullptr;
+};
+
 class Renderer {
  public:
   /// The world's renderer; creates its GL context on first use. Throws SimError when no headless
@@ -36,13 +45,21 @@ class Renderer {
   void Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
               uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out);
 
+  /// Several cameras of `world` at once (a stereo pair): each frame is the one Render gives, but a
+  /// camera is drawn while the one before it is still being rasterised, so the two CPU sides of
+  /// the work overlap.
+  void RenderAll(const physics::World& world, const std::vector<FrameRequest>& requests);
+
   /// Triangles uploaded so far (all cached shapes), for benchmarks.
   size_t CachedTriangles() const;
 
  private:
   Renderer();
-  void RenderPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
-                     uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out);
+  /// Draws a pinhole camera into the render target of `slot` (one per camera of a RenderAll);
+  /// returns the target, which ReadPinhole reads back.
+  const void* DrawPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
+                          uint64_t noise_seed, bool want_image, bool want_depth, size_t slot);
+  void ReadPinhole(const void* drawn, const CameraSpec& camera, bool want_image, bool want_depth, RenderedFrame* out);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -5,6 +5,7 @@
 // is rendered.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <sdf/Element.hh>
@@ -43,6 +44,8 @@ class CameraSensor : public Sensor {
   const rendering::RenderedFrame& Frame(size_t i);
   /// Number of the last update (the noise seed of its frames with the sensor's seed).
   uint64_t UpdateCount() const { return update_count_; }
+  /// The noise seed of camera i's frame at the last update.
+  uint64_t NoiseSeedOf(size_t i) const { return seed_ * 1000003u + update_count_ * 16u + i; }
   void SetNoiseSeed(uint64_t seed) { seed_ = seed; }
 
  protected:
@@ -52,6 +55,8 @@ class CameraSensor : public Sensor {
   std::vector<rendering::CameraSpec> cameras_;
   std::vector<rendering::RenderedFrame> frames_;
   std::vector<uint64_t> rendered_update_;  ///< update count of frames_[i]; 0 = never
+  static constexpr uint64_t kNever = UINT64_MAX;
+  std::vector<uint64_t> asked_update_;  ///< update count at the last Frame(i) call; kNever: none yet
   uint64_t update_count_ = 0;
   uint64_t seed_ = 0;
   bool ground_truth_depth_ = false;
