@@ -337,7 +337,8 @@ TEST(Camera, APairRenderedTogetherIsThePairRenderedOneByOne) {
   EXPECT_FALSE(one[0].image == one[1].image);  // two views, not one image twice
 
   // through the sensor: both asked at one update, so the next update renders them together
-  const std::vector<uint8_t> first_left = cam->Frame(0).image, first_right = cam->Frame(1).image;
+  const std::vector<uint8_t> first_left = cam->Frame(0).image;
+  cam->Frame(1);
   while (cam->UpdateCount() < 2) g.world->Step(1);
   const std::vector<uint8_t> left = cam->Frame(0).image, right = cam->Frame(1).image;
   rendering::RenderedFrame expected;

@@ -768,8 +768,8 @@ void AddNoise(const CameraSpec& camera, uint64_t seed, std::vector<uint8_t>* ima
 void Renderer::Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
                       uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
   if (camera.distortion.IsIdentity()) {
-    ReadPinhole(DrawPinhole(world, X_WC, camera, noise_seed, want_image, want_depth, 0), camera, want_image, want_depth,
-                out);
+    DrawPinhole(world, X_WC, camera, noise_seed, want_image, want_depth, 0);
+    ReadPinhole(camera, want_image, want_depth, 0, out);
     return;
   }
   Impl& r = *impl_;
@@ -779,8 +779,8 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   pinhole.intrinsics = map->Pinhole();
   pinhole.distortion = LensDistortion();
   pinhole.noise_mean = pinhole.noise_stddev = 0.0;
-  ReadPinhole(DrawPinhole(world, X_WC, pinhole, 0, want_image, want_depth, 0), pinhole, want_image, want_depth,
-              &r.pinhole_frame);
+  DrawPinhole(world, X_WC, pinhole, 0, want_image, want_depth, 0);
+  ReadPinhole(pinhole, want_image, want_depth, 0, &r.pinhole_frame);
   out->width_px = camera.intrinsics.width_px;
   out->height_px = camera.intrinsics.height_px;
   out->image.clear();
@@ -795,22 +795,24 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
 void Renderer::RenderAll(const physics::World& world, const std::vector<FrameRequest>& requests) {
   // each pinhole camera's drawing goes to the rasteriser (glFlush) before the next one is prepared,
   // and all are read back after: llvmpipe's threads draw one camera while this thread sets up the next
-  std::vector<std::pair<const FrameRequest*, const void*>> drawn;
+  std::vector<const FrameRequest*> pinholes;  // the slot of each is its index
   for (const FrameRequest& q : requests) {
     if (!q.camera->distortion.IsIdentity()) continue;
-    drawn.emplace_back(&q,
-                       DrawPinhole(world, q.X_WC, *q.camera, q.noise_seed, q.want_image, q.want_depth, drawn.size()));
+    DrawPinhole(world, q.X_WC, *q.camera, q.noise_seed, q.want_image, q.want_depth, pinholes.size());
     glFlush();
+    pinholes.push_back(&q);
   }
-  for (const auto& [q, target] : drawn) ReadPinhole(target, *q->camera, q->want_image, q->want_depth, q->out);
+  for (size_t slot = 0; slot < pinholes.size(); ++slot) {
+    const FrameRequest& q = *pinholes[slot];
+    ReadPinhole(*q.camera, q.want_image, q.want_depth, slot, q.out);
+  }
   for (const FrameRequest& q : requests)
     if (!q.camera->distortion.IsIdentity())
       Render(world, q.X_WC, *q.camera, q.noise_seed, q.want_image, q.want_depth, q.out);
 }
 
-const void* Renderer::DrawPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC,
-                                  const CameraSpec& camera, uint64_t noise_seed, bool want_image, bool want_depth,
-                                  size_t slot) {
+void Renderer::DrawPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
+                           uint64_t noise_seed, bool want_image, bool want_depth, size_t slot) {
   Impl& r = *impl_;
   // each world's renderer has its own context; several worlds may render from one thread
   if (eglGetCurrentContext() != r.context && !eglMakeCurrent(r.display, EGL_NO_SURFACE, EGL_NO_SURFACE, r.context))
@@ -966,15 +968,13 @@ const void* Renderer::DrawPinhole(const physics::World& world, const ignition::m
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
   glBindVertexArray(0);
-  return &target;
 }
 
-void Renderer::ReadPinhole(const void* drawn, const CameraSpec& camera, bool want_image, bool want_depth,
+void Renderer::ReadPinhole(const CameraSpec& camera, bool want_image, bool want_depth, size_t slot,
                            RenderedFrame* out) {
-  const Target& target = *static_cast<const Target*>(drawn);
   const int W = camera.intrinsics.width_px, H = camera.intrinsics.height_px;
   const PixelFormat format = camera.format;
-  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->TargetFor(W, H, format, want_depth, slot).fbo);  // DrawPinhole's
   out->width_px = W;
   out->height_px = H;
   out->image.clear();

@@ -56,10 +56,10 @@ class Renderer {
  private:
   Renderer();
   /// Draws a pinhole camera into the render target of `slot` (one per camera of a RenderAll);
-  /// returns the target, which ReadPinhole reads back.
-  const void* DrawPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
-                          uint64_t noise_seed, bool want_image, bool want_depth, size_t slot);
-  void ReadPinhole(const void* drawn, const CameraSpec& camera, bool want_image, bool want_depth, RenderedFrame* out);
+  /// ReadPinhole reads that target back.
+  void DrawPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
+                   uint64_t noise_seed, bool want_image, bool want_depth, size_t slot);
+  void ReadPinhole(const CameraSpec& camera, bool want_image, bool want_depth, size_t slot, RenderedFrame* out);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
