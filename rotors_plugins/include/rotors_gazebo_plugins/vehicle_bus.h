@@ -32,6 +32,7 @@ struct VehicleBus {
   std::vector<double> rotor_speed_rad_s;    ///< signed real speed per motor number
   int rotor_count = 0;                      ///< motor models registered (rotors and servos)
   std::vector<bool> is_servo;               ///< per motor number: a servo (its command and "speed" are angles [rad])
+  std::vector<double> max_rot_velocity_rad_s;  ///< per motor number: the motor model's maxRotVelocity (0: a servo)
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
   std::vector<MotorFault> motor_faults;                       ///< per motor number (healthy by default)
   /// Fixed wings: RotorS' normalized actuator command (mav_msgs/Actuators.normalized, by channel).
@@ -41,12 +42,19 @@ struct VehicleBus {
   /// The fixed-wing plugin's check of a normalized command ("" or why not: a deflection out of range)
   std::function<std::string(const std::vector<double>&)> normalized_check;
 
+  /// RC channels [us] an autopilot interface forwards to its firmware (Betaflight's RC packet): AETR,
+  /// then AUX1.. (ROS: the interface's rc topic; Python: World.set_rc).
+  std::vector<int> rc_channels_us;
+  uint64_t rc_count = 0;
+  /// Outputs the vehicle's autopilot interface has applied so far (its answers).
+  uint64_t autopilot_answers = 0;
+
   /// The bus of a namespace in a world, shared by the plugins of the vehicle that hold it. It lives
   /// as long as one of them: a model deleted and re-spawned under the same namespace (with another
   /// rotor count, too) starts on a fresh bus. Buses live in the world (World::PluginState), so two
   /// worlds in one process with the same vehicle name never share motor commands.
   static std::shared_ptr<VehicleBus> For(rotors_sim::physics::World& world, const std::string& robot_namespace);
-  void RegisterRotor(int motor_number);
+  void RegisterRotor(int motor_number, double max_rot_velocity_rad_s = 0.0);
   /// A position-controlled motor (the omav's tilt units): its command entry is an angle [rad], any sign.
   void RegisterServo(int motor_number);
   /// The one way in for motor commands (the controller interface's ROS topics, the Python module):
@@ -56,6 +64,8 @@ struct VehicleBus {
   /// The one way in for a fixed wing's normalized command (surfaces and throttle by channel): "" or
   /// why it was refused (no fixed-wing plugin, too few channels, NaN or inf).
   std::string SetNormalizedCommand(const std::vector<double>& normalized);
+  /// The one way in for RC channels: "" or why they were refused (more than 16, or outside 800..2200 us).
+  std::string SetRcChannels(const std::vector<int>& channels_us);
   /// The factor motor `motor_number`'s command is scaled by at sim time t_s.
   double SpeedFactor(int motor_number, double t_s) const {
     if (motor_number >= static_cast<int>(motor_faults.size())) return 1.0;

@@ -29,11 +29,29 @@ std::shared_ptr<VehicleBus> VehicleBus::For(rotors_sim::physics::World& world, c
   return bus;
 }
 
-void VehicleBus::RegisterRotor(int motor_number) {
+void VehicleBus::RegisterRotor(int motor_number, double max_rot_velocity) {
   if (motor_number + 1 > rotor_count) rotor_count = motor_number + 1;
   rotor_speed_rad_s.resize(rotor_count, 0.0);
   motor_faults.resize(rotor_count);
   is_servo.resize(rotor_count, false);
+  max_rot_velocity_rad_s.resize(rotor_count, 0.0);
+  max_rot_velocity_rad_s[motor_number] = max_rot_velocity;
+}
+
+std::string VehicleBus::SetRcChannels(const std::vector<int>& channels_us) {
+  std::ostringstream why;
+  if (channels_us.size() > 16) {
+    why << "has " << channels_us.size() << " RC channels; at most 16 are forwarded";
+    return why.str();
+  }
+  for (size_t i = 0; i < channels_us.size(); ++i)
+    if (channels_us[i] < 800 || channels_us[i] > 2200) {
+      why << "RC channel " << i + 1 << " = " << channels_us[i] << " us is outside 800..2200 us";
+      return why.str();
+    }
+  rc_channels_us = channels_us;
+  ++rc_count;
+  return {};
 }
 
 void VehicleBus::RegisterServo(int motor_number) {

@@ -100,7 +100,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     rotor_ = std::make_unique<RotorModel>(p);
     link_ = RequireLink(model, link_name);
     parent_link_ = joint_->GetParent();
-    bus_->RegisterRotor(motor_number_);
+    bus_->RegisterRotor(motor_number_, p.max_rot_velocity);
     speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 1);
   }
 

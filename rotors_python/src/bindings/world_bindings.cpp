@@ -172,6 +172,13 @@ class PyWorld {
     if (!why.empty()) throw SimError("motor command for '" + ns + "' " + why);
   }
   std::vector<double> RotorSpeeds(const std::string& ns) const { return Bus(ns)->rotor_speed_rad_s; }
+  /// RC channels [us] for the vehicle's autopilot interface (Betaflight's RC packet).
+  void SetRc(const std::string& ns, const std::vector<int>& channels_us) {
+    const std::string why = Bus(ns)->SetRcChannels(channels_us);
+    if (!why.empty()) throw SimError("RC for '" + ns + "' " + why);
+  }
+  /// How many outputs the vehicle's autopilot has answered with so far.
+  uint64_t AutopilotAnswers(const std::string& ns) const { return Bus(ns)->autopilot_answers; }
   /// A fixed wing's normalized command (surfaces and throttle by channel), as Actuators.normalized.
   void SetActuators(const std::string& ns, const std::vector<double>& normalized) {
     auto bus = rotors_gazebo_plugins::VehicleBus::For(*world_, ns);
@@ -398,6 +405,8 @@ void BindWorld(py::module_& m) {
            py::arg("velocity"), py::arg("angular_velocity"))
       .def("set_motor_speeds", &PyWorld::SetMotorSpeeds, py::arg("namespace"), py::arg("speeds"))
       .def("rotor_speeds", &PyWorld::RotorSpeeds, py::arg("namespace"))
+      .def("set_rc", &PyWorld::SetRc, py::arg("namespace"), py::arg("channels_us"))
+      .def("autopilot_answers", &PyWorld::AutopilotAnswers, py::arg("namespace"))
       .def("set_actuators", &PyWorld::SetActuators, py::arg("namespace"), py::arg("normalized"))
       .def("message", &PyWorld::Message, py::arg("topic"))
       .def("odometry_array", &PyWorld::OdometryArray, py::arg("topic"))

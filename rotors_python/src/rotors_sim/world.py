@@ -152,6 +152,14 @@ class World:
     def rotor_speeds(self, namespace: str) -> np.ndarray:
         return np.asarray(self._w.rotor_speeds(namespace))
 
+    def set_rc(self, namespace: str, channels_us: Sequence[int]) -> None:
+        """RC channels [us] (AETR, AUX1.., at most 16, 800..2200) for the vehicle's autopilot interface."""
+        self._w.set_rc(namespace, [int(c) for c in channels_us])
+
+    def autopilot_answers(self, namespace: str) -> int:
+        """How many times the vehicle's autopilot (PX4, ArduPilot, Betaflight) has sent its outputs."""
+        return self._w.autopilot_answers(namespace)
+
     def contacts(self) -> list[dict]:
         return self._w.contacts()
 

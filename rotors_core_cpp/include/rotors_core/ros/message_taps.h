@@ -25,6 +25,7 @@ struct TappedMessage {
   std::string md5sum;
   uint64_t count = 0;  ///< messages so far
   bool wanted = true;  ///< false: MessageTaps::Restrict left this topic out (its plugin skips it)
+  bool pinned = false;  ///< an in-process reader (MessageTaps::Pin) keeps it whatever the taps' state
   boost::shared_ptr<const void> message;
   std::function<std::string(const void*)> serialize;  ///< ROS wire format of `message`
 
@@ -47,6 +48,13 @@ struct TappedMessage {
     message = m;
     ++count;
   }
+
+  /// The last message as M, nullptr before the first one or when the topic carries another type.
+  template <class M>
+  const M* As() const {
+    if (!message || datatype != ros::message_traits::DataType<M>::value()) return nullptr;
+    return static_cast<const M*>(message.get());
+  }
 };
 
 class MessageTaps {
@@ -60,8 +68,21 @@ class MessageTaps {
   /// From now on, publishers made for this world keep their messages here.
   void Enable() { enabled_ = true; }
   bool Enabled() const { return enabled_; }
-  /// The slot of a resolved topic name, nullptr when the taps are disabled. Valid as long as the world.
-  TappedMessage* Slot(const std::string& topic) { return enabled_ ? &slots_[topic] : nullptr; }
+  /// The slot of a resolved topic name, nullptr when the taps are disabled and nobody pinned the
+  /// topic. Valid as long as the world.
+  TappedMessage* Slot(const std::string& topic) {
+    if (enabled_) return &slots_[topic];
+    auto it = slots_.find(topic);
+    return it != slots_.end() && it->second.pinned ? &it->second : nullptr;
+  }
+  /// An in-process reader in the engine (an autopilot interface plugin reading the vehicle's
+  /// sensors) keeps `topic` whether or not the taps are enabled or restricted. The topic's
+  /// publisher must be made after this call (its plugin loaded later).
+  const TappedMessage* Pin(const std::string& topic) {
+    TappedMessage& slot = slots_[topic];
+    slot.pinned = slot.wanted = true;
+    return &slot;
+  }
   const TappedMessage* Find(const std::string& topic) const {
     auto it = slots_.find(topic);
     return it == slots_.end() ? nullptr : &it->second;
@@ -69,7 +90,7 @@ class MessageTaps {
   /// Only these topics are kept from now on (the others' plugins need not even build their
   /// messages: a speed-up when a learning loop reads one or two topics); empty: all again.
   void Restrict(const std::vector<std::string>& topics) {
-    for (auto& slot : slots_) slot.second.wanted = topics.empty();
+    for (auto& slot : slots_) slot.second.wanted = topics.empty() || slot.second.pinned;
     for (const std::string& topic : topics) slots_[topic].wanted = true;
   }
   std::vector<std::string> Topics() const {

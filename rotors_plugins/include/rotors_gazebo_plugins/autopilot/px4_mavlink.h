@@ -1,0 +1,75 @@
+// PX4's simulator protocol (src/modules/simulation/simulator_mavlink/SimulatorMavlink.cpp), engine-
+// and ROS-free: the messages the simulator sends, built from a VehicleSnapshot in PX4's units and
+// frames (NED world, FRD body), and MAVLink 2 framing both ways on the C headers pymavlink's
+// mavgen generates from the MAVLink project's common.xml at build time.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/mavlink.h"
+#include "rotors_gazebo_plugins/autopilot/vehicle_snapshot.h"
+
+namespace rotors_gazebo_plugins {
+namespace px4 {
+
+/// HIL_SENSOR fields_updated bits, as PX4 reads them
+constexpr uint32_t kAccel = 0x7, kGyro = 0x38, kMag = 0x1C0, kAbsPressure = 0x200, kDiffPressure = 0x400,
+                   kPressureAlt = 0x800, kTemperature = 0x1000;
+constexpr uint32_t kBaro = kAbsPressure | kPressureAlt | kTemperature;
+/// HIL_ACTUATOR_CONTROLS.mode bit: armed (MAV_MODE_FLAG_SAFETY_ARMED)
+constexpr uint8_t kArmed = MAV_MODE_FLAG_SAFETY_ARMED;
+/// HIL_ACTUATOR_CONTROLS.flags bit 0: PX4 runs lockstep
+constexpr uint64_t kLockstepFlag = 1;
+
+/// The international standard atmosphere: pressure altitude [m] of `pressure_Pa`, and the
+/// temperature [deg C] at `altitude_m`.
+double PressureAltitude(double pressure_Pa);
+double IsaTemperature(double altitude_m);
+
+/// IMU (always), magnetometer, barometer and differential pressure (each when `new_*`), as
+/// fields_updated says; accelerometer and gyroscope in body FRD, the field in gauss.
+mavlink_hil_sensor_t HilSensor(const VehicleSnapshot& s, bool new_mag, bool new_baro, bool new_diff_pressure);
+/// The GPS plugin's reading: 1e-7 deg, mm, cm/s NED, eph/epv in cm from its standard deviations.
+mavlink_hil_gps_t HilGps(const VehicleSnapshot& s);
+/// Ground truth: q NED <- FRD, FRD rates, 1e-7 deg, mm, cm/s NED, specific force in mG.
+mavlink_hil_state_quaternion_t HilStateQuaternion(const VehicleSnapshot& s);
+/// A downward range sensor (ROTATION_PITCH_270), cm.
+mavlink_distance_sensor_t DistanceSensor(const VehicleSnapshot& s);
+mavlink_hil_optical_flow_t HilOpticalFlow(const VehicleSnapshot& s);
+
+/// One end of a MAVLink 2 link: frames outgoing messages with its own system and component ids and
+/// sequence (no process-wide channel state: several vehicles in one process each have their own),
+/// and unframes incoming bytes, counting what it had to drop.
+class MavlinkEndpoint {
+ public:
+  MavlinkEndpoint(uint8_t system_id, uint8_t component_id) : system_id_(system_id), component_id_(component_id) {}
+
+  /// The bytes of one message on the wire.
+  std::vector<uint8_t> Frame(const mavlink_hil_sensor_t& m);
+  std::vector<uint8_t> Frame(const mavlink_hil_gps_t& m);
+  std::vector<uint8_t> Frame(const mavlink_hil_state_quaternion_t& m);
+  std::vector<uint8_t> Frame(const mavlink_distance_sensor_t& m);
+  std::vector<uint8_t> Frame(const mavlink_hil_optical_flow_t& m);
+  std::vector<uint8_t> Frame(const mavlink_heartbeat_t& m);
+
+  /// Feeds received bytes; `on_message` gets each complete, checksummed message.
+  void Feed(const uint8_t* data, size_t n, const std::function<void(const mavlink_message_t&)>& on_message);
+  /// Frames dropped so far for a bad checksum (a corrupt or truncated frame, or an unknown message).
+  uint64_t BadFrames() const { return bad_frames_; }
+  /// Forget a partial frame (a new connection starts clean).
+  void ResetParser() { parse_status_ = {}; }
+
+ private:
+  std::vector<uint8_t> Finish(uint32_t id, const void* payload, uint8_t min_length, uint8_t length, uint8_t crc_extra);
+  uint8_t system_id_, component_id_;
+  mavlink_status_t send_status_{};  // the sequence number
+  mavlink_message_t parse_buffer_{};
+  mavlink_status_t parse_status_{};
+  uint64_t bad_frames_ = 0;
+};
+
+}  // namespace px4
+}  // namespace rotors_gazebo_plugins

@@ -1,0 +1,78 @@
+// What the three autopilot interface plugins share (PX4's MAVLink, ArduPilot's JSON, Betaflight's
+// SITL packets): the vehicle's state and sensor readings at each step (VehicleSnapshot), RotorS'
+// <control_channels> from the autopilot's outputs to the motor command, the disarmed command when
+// the link is lost, and one-line errors at most once a second per kind. Each protocol is a subclass
+// that opens its links and, once per physics step before the step (world_update_begin), exchanges
+// the snapshot for the autopilot's outputs (Exchange).
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rotors_core/event.h"
+#include "rotors_core/physics/physics_types.h"
+#include "rotors_core/plugin.h"
+#include "rotors_core/ros/message_taps.h"
+#include "rotors_gazebo_plugins/autopilot/control_channels.h"
+#include "rotors_gazebo_plugins/autopilot/vehicle_snapshot.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
+
+namespace rotors_gazebo_plugins {
+
+class AutopilotInterface : public rotors_sim::ModelPlugin {
+ public:
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) final;
+  void Reset() final;
+
+ protected:
+  /// Reads the protocol's own parameters through Params() and opens its links (SimError on bad ones).
+  virtual void LoadProtocol() = 0;
+  /// How many outputs the autopilot sends (input_index must be below it).
+  virtual int OutputCount() const = 0;
+  /// Once per step, before it: send what the autopilot reads, take what it answers (Apply / ApplyDisarmed).
+  virtual void Exchange(const VehicleSnapshot& s) = 0;
+  /// The world went back (reset): the next answer starts a new exchange.
+  virtual void OnReset() {}
+  /// For messages: "[px4_mavlink] model 'firefly'".
+  virtual const char* Tag() const = 0;
+
+  /// Outputs `u` (normalized: motors 0..1, servos -1..1) through the control channels to the motors.
+  void Apply(const std::vector<double>& u, bool armed);
+  /// The disarmed values (zero_position_disarmed) on every channel, once per `why` (a lost link).
+  void ApplyDisarmed();
+  /// One line on stderr/rosconsole, at most once a second of wall time per `kind`.
+  void Error(const std::string& kind, const std::string& line);
+  void Info(const std::string& line);
+
+  const std::string& Namespace() const { return namespace_; }
+  rotors_sim::physics::World& World() const { return *world_; }
+  VehicleBus& Bus() const { return *bus_; }
+  /// The step size [s] the world runs at.
+  double StepSize() const;
+
+ private:
+  VehicleSnapshot Snapshot();
+  const rotors_sim::TappedMessage* PinTopic(const std::string& param, const std::string& default_topic);
+  void ReadControlChannels();
+  /// Without <control_channels>: one per motor (false and a line when the autopilot has too few outputs).
+  bool MakeDefaultChannels();
+
+  std::string namespace_, model_name_;
+  rotors_sim::physics::World* world_ = nullptr;
+  rotors_sim::physics::LinkPtr link_;
+  std::shared_ptr<VehicleBus> bus_;
+  std::vector<ControlChannel> given_channels_;
+  bool channels_given_ = false;
+  ControlChannels channels_;  ///< made at the first step (the default needs every motor registered)
+  bool channels_ready_ = false;
+  const rotors_sim::TappedMessage *imu_ = nullptr, *mag_ = nullptr, *baro_ = nullptr, *gps_ = nullptr,
+                                  *ground_speed_ = nullptr, *range_ = nullptr, *flow_ = nullptr, *airspeed_ = nullptr;
+  double gps_hor_std_m_ = 0.0, gps_ver_std_m_ = 0.0;
+  std::map<std::string, std::chrono::steady_clock::time_point> last_error_;
+  rotors_sim::event::ConnectionPtr update_;
+};
+
+}  // namespace rotors_gazebo_plugins

@@ -1,0 +1,213 @@
+#include "rotors_gazebo_plugins/autopilot_interface.h"
+
+#include <cmath>
+
+#include <geometry_msgs/TwistStamped.h>
+#include <geometry_msgs/Vector3Stamped.h>
+#include <mavros_msgs/OpticalFlowRad.h>
+#include <ros/console.h>
+#include <sensor_msgs/FluidPressure.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/MagneticField.h>
+#include <sensor_msgs/NavSatFix.h>
+#include <sensor_msgs/Range.h>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+
+namespace rotors_gazebo_plugins {
+namespace {
+Eigen::Vector3d ToEigen(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
+
+/// A new message on a pinned topic since `*seen` (and the message), else nullptr.
+template <class M>
+const M* Latest(const rotors_sim::TappedMessage* slot, uint64_t* count) {
+  if (!slot) return nullptr;
+  const M* m = slot->As<M>();
+  if (m) *count = slot->count;
+  return m;
+}
+}  // namespace
+
+void AutopilotInterface::Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) {
+  namespace_ = ReadRobotNamespace(Params());
+  model_name_ = model->GetName();
+  world_ = model->GetWorldRaw();
+  std::string link_name = namespace_.empty() ? "base_link" : namespace_ + "/base_link";
+  ReadParam(Params(), "linkName", &link_name);
+  link_ = RequireLink(model, link_name);
+  bus_ = VehicleBus::For(*world_, namespace_);
+  // the sensors the autopilot reads, by the topics their plugins publish (relative to the namespace;
+  // the plugins are loaded after this one, as RotorS' xacros order them)
+  imu_ = PinTopic("imuSubTopic", "imu");
+  mag_ = PinTopic("magSubTopic", "magnetic_field");
+  baro_ = PinTopic("baroSubTopic", "air_pressure");
+  gps_ = PinTopic("gpsSubTopic", "gps");
+  ground_speed_ = PinTopic("groundSpeedSubTopic", "ground_speed");
+  range_ = PinTopic("lidarSubTopic", "lidar");
+  flow_ = PinTopic("opticalFlowSubTopic", "px4flow/raw/optical_flow_rad");
+  airspeed_ = PinTopic("airspeedSubTopic", "air_speed");
+  ReadControlChannels();
+  LoadProtocol();
+  if (channels_given_) {
+    channels_ = ControlChannels(given_channels_, OutputCount());
+    channels_ready_ = true;
+  }
+  update_ = rotors_sim::event::Events::ConnectWorldUpdateBegin([this](const rotors_sim::common::UpdateInfo&) {
+    if (!channels_ready_ && !MakeDefaultChannels()) return;
+    Exchange(Snapshot());
+  });
+}
+
+bool AutopilotInterface::MakeDefaultChannels() {
+  if (static_cast<int>(given_channels_.size()) != bus_->rotor_count) {
+    given_channels_.clear();
+    // one channel per motor: output i -> motor i, 0..1 -> 0..maxRotVelocity (a servo: -1..1 rad)
+    for (int i = 0; i < bus_->rotor_count; ++i) {
+      ControlChannel c;
+      c.name = "motor_" + std::to_string(i);
+      c.input_index = i;
+      c.input_scaling = bus_->is_servo[i] ? 1.0 : bus_->max_rot_velocity_rad_s[i];
+      c.joint_control_type = bus_->is_servo[i] ? "position" : "velocity";
+      given_channels_.push_back(c);
+    }
+  }
+  for (const ControlChannel& c : given_channels_) {
+    const std::string why = c.Validate(OutputCount());
+    if (!why.empty()) {
+      Error("channels", "the vehicle's " + std::to_string(bus_->rotor_count) + " motors need more outputs than the " +
+                            std::to_string(OutputCount()) + " the autopilot sends (" + why +
+                            "): give <control_channels>; the motors stay stopped");
+      return false;
+    }
+  }
+  channels_ = ControlChannels(given_channels_, OutputCount());
+  channels_ready_ = true;
+  return true;
+}
+
+void AutopilotInterface::Reset() { OnReset(); }
+
+const rotors_sim::TappedMessage* AutopilotInterface::PinTopic(const std::string& param,
+                                                              const std::string& default_topic) {
+  std::string topic = default_topic;
+  ReadParam(Params(), param, &topic);
+  if (topic.empty()) return nullptr;
+  return rotors_sim::MessageTaps::Of(*world_).Pin(ResolveTopic(namespace_, topic));
+}
+
+void AutopilotInterface::ReadControlChannels() {
+  if (!Params().Has("control_channels")) return;
+  channels_given_ = true;
+  const sdf::ElementPtr list = Params().Element()->GetElement("control_channels");
+  for (sdf::ElementPtr e = list->GetFirstElement(); e; e = e->GetNextElement()) {
+    if (e->GetName() != "channel")
+      throw rotors_sim::SimError("<control_channels> holds <channel> elements, not <" + e->GetName() + ">");
+    ControlChannel c;
+    if (e->HasAttribute("name")) c.name = e->GetAttribute("name")->GetAsString();
+    rotors_sim::SdfParams p(e);
+    p.Require("input_index", &c.input_index);
+    p.Read("input_offset", &c.input_offset);
+    p.Read("input_scaling", &c.input_scaling);
+    p.Read("zero_position_disarmed", &c.zero_position_disarmed);
+    p.Read("zero_position_armed", &c.zero_position_armed);
+    p.Read("joint_control_type", &c.joint_control_type);
+    p.Read("joint_name", &c.joint_name);
+    p.Read("gztopic", &c.gztopic);
+    p.RejectUnread();
+    given_channels_.push_back(c);
+  }
+}
+
+double AutopilotInterface::StepSize() const { return world_->Physics().max_step_size_s; }
+
+VehicleSnapshot AutopilotInterface::Snapshot() {
+  VehicleSnapshot s;
+  s.time_s = world_->SimTime().Double();
+  const auto X_WB = link_->WorldPose();
+  s.p_W = {X_WB.Pos().X(), X_WB.Pos().Y(), X_WB.Pos().Z()};
+  s.q_WB = Eigen::Quaterniond(X_WB.Rot().W(), X_WB.Rot().X(), X_WB.Rot().Y(), X_WB.Rot().Z());
+  const auto v_W = link_->WorldLinearVel();
+  s.v_W = {v_W.X(), v_W.Y(), v_W.Z()};
+  const auto w_B = link_->RelativeAngularVel();
+  s.omega_B = {w_B.X(), w_B.Y(), w_B.Z()};
+  // specific force: f_B = R_WB^T (a_W - g_W)
+  const auto f_B = X_WB.Rot().RotateVectorReverse(link_->WorldLinearAccel() - world_->Gravity());
+  s.specific_force_B = {f_B.X(), f_B.Y(), f_B.Z()};
+  const auto& o = world_->Origin();
+  s.latitude_longitude_altitude =
+      GeodeticFromWorld(GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg}, s.p_W);
+
+  if (const auto* imu = Latest<sensor_msgs::Imu>(imu_, &s.imu_count)) {
+    s.has_imu = true;
+    s.gyro_B = ToEigen(imu->angular_velocity);
+    s.accel_B = ToEigen(imu->linear_acceleration);
+  }
+  if (const auto* mag = Latest<sensor_msgs::MagneticField>(mag_, &s.mag_count)) {
+    s.has_mag = true;
+    s.mag_B_T = ToEigen(mag->magnetic_field);
+  }
+  if (const auto* baro = Latest<sensor_msgs::FluidPressure>(baro_, &s.baro_count)) {
+    s.has_baro = true;
+    s.pressure_Pa = baro->fluid_pressure;
+  }
+  if (const auto* fix = Latest<sensor_msgs::NavSatFix>(gps_, &s.gps_count)) {
+    s.has_gps = true;
+    s.gps_latitude_longitude_altitude = {fix->latitude, fix->longitude, fix->altitude};
+    s.gps_hor_std_m = std::sqrt(std::max(0.0, fix->position_covariance[0]));
+    s.gps_ver_std_m = std::sqrt(std::max(0.0, fix->position_covariance[8]));
+    uint64_t speed_count = 0;
+    if (const auto* speed = Latest<geometry_msgs::TwistStamped>(ground_speed_, &speed_count))
+      s.gps_velocity_W = ToEigen(speed->twist.linear);
+  }
+  if (const auto* range = Latest<sensor_msgs::Range>(range_, &s.range_count)) {
+    s.has_range = true;
+    s.range_m = range->range;
+    s.range_min_m = range->min_range;
+    s.range_max_m = range->max_range;
+  }
+  if (const auto* flow = Latest<mavros_msgs::OpticalFlowRad>(flow_, &s.flow_count)) {
+    s.has_flow = true;
+    s.flow_integration_time_us = flow->integration_time_us;
+    s.flow_integrated_xy_rad = {flow->integrated_x, flow->integrated_y};
+    s.flow_integrated_gyro_rad = {flow->integrated_xgyro, flow->integrated_ygyro, flow->integrated_zgyro};
+    s.flow_distance_m = flow->distance;
+    s.flow_quality = flow->quality;
+  }
+  if (const auto* airspeed = Latest<geometry_msgs::Vector3Stamped>(airspeed_, &s.diff_pressure_count)) {
+    s.has_diff_pressure = true;
+    constexpr double kAirDensity = 1.225;  // [kg/m^3] sea level
+    // a pitot tube's differential pressure: q = rho v_x^2 / 2
+    s.diff_pressure_Pa = 0.5 * kAirDensity * airspeed->vector.x * airspeed->vector.x;
+  }
+  return s;
+}
+
+void AutopilotInterface::Apply(const std::vector<double>& u, bool armed) {
+  ++bus_->autopilot_answers;
+  const std::string why = bus_->SetMotorCommand(channels_.References(u, armed));
+  if (!why.empty()) Error("command", std::string("motor command refused: ") + why);
+}
+
+void AutopilotInterface::ApplyDisarmed() {
+  if (channels_ready_) bus_->SetMotorCommand(channels_.Disarmed());
+}
+
+void AutopilotInterface::Error(const std::string& kind, const std::string& line) {
+  const auto now = std::chrono::steady_clock::now();
+  auto it = last_error_.find(kind);
+  if (it != last_error_.end() && now - it->second < std::chrono::seconds(1)) return;
+  last_error_[kind] = now;
+  ROS_ERROR("%s model '%s': %s", Tag(), model_name_.c_str(), line.c_str());
+}
+
+void AutopilotInterface::Info(const std::string& line) {
+  ROS_INFO("%s model '%s': %s", Tag(), model_name_.c_str(), line.c_str());
+}
+
+}  // namespace rotors_gazebo_plugins

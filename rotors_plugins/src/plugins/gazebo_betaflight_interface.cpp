@@ -1,0 +1,141 @@
+// librotors_gazebo_betaflight_interface.so (ours): a real Betaflight firmware (its SITL build) flies
+// the vehicle. Each step the interface sends the state packet to Betaflight's UDP port (9003) and the
+// RC channels (VehicleBus: the rcSubTopic or World.set_rc) to its RC port (9004), and takes the motor
+// outputs Betaflight sends to motor_port (9002) through <control_channels> to the motors (output i
+// drives motor i by default: Betaflight's packet is in the ArduCopter plugin's order, front right,
+// rear left, front left, rear right, which is the iris'). Betaflight answers each state packet with
+// one motor packet; with lockstep (the default), once it has answered the first, the world does not
+// step past a state packet until the answer is in. Betaflight's own clock is scaled to the
+// simulator's rate from the state timestamps (its sitl.c), so its loops are not repeatable from run
+// to run; the exchange is. A firmware silent for link_timeout [s] of wall time is lost: motors to
+// their disarmed values, the world runs on until it answers again.
+#include <sensor_msgs/Joy.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include "rotors_core/error.h"
+#include "rotors_gazebo_plugins/autopilot/betaflight_packets.h"
+#include "rotors_gazebo_plugins/autopilot/links.h"
+#include "rotors_gazebo_plugins/autopilot_interface.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboBetaflightInterface : public AutopilotInterface {
+ protected:
+  const char* Tag() const override { return "[betaflight_interface]"; }
+  int OutputCount() const override { return betaflight::kMotors; }
+
+  void LoadProtocol() override {
+    std::string rc_topic = "rc";
+    int motor_port = 9002;
+    ReadParam(Params(), "betaflight_addr", &addr_);
+    ReadParam(Params(), "state_port", &state_port_);
+    ReadParam(Params(), "rc_port", &rc_port_);
+    ReadParam(Params(), "motor_port", &motor_port);
+    ReadParam(Params(), "enable_lockstep", &lockstep_);
+    ReadParam(Params(), "link_timeout", &link_timeout_s_);
+    ReadParam(Params(), "answer_timeout", &answer_timeout_s_);
+    if (!(answer_timeout_s_ > 0.0)) throw rotors_sim::SimError("answer_timeout must be > 0 s of wall time");
+    ReadParam(Params(), "rcSubTopic", &rc_topic);
+    if (!(link_timeout_s_ > 0.0)) throw rotors_sim::SimError("link_timeout must be > 0 s of wall time");
+    motors_ = std::make_unique<UdpSocket>("127.0.0.1", motor_port);
+    states_ = std::make_unique<UdpSocket>("0.0.0.0", 0);
+    node_ = MakeNode(Namespace());
+    if (node_ && !rc_topic.empty())
+      rc_sub_ = node_->subscribe(rc_topic, 1, &GazeboBetaflightInterface::OnRc, this, ros::TransportHints().tcpNoDelay());
+    Info("state to " + addr_ + ":" + std::to_string(state_port_) + ", RC to :" + std::to_string(rc_port_) +
+         ", motor outputs on :" + std::to_string(motor_port) + (lockstep_ ? " (lockstep)" : ""));
+  }
+
+  void OnReset() override { answers_ = 0; }
+
+  void Exchange(const VehicleSnapshot& s) override {
+    ReadMotors(0.0);
+    const betaflight::FdmPacket state = betaflight::StatePacket(s);
+    states_->SendTo(addr_, state_port_, &state, sizeof(state));
+    if (!Bus().rc_channels_us.empty()) {
+      const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
+      states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
+    }
+    if (!lockstep_ || answers_ < kAnswersBeforeLockstep) return;
+    // wait for the answer to this state, at most answer_timeout: Betaflight's clock follows the
+    // state timestamps (its simRate), and a world that stalled on it would slow its clock to a crawl
+    answered_ = false;
+    const auto start = std::chrono::steady_clock::now();
+    while (!answered_) {
+      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (waited >= answer_timeout_s_) break;
+      ReadMotors(answer_timeout_s_ - waited);
+    }
+    if (answered_) {
+      last_answer_ = std::chrono::steady_clock::now();
+      return;
+    }
+    ++unanswered_;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_answer_).count() > link_timeout_s_) {
+      answers_ = 0;
+      Error("lost", "no motor packet for " + std::to_string(link_timeout_s_) + " s of wall time (link_timeout) at t = " +
+                        std::to_string(s.time_s) + " s: motors disarmed, the world runs on until Betaflight answers again");
+      ApplyDisarmed();
+    }
+  }
+
+ private:
+  /// Takes every motor packet there is (waiting up to timeout_s for the first).
+  void ReadMotors(double timeout_s) {
+    uint8_t buffer[256];
+    int n;
+    double wait = timeout_s;
+    while ((n = motors_->Receive(buffer, sizeof(buffer), wait)) > 0) {
+      wait = 0.0;
+      std::array<double, betaflight::kMotors> u;
+      const std::string why = betaflight::ReadServoPacket(buffer, n, &u);
+      answered_ = true;  // an answer, used or not: lockstep goes on
+      if (!why.empty()) {
+        Error("packet", why + ": ignored, the last valid outputs stay in force");
+        continue;
+      }
+      if (++answers_ == kAnswersBeforeLockstep)
+        Info(std::string("Betaflight answers") + (lockstep_ ? ": each state waits for its answer from now on" : ""));
+      last_answer_ = std::chrono::steady_clock::now();
+      // Betaflight sends 0 for a stopped motor whether armed or not: its outputs are the command
+      Apply({u.begin(), u.end()}, true);
+    }
+  }
+
+  /// sensor_msgs/Joy: axes[i] in [-1, 1] is RC channel i + 1 (AETR, AUX1..) at 1500 + 500 axes[i] us.
+  void OnRc(const sensor_msgs::JoyConstPtr& msg) {
+    std::vector<int> channels;
+    for (size_t i = 0; i < msg->axes.size(); ++i) {
+      if (!std::isfinite(msg->axes[i]) || std::abs(msg->axes[i]) > 1.0f) {
+        Error("rc", "rc axes[" + std::to_string(i) + "] = " + std::to_string(msg->axes[i]) +
+                        " is not in [-1, 1]: the RC message is ignored");
+        return;
+      }
+      channels.push_back(static_cast<int>(std::lround(1500.0 + 500.0 * msg->axes[i])));
+    }
+    const std::string why = Bus().SetRcChannels(channels);
+    if (!why.empty()) Error("rc", "RC message refused: " + why);
+  }
+
+  std::string addr_ = "127.0.0.1";
+  int state_port_ = 9003, rc_port_ = 9004;
+  /// Betaflight answers its first state packets while it boots, then falls silent for a while: the
+  /// waiting starts once it has answered this many.
+  static constexpr uint64_t kAnswersBeforeLockstep = 100;
+  bool lockstep_ = true, answered_ = false;
+  uint64_t answers_ = 0, unanswered_ = 0;
+  double link_timeout_s_ = 2.0, answer_timeout_s_ = 0.02;
+  std::chrono::steady_clock::time_point last_answer_;
+  std::unique_ptr<UdpSocket> motors_, states_;
+  std::shared_ptr<ros::NodeHandle> node_;
+  ros::Subscriber rc_sub_;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+GZ_REGISTER_MODEL_PLUGIN(rotors_gazebo_plugins::GazeboBetaflightInterface)

@@ -1,0 +1,298 @@
+// librotors_gazebo_mavlink_interface.so: RotorS' MAVLink interface, speaking PX4's simulator
+// protocol as PX4's simulator_mavlink module expects it today (docs/autopilots.md).
+//   SITL:  PX4 connects over TCP to mavlink_tcp_port (4560 + instance; use_tcp, the default), or
+//          over UDP (use_tcp false: datagrams to mavlink_addr:mavlink_udp_port, PX4's "-u").
+//   HITL:  serialEnabled: a Pixhawk on serialDevice at baudRate; QGroundControl's traffic is
+//          relayed to and from qgc_addr:qgc_udp_port, as RotorS' plugin does.
+// Each step with a new IMU reading it sends HIL_SENSOR (IMU; magnetometer, barometer and
+// differential pressure when theirs are new), HIL_GPS when the GPS plugin has a new fix,
+// HIL_STATE_QUATERNION (ground truth) at the interval PX4 asks for, DISTANCE_SENSOR and
+// HIL_OPTICAL_FLOW when the vehicle has those sensors. HIL_ACTUATOR_CONTROLS come back through
+// <control_channels> to the motors. Lockstep (enable_lockstep, on by default, SITL only): once the
+// first HIL_ACTUATOR_CONTROLS has arrived, the world does not step past a HIL_SENSOR until its answer
+// is in; a link silent for link_timeout [s] of wall time, or closed, is lost: the motors go to their
+// disarmed values and the world runs on (paced) until the autopilot is back.
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "rotors_core/error.h"
+#include "rotors_gazebo_plugins/autopilot/links.h"
+#include "rotors_gazebo_plugins/autopilot/px4_mavlink.h"
+#include "rotors_gazebo_plugins/autopilot_interface.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+
+namespace rotors_gazebo_plugins {
+
+class GazeboMavlinkInterface : public AutopilotInterface {
+ protected:
+  const char* Tag() const override { return "[mavlink_interface]"; }
+  int OutputCount() const override { return 16; }  // HIL_ACTUATOR_CONTROLS.controls
+
+  void LoadProtocol() override {
+    std::string addr = "INADDR_ANY", qgc_addr = "INADDR_ANY", device = "/dev/ttyACM0";
+    int udp_port = 14560, tcp_port = 4560, qgc_port = 14550, baud = 921600;
+    bool use_tcp = true;
+    double protocol_version = 2.0;
+    ReadParam(Params(), "mavlink_addr", &addr);
+    ReadParam(Params(), "mavlink_udp_port", &udp_port);
+    ReadParam(Params(), "mavlink_tcp_port", &tcp_port);
+    ReadParam(Params(), "use_tcp", &use_tcp);
+    ReadParam(Params(), "qgc_addr", &qgc_addr);
+    ReadParam(Params(), "qgc_udp_port", &qgc_port);
+    ReadParam(Params(), "serialEnabled", &serial_enabled_);
+    ReadParam(Params(), "serialDevice", &device);
+    ReadParam(Params(), "baudRate", &baud);
+    ReadParam(Params(), "hil_mode", &hil_mode_);
+    ReadParam(Params(), "hil_state_level", &hil_state_level_);
+    ReadParam(Params(), "enable_lockstep", &lockstep_);
+    ReadParam(Params(), "link_timeout", &link_timeout_s_);
+    ReadParam(Params(), "protocol_version", &protocol_version);
+    double imu_rate_hz = 0.0;
+    ReadParam(Params(), "imu_rate", &imu_rate_hz);
+    int system_id = 1;
+    ReadParam(Params(), "system_id", &system_id);
+    if (protocol_version != 2.0)
+      throw rotors_sim::SimError("protocol_version " + std::to_string(protocol_version) +
+                                 ": this interface speaks MAVLink 2 (2.0), as PX4 does since v1.9");
+    if (!(imu_rate_hz >= 0.0)) throw rotors_sim::SimError("imu_rate must be >= 0 Hz (0: every step)");
+    if (!(link_timeout_s_ > 0.0)) throw rotors_sim::SimError("link_timeout must be > 0 s of wall time");
+    if (system_id < 1 || system_id > 255) throw rotors_sim::SimError("system_id must be 1..255");
+    imu_interval_s_ = imu_rate_hz > 0.0 ? 1.0 / imu_rate_hz : 0.0;
+    // component 200, as PX4's Gazebo plugins frame their messages
+    endpoint_ = std::make_unique<px4::MavlinkEndpoint>(static_cast<uint8_t>(system_id), 200);
+    if (hil_mode_) lockstep_ = false;  // hardware in the loop runs on the autopilot's clock
+    if (serial_enabled_) {
+      device_ = device;
+      baud_ = baud;
+      lockstep_ = false;  // a real autopilot runs on its own clock
+      OpenSerial();
+      qgc_ = std::make_unique<UdpSocket>("0.0.0.0", 0);
+      qgc_addr_ = qgc_addr == "INADDR_ANY" ? "127.0.0.1" : qgc_addr;
+      qgc_port_ = qgc_port;
+    } else if (use_tcp) {
+      tcp_ = std::make_unique<TcpServer>(addr == "INADDR_ANY" ? "0.0.0.0" : addr, tcp_port);
+      Info("waiting for PX4 on TCP port " + std::to_string(tcp_port) + (lockstep_ ? " (lockstep)" : ""));
+    } else {
+      udp_ = std::make_unique<UdpSocket>("0.0.0.0", 0);
+      udp_addr_ = addr == "INADDR_ANY" ? "127.0.0.1" : addr;
+      udp_port_ = udp_port;
+    }
+  }
+
+  void OnReset() override {
+    awaiting_answer_ = false;
+    received_first_actuator_ = false;  // the next answer starts the exchange again
+    last_imu_count_ = last_gps_count_ = last_mag_count_ = last_baro_count_ = last_diff_count_ = 0;
+    last_range_count_ = last_flow_count_ = 0;
+    last_sensor_time_s_ = last_state_time_s_ = -1e9;
+  }
+
+  void Exchange(const VehicleSnapshot& s) override {
+    Poll(0.0);
+    if (serial_enabled_ && !serial_) return;
+    if (tcp_ && !tcp_->Connected()) return;
+    const bool imu_due = s.has_imu && s.imu_count != last_imu_count_ &&
+                         s.time_s - last_sensor_time_s_ >= imu_interval_s_ - 1e-9;
+    if (!imu_due) return;
+    last_imu_count_ = s.imu_count;
+    last_sensor_time_s_ = s.time_s;
+    Send(s);
+    if (!lockstep_ || !received_first_actuator_) return;
+    // lockstep: this step waits for the answer to the HIL_SENSOR just sent
+    awaiting_answer_ = true;
+    const auto start = std::chrono::steady_clock::now();
+    while (awaiting_answer_) {
+      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (waited > link_timeout_s_) {
+        LinkLost("no HIL_ACTUATOR_CONTROLS for " + std::to_string(link_timeout_s_) + " s after the HIL_SENSOR of t = " +
+                 std::to_string(s.time_s) + " s (link_timeout)");
+        return;
+      }
+      if (!Poll(std::min(0.05, link_timeout_s_ - waited))) return;  // the link closed
+    }
+  }
+
+ private:
+  void OpenSerial() {
+    try {
+      serial_ = std::make_unique<SerialPort>(device_, baud_);
+      Info("HITL on " + device_ + " at " + std::to_string(baud_) + " baud");
+    } catch (const rotors_sim::SimError& e) {
+      Error("serial", std::string(e.what()) + "; retrying every second, the world runs on");
+    }
+  }
+
+  /// Sends the step's messages (HIL_SENSOR first: PX4 sets its clock from it).
+  void Send(const VehicleSnapshot& s) {
+    const bool new_mag = s.has_mag && s.mag_count != last_mag_count_;
+    const bool new_baro = s.has_baro && s.baro_count != last_baro_count_;
+    const bool new_diff = s.has_diff_pressure && s.diff_pressure_count != last_diff_count_;
+    last_mag_count_ = s.mag_count;
+    last_baro_count_ = s.baro_count;
+    last_diff_count_ = s.diff_pressure_count;
+    if (!hil_state_level_) Write(endpoint_->Frame(px4::HilSensor(s, new_mag, new_baro, new_diff)));
+    if (s.has_gps && s.gps_count != last_gps_count_) {
+      last_gps_count_ = s.gps_count;
+      if (!hil_state_level_) Write(endpoint_->Frame(px4::HilGps(s)));
+    }
+    if (hil_state_level_ || s.time_s - last_state_time_s_ >= state_interval_s_ - 1e-9) {
+      last_state_time_s_ = s.time_s;
+      Write(endpoint_->Frame(px4::HilStateQuaternion(s)));
+    }
+    if (s.has_range && s.range_count != last_range_count_) {
+      last_range_count_ = s.range_count;
+      Write(endpoint_->Frame(px4::DistanceSensor(s)));
+    }
+    if (s.has_flow && s.flow_count != last_flow_count_) {
+      last_flow_count_ = s.flow_count;
+      Write(endpoint_->Frame(px4::HilOpticalFlow(s)));
+    }
+  }
+
+  void Write(const std::vector<uint8_t>& bytes) {
+    if (tcp_)
+      tcp_->Send(bytes.data(), bytes.size());
+    else if (udp_)
+      udp_->SendTo(udp_addr_, udp_port_, bytes.data(), bytes.size());
+    else if (serial_ && !serial_->Send(bytes.data(), bytes.size()))
+      SerialLost();
+  }
+
+  /// Takes a new connection and reads what is there (waiting up to timeout_s for the first bytes);
+  /// false when the link closed.
+  bool Poll(double timeout_s) {
+    uint8_t buffer[2048];
+    if (serial_enabled_ && !serial_) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_serial_try_ > std::chrono::seconds(1)) {
+        last_serial_try_ = now;
+        OpenSerial();
+      }
+      if (!serial_) return false;
+    }
+    if (tcp_ && !tcp_->Connected()) {
+      if (!tcp_->Accept(0.0)) return false;
+      endpoint_->ResetParser();
+      autopilot_system_id_ = -1;
+      Info("autopilot connected on TCP port " + std::to_string(tcp_->Port()));
+    }
+    int n;
+    double wait = timeout_s;
+    do {
+      n = tcp_ ? tcp_->Receive(buffer, sizeof(buffer), wait)
+          : udp_ ? udp_->Receive(buffer, sizeof(buffer), wait)
+                 : serial_->Receive(buffer, sizeof(buffer), wait);
+      if (n == kLinkClosed) {
+        if (serial_) SerialLost();
+        else LinkLost("the autopilot closed the connection");
+        return false;
+      }
+      if (n > 0) Handle(buffer, n);
+      wait = 0.0;  // after the first bytes, only what is already there
+    } while (n > 0);
+    if (qgc_) RelayFromQgc();
+    return true;
+  }
+
+  void Handle(const uint8_t* bytes, int n) {
+    const uint64_t bad_before = endpoint_->BadFrames();
+    endpoint_->Feed(bytes, static_cast<size_t>(n), [this](const mavlink_message_t& m) { OnMessage(m); });
+    if (endpoint_->BadFrames() != bad_before)
+      Error("frames", std::to_string(endpoint_->BadFrames()) +
+                          " malformed MAVLink frame(s) dropped so far (bad checksum, truncated, or a message "
+                          "this interface does not know); the link stays up");
+  }
+
+  void OnMessage(const mavlink_message_t& m) {
+    if (qgc_) {  // HITL: the autopilot's traffic goes on to QGroundControl
+      std::vector<uint8_t> bytes(MAVLINK_MAX_PACKET_LEN);
+      bytes.resize(mavlink_msg_to_send_buffer(bytes.data(), &m));
+      qgc_->SendTo(qgc_addr_, qgc_port_, bytes.data(), bytes.size());
+    }
+    if (m.msgid == MAVLINK_MSG_ID_HEARTBEAT) {
+      if (autopilot_system_id_ < 0) {
+        autopilot_system_id_ = m.sysid;
+        Info("autopilot heartbeat from system id " + std::to_string(m.sysid));
+      }
+      return;
+    }
+    if (autopilot_system_id_ >= 0 && m.sysid != autopilot_system_id_) {
+      Error("sysid", "message " + std::to_string(m.msgid) + " from system id " + std::to_string(m.sysid) +
+                         ", but the autopilot on this link is system id " + std::to_string(autopilot_system_id_) +
+                         ": ignored");
+      return;
+    }
+    if (m.msgid == MAVLINK_MSG_ID_COMMAND_LONG) {
+      mavlink_command_long_t c;
+      mavlink_msg_command_long_decode(&m, &c);
+      if (c.command == MAV_CMD_SET_MESSAGE_INTERVAL && static_cast<int>(c.param1) == MAVLINK_MSG_ID_HIL_STATE_QUATERNION)
+        state_interval_s_ = c.param2 > 0.0f ? c.param2 * 1e-6 : 0.0;
+      return;
+    }
+    if (m.msgid != MAVLINK_MSG_ID_HIL_ACTUATOR_CONTROLS) return;
+    mavlink_hil_actuator_controls_t a;
+    mavlink_msg_hil_actuator_controls_decode(&m, &a);
+    awaiting_answer_ = false;  // an answer, used or not: lockstep goes on
+    if (!received_first_actuator_) {
+      received_first_actuator_ = true;
+      Info(std::string("first HIL_ACTUATOR_CONTROLS") + (lockstep_ ? ": lockstep from now on" : ""));
+    }
+    std::vector<double> u(16);
+    for (int i = 0; i < 16; ++i) {
+      if (!std::isfinite(a.controls[i])) {
+        Error("nan", "HIL_ACTUATOR_CONTROLS controls[" + std::to_string(i) + "] = " + std::to_string(a.controls[i]) +
+                         ": the message is ignored, the last valid outputs stay in force");
+        return;
+      }
+      if (a.controls[i] < -1.0f || a.controls[i] > 1.0f) {
+        Error("range", "HIL_ACTUATOR_CONTROLS controls[" + std::to_string(i) + "] = " + std::to_string(a.controls[i]) +
+                           " is outside -1..1: clamped");
+      }
+      u[i] = std::max(-1.0, std::min(1.0, static_cast<double>(a.controls[i])));
+    }
+    Apply(u, (a.mode & px4::kArmed) != 0);
+  }
+
+  void RelayFromQgc() {
+    uint8_t buffer[2048];
+    int n;
+    while ((n = qgc_->Receive(buffer, sizeof(buffer), 0.0)) > 0)
+      if (serial_) serial_->Send(buffer, static_cast<size_t>(n));
+  }
+
+  void LinkLost(const std::string& why) {
+    awaiting_answer_ = false;
+    received_first_actuator_ = false;
+    if (tcp_) tcp_->Drop();
+    Error("lost", why + ": motors disarmed, the world runs on until the autopilot is back");
+    ApplyDisarmed();
+  }
+
+  void SerialLost() {
+    serial_.reset();
+    LinkLost("serial device " + device_ + " went away");
+  }
+
+  // links
+  std::unique_ptr<TcpServer> tcp_;
+  std::unique_ptr<UdpSocket> udp_, qgc_;
+  std::unique_ptr<SerialPort> serial_;
+  std::string udp_addr_, qgc_addr_, device_;
+  int udp_port_ = 0, qgc_port_ = 0, baud_ = 0;
+  std::chrono::steady_clock::time_point last_serial_try_;
+  std::unique_ptr<px4::MavlinkEndpoint> endpoint_;
+  // parameters
+  bool serial_enabled_ = false, hil_mode_ = false, hil_state_level_ = false, lockstep_ = true;
+  double link_timeout_s_ = 5.0, imu_interval_s_ = 0.0, state_interval_s_ = 0.0;
+  // exchange state
+  int autopilot_system_id_ = -1;
+  bool received_first_actuator_ = false, awaiting_answer_ = false;
+  uint64_t last_imu_count_ = 0, last_gps_count_ = 0, last_mag_count_ = 0, last_baro_count_ = 0, last_diff_count_ = 0,
+           last_range_count_ = 0, last_flow_count_ = 0;
+  double last_sensor_time_s_ = -1e9, last_state_time_s_ = -1e9;
+};
+
+}  // namespace rotors_gazebo_plugins
+
+GZ_REGISTER_MODEL_PLUGIN(rotors_gazebo_plugins::GazeboMavlinkInterface)
