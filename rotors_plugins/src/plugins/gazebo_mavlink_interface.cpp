@@ -89,6 +89,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   }
 
   void Exchange(const VehicleSnapshot& s) override {
+    if (tcp_ && lockstep_ && !ever_connected_) WaitForFirstConnection();
     Poll(0.0);
     if (serial_enabled_ && !serial_) return;
     if (tcp_ && !tcp_->Connected()) return;
@@ -114,6 +115,30 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   }
 
  private:
+  /// Lockstep with PX4 starts with the world held until PX4 connects (as PX4's Gazebo plugins hold it);
+  /// after a loss the world runs on.
+  void WaitForFirstConnection() {
+    const auto start = std::chrono::steady_clock::now();
+    auto last_line = start;
+    while (!tcp_->Accept(0.5)) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_line > std::chrono::seconds(5)) {
+        last_line = now;
+        Info("the world waits for PX4 on TCP port " + std::to_string(tcp_->Port()) + " (" +
+             std::to_string(static_cast<int>(std::chrono::duration<double>(now - start).count())) +
+             " s so far; start px4, or enable_lockstep false to run without it)");
+      }
+    }
+    OnConnected();
+  }
+
+  void OnConnected() {
+    endpoint_->ResetParser();
+    autopilot_system_id_ = -1;
+    ever_connected_ = true;
+    Info("autopilot connected on TCP port " + std::to_string(tcp_->Port()));
+  }
+
   void OpenSerial() {
     try {
       serial_ = std::make_unique<SerialPort>(device_, baud_);
@@ -173,9 +198,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     }
     if (tcp_ && !tcp_->Connected()) {
       if (!tcp_->Accept(0.0)) return false;
-      endpoint_->ResetParser();
-      autopilot_system_id_ = -1;
-      Info("autopilot connected on TCP port " + std::to_string(tcp_->Port()));
+      OnConnected();
     }
     int n;
     double wait = timeout_s;
@@ -287,7 +310,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   double link_timeout_s_ = 5.0, imu_interval_s_ = 0.0, state_interval_s_ = 0.0;
   // exchange state
   int autopilot_system_id_ = -1;
-  bool received_first_actuator_ = false, awaiting_answer_ = false;
+  bool received_first_actuator_ = false, awaiting_answer_ = false, ever_connected_ = false;
   uint64_t last_imu_count_ = 0, last_gps_count_ = 0, last_mag_count_ = 0, last_baro_count_ = 0, last_diff_count_ = 0,
            last_range_count_ = 0, last_flow_count_ = 0;
   double last_sensor_time_s_ = -1e9, last_state_time_s_ = -1e9;

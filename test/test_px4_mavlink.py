@@ -1,0 +1,262 @@
+"""RotorS' MAVLink interface (librotors_gazebo_mavlink_interface.so) against PX4's side of a real
+TCP socket. PX4 is not on these machines: pymavlink (the MAVLink project's Python implementation)
+stands in for it here, connecting as PX4's simulator_mavlink module does (TCP client to 4560 +
+instance) and answering each HIL_SENSOR with HIL_ACTUATOR_CONTROLS, lockstep flag set. What is
+checked: every message decodes with pymavlink and carries the plugins' own readings of the same step
+in PX4's units and frames; lockstep (no step without an answer, no answer lost); control_channels
+and the disarmed values; and a closed loop: an attitude and altitude controller on the autopilot's
+side, estimating from HIL_SENSOR alone, flies the firefly to 2 m and holds it.
+"""
+import math
+import re
+import socket
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+from pymavlink import mavutil
+from pymavlink.dialects.v20 import common as mavlink2
+
+import rotors_sim as rs
+
+DT = 0.004  # [s] PX4's usual 250 Hz
+MAX_ROT = 838.0  # firefly maxRotVelocity [rad/s]
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class SteppingWorld:
+    """The world stepping on a thread of its own (step() releases the GIL) while the test speaks
+    for the autopilot."""
+
+    def __init__(self, world: rs.World):
+        self.world = world
+        self.thread: threading.Thread | None = None
+
+    def run(self, steps: int) -> None:
+        self.thread = threading.Thread(target=self.world.step, args=(steps,), daemon=True)
+        self.thread.start()
+
+    def join(self, timeout: float = 30.0) -> None:
+        self.thread.join(timeout)
+        assert not self.thread.is_alive(), "the world is still stepping"
+
+
+def make_world(port: int, urdf: str | None = None, seed: int = 11, **xacro) -> rs.World:
+    world = rs.World("basic", step_size=DT)
+    if urdf is None:
+        world.spawn_mav("firefly", random_seed=seed, enable_mavlink_interface=True, mavlink_tcp_port=port,
+                        pressure_variance=0.0, **xacro)
+    else:
+        world.spawn(urdf, "firefly", xyz=(0, 0, 0.1))
+    return world
+
+
+def start_lockstep(world: rs.World, port: int, steps: int):
+    """Connects as PX4 does and answers the first HIL_SENSOR (lockstep starts with that answer; the
+    world waits for the connection), then lets the world take `steps` lockstep steps on its thread."""
+    stepper = SteppingWorld(world)
+    stepper.run(2)  # the first step has no IMU reading yet; the second sends the first HIL_SENSOR
+    link = connect(port)
+    next_sensor(link)
+    answer(link, [0.0] * 6, armed=False)
+    stepper.join()
+    stepper.run(steps)
+    return stepper, link
+
+
+def connect(port: int, timeout_s: float = 10.0):
+    """PX4's way in: a TCP client that retries until the simulator listens."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        try:
+            link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{port}", source_system=1, source_component=1,
+                                              autoreconnect=False)
+            link.mav.heartbeat_send(mavlink2.MAV_TYPE_QUADROTOR, mavlink2.MAV_AUTOPILOT_PX4, 0, 0, 0)
+            return link
+        except OSError:
+            assert time.monotonic() < deadline, "the interface did not listen"
+            time.sleep(0.05)
+
+
+def answer(link, controls, armed=True, t_us=0):
+    mode = mavlink2.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED | (mavlink2.MAV_MODE_FLAG_SAFETY_ARMED if armed else 0)
+    padded = list(controls) + [0.0] * (16 - len(controls))
+    link.mav.hil_actuator_controls_send(t_us, padded, mode, 1)
+
+
+def next_sensor(link, timeout=5.0):
+    """The next HIL_SENSOR, with every other message that came before it."""
+    others = []
+    while True:
+        m = link.recv_match(blocking=True, timeout=timeout)
+        assert m is not None, "no message from the interface"
+        if m.get_type() == "BAD_DATA":
+            raise AssertionError(f"a frame pymavlink could not decode: {m}")
+        if m.get_type() == "HIL_SENSOR":
+            return m, others
+        others.append(m)
+
+
+def frd(v):
+    return np.array([v[0], -v[1], -v[2]])
+
+
+@pytest.fixture(scope="module")
+def exchange():
+    """40 lockstep steps at rest: each HIL_SENSOR with the plugins' readings at that moment (the world
+    is blocked waiting for the answer) and the messages around it."""
+    port = free_port()
+    world = make_world(port)
+    stepper, link = start_lockstep(world, port, 400)
+    records = []
+    for i in range(400):
+        sensor, others = next_sensor(link)
+        imu = world.message("/firefly/imu")[0]
+        mag = world.message("/firefly/magnetic_field")[0]
+        baro = world.message("/firefly/air_pressure")[0]
+        gps = world.message("/firefly/gps")
+        speed = world.message("/firefly/ground_speed")
+        truth = world.link_state("firefly")
+        records.append(dict(sensor=sensor, others=others, imu=imu, mag=mag, baro=baro, truth=truth,
+                            gps=gps[0] if gps else None, speed=speed[0] if speed else None, time=world.time))
+        answer(link, [0.0] * 6, armed=False, t_us=sensor.time_usec)
+    stepper.join()
+    link.close()
+    return records, world
+
+
+def test_every_hil_sensor_carries_the_imu_magnetometer_and_barometer_readings_in_px4_units_and_frames(exchange):
+    records, _ = exchange
+    for r in records[1:]:
+        s, imu = r["sensor"], r["imu"]
+        stamp_us = imu.header.stamp.secs * 1_000_000 + imu.header.stamp.nsecs // 1000
+        assert s.time_usec == stamp_us == round(r["time"] * 1e6)
+        a = frd([imu.linear_acceleration.x, imu.linear_acceleration.y, imu.linear_acceleration.z])
+        g = frd([imu.angular_velocity.x, imu.angular_velocity.y, imu.angular_velocity.z])
+        np.testing.assert_allclose([s.xacc, s.yacc, s.zacc], a, rtol=1e-6, atol=1e-6)
+        np.testing.assert_allclose([s.xgyro, s.ygyro, s.zgyro], g, rtol=1e-6, atol=1e-7)
+        m = frd([r["mag"].magnetic_field.x, r["mag"].magnetic_field.y, r["mag"].magnetic_field.z]) * 1e4  # T -> gauss
+        np.testing.assert_allclose([s.xmag, s.ymag, s.zmag], m, rtol=1e-6, atol=1e-9)
+        assert s.abs_pressure == pytest.approx(r["baro"].fluid_pressure / 100.0, rel=1e-6)  # Pa -> hPa
+        assert s.fields_updated & 0b1101111111111 == 0b1101111111111  # accel, gyro, mag, baro bits
+        assert s.fields_updated & 0b10000000000 == 0  # no differential pressure: no airspeed sensor
+        assert s.id == 0
+    s = records[-1]["sensor"]
+    print(f"at rest: acc {s.xacc:.3f} {s.ygyro:.3f} {s.zacc:.3f} m/s^2 FRD, mag {s.xmag:.4f} {s.ymag:.4f} "
+          f"{s.zmag:.4f} G, {s.abs_pressure:.2f} hPa, pressure altitude {s.pressure_alt:.1f} m, {s.temperature:.1f} C")
+    assert s.zacc == pytest.approx(-9.81, abs=0.1) and abs(s.xacc) < 0.1  # FRD: at rest the specific force is up = -z
+    # the firefly faces east (yaw 0 in ENU): the field's north component lies along -y of FRD (its left)
+    assert s.ymag < -0.1 and s.zmag > 0.3
+    # the barometer plugin's reference altitude is 500 m: PX4's pressure altitude from the ISA
+    assert s.pressure_alt == pytest.approx(500.0, abs=2.0) and s.temperature == pytest.approx(15.0 - 6.5 * 0.5, abs=0.1)
+
+
+def test_hil_gps_carries_the_gps_plugins_fix_in_1e7_deg_mm_and_cm_per_s_ned(exchange):
+    records, _ = exchange
+    gps = [(m, r) for r in records for m in r["others"] if m.get_type() == "HIL_GPS"]
+    print(f"{len(gps)} HIL_GPS in {records[-1]['time']:.2f} s")
+    assert len(gps) == pytest.approx(records[-1]["time"] * 5, abs=1.5)  # the GPS plugin's 5 Hz
+    for m, r in gps:
+        # the fix the plugin published before this step
+        fix, speed = r["gps"], r["speed"]
+        assert m.lat == round(fix.latitude * 1e7) and m.lon == round(fix.longitude * 1e7)
+        assert m.alt == round(fix.altitude * 1000)
+        assert m.eph == round(math.sqrt(fix.position_covariance[0]) * 100)
+        assert m.epv == round(math.sqrt(fix.position_covariance[8]) * 100)
+        v = speed.twist.linear
+        assert (m.vn, m.ve, m.vd) == (round(v.y * 100), round(v.x * 100), round(-v.z * 100))
+        assert m.fix_type == 3 and m.satellites_visible == 10
+
+
+def test_hil_state_quaternion_is_the_ground_truth_in_ned_and_frd(exchange):
+    records, _ = exchange
+    states = [(m, r) for r in records for m in r["others"] if m.get_type() == "HIL_STATE_QUATERNION"]
+    assert len(states) >= len(records) - 2  # one per HIL_SENSOR until PX4 asks otherwise
+    m, r = states[-1]
+    q = np.array(m.attitude_quaternion)
+    # facing east, level: in NED that is yaw +90 deg about down: q = (cos 45, 0, 0, sin 45)
+    np.testing.assert_allclose(q, [math.sqrt(0.5), 0, 0, math.sqrt(0.5)], atol=2e-3)
+    assert m.zacc == pytest.approx(-1000, abs=15)  # [mG] specific force, FRD
+    assert abs(m.vx) <= 1 and abs(m.vy) <= 1 and abs(m.vz) <= 1
+
+
+def test_lockstep_the_world_does_not_step_past_an_unanswered_hil_sensor_and_loses_no_answer():
+    port = free_port()
+    world = make_world(port)
+    stepper, link = start_lockstep(world, port, 60)
+    sent = 1
+    for _ in range(10):
+        sensor, _ = next_sensor(link)
+        answer(link, [0.0] * 6, armed=False)
+        sent += 1
+    sensor, _ = next_sensor(link)  # the world now waits for this one's answer
+    held = world.time
+    time.sleep(0.5)
+    assert world.time == held == pytest.approx(sensor.time_usec * 1e-6), "the world stepped without an answer"
+    answer(link, [0.0] * 6, armed=False)
+    sent += 1
+    while True:
+        m = link.recv_match(type="HIL_SENSOR", blocking=True, timeout=2)
+        if m is None:
+            break
+        answer(link, [0.0] * 6, armed=False)
+        sent += 1
+    stepper.join()
+    print(f"{sent} answers sent, {world.autopilot_answers('firefly')} applied, t = {world.time:.3f} s")
+    assert world.autopilot_answers("firefly") == sent
+    assert world.time == pytest.approx(62 * DT)
+
+
+def channels_urdf(port: int) -> str:
+    """The firefly with RotorS-style control_channels: u -> (u + offset) * scaling + zero_armed."""
+    text = subprocess.run(
+        ["xacro", str(rs.paths.package_path("rotors_description") / "urdf" / "firefly_base.xacro"),
+         "mav_name:=firefly", "namespace:=firefly", "enable_mavlink_interface:=true",
+         f"mavlink_tcp_port:={port}", "random_seed:=3"],
+        check=True, capture_output=True, text=True).stdout
+    channels = "".join(
+        f'<channel name="rotor{i}"><input_index>{5 - i}</input_index><input_offset>0.1</input_offset>'
+        f"<input_scaling>500</input_scaling><zero_position_disarmed>{10 * i}</zero_position_disarmed>"
+        f"<zero_position_armed>100</zero_position_armed><joint_control_type>velocity</joint_control_type>"
+        f"<joint_name>firefly/rotor_{i}_joint</joint_name></channel>" for i in range(6))
+    return re.sub(r"(<enable_lockstep>[^<]*</enable_lockstep>)", r"\1<control_channels>" + channels + "</control_channels>",
+                  text, count=1)
+
+
+def settle_on(link, controls, armed, steps):
+    for _ in range(steps):
+        next_sensor(link)
+        answer(link, controls, armed=armed)
+
+
+def test_control_channels_map_the_outputs_to_motor_speeds_as_rotors_and_disarmed_values_apply():
+    port = free_port()
+    world = make_world(port, urdf=channels_urdf(port))
+    stepper, link = start_lockstep(world, port, 600)
+    u = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7]
+    settle_on(link, u, True, 300)  # 1.2 s: the motors reach their command (time constants 12.5/25 ms)
+    armed = np.abs(world.rotor_speeds("firefly"))
+    settle_on(link, u, False, 300)
+    stepper.join()
+    disarmed = np.abs(world.rotor_speeds("firefly"))
+    expected = [(u[5 - i] + 0.1) * 500 + 100 for i in range(6)]  # channel i reads output 5 - i
+    print(f"armed {armed.round(1)} (expected {np.round(expected, 1)}), disarmed {disarmed.round(1)}")
+    np.testing.assert_allclose(armed, expected, rtol=2e-3)
+    np.testing.assert_allclose(disarmed, [10 * i for i in range(6)], atol=0.5)
+
+
+def test_without_control_channels_output_i_drives_motor_i_up_to_its_max_speed(exchange):
+    port = free_port()
+    world = make_world(port)
+    stepper, link = start_lockstep(world, port, 300)
+    settle_on(link, [0.1, 0.2, 0.3, 0.4, 0.5, 0.6], True, 300)
+    stepper.join()
+    np.testing.assert_allclose(np.abs(world.rotor_speeds("firefly")), np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]) * MAX_ROT,
+                               rtol=2e-3)
