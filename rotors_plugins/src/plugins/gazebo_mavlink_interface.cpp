@@ -103,8 +103,16 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     // lockstep: this step waits for the answer to the HIL_SENSOR just sent
     awaiting_answer_ = true;
     const auto start = std::chrono::steady_clock::now();
+    const uint64_t bad_before = endpoint_->BadFrames();
     while (awaiting_answer_) {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (endpoint_->BadFrames() != bad_before && waited > kLostAnswerWait_s) {
+        // a corrupt frame took the answer with it (the autopilot waits for the next HIL_SENSOR)
+        Error("lost answer", "no HIL_ACTUATOR_CONTROLS for the HIL_SENSOR of t = " + std::to_string(s.time_s) +
+                                 " s after a malformed frame: the step goes on with the last outputs");
+        awaiting_answer_ = false;
+        return;
+      }
       if (waited > link_timeout_s_) {
         LinkLost("no HIL_ACTUATOR_CONTROLS for " + std::to_string(link_timeout_s_) + " s after the HIL_SENSOR of t = " +
                  std::to_string(s.time_s) + " s (link_timeout)");
@@ -305,6 +313,8 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   int udp_port_ = 0, qgc_port_ = 0, baud_ = 0;
   std::chrono::steady_clock::time_point last_serial_try_;
   std::unique_ptr<px4::MavlinkEndpoint> endpoint_;
+  /// How long an answer may still come after a malformed frame before the step goes on without it [s wall]
+  static constexpr double kLostAnswerWait_s = 0.1;
   // parameters
   bool serial_enabled_ = false, hil_mode_ = false, hil_state_level_ = false, lockstep_ = true;
   double link_timeout_s_ = 5.0, imu_interval_s_ = 0.0, state_interval_s_ = 0.0;

@@ -1,0 +1,163 @@
+"""Bad input at the autopilot interfaces: each a one-line error naming the cause, and the simulator
+keeps running. pymavlink stands in for PX4 (not on these machines) on the autopilot's side of the
+socket; socat's pty pair stands in for a Pixhawk's USB serial port.
+"""
+import os
+import socket
+import subprocess
+import time
+
+import numpy as np
+import pytest
+from pymavlink import mavutil
+
+import rotors_sim as rs
+from test_px4_mavlink import DT, answer, connect, free_port, make_world, next_sensor, start_lockstep
+
+
+def run_until_sensor(link, n=1):
+    for _ in range(n):
+        next_sensor(link)
+        answer(link, [0.5] * 6, armed=True)
+
+
+def test_malformed_and_truncated_frames_are_dropped_with_one_line_and_the_link_stays_up(capfd):
+    port = free_port()
+    world = make_world(port)
+    stepper, link = start_lockstep(world, port, 40)
+    run_until_sensor(link, 5)
+    good = link.mav.hil_actuator_controls_encode(0, [0.5] * 16, 129, 1).pack(link.mav)
+    corrupt = bytearray(good)
+    corrupt[20] ^= 0xFF  # a payload byte: the checksum no longer matches
+    link.write(bytes(corrupt))
+    link.write(good[:30])  # a truncated frame; the next frame's start resynchronises the parser
+    for _ in range(34):
+        next_sensor(link)
+        answer(link, [0.5] * 6, armed=True)
+    stepper.join()
+    err = capfd.readouterr().err
+    lines = [line for line in err.splitlines() if "malformed MAVLink frame" in line]
+    print(lines[0])
+    assert lines and "dropped" in lines[0]
+    assert world.time == pytest.approx(42 * DT)  # one answer was lost with the truncated frame: the step went on
+
+
+def test_a_message_from_another_system_id_is_ignored_with_one_line(capfd):
+    port = free_port()
+    world = make_world(port)
+    stepper, link = start_lockstep(world, port, 20)
+    run_until_sensor(link, 5)
+    next_sensor(link)  # the world waits for this one's answer: every earlier answer is applied
+    answers = world.autopilot_answers("firefly")
+    other = mavutil.mavlink.MAVLink(None, srcSystem=7, srcComponent=1)
+    link.write(other.hil_actuator_controls_encode(0, [1.0] * 16, 129, 1).pack(other))  # not an answer
+    answer(link, [0.5] * 6, armed=True)
+    run_until_sensor(link, 14)
+    stepper.join()
+    assert world.autopilot_answers("firefly") == answers + 15  # system 7's message was not applied
+    err = capfd.readouterr().err
+    line = next(line for line in err.splitlines() if "system id 7" in line)
+    print(line)
+    assert "system id 1" in line and "ignored" in line
+
+
+def test_nan_and_out_of_range_outputs_keep_the_last_valid_ones_or_are_clamped(capfd):
+    port = free_port()
+    world = make_world(port)
+    stepper, link = start_lockstep(world, port, 300)
+    run_until_sensor(link, 150)  # 0.5 everywhere: the rotors settle at 419 rad/s
+    for _ in range(75):
+        next_sensor(link)
+        answer(link, [float("nan")] + [0.9] * 5, armed=True)  # refused whole
+    settled = np.abs(world.rotor_speeds("firefly"))
+    for _ in range(75):
+        next_sensor(link)
+        answer(link, [3.0] * 6, armed=True)  # clamped to 1
+    stepper.join()
+    clamped = np.abs(world.rotor_speeds("firefly"))
+    err = capfd.readouterr().err
+    print(next(line for line in err.splitlines() if "nan" in line.lower()))
+    print(next(line for line in err.splitlines() if "outside -1..1" in line))
+    np.testing.assert_allclose(settled, 0.5 * 838, rtol=2e-3)
+    np.testing.assert_allclose(clamped, 838, rtol=2e-3)
+    assert world.time == pytest.approx(302 * DT)  # every answer counted: lockstep went on
+
+
+def test_an_autopilot_that_disconnects_mid_flight_disarms_the_motors_and_can_reconnect(capfd):
+    port = free_port()
+    world = make_world(port)
+    stepper, link = start_lockstep(world, port, 400)
+    run_until_sensor(link, 100)
+    link.close()  # PX4 killed mid-flight
+    stepper.join()  # the world runs on without it
+    assert np.abs(world.rotor_speeds("firefly")).max() < 1.0  # disarmed values: stopped
+    err = capfd.readouterr().err
+    print(next(line for line in err.splitlines() if "closed the connection" in line))
+    # PX4 restarted: it connects again (the kernel takes the connection before the interface does),
+    # the next step accepts it and sends HIL_SENSOR, and lockstep resumes with the first answer
+    link = connect(port)
+    stepper.run(1)
+    stepper.join()
+    next_sensor(link)
+    answer(link, [0.5] * 6, armed=True)
+    stepper.run(200)
+    run_until_sensor(link, 10)
+    next_sensor(link)
+    held = world.time
+    time.sleep(0.3)
+    assert world.time == held  # lockstep again: waiting for the next answer
+    link.close()
+    stepper.join()
+
+
+def test_a_port_in_use_is_refused_at_spawn_with_one_line():
+    with socket.socket() as taken:
+        taken.bind(("0.0.0.0", 0))
+        taken.listen(1)
+        port = taken.getsockname()[1]
+        world = rs.World("basic", step_size=DT)
+        with pytest.raises(rs.SimError) as e:
+            world.spawn_mav("firefly", enable_mavlink_interface=True, mavlink_tcp_port=port)
+    print(e.value)
+    assert f":{port}" in str(e.value) and "in use" in str(e.value)
+    world.spawn_mav("firefly", namespace="other")  # the world still works
+    world.step(10)
+
+
+def test_a_missing_serial_device_is_one_line_and_the_world_runs_on(capfd):
+    world = rs.World("basic", step_size=DT)
+    world.spawn_mav("firefly", enable_mavlink_interface=True, mavlink_serial_enabled=True,
+                    mavlink_serial_device="/dev/ttyACM_not_there")
+    world.step(100)
+    assert world.time == pytest.approx(100 * DT)
+    line = next(line for line in capfd.readouterr().err.splitlines() if "ttyACM_not_there" in line)
+    print(line)
+    assert "No such file" in line and "retrying" in line
+
+
+def test_hitl_over_a_serial_pty_pair_exchanges_hil_sensor_and_actuator_controls(tmp_path):
+    a, b = tmp_path / "sim", tmp_path / "fc"
+    socat = subprocess.Popen(["socat", f"pty,raw,echo=0,link={a}", f"pty,raw,echo=0,link={b}"])
+    try:
+        deadline = time.monotonic() + 5
+        while not (a.exists() and b.exists()):
+            assert time.monotonic() < deadline
+            time.sleep(0.05)
+        world = rs.World("basic", step_size=DT)
+        world.spawn_mav("firefly", enable_mavlink_interface=True, mavlink_serial_enabled=True,
+                        mavlink_serial_device=str(a), mavlink_baud_rate=921600)
+        fc = mavutil.mavlink_connection(str(b), baud=921600, source_system=1)
+        sensors = 0
+        for _ in range(50):
+            world.step(1)  # HITL runs on the autopilot's clock: no lockstep, the world does not wait
+            while (m := fc.recv_match(type="HIL_SENSOR", blocking=False)) is not None:
+                sensors += 1
+                answer(fc, [0.6] * 6, armed=True, t_us=m.time_usec)
+            time.sleep(0.002)
+        world.step(200)
+        print(f"{sensors} HIL_SENSOR over the pty, {world.autopilot_answers('firefly')} answers applied")
+        assert sensors >= 40 and world.autopilot_answers("firefly") >= 30
+        assert np.abs(world.rotor_speeds("firefly")).min() > 0.5 * 838
+    finally:
+        socat.terminate()
+        socat.wait()
