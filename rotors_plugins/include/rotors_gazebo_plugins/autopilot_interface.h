@@ -43,7 +43,8 @@ class AutopilotInterface : public rotors_sim::ModelPlugin {
   void Apply(const std::vector<double>& u, bool armed);
   /// The disarmed values (zero_position_disarmed) on every channel, once per `why` (a lost link).
   void ApplyDisarmed();
-  /// One line on stderr/rosconsole, at most once a second of wall time per `kind`.
+  /// One line on stderr/rosconsole, at most once a second of wall time per kind of fault (`kind` and
+  /// the line without its numbers).
   void Error(const std::string& kind, const std::string& line);
   void Info(const std::string& line);
 

@@ -1,5 +1,6 @@
 #include "rotors_gazebo_plugins/autopilot_interface.h"
 
+#include <cctype>
 #include <cmath>
 
 #include <geometry_msgs/TwistStamped.h>
@@ -199,10 +200,14 @@ void AutopilotInterface::ApplyDisarmed() {
 }
 
 void AutopilotInterface::Error(const std::string& kind, const std::string& line) {
+  // one line a second for each kind of fault: the kind and the line without its numbers
+  std::string key = kind + ":";
+  for (char c : line)
+    if (!std::isdigit(static_cast<unsigned char>(c))) key += c;
   const auto now = std::chrono::steady_clock::now();
-  auto it = last_error_.find(kind);
+  auto it = last_error_.find(key);
   if (it != last_error_.end() && now - it->second < std::chrono::seconds(1)) return;
-  last_error_[kind] = now;
+  last_error_[key] = now;
   ROS_ERROR("%s model '%s': %s", Tag(), model_name_.c_str(), line.c_str());
 }
 
