@@ -20,6 +20,9 @@ import rotors_sim as rs
 from rotors_sim.betaflight import BetaflightSitl, firmware_path, read_cli_file
 from rotors_sim.paths import resource
 
+# one Betaflight SITL per machine (its ports are fixed): never beside test_autopilot_launch's
+pytestmark = pytest.mark.xdist_group("betaflight_ports")
+
 DT = 0.002  # [s] physics step (Betaflight's SITL notes ask for <= 2.5 ms)
 ARM_LOW, ARM_HIGH, ANGLE_MODE = 1000, 2000, 1800
 

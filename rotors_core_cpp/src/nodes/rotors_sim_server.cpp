@@ -11,6 +11,7 @@
 //   ~state_max_wall_rate  [Hz wall] and at most this often (100; <= 0: no limit)
 //   ~clock_max_wall_rate  [Hz wall] /clock to other processes at most this often (1000; <= 0: every step)
 // The simulator also hosts nodelets (/gazebo/load_nodelet; see rotors_core/ros/nodelet_host.h).
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -28,6 +29,13 @@
 namespace {
 /// SIGINT/SIGTERM stop the stepping at once; ROS shuts down after the world and its bag closed.
 void OnStopSignal(int) { rotors_sim::SimServer::RequestStop(); }
+
+/// The whole of `text` as a finite number.
+bool ParseNumber(const char* text, double* value) {
+  char* end = nullptr;
+  *value = std::strtod(text, &end);
+  return end != text && *end == '\0' && std::isfinite(*value);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,10 +60,16 @@ int main(int argc, char** argv) {
     if (arg == "-u") {
       options.paused = true;
     } else if (arg == "--rtf" && i + 1 < argc) {
-      char* end = nullptr;
-      options.real_time_factor = std::strtod(argv[++i], &end);
-      if (*end != '\0') {
-        std::cerr << "[rotors_sim] error: --rtf '" << argv[i] << "' is not a number\n";
+      // -1: the world's own pacing (the launch files' default); 0: as fast as possible
+      if (!ParseNumber(argv[++i], &options.real_time_factor) ||
+          !(options.real_time_factor >= 0.0 || options.real_time_factor == -1.0)) {
+        std::cerr << "[rotors_sim] error: --rtf '" << argv[i]
+                  << "' must be a finite number >= 0 (0: as fast as possible) or -1 (the world's own)\n";
+        return 2;
+      }
+    } else if (arg == "--step-size" && i + 1 < argc) {
+      if (!ParseNumber(argv[++i], &options.step_size_s) || !(options.step_size_s > 0.0 && options.step_size_s <= 0.1)) {
+        std::cerr << "[rotors_sim] error: --step-size '" << argv[i] << "' must be a physics step in (0, 0.1] s\n";
         return 2;
       }
     } else if (arg == "--lockstep" && i + 1 < argc) {
@@ -75,13 +89,13 @@ int main(int argc, char** argv) {
       options.world_file = arg;
     } else {
       std::cerr << "[rotors_sim] error: unknown option '" << arg
-                << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep A1[:I1],A2[:I2]] "
+                << "' (usage: rotors_sim_server <world> [-u] [--rtf X] [--step-size S] [--lockstep A1[:I1],A2[:I2]] "
                    "[--lockstep-lenient] [--skip-broken-sensors] [--no-shadows])\n";
       return 2;
     }
   }
   if (options.world_file.empty()) {
-    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--lockstep "
+    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--step-size S] [--lockstep "
                  "A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors] [--no-shadows])\n";
     return 2;
   }

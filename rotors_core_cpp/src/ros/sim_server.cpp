@@ -31,6 +31,7 @@ SimServer::SimServer(ros::NodeHandle nh, ros::NodeHandle private_nh, const SimSe
   load.shadows = options.shadows;
   world_ = WorldLoader::LoadFile(options.world_file, load);
   if (options.real_time_factor >= 0.0) world_->SetRealTimeFactor(options.real_time_factor);
+  if (options.step_size_s > 0.0) world_->SetMaxStepSize(options.step_size_s);
   pacer_.SetRealTimeFactor(world_->Physics().real_time_factor);
   pacer_.Restart(world_->SimTime());
   state_publisher_ =

@@ -57,7 +57,10 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     ReadMotors(0.0);
     const betaflight::FdmPacket state = betaflight::StatePacket(s);
     states_->SendTo(addr_, state_port_, &state, sizeof(state));
-    if (!Bus().rc_channels_us.empty()) {
+    // RC only once the firmware answers steadily: its sitl.c hooks the UDP receiver up with the first
+    // RC packet, and a packet that comes before the firmware's receiver is set up is lost for good
+    // (RXLOSS until a restart)
+    if (!Bus().rc_channels_us.empty() && answers_ >= kAnswersBeforeLockstep) {
       const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
       states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
     }

@@ -25,6 +25,7 @@ struct SimServerOptions {
   std::string world_file;
   bool paused = false;
   double real_time_factor = -1.0;         ///< < 0: the world's own; 0: as fast as possible
+  double step_size_s = 0.0;               ///< > 0: replaces the world's max_step_size (--step-size)
   double state_publish_rate_hz = 100.0;   ///< [Hz sim time] TF, joint_states, model_states
   double state_max_wall_rate_hz = 100.0;  ///< [Hz wall] and at most this often (<= 0: no limit)
   /// [Hz wall] /clock to other processes at most this often (<= 0: every step); this process's own

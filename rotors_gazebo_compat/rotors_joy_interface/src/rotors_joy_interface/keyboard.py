@@ -7,6 +7,7 @@ default parameters.
     W / S                 thrust axis (2)      +-0.05 per press, stays (starts at -1: no thrust)
     A / D                 yaw-left / yaw-right buttons (3 / 4), held while the key repeats
     Space                 centres roll and pitch
+    R / M                 buttons 5 / 10 (RotorS' ctrl_enable / ctrl_mode; joy_to_rc: arm / angle mode toggles)
 
 A terminal sends no key-up events: an axis or button counts as released `hold_s` after its last
 key press (the terminal's auto-repeat keeps a held key pressed), then roll and pitch spring back to
@@ -17,6 +18,7 @@ from typing import Iterable, List, Optional, Tuple
 
 ROLL, PITCH, THRUST, YAW = 0, 1, 2, 3
 BUTTON_YAW_LEFT, BUTTON_YAW_RIGHT = 3, 4
+BUTTON_CTRL_ENABLE, BUTTON_CTRL_MODE = 5, 10
 N_AXES, N_BUTTONS = 4, 12
 
 # escape sequences of the arrow keys (xterm and the Linux console; SS3 form from application mode)
@@ -71,6 +73,10 @@ class KeyJoystick:
             self._last_press[("button", BUTTON_YAW_LEFT)] = t
         elif key == "d":
             self._last_press[("button", BUTTON_YAW_RIGHT)] = t
+        elif key == "r":
+            self._last_press[("button", BUTTON_CTRL_ENABLE)] = t
+        elif key == "m":
+            self._last_press[("button", BUTTON_CTRL_MODE)] = t
         elif key == " ":
             self.axes[ROLL] = self.axes[PITCH] = 0.0
         else:
@@ -88,7 +94,7 @@ class KeyJoystick:
                 decay = self.spring_back_per_s * dt
                 self.axes[axis] = 0.0 if abs(v) <= decay else v - decay * (1 if v > 0 else -1)
         buttons = [0] * N_BUTTONS
-        for b in (BUTTON_YAW_LEFT, BUTTON_YAW_RIGHT):
+        for b in (BUTTON_YAW_LEFT, BUTTON_YAW_RIGHT, BUTTON_CTRL_ENABLE, BUTTON_CTRL_MODE):
             last = self._last_press.get(("button", b))
             buttons[b] = int(last is not None and t - last <= self.hold_s)
         return list(self.axes), buttons

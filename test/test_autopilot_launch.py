@@ -1,0 +1,81 @@
+"""The autopilot launch files as a user runs them: mav_px4_sitl.launch (the simulator server with
+its --step-size, the iris with the MAVLink interface on TCP 4560 + instance, lockstep) with
+pymavlink on PX4's side (PX4 is not on these machines: it stands in for it), and
+mav_betaflight_sitl.launch with the real Betaflight firmware started by the launch file and RC on
+the vehicle's rc topic (sensor_msgs/Joy), as joy_to_rc or a user's node sends it.
+"""
+import time
+
+import pytest
+from pymavlink import mavutil
+
+from conftest import launch
+from test_px4_mavlink import answer
+
+pytestmark = pytest.mark.xdist_group("betaflight_ports")
+
+
+def test_mav_px4_sitl_launch_listens_on_4560_plus_instance_and_steps_in_lockstep(ros):
+    instance = 23
+    launch(ros, "rotors_gazebo", "mav_px4_sitl.launch", f"instance:={instance}", "real_time_factor:=0",
+           "random_seed:=2")
+    deadline = time.monotonic() + 60
+    while True:
+        try:
+            link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1, autoreconnect=False)
+            break
+        except OSError:
+            assert time.monotonic() < deadline, "nothing listens on TCP 4583"
+            time.sleep(0.2)
+    link.mav.heartbeat_send(2, 12, 0, 0, 0)
+    # until the first answer the world does not wait: it may have sent several HIL_SENSOR by then;
+    # after it, one HIL_SENSOR waits for each answer (what was sent before is read and dropped)
+    first = link.recv_match(type="HIL_SENSOR", blocking=True, timeout=30)
+    assert first is not None, "no HIL_SENSOR from the launched vehicle"
+    answer(link, [0.0] * 4, armed=False, t_us=first.time_usec)
+    time.sleep(0.5)
+    while link.recv_match(blocking=True, timeout=0.2) is not None:
+        pass
+    answer(link, [0.0] * 4, armed=False)
+    last = None
+    for _ in range(250):  # 1 s of sim time at 4 ms
+        m = link.recv_match(type="HIL_SENSOR", blocking=True, timeout=30)
+        assert m is not None, "no HIL_SENSOR from the launched vehicle"
+        if last is not None:
+            assert m.time_usec - last == 4000  # the launch's --step-size 0.004: one HIL_SENSOR a step
+        last = m.time_usec
+        answer(link, [0.0] * 4, armed=False, t_us=m.time_usec)
+    m = link.recv_match(type="HIL_SENSOR", blocking=True, timeout=30)
+    # the world waits for the answer to this HIL_SENSOR: nothing more comes until it is sent
+    assert link.recv_match(type="HIL_SENSOR", blocking=True, timeout=1.0) is None
+    answer(link, [0.0] * 4, armed=False, t_us=m.time_usec)
+    after = link.recv_match(type="HIL_SENSOR", blocking=True, timeout=30)
+    assert after.time_usec - m.time_usec == 4000
+    print(f"lockstep held at t = {m.time_usec * 1e-6:.3f} s until the answer")
+    link.close()
+
+
+def test_mav_betaflight_sitl_launch_starts_the_firmware_and_flies_on_rc_from_the_topic(ros, tmp_path):
+    launch(ros, "rotors_gazebo", "mav_betaflight_sitl.launch", f"betaflight_workdir:={tmp_path / 'bf'}",
+           "random_seed:=3")
+    result = ros.rospy("""
+        from geometry_msgs.msg import Pose
+        from sensor_msgs.msg import Joy
+        pub = rospy.Publisher('/iris/rc', Joy, queue_size=1)
+        z = {'max': 0.0}
+        def on_pose(msg):
+            z['max'] = max(z['max'], msg.position.z)
+        rospy.Subscriber('/iris/ground_truth/pose', Pose, on_pose)
+        def sticks(throttle, armed, seconds):
+            end = time.monotonic() + seconds
+            while time.monotonic() < end:
+                pub.publish(Joy(axes=[0.0, 0.0, throttle, 0.0, 1.0 if armed else -1.0, 0.6]))
+                time.sleep(0.02)
+        sticks(-1.0, False, 10.0)   # the firmware boots, calibrates its gyro, leaves its boot grace
+        sticks(-1.0, True, 2.0)     # armed at idle
+        sticks(0.7, True, 2.0)      # 1850 us: climb
+        result['z_max'] = z['max']
+        sticks(-1.0, False, 1.0)
+    """, timeout=120)
+    print(f"climbed to {result['z_max']:.2f} m on RC from /iris/rc")
+    assert result["z_max"] > 1.0
