@@ -18,7 +18,6 @@ import numpy as np
 import pytest
 
 import rotors_sim as rs
-from test_px4_mavlink import free_port
 
 DT = 0.0025  # [s] ArduPilot runs its frames at the physics rate: 400 Hz
 

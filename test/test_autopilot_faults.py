@@ -2,7 +2,6 @@
 keeps running. pymavlink stands in for PX4 (not on these machines) on the autopilot's side of the
 socket; socat's pty pair stands in for a Pixhawk's USB serial port.
 """
-import os
 import socket
 import subprocess
 import time

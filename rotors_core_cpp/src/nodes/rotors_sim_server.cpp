@@ -95,7 +95,8 @@ int main(int argc, char** argv) {
     }
   }
   if (options.world_file.empty()) {
-    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] [--step-size S] [--lockstep "
+    std::cerr << "[rotors_sim] error: no world file given (usage: rotors_sim_server <world> [-u] [--rtf X] "
+                 "[--step-size S] [--lockstep "
                  "A1[:I1],A2[:I2]] [--lockstep-lenient] [--skip-broken-sensors] [--no-shadows])\n";
     return 2;
   }

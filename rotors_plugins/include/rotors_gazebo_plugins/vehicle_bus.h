@@ -27,11 +27,11 @@ struct MotorFault {
 };
 
 struct VehicleBus {
-  std::vector<double> motor_command_rad_s;  ///< empty until the first valid command
-  uint64_t motor_command_count = 0;         ///< valid commands so far (any source)
-  std::vector<double> rotor_speed_rad_s;    ///< signed real speed per motor number
-  int rotor_count = 0;                      ///< motor models registered (rotors and servos)
-  std::vector<bool> is_servo;               ///< per motor number: a servo (its command and "speed" are angles [rad])
+  std::vector<double> motor_command_rad_s;     ///< empty until the first valid command
+  uint64_t motor_command_count = 0;            ///< valid commands so far (any source)
+  std::vector<double> rotor_speed_rad_s;       ///< signed real speed per motor number
+  int rotor_count = 0;                         ///< motor models registered (rotors and servos)
+  std::vector<bool> is_servo;                  ///< per motor number: a servo (its command and "speed" are angles [rad])
   std::vector<double> max_rot_velocity_rad_s;  ///< per motor number: the motor model's maxRotVelocity (0: a servo)
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
   std::vector<MotorFault> motor_faults;                       ///< per motor number (healthy by default)

@@ -52,7 +52,9 @@ class JsonWriter {
     std::snprintf(text, sizeof(text), "%.9g", v);
     return text;
   }
-  std::string Vector(const Eigen::Vector3d& v) { return "[" + Number(v.x()) + "," + Number(v.y()) + "," + Number(v.z()) + "]"; }
+  std::string Vector(const Eigen::Vector3d& v) {
+    return "[" + Number(v.x()) + "," + Number(v.y()) + "," + Number(v.z()) + "]";
+  }
 
  private:
   int* non_finite_;
@@ -65,8 +67,8 @@ std::string StateJson(const VehicleSnapshot& s, double airspeed_m_s, bool has_ai
   const Eigen::Quaterniond q = frames::NedFrdFromEnuFlu(s.q_WB);
   std::ostringstream json;
   // "velocity" is written before any key it is a prefix of: ArduPilot matches keys by position
-  json << "\n{\"timestamp\":" << w.Number(s.time_s) << ",\"imu\":{\"gyro\":"
-       << w.Vector(frames::FrdFromFlu(s.has_imu ? s.gyro_B : s.omega_B))
+  json << "\n{\"timestamp\":" << w.Number(s.time_s)
+       << ",\"imu\":{\"gyro\":" << w.Vector(frames::FrdFromFlu(s.has_imu ? s.gyro_B : s.omega_B))
        << ",\"accel_body\":" << w.Vector(frames::FrdFromFlu(s.has_imu ? s.accel_B : s.specific_force_B)) << "}"
        << ",\"position\":" << w.Vector(frames::NedFromEnu(s.p_W)) << ",\"quaternion\":[" << w.Number(q.w()) << ","
        << w.Number(q.x()) << "," << w.Number(q.y()) << "," << w.Number(q.z()) << "]"

@@ -36,9 +36,8 @@ std::vector<double> ControlChannels::References(const std::vector<double>& u, bo
   for (size_t i = 0; i < channels_.size(); ++i) {
     const ControlChannel& c = channels_[i];
     const bool have_input = c.input_index < static_cast<int>(u.size());
-    reference[i] = armed && have_input
-                       ? (u[c.input_index] + c.input_offset) * c.input_scaling + c.zero_position_armed
-                       : c.zero_position_disarmed;
+    reference[i] = armed && have_input ? (u[c.input_index] + c.input_offset) * c.input_scaling + c.zero_position_armed
+                                       : c.zero_position_disarmed;
     // a rotor turns one way: the command the motor models take is a speed >= 0
     if (c.joint_control_type == "velocity" && reference[i] < 0.0) reference[i] = 0.0;
   }

@@ -28,7 +28,9 @@ sockaddr_in Address(const std::string& addr, int port) {
   return a;
 }
 
-std::string Where(const std::string& addr, int port) { return (addr.empty() ? "0.0.0.0" : addr) + ":" + std::to_string(port); }
+std::string Where(const std::string& addr, int port) {
+  return (addr.empty() ? "0.0.0.0" : addr) + ":" + std::to_string(port);
+}
 
 /// Waits up to timeout_s for `fd` to be readable.
 bool Readable(int fd, double timeout_s) {
@@ -69,8 +71,7 @@ bool UdpSocket::SendTo(const std::string& addr, int port, const void* data, size
 
 bool UdpSocket::Reply(const void* data, size_t n) {
   if (!has_peer_) return false;
-  return ::sendto(fd_, data, n, 0, reinterpret_cast<const sockaddr*>(&peer_), sizeof(peer_)) ==
-         static_cast<ssize_t>(n);
+  return ::sendto(fd_, data, n, 0, reinterpret_cast<const sockaddr*>(&peer_), sizeof(peer_)) == static_cast<ssize_t>(n);
 }
 
 int UdpSocket::Receive(void* buf, size_t size, double timeout_s) {
@@ -108,10 +109,11 @@ TcpServer::TcpServer(const std::string& bind_addr, int port) : port_(port) {
     const std::string why = std::strerror(errno);
     ::close(listen_fd_);
     listen_fd_ = -1;
-    throw rotors_sim::SimError("cannot listen on TCP " + Where(bind_addr, port) + ": " + why +
-                               (why.find("in use") != std::string::npos
-                                    ? " (another simulator holds it: stop it, or give this vehicle another instance port)"
-                                    : ""));
+    throw rotors_sim::SimError(
+        "cannot listen on TCP " + Where(bind_addr, port) + ": " + why +
+        (why.find("in use") != std::string::npos
+             ? " (another simulator holds it: stop it, or give this vehicle another instance port)"
+             : ""));
   }
 }
 

@@ -141,10 +141,10 @@ std::vector<uint8_t> MavlinkEndpoint::Finish(uint32_t id, const void* payload, u
   return bytes;
 }
 
-#define RSIM_MAVLINK_FRAME(type, NAME)                                                                           \
-  std::vector<uint8_t> MavlinkEndpoint::Frame(const type& m) {                                                   \
-    return Finish(MAVLINK_MSG_ID_##NAME, &m, MAVLINK_MSG_ID_##NAME##_MIN_LEN, MAVLINK_MSG_ID_##NAME##_LEN,       \
-                  MAVLINK_MSG_ID_##NAME##_CRC);                                                                  \
+#define RSIM_MAVLINK_FRAME(type, NAME)                                                                     \
+  std::vector<uint8_t> MavlinkEndpoint::Frame(const type& m) {                                             \
+    return Finish(MAVLINK_MSG_ID_##NAME, &m, MAVLINK_MSG_ID_##NAME##_MIN_LEN, MAVLINK_MSG_ID_##NAME##_LEN, \
+                  MAVLINK_MSG_ID_##NAME##_CRC);                                                            \
   }
 RSIM_MAVLINK_FRAME(mavlink_hil_sensor_t, HIL_SENSOR)
 RSIM_MAVLINK_FRAME(mavlink_hil_gps_t, HIL_GPS)
@@ -160,10 +160,8 @@ void MavlinkEndpoint::Feed(const uint8_t* data, size_t n,
     mavlink_message_t message;
     mavlink_status_t status;
     const uint8_t result = mavlink_frame_char_buffer(&parse_buffer_, &parse_status_, data[i], &message, &status);
-    if (result == MAVLINK_FRAMING_OK)
-      on_message(message);
-    else if (result == MAVLINK_FRAMING_BAD_CRC || result == MAVLINK_FRAMING_BAD_SIGNATURE)
-      ++bad_frames_;
+    if (result == MAVLINK_FRAMING_OK) on_message(message);
+    else if (result == MAVLINK_FRAMING_BAD_CRC || result == MAVLINK_FRAMING_BAD_SIGNATURE) ++bad_frames_;
   }
 }
 

@@ -56,8 +56,9 @@ class GazeboArdupilotInterface : public AutopilotInterface {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (waited > link_timeout_s_) {
         linked_ = false;
-        Error("lost", "no servo packet for " + std::to_string(link_timeout_s_) + " s (link_timeout): motors "
-                      "disarmed, the world runs on until ArduPilot sends again");
+        Error("lost", "no servo packet for " + std::to_string(link_timeout_s_) +
+                          " s (link_timeout): motors "
+                          "disarmed, the world runs on until ArduPilot sends again");
         ApplyDisarmed();
         return;
       }
@@ -81,8 +82,8 @@ class GazeboArdupilotInterface : public AutopilotInterface {
       }
       if (!linked_) {
         linked_ = true;
-        Info("servo packets from ArduPilot at " + socket_->Peer() + " (" + std::to_string(frame.frame_rate) +
-             " Hz)" + (lockstep_ ? ": lockstep from now on" : ""));
+        Info("servo packets from ArduPilot at " + socket_->Peer() + " (" + std::to_string(frame.frame_rate) + " Hz)" +
+             (lockstep_ ? ": lockstep from now on" : ""));
       }
       std::vector<double> u(frame.pwm_us.size());
       for (size_t i = 0; i < u.size(); ++i) u[i] = (frame.pwm_us[i] - 1000.0) / 1000.0;  // 1000..2000 us -> 0..1

@@ -46,7 +46,8 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     states_ = std::make_unique<UdpSocket>("0.0.0.0", 0);
     node_ = MakeNode(Namespace());
     if (node_ && !rc_topic.empty())
-      rc_sub_ = node_->subscribe(rc_topic, 1, &GazeboBetaflightInterface::OnRc, this, ros::TransportHints().tcpNoDelay());
+      rc_sub_ =
+          node_->subscribe(rc_topic, 1, &GazeboBetaflightInterface::OnRc, this, ros::TransportHints().tcpNoDelay());
     Info("state to " + addr_ + ":" + std::to_string(state_port_) + ", RC to :" + std::to_string(rc_port_) +
          ", motor outputs on :" + std::to_string(motor_port) + (lockstep_ ? " (lockstep)" : ""));
   }
@@ -81,8 +82,9 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     ++unanswered_;
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_answer_).count() > link_timeout_s_) {
       answers_ = 0;
-      Error("lost", "no motor packet for " + std::to_string(link_timeout_s_) + " s of wall time (link_timeout) at t = " +
-                        std::to_string(s.time_s) + " s: motors disarmed, the world runs on until Betaflight answers again");
+      Error("lost", "no motor packet for " + std::to_string(link_timeout_s_) +
+                        " s of wall time (link_timeout) at t = " + std::to_string(s.time_s) +
+                        " s: motors disarmed, the world runs on until Betaflight answers again");
       ApplyDisarmed();
     }
   }

@@ -93,8 +93,8 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     Poll(0.0);
     if (serial_enabled_ && !serial_) return;
     if (tcp_ && !tcp_->Connected()) return;
-    const bool imu_due = s.has_imu && s.imu_count != last_imu_count_ &&
-                         s.time_s - last_sensor_time_s_ >= imu_interval_s_ - 1e-9;
+    const bool imu_due =
+        s.has_imu && s.imu_count != last_imu_count_ && s.time_s - last_sensor_time_s_ >= imu_interval_s_ - 1e-9;
     if (!imu_due) return;
     last_imu_count_ = s.imu_count;
     last_sensor_time_s_ = s.time_s;
@@ -114,8 +114,8 @@ class GazeboMavlinkInterface : public AutopilotInterface {
         return;
       }
       if (waited > link_timeout_s_) {
-        LinkLost("no HIL_ACTUATOR_CONTROLS for " + std::to_string(link_timeout_s_) + " s after the HIL_SENSOR of t = " +
-                 std::to_string(s.time_s) + " s (link_timeout)");
+        LinkLost("no HIL_ACTUATOR_CONTROLS for " + std::to_string(link_timeout_s_) +
+                 " s after the HIL_SENSOR of t = " + std::to_string(s.time_s) + " s (link_timeout)");
         return;
       }
       if (!Poll(std::min(0.05, link_timeout_s_ - waited))) return;  // the link closed
@@ -184,12 +184,9 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   }
 
   void Write(const std::vector<uint8_t>& bytes) {
-    if (tcp_)
-      tcp_->Send(bytes.data(), bytes.size());
-    else if (udp_)
-      udp_->SendTo(udp_addr_, udp_port_, bytes.data(), bytes.size());
-    else if (serial_ && !serial_->Send(bytes.data(), bytes.size()))
-      SerialLost();
+    if (tcp_) tcp_->Send(bytes.data(), bytes.size());
+    else if (udp_) udp_->SendTo(udp_addr_, udp_port_, bytes.data(), bytes.size());
+    else if (serial_ && !serial_->Send(bytes.data(), bytes.size())) SerialLost();
   }
 
   /// Takes a new connection and reads what is there (waiting up to timeout_s for the first bytes);
@@ -211,7 +208,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     int n;
     double wait = timeout_s;
     do {
-      n = tcp_ ? tcp_->Receive(buffer, sizeof(buffer), wait)
+      n = tcp_   ? tcp_->Receive(buffer, sizeof(buffer), wait)
           : udp_ ? udp_->Receive(buffer, sizeof(buffer), wait)
                  : serial_->Receive(buffer, sizeof(buffer), wait);
       if (n == kLinkClosed) {
@@ -257,7 +254,8 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     if (m.msgid == MAVLINK_MSG_ID_COMMAND_LONG) {
       mavlink_command_long_t c;
       mavlink_msg_command_long_decode(&m, &c);
-      if (c.command == MAV_CMD_SET_MESSAGE_INTERVAL && static_cast<int>(c.param1) == MAVLINK_MSG_ID_HIL_STATE_QUATERNION)
+      if (c.command == MAV_CMD_SET_MESSAGE_INTERVAL &&
+          static_cast<int>(c.param1) == MAVLINK_MSG_ID_HIL_STATE_QUATERNION)
         state_interval_s_ = c.param2 > 0.0f ? c.param2 * 1e-6 : 0.0;
       return;
     }

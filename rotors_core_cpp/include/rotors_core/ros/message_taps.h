@@ -23,8 +23,8 @@ namespace rotors_sim {
 struct TappedMessage {
   std::string datatype;  ///< e.g. "sensor_msgs/Imu"
   std::string md5sum;
-  uint64_t count = 0;  ///< messages so far
-  bool wanted = true;  ///< false: MessageTaps::Restrict left this topic out (its plugin skips it)
+  uint64_t count = 0;   ///< messages so far
+  bool wanted = true;   ///< false: MessageTaps::Restrict left this topic out (its plugin skips it)
   bool pinned = false;  ///< an in-process reader (MessageTaps::Pin) keeps it whatever the taps' state
   boost::shared_ptr<const void> message;
   std::function<std::string(const void*)> serialize;  ///< ROS wire format of `message`

@@ -30,8 +30,8 @@ struct FdmPacket {
   double pressure;                        ///< [Pa]
 };
 struct RcPacket {
-  double timestamp;                   ///< [s]
-  uint16_t channels[kRcChannels];     ///< [us] 1000..2000: AETR then AUX1..
+  double timestamp;                ///< [s]
+  uint16_t channels[kRcChannels];  ///< [us] 1000..2000: AETR then AUX1..
 };
 struct ServoPacket {
   float motor_speed[kMotors];  ///< [0, 1] (3D: [-1, 1]), in the ArduCopter plugin's order

@@ -18,7 +18,7 @@ inline Eigen::Vector3d FrdFromFlu(const Eigen::Vector3d& v_FLU) { return {v_FLU.
 /// q_NED_FRD = q_NED_ENU q_ENU_FLU q_FLU_FRD (both outer rotations are half turns)
 inline Eigen::Quaterniond NedFrdFromEnuFlu(const Eigen::Quaterniond& q_ENU_FLU) {
   const double s = std::sqrt(0.5);
-  const Eigen::Quaterniond q_NED_ENU(0.0, s, s, 0.0);  // the half turn about (1, 1, 0)/sqrt(2)
+  const Eigen::Quaterniond q_NED_ENU(0.0, s, s, 0.0);      // the half turn about (1, 1, 0)/sqrt(2)
   const Eigen::Quaterniond q_FLU_FRD(0.0, 1.0, 0.0, 0.0);  // the half turn about x
   Eigen::Quaterniond q = q_NED_ENU * q_ENU_FLU * q_FLU_FRD;
   if (q.w() < 0.0) q.coeffs() = -q.coeffs();
@@ -36,7 +36,8 @@ inline Eigen::Quaterniond NwuFluFromEnuFlu(const Eigen::Quaterniond& q_ENU_FLU) 
 /// Roll, pitch, yaw [rad] (z-y'-x'' Tait-Bryan) of q_NED_FRD, as ArduPilot's JSON "attitude" takes them.
 inline Eigen::Vector3d RollPitchYaw(const Eigen::Quaterniond& q_NED_FRD) {
   const Eigen::Matrix3d R = q_NED_FRD.toRotationMatrix();
-  return {std::atan2(R(2, 1), R(2, 2)), std::asin(std::max(-1.0, std::min(1.0, -R(2, 0)))), std::atan2(R(1, 0), R(0, 0))};
+  return {std::atan2(R(2, 1), R(2, 2)), std::asin(std::max(-1.0, std::min(1.0, -R(2, 0)))),
+          std::atan2(R(1, 0), R(0, 0))};
 }
 
 }  // namespace frames

@@ -14,11 +14,11 @@ struct VehicleSnapshot {
   double time_s = 0.0;  ///< sim time
 
   // ground truth of the base link
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();                ///< [m] ENU
-  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();     ///< ENU <- FLU
-  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();                ///< [m/s] ENU
-  Eigen::Vector3d omega_B = Eigen::Vector3d::Zero();            ///< [rad/s] FLU
-  Eigen::Vector3d specific_force_B = Eigen::Vector3d::Zero();   ///< [m/s^2] FLU, true (R^T (a - g))
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();                          ///< [m] ENU
+  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();               ///< ENU <- FLU
+  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();                          ///< [m/s] ENU
+  Eigen::Vector3d omega_B = Eigen::Vector3d::Zero();                      ///< [rad/s] FLU
+  Eigen::Vector3d specific_force_B = Eigen::Vector3d::Zero();             ///< [m/s^2] FLU, true (R^T (a - g))
   Eigen::Vector3d latitude_longitude_altitude = Eigen::Vector3d::Zero();  ///< [deg, deg, m] of p_W
 
   // the IMU plugin (imuSubTopic)
