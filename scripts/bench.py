@@ -6,6 +6,7 @@ sections (see SECTIONS); what cannot be measured here is printed with the reason
 import csv
 import json
 import os
+import re
 import signal
 import statistics
 import subprocess
@@ -433,13 +434,26 @@ def python_peer_rows(t: Dict) -> List:
     return rows
 
 
+def autopilot_flights() -> Dict:
+    """The autopilot flights of the tests, as figures: Betaflight's SITL flying the iris (its whole
+    test flight: 29 s of sim time) and the pymavlink controller flying the firefly on HIL_SENSOR
+    through the MAVLink interface (12 s at 250 Hz, lockstep). Each run is the test itself (-s)."""
+    def run(selection: List[str]) -> str:
+        return sh([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-s", *selection], cwd=ROOT)
+    betaflight = [float(re.search(r"\(([\d.]+) x real time\)", run(["test/test_betaflight_sitl.py"])).group(1))
+                  for _ in range(3)]
+    px4 = [float(re.search(r"\((\d+) steps/s\)", run(["test/test_px4_mavlink.py", "-k", "controller"])).group(1))
+           for _ in range(3)]
+    return {"betaflight_rtf": betaflight, "px4_pymavlink_steps_per_s": px4}
+
+
 GYM_PYBULLET_DRONES_MISSING = (
     f"gym-pybullet-drones: not measured. It is not on PyPI; its README installs a clone. Clone "
     f"https://github.com/utiasDSL/gym-pybullet-drones into {GYM_PYBULLET_DRONES_SRC} (or point "
     "ROTORS_BENCH_GYM_PYBULLET_DRONES at a clone) and the bench installs it into a venv of its own")
 
 SECTIONS = ("engine", "peers", "python_peers", "closed_loop", "swarm", "startup", "estimator", "waypoints", "cameras", "vi_sensor",
-            "lasers", "planning", "sweep", "soak")
+            "lasers", "planning", "autopilots", "sweep", "soak")
 
 
 def median_of(runs: int, measure) -> Dict:
@@ -527,6 +541,13 @@ def main() -> int:
                     rows += [(f"ratio: our closed loop in process (lockstep, 10 ms) / gym-pybullet-drones at "
                               f"{physics_hz}/{control_hz} Hz",
                               f"{res['closed_loop_rtf_lockstep_in_process'] / gpd['drone_s_per_s']:.1f} x", ">= 5 x")]
+    if "autopilots" in only:
+        a = res["autopilots"] = autopilot_flights()
+        rows += [("Betaflight 4.6 SITL (real firmware) flying the iris, 2 ms step, each state answered (clock-scaled, "
+                  "not lockstep: its simRate)", f"{min(a['betaflight_rtf']):.2f}-{max(a['betaflight_rtf']):.2f} x real time", ""),
+                 ("pymavlink controller on HIL_SENSOR through the MAVLink interface, firefly, 4 ms step, lockstep "
+                  "(TCP, one round trip a step)", f"{min(a['px4_pymavlink_steps_per_s']):,.0f}-"
+                  f"{max(a['px4_pymavlink_steps_per_s']):,.0f} steps/s", "")]
     if "python_peers" in only:
         res["python_peers"] = python_peers()
         rows += python_peer_rows(res["python_peers"])
