@@ -88,7 +88,7 @@ def flight(tmp_path_factory):
         phases["roll"] = pilot.fly(2.0, z_ref=1.5, roll=1600)
         phases["pitch"] = pilot.fly(2.0, z_ref=1.5, pitch=1600)
         phases["level"] = pilot.fly(2.0, z_ref=1.5)
-        phases["descent"] = pilot.fly(6.0, z_ref=-0.5)
+        phases["descent"] = np.vstack([pilot.fly(2.0, z_ref=z) for z in (1.0, 0.5, 0.1)])  # down in steps
         phases["landed"] = pilot.fly(1.0, throttle=1000)
         phases["disarm"] = pilot.fly(1.0, throttle=1000, armed=False)
         wall = time.monotonic() - wall
@@ -148,5 +148,8 @@ def test_a_roll_and_a_pitch_command_are_held_and_move_it_the_right_way(flight):
 
 
 def test_it_lands_and_disarms(flight):
+    descent = flight["descent"]
+    print(f"descent: |roll|, |pitch| <= {np.abs(descent[:, 4:6]).max():.1f} deg")
+    assert np.abs(descent[:, 4:6]).max() < 5.0  # a gentle landing: no tumble on touch-down
     assert col(flight["landed"], "z").max() < 0.15
     assert speeds(flight["disarm"][-10:]).max() < 1.0
