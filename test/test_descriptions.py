@@ -63,8 +63,22 @@ def test_vehicle_visuals_are_its_body_and_propellers_scaled_by_radius_rotor(mav:
                "/tilt_unit_" in name for name in massive)
 
 
-def test_mavlink_interface_is_refused_clearly():
-    res = subprocess.run(["xacro", str(package_path("rotors_description") / "urdf" / "firefly_base.xacro"),
-                          "enable_mavlink_interface:=true"], capture_output=True, text=True)
-    assert res.returncode != 0
-    assert "ERROR_enable_mavlink_interface_is_not_supported_by_this_simulator" in res.stderr
+@pytest.mark.parametrize("mav_name", VEHICLES)
+def test_every_multirotor_takes_each_autopilot_interface_before_the_sensors_it_reads(mav_name):
+    for flag, filename in (("enable_mavlink_interface", "librotors_gazebo_mavlink_interface.so"),
+                           ("enable_ardupilot_interface", "librotors_gazebo_ardupilot_interface.so"),
+                           ("enable_betaflight_interface", "librotors_gazebo_betaflight_interface.so")):
+        res = subprocess.run(["xacro", str(package_path("rotors_description") / "urdf" / f"{mav_name}_base.xacro"),
+                              f"mav_name:={mav_name}", f"namespace:={mav_name}", f"{flag}:=true"],
+                             capture_output=True, text=True)
+        assert res.returncode == 0, res.stderr
+        plugins = [p.get("filename") for p in ET.fromstring(res.stdout).iter("plugin")]
+        assert plugins.count(filename) == 1
+        # it pins the sensor topics it reads before their plugins advertise them
+        assert plugins.index(filename) < plugins.index("librotors_gazebo_imu_plugin.so")
+        navigation = {"librotors_gazebo_gps_plugin.so", "librotors_gazebo_magnetometer_plugin.so",
+                      "librotors_gazebo_pressure_plugin.so"}
+        # PX4 and ArduPilot read GPS, magnetometer and barometer: the interface brings them
+        assert navigation <= set(plugins) or flag == "enable_betaflight_interface"
+
+
