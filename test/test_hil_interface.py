@@ -1,0 +1,90 @@
+"""RotorS' HIL interface without mavros (rotors_hil_interface_node, fixed_wing_hil.launch): the
+techpod's sensors go to the autopilot as HIL_SENSOR (100 Hz, FRD through the body-to-sensor roll
+of pi) and HIL_GPS (5 Hz); the autopilot's controls come back as mav_msgs/Actuators; hil_cli's
+arm, HIL mode and reboot reach it as MAVLink commands. No autopilot board is on these machines:
+pymavlink on a UDP socket stands in for it (the node's serial path is pymavlink's own).
+"""
+import threading
+import time
+
+from pymavlink import mavutil
+
+from conftest import launch
+from test_ardupilot_json import free_udp_port
+
+
+class AutopilotStandIn:
+    """The autopilot's end of the link, read on a thread of its own (the node sends 100 HIL_SENSOR a
+    second: an unread UDP socket would overflow and drop what matters)."""
+
+    def __init__(self, port: int):
+        self.link = mavutil.mavlink_connection(f"udpin:127.0.0.1:{port}", source_system=1, source_component=1)
+        self.messages, self.lock, self.stop = [], threading.Lock(), False
+        self.thread = threading.Thread(target=self.read, daemon=True)
+        self.thread.start()
+
+    def read(self):
+        while not self.stop:
+            m = self.link.recv_match(blocking=True, timeout=0.2)
+            if m is not None:
+                with self.lock:
+                    self.messages.append(m)
+
+    def of_type(self, kind):
+        with self.lock:
+            return [m for m in self.messages if m.get_type() == kind]
+
+    def wait_for(self, kind, count=1, timeout=60.0):
+        deadline = time.monotonic() + timeout
+        while len(self.of_type(kind)) < count:
+            assert time.monotonic() < deadline, f"{len(self.of_type(kind))} {kind} from the node"
+            time.sleep(0.05)
+        return self.of_type(kind)
+
+
+def test_fixed_wing_hil_launch_exchanges_hil_messages_with_an_autopilot(ros):
+    port = free_udp_port()
+    autopilot = AutopilotStandIn(port)
+    launch(ros, "rotors_gazebo", "fixed_wing_hil.launch", f"mavlink_url:=udpout:127.0.0.1:{port}")
+    autopilot.wait_for("HIL_SENSOR", 1, timeout=90)
+    autopilot.link.mav.heartbeat_send(1, 3, 0, 0, 0)  # the node answers to the first heartbeat's system
+    sensors = autopilot.wait_for("HIL_SENSOR", 200)[-200:]
+    gps = autopilot.of_type("HIL_GPS")
+    rate = (len(sensors) - 1) / ((sensors[-1].time_usec - sensors[0].time_usec) * 1e-6)
+    s = sensors[-1]
+    print(f"{len(sensors)} HIL_SENSOR at {rate:.0f} Hz of sim time, {len(gps)} HIL_GPS; at rest: acc "
+          f"({s.xacc:.2f}, {s.yacc:.2f}, {s.zacc:.2f}) m/s^2, {s.abs_pressure:.1f} hPa, mag z {s.zmag:.3f} G")
+    assert 90 < rate < 110
+    # FRD: the specific force at rest is -z (the mean of 2 s: the ADIS16448's noise and turn-on bias)
+    z_mean, x_mean = sum(m.zacc for m in sensors) / len(sensors), sum(m.xacc for m in sensors) / len(sensors)
+    assert abs(z_mean + 9.81) < 0.5 and abs(x_mean) < 0.5
+    assert s.zmag > 0.3 and all(m.fields_updated & 0x3F == 0x3F for m in sensors)  # accel and gyro each time
+    # magnetometer and barometer bits when their plugins published since the last HIL_SENSOR
+    assert sum(m.fields_updated & 0x1FC0 == 0x1BC0 for m in sensors) > len(sensors) / 2
+    assert gps and gps[-1].fix_type == 3 and abs(gps[-1].lat) > 0
+    # the autopilot's controls: mav_msgs/Actuators, normalized, on command/motor_speed
+    results = {}
+    listener = threading.Thread(target=lambda: results.update(ros.rospy("""
+        from mav_msgs.msg import Actuators
+        got = []
+        rospy.Subscriber('/techpod/command/motor_speed', Actuators, lambda m: got.append(list(m.normalized)))
+        time.sleep(4.0)
+        result['normalized'] = got[-1] if got else None
+    """)))
+    listener.start()
+    end = time.monotonic() + 5.0
+    while listener.is_alive() and time.monotonic() < end:  # the autopilot answers on its link
+        autopilot.link.mav.hil_actuator_controls_send(0, [0.1, -0.2, 0.3, 0, 0, 0.8] + [0.0] * 10, 129, 0)
+        time.sleep(0.02)
+    listener.join(30)
+    print("Actuators.normalized:", [round(v, 3) for v in results["normalized"][:6]])
+    assert [round(v, 3) for v in results["normalized"][:6]] == [0.1, -0.2, 0.3, 0.0, 0.0, 0.8]
+    # hil_cli: arm and reboot as commands to the autopilot, HIL mode as SET_MODE
+    for action in ("arm", "reboot", "hil"):
+        out = ros.run(["rosrun", "rotors_hil_interface", "hil_cli", action, "--node", "/techpod/rotors_hil_interface_node"])
+        print(out.stdout.strip())
+    commands = autopilot.wait_for("COMMAND_LONG", 2, timeout=10)
+    assert [(m.command, m.param1, m.target_system) for m in commands] == [(400, 1.0, 1), (246, 1.0, 1)]
+    mode = autopilot.wait_for("SET_MODE", 1, timeout=10)[0]
+    assert mode.base_mode & mavutil.mavlink.MAV_MODE_FLAG_HIL_ENABLED and mode.target_system == 1
+    autopilot.stop = True
