@@ -377,3 +377,57 @@ def test_a_controller_on_the_autopilot_side_flies_the_firefly_on_hil_sensor_alon
     # the set point: 2 m above the take-off point, level, the initial heading
     assert np.all(np.abs(held[:, 3] - z_rest - 2.0) < 0.15)
     assert tilt.max() < 3.0 and np.abs(yaw).max() < 3.0
+
+
+def test_distance_sensor_carries_the_downward_rangefinders_reading_in_cm():
+    port = free_port()
+    world = make_world(port, enable_lidar="rangefinder")
+    world.set_model_state("firefly", [0.0, 0.0, 3.0])  # falling from 3 m: in the rangefinder's range
+    stepper, link = start_lockstep(world, port, 100)
+    seen = []
+    for _ in range(100):
+        _, others = next_sensor(link)
+        ranges = [m for m in others if m.get_type() == "DISTANCE_SENSOR"]
+        lidar = world.message("/firefly/lidar")
+        if ranges and lidar:
+            seen.append((ranges[-1], lidar[0]))
+        answer(link, [0.0] * 6, armed=False)
+    stepper.join()
+    m, r = seen[-1]
+    print(f"{len(seen)} DISTANCE_SENSOR; last {m.current_distance} cm (Range {r.range:.4f} m), "
+          f"{m.min_distance}-{m.max_distance} cm, orientation {m.orientation}")
+    assert len(seen) >= 7  # the rangefinder's 20 Hz over 0.4 s, each one sent once
+    assert 2.0 < r.range < 3.0
+    assert m.current_distance == round(r.range * 100) and m.min_distance == round(r.min_range * 100)
+    assert m.max_distance == round(r.max_range * 100) and m.orientation == 25  # MAV_SENSOR_ROTATION_PITCH_270: down
+
+
+def test_two_vehicles_one_port_each_step_in_lockstep_with_both_autopilots():
+    ports = free_port(), free_port()
+    world = rs.World("basic", step_size=DT)
+    for i, port in enumerate(ports):
+        world.spawn_mav("firefly", namespace=f"firefly_{i}", xyz=(0, 2 * i, 0.1), random_seed=30 + i,
+                        enable_mavlink_interface=True, mavlink_tcp_port=port)
+    stepper = SteppingWorld(world)
+    stepper.run(2)
+    links = [connect(port) for port in ports]
+    for link in links:
+        next_sensor(link)
+        answer(link, [0.0] * 6, armed=False)
+    stepper.join()
+    stepper.run(50)
+    for _ in range(49):
+        for i, link in enumerate(links):
+            next_sensor(link)
+            answer(link, [0.5 if i == 0 else 0.0] * 6, armed=True)
+    next_sensor(links[0])
+    answer(links[0], [0.5] * 6, armed=True)
+    next_sensor(links[1])  # the world waits for the second autopilot's answer
+    held = world.time
+    time.sleep(0.3)
+    assert world.time == held
+    answer(links[1], [0.0] * 6, armed=True)
+    stepper.join()
+    speeds = [np.abs(world.rotor_speeds(f"firefly_{i}")) for i in range(2)]
+    print(f"vehicle 0 rotors {speeds[0].round(0)}, vehicle 1 rotors {speeds[1].round(0)}")
+    assert speeds[0].min() > 300 and speeds[1].max() < 1.0  # each autopilot drives its own vehicle

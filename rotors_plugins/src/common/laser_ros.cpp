@@ -131,8 +131,8 @@ void LaserPlugin::Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sd
   if (!sensor_)
     throw SimError(GetFilename() + " belongs in a <sensor type=\"ray\"> (or gpu_ray), not type '" + sensor->Type() +
                    "'");
-  std::string robot_namespace = sensor_->ParentLink()->GetModel()->GetName();  // gazebo_ros: the spawn namespace
-  if (Params().Has("robotNamespace")) robot_namespace = ReadRobotNamespace(Params());
+  robot_namespace_ = sensor_->ParentLink()->GetModel()->GetName();  // gazebo_ros: the spawn namespace
+  if (Params().Has("robotNamespace")) robot_namespace_ = ReadRobotNamespace(Params());
   topic_ = DefaultTopic();
   ReadParam(Params(), "topicName", &topic_);
   frame_ = sensor_->ParentName();
@@ -142,9 +142,8 @@ void LaserPlugin::Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sd
   rng_.seed(std::hash<std::string>()(sensor_->ParentLink()->GetModel()->GetName() + "::" + sensor_->Name() +
                                      "::" + GetHandle()));
   Configure(Params());
-  node_ = MakeNode(robot_namespace);
-  if (!node_) return;  // no ROS in this process: nothing to publish
-  Advertise();
+  node_ = MakeNode(robot_namespace_);
+  if (!Advertise()) return;  // no ROS in this process and no in-process reader: nothing to publish
   connection_ = sensor_->ConnectUpdated([this] {
     if (sensor_->ScanCount() == published_scans_) return;  // a sweep still under way
     published_scans_ = sensor_->ScanCount();

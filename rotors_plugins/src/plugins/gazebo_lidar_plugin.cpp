@@ -3,14 +3,22 @@
 // the same reading goes out on ROS as sensor_msgs/Range (radiation INFRARED, field_of_view 0) on
 // <robotNamespace>/<topicName> (defaults: the model's name and "lidar"), frame <frameName>
 // (default: the sensor's link). Out-of-range readings as REP 117 says.
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
 #include "rotors_gazebo_plugins/ros/laser_ros.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
 
 class GazeboLidarPlugin : public LaserPlugin {
  protected:
   std::string DefaultTopic() const override { return "lidar"; }
-  void Advertise() override { pub_ = node_->advertise<sensor_msgs::Range>(topic_, 4); }
+  // through the world's message taps too: an autopilot interface reads the range in process
+  bool Advertise() override {
+    pub_ = rotors_gazebo_plugins::Advertise<sensor_msgs::Range>(node_, robot_namespace_, topic_,
+                                                                *sensor_->ParentLink()->GetModel()->GetWorldRaw(), 4);
+    return static_cast<bool>(pub_);
+  }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     sensor_msgs::RangePtr msg(new sensor_msgs::Range);
     msg->header.stamp = stamp;
@@ -24,7 +32,7 @@ class GazeboLidarPlugin : public LaserPlugin {
   }
 
  private:
-  ros::Publisher pub_;
+  rotors_sim::ListenedPublisher pub_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -13,7 +13,11 @@ class GazeboRosBlockLaser : public LaserPlugin {
     ReadParam(params, "gaussianNoise", &noise_m_);
     if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
   }
-  void Advertise() override { pub_ = node_->advertise<sensor_msgs::PointCloud>(topic_, 4); }
+  bool Advertise() override {
+    if (!node_) return false;
+    pub_ = node_->advertise<sensor_msgs::PointCloud>(topic_, 4);
+    return true;
+  }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     RayScan noisy = scan;
     AddRangeNoise(noise_m_, &rng_, &noisy);

@@ -17,7 +17,11 @@ class GazeboRosLaser : public LaserPlugin {
                                  " vertical samples (use libgazebo_ros_block_laser.so or "
                                  "libgazebo_ros_velodyne_laser.so for a 3D scan)");
   }
-  void Advertise() override { pub_ = node_->advertise<sensor_msgs::LaserScan>(topic_, 4); }
+  bool Advertise() override {
+    if (!node_) return false;
+    pub_ = node_->advertise<sensor_msgs::LaserScan>(topic_, 4);
+    return true;
+  }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     sensor_msgs::LaserScanPtr msg(new sensor_msgs::LaserScan);
     const double rate = sensor_->UpdateRate();

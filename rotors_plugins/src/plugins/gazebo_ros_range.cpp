@@ -7,7 +7,10 @@
 
 #include "rotors_core/error.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
 #include "rotors_gazebo_plugins/ros/laser_ros.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
 
@@ -29,7 +32,12 @@ class GazeboRosRange : public LaserPlugin {
     msg_.min_range = static_cast<float>(sensor_->Spec().range_min_m);
     msg_.max_range = static_cast<float>(sensor_->Spec().range_max_m);
   }
-  void Advertise() override { pub_ = node_->advertise<sensor_msgs::Range>(topic_, 4); }
+  // through the world's message taps too: an autopilot interface reads the range in process
+  bool Advertise() override {
+    pub_ = rotors_gazebo_plugins::Advertise<sensor_msgs::Range>(node_, robot_namespace_, topic_,
+                                                                *sensor_->ParentLink()->GetModel()->GetWorldRaw(), 4);
+    return static_cast<bool>(pub_);
+  }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     float range = NearestReturn(scan);
     if (std::isfinite(range) && noise_m_ > 0.0) {
@@ -46,7 +54,7 @@ class GazeboRosRange : public LaserPlugin {
  private:
   sensor_msgs::Range msg_;
   double noise_m_ = 0.0;
-  ros::Publisher pub_;
+  rotors_sim::ListenedPublisher pub_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -28,7 +28,11 @@ class GazeboRosVelodyneLaser : public LaserPlugin {
     ReadParam(params, "instantaneous_scan", &instantaneous);
     sensor_->SetScanOverTime(!instantaneous);
   }
-  void Advertise() override { pub_ = node_->advertise<sensor_msgs::PointCloud2>(topic_, 4); }
+  bool Advertise() override {
+    if (!node_) return false;
+    pub_ = node_->advertise<sensor_msgs::PointCloud2>(topic_, 4);
+    return true;
+  }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     if (pub_.getNumSubscribers() == 0) return;
     sensor_msgs::PointCloud2Ptr msg(new sensor_msgs::PointCloud2);

@@ -23,9 +23,10 @@ namespace rotors_sim {
 struct TappedMessage {
   std::string datatype;  ///< e.g. "sensor_msgs/Imu"
   std::string md5sum;
-  uint64_t count = 0;   ///< messages so far
-  bool wanted = true;   ///< false: MessageTaps::Restrict left this topic out (its plugin skips it)
-  bool pinned = false;  ///< an in-process reader (MessageTaps::Pin) keeps it whatever the taps' state
+  uint64_t count = 0;       ///< messages so far
+  bool wanted = true;       ///< false: MessageTaps::Restrict left this topic out (its plugin skips it)
+  bool pinned = false;      ///< an in-process reader (MessageTaps::Pin) keeps it whatever the taps' state
+  bool advertised = false;  ///< a plugin publishes it (MessageTaps::Slot was asked for it)
   boost::shared_ptr<const void> message;
   std::function<std::string(const void*)> serialize;  ///< ROS wire format of `message`
 
@@ -71,9 +72,15 @@ class MessageTaps {
   /// The slot of a resolved topic name, nullptr when the taps are disabled and nobody pinned the
   /// topic. Valid as long as the world.
   TappedMessage* Slot(const std::string& topic) {
-    if (enabled_) return &slots_[topic];
-    auto it = slots_.find(topic);
-    return it != slots_.end() && it->second.pinned ? &it->second : nullptr;
+    TappedMessage* slot = nullptr;
+    if (enabled_) {
+      slot = &slots_[topic];
+    } else {
+      auto it = slots_.find(topic);
+      if (it != slots_.end() && it->second.pinned) slot = &it->second;
+    }
+    if (slot) slot->advertised = true;
+    return slot;
   }
   /// An in-process reader in the engine (an autopilot interface plugin reading the vehicle's
   /// sensors) keeps `topic` whether or not the taps are enabled or restricted. The topic's
@@ -93,9 +100,11 @@ class MessageTaps {
     for (auto& slot : slots_) slot.second.wanted = topics.empty() || slot.second.pinned;
     for (const std::string& topic : topics) slots_[topic].wanted = true;
   }
+  /// The topics some plugin publishes (not those only pinned by a reader).
   std::vector<std::string> Topics() const {
     std::vector<std::string> names;
-    for (const auto& slot : slots_) names.push_back(slot.first);
+    for (const auto& slot : slots_)
+      if (slot.second.advertised) names.push_back(slot.first);
     return names;
   }
 

@@ -63,13 +63,13 @@ class LaserPlugin : public rotors_sim::SensorPlugin {
   /// Reads the plugin's own parameters (besides the common ones) through `params` and checks the
   /// sensor; throws SimError with the problem. What it does not read is rejected by the loader.
   virtual void Configure(rotors_sim::SdfParams& /*params*/) {}
-  /// Advertises on node_ (topic_).
-  virtual void Advertise() = 0;
+  /// Advertises topic_ (on node_ when ROS runs); false when there is nobody to publish to.
+  virtual bool Advertise() = 0;
   virtual void Publish(const RayScan& scan, const ros::Time& stamp) = 0;
 
   rotors_sim::sensors::RaySensorPtr sensor_;
   std::shared_ptr<ros::NodeHandle> node_;
-  std::string topic_, frame_;
+  std::string robot_namespace_, topic_, frame_;
   std::mt19937_64 rng_;  ///< for the plugin's own noise, seeded by model, sensor and plugin name
 
  private:
