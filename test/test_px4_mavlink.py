@@ -431,3 +431,40 @@ def test_two_vehicles_one_port_each_step_in_lockstep_with_both_autopilots():
     speeds = [np.abs(world.rotor_speeds(f"firefly_{i}")) for i in range(2)]
     print(f"vehicle 0 rotors {speeds[0].round(0)}, vehicle 1 rotors {speeds[1].round(0)}")
     assert speeds[0].min() > 300 and speeds[1].max() < 1.0  # each autopilot drives its own vehicle
+
+
+def test_hil_optical_flow_carries_the_flow_plugins_integrals():
+    """RotorS' flow camera (test_optical_flow.py's) with an IMU and the MAVLink interface, moving at
+    0.5 m/s 2 m over RotorS' asphalt: HIL_OPTICAL_FLOW is the flow plugin's OpticalFlowRad."""
+    import test_optical_flow as flow
+
+    port = free_port()
+    world = rs.World(sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="flow">
+      <physics type="ode"><max_step_size>0.002</max_step_size><real_time_factor>0</real_time_factor></physics>
+      <gravity>0 0 0</gravity>{flow.GROUND["asphalt"]}</world></sdf>""")
+    interface = f"""<plugin name="mavlink_interface" filename="librotors_gazebo_mavlink_interface.so">
+        <robotNamespace>cam</robotNamespace><linkName>link</linkName><mavlink_tcp_port>{port}</mavlink_tcp_port>
+      </plugin>
+      <plugin name="imu" filename="librotors_gazebo_imu_plugin.so"><robotNamespace>cam</robotNamespace>
+        <linkName>link</linkName><imuTopic>imu</imuTopic></plugin>"""
+    world.spawn(flow.CAMERA.replace("</link></model>", "</link>" + interface + "</model>"), "cam")
+    world.set_model_state("cam", [0, 0, 2.0], [0, math.sin(math.pi / 4), 0, math.cos(math.pi / 4)],
+                          velocity=[0.5, 0.0, 0.0])
+    stepper, link = start_lockstep(world, port, 500)
+    pairs = []
+    for _ in range(500):
+        _, others = next_sensor(link)
+        flows = [m for m in others if m.get_type() == "HIL_OPTICAL_FLOW"]
+        if flows:
+            pairs.append((flows[-1], world.message(flow.TOPIC)[0]))
+        answer(link, [], armed=False)
+    stepper.join()
+    m, r = pairs[-1]
+    print(f"{len(pairs)} HIL_OPTICAL_FLOW; last integrated_x {m.integrated_x:.4f} rad over {m.integration_time_us} us "
+          f"(OpticalFlowRad {r.integrated_x:.4f}), quality {m.quality}")
+    assert len(pairs) >= 15  # the plugin's 20 Hz over 1 s
+    for m, r in pairs:
+        assert m.integration_time_us == r.integration_time_us and m.quality == r.quality
+        np.testing.assert_allclose([m.integrated_x, m.integrated_y, m.distance], [r.integrated_x, r.integrated_y, r.distance],
+                                   rtol=1e-6, atol=1e-7)
+    assert m.integrated_x / (m.integration_time_us * 1e-6) == pytest.approx(0.5 / (2.0 - flow.ASPHALT_TOP), rel=0.15)
