@@ -49,10 +49,7 @@ class AutopilotInterface : public rotors_sim::ModelPlugin {
   void Info(const std::string& line);
 
   const std::string& Namespace() const { return namespace_; }
-  rotors_sim::physics::World& World() const { return *world_; }
   VehicleBus& Bus() const { return *bus_; }
-  /// The step size [s] the world runs at.
-  double StepSize() const;
 
  private:
   VehicleSnapshot Snapshot();

@@ -15,16 +15,16 @@ FdmPacket StatePacket(const VehicleSnapshot& s) {
   p.timestamp = s.time_s;
   const Eigen::Vector3d gyro_FRD = frames::FrdFromFlu(s.has_imu ? s.gyro_B : s.omega_B);
   const Eigen::Vector3d minus_f_FLU = -(s.has_imu ? s.accel_B : s.specific_force_B);
-  const Eigen::Quaterniond q_NWU_FLU = frames::NedFrdFromEnuFlu(s.q_WB);
+  const Eigen::Quaterniond q_NED_FRD = frames::NedFrdFromEnuFlu(s.q_WB);
   for (int i = 0; i < 3; ++i) {
     p.imu_angular_velocity_rpy[i] = gyro_FRD[i];
     p.imu_linear_acceleration_xyz[i] = minus_f_FLU[i];
     p.velocity_xyz[i] = s.v_W[i];
   }
-  p.imu_orientation_quat[0] = q_NWU_FLU.w();
-  p.imu_orientation_quat[1] = q_NWU_FLU.x();
-  p.imu_orientation_quat[2] = q_NWU_FLU.y();
-  p.imu_orientation_quat[3] = q_NWU_FLU.z();
+  p.imu_orientation_quat[0] = q_NED_FRD.w();
+  p.imu_orientation_quat[1] = q_NED_FRD.x();
+  p.imu_orientation_quat[2] = q_NED_FRD.y();
+  p.imu_orientation_quat[3] = q_NED_FRD.z();
   const Eigen::Vector3d& lla = s.has_gps ? s.gps_latitude_longitude_altitude : s.latitude_longitude_altitude;
   p.position_xyz[0] = lla.y();
   p.position_xyz[1] = lla.x();

@@ -125,8 +125,6 @@ void AutopilotInterface::ReadControlChannels() {
   }
 }
 
-double AutopilotInterface::StepSize() const { return world_->Physics().max_step_size_s; }
-
 VehicleSnapshot AutopilotInterface::Snapshot() {
   VehicleSnapshot s;
   s.time_s = world_->SimTime().Double();

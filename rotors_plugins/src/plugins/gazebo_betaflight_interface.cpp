@@ -79,7 +79,6 @@ class GazeboBetaflightInterface : public AutopilotInterface {
       last_answer_ = std::chrono::steady_clock::now();
       return;
     }
-    ++unanswered_;
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_answer_).count() > link_timeout_s_) {
       answers_ = 0;
       Error("lost", "no motor packet for " + std::to_string(link_timeout_s_) +
@@ -133,7 +132,7 @@ class GazeboBetaflightInterface : public AutopilotInterface {
   /// waiting starts once it has answered this many.
   static constexpr uint64_t kAnswersBeforeLockstep = 100;
   bool lockstep_ = true, answered_ = false;
-  uint64_t answers_ = 0, unanswered_ = 0;
+  uint64_t answers_ = 0;
   double link_timeout_s_ = 2.0, answer_timeout_s_ = 0.02;
   std::chrono::steady_clock::time_point last_answer_;
   std::unique_ptr<UdpSocket> motors_, states_;

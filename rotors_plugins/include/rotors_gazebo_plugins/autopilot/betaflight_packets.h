@@ -2,8 +2,9 @@
 // 4.6), engine- and ROS-free: the state it reads on UDP 9003, the RC on 9004, the motor outputs it
 // sends to 9002. Frames, as its sitl.c reads them: the gyro in body FRD (it flips y and z into its
 // own FLU), the accelerometer as minus the specific force in body FLU (it negates it), the attitude
-// q NWU <- FLU (its rotation matrix and Euler angles), and, for its virtual GPS, longitude, latitude
-// and altitude with the velocity in ENU.
+// q NED <- FRD (what the ArduCopter Gazebo plugin it was written for sends: with it, its angle mode
+// levels the vehicle; with q NWU <- FLU the pitch loop diverged), and, for its virtual GPS,
+// longitude, latitude and altitude with the velocity in ENU.
 #pragma once
 
 #include <array>
@@ -24,7 +25,7 @@ struct FdmPacket {
   double timestamp;                       ///< [s] sim time
   double imu_angular_velocity_rpy[3];     ///< [rad/s] body FRD
   double imu_linear_acceleration_xyz[3];  ///< [m/s^2] minus the specific force, body FLU
-  double imu_orientation_quat[4];         ///< w x y z, NWU <- FLU
+  double imu_orientation_quat[4];         ///< w x y z, NED <- FRD
   double velocity_xyz[3];                 ///< [m/s] ENU (virtual GPS)
   double position_xyz[3];                 ///< longitude [deg], latitude [deg], altitude [m] (virtual GPS)
   double pressure;                        ///< [Pa]

@@ -1,5 +1,5 @@
 // The one place where the simulator's frames meet the autopilots': ours are ENU world and FLU body
-// (REP-103), PX4's and ArduPilot's NED world and FRD body, Betaflight's NWU world and FLU body.
+// (REP-103), PX4's, ArduPilot's and Betaflight's attitude input NED world and FRD body.
 #pragma once
 
 #include <cmath>
@@ -23,21 +23,6 @@ inline Eigen::Quaterniond NedFrdFromEnuFlu(const Eigen::Quaterniond& q_ENU_FLU) 
   Eigen::Quaterniond q = q_NED_ENU * q_ENU_FLU * q_FLU_FRD;
   if (q.w() < 0.0) q.coeffs() = -q.coeffs();
   return q.normalized();
-}
-
-/// q_NWU_FLU = q_NWU_ENU q_ENU_FLU (a quarter turn about up: east -> -west, north -> north)
-inline Eigen::Quaterniond NwuFluFromEnuFlu(const Eigen::Quaterniond& q_ENU_FLU) {
-  const Eigen::Quaterniond q_NWU_ENU(Eigen::AngleAxisd(-M_PI / 2.0, Eigen::Vector3d::UnitZ()));
-  Eigen::Quaterniond q = q_NWU_ENU * q_ENU_FLU;
-  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
-  return q.normalized();
-}
-
-/// Roll, pitch, yaw [rad] (z-y'-x'' Tait-Bryan) of q_NED_FRD, as ArduPilot's JSON "attitude" takes them.
-inline Eigen::Vector3d RollPitchYaw(const Eigen::Quaterniond& q_NED_FRD) {
-  const Eigen::Matrix3d R = q_NED_FRD.toRotationMatrix();
-  return {std::atan2(R(2, 1), R(2, 2)), std::asin(std::max(-1.0, std::min(1.0, -R(2, 0)))),
-          std::atan2(R(1, 0), R(0, 0))};
 }
 
 }  // namespace frames
