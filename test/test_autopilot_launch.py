@@ -6,6 +6,8 @@ the vehicle's rc topic (sensor_msgs/Joy), as joy_to_rc or a user's node sends it
 """
 import time
 
+import numpy as np
+
 import pytest
 from pymavlink import mavutil
 
@@ -79,3 +81,48 @@ def test_mav_betaflight_sitl_launch_starts_the_firmware_and_flies_on_rc_from_the
     """, timeout=120)
     print(f"climbed to {result['z_max']:.2f} m on RC from /iris/rc")
     assert result["z_max"] > 1.0
+
+
+def test_mav_ardupilot_sitl_launch_takes_servo_frames_on_9002_plus_10_instance(ros):
+    """A stand-in for ArduPilot's SIM_JSON (ArduPilot is not on these machines), instance 3."""
+    import json
+    import socket
+    import struct
+
+    launch(ros, "rotors_gazebo", "mav_ardupilot_sitl.launch", "instance:=3", "real_time_factor:=0")
+    sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    sock.settimeout(0.5)
+    deadline, answers = time.monotonic() + 60, []
+    frame = 0
+    while len(answers) < 200:
+        assert time.monotonic() < deadline, f"{len(answers)} answers from UDP 9032"
+        sock.sendto(struct.pack("<HHI16H", 18458, 400, frame, *([1000] * 16)), ("127.0.0.1", 9032))
+        frame += 1
+        try:
+            data = sock.recv(4096)
+        except OSError:
+            continue
+        answers.append(json.loads(data.strip().split(b"\n")[-1]))
+    steps = np.diff([a["timestamp"] for a in answers[-100:]])
+    print(f"{len(answers)} answers; timestamps step by {steps.min():.4f}-{steps.max():.4f} s")
+    assert np.allclose(steps, 0.0025)  # the launch's --step-size 0.0025: one step per frame
+
+
+def test_mav_px4_sitl_multi_launch_gives_each_vehicle_its_port(ros):
+    launch(ros, "rotors_gazebo", "mav_px4_sitl_multi.launch", "real_time_factor:=0")
+    links = []
+    for instance in range(3):  # all three PX4 instances connect (the world waits for each first connection)
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                links.append(mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1,
+                                                        autoreconnect=False))
+                break
+            except OSError:
+                assert time.monotonic() < deadline, f"nothing listens on TCP {4560 + instance}"
+                time.sleep(0.2)
+    for instance, link in enumerate(links):
+        m = link.recv_match(type="HIL_SENSOR", blocking=True, timeout=30)
+        assert m is not None, f"no HIL_SENSOR on TCP {4560 + instance}"
+    for link in links:
+        link.close()

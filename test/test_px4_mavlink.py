@@ -60,14 +60,16 @@ def make_world(port: int, urdf: str | None = None, seed: int = 11, **xacro) -> r
 
 
 def start_lockstep(world: rs.World, port: int, steps: int):
-    """Connects as PX4 does and answers the first HIL_SENSOR (lockstep starts with that answer; the
-    world waits for the connection), then lets the world take `steps` lockstep steps on its thread."""
+    """Connects as PX4 does and answers the first HIL_SENSOR (lockstep starts with that answer; until
+    then the world does not wait), then lets the world take `steps` lockstep steps on its thread."""
     stepper = SteppingWorld(world)
-    stepper.run(2)  # the first step has no IMU reading yet; the second sends the first HIL_SENSOR
-    link = connect(port)
+    stepper.run(1)  # the first step: no IMU reading yet
+    stepper.join()
+    link = connect(port)  # the kernel takes the connection; the next step accepts it and sends HIL_SENSOR
+    stepper.run(1)
+    stepper.join()
     next_sensor(link)
     answer(link, [0.0] * 6, armed=False)
-    stepper.join()
     stepper.run(steps)
     return stepper, link
 
@@ -409,12 +411,14 @@ def test_two_vehicles_one_port_each_step_in_lockstep_with_both_autopilots():
         world.spawn_mav("firefly", namespace=f"firefly_{i}", xyz=(0, 2 * i, 0.1), random_seed=30 + i,
                         enable_mavlink_interface=True, mavlink_tcp_port=port)
     stepper = SteppingWorld(world)
-    stepper.run(2)
+    stepper.run(1)
+    stepper.join()
     links = [connect(port) for port in ports]
+    stepper.run(1)
+    stepper.join()
     for link in links:
         next_sensor(link)
         answer(link, [0.0] * 6, armed=False)
-    stepper.join()
     stepper.run(50)
     for _ in range(49):
         for i, link in enumerate(links):
@@ -468,3 +472,25 @@ def test_hil_optical_flow_carries_the_flow_plugins_integrals():
         np.testing.assert_allclose([m.integrated_x, m.integrated_y, m.distance], [r.integrated_x, r.integrated_y, r.distance],
                                    rtol=1e-6, atol=1e-7)
     assert m.integrated_x / (m.integration_time_us * 1e-6) == pytest.approx(0.5 / (2.0 - flow.ASPHALT_TOP), rel=0.15)
+
+
+def techpod_flight(throttle: float, armed: bool) -> float:
+    """The techpod launched at 15 m/s, 100 m up, for 2 s on PX4's outputs; its forward speed at the end."""
+    port = free_port()
+    world = rs.World("basic", step_size=DT)
+    world.spawn(str(rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"), "techpod",
+                xyz=(0, 0, 100), mav_name="techpod", namespace="techpod", enable_mavlink_interface="true",
+                mavlink_tcp_port=str(port), random_seed="4")
+    world.set_model_state("techpod", [0, 0, 100], velocity=[15.0, 0, 0])
+    stepper, link = start_lockstep(world, port, 500)
+    for _ in range(500):
+        next_sensor(link)
+        answer(link, [0.0, 0.0, 0.0, 0.0, 0.0, throttle], armed=armed)  # techpod.yaml: throttle is channel 5
+    stepper.join()
+    return float(world.link_state("techpod")[2][0])
+
+
+def test_a_fixed_wings_normalized_channels_take_the_autopilots_outputs():
+    full, idle = techpod_flight(1.0, armed=True), techpod_flight(1.0, armed=False)
+    print(f"techpod after 2 s from 15 m/s: {full:.2f} m/s at full throttle, {idle:.2f} m/s disarmed")
+    assert full > idle + 1.0  # the throttle channel drives the propeller; disarmed it is at zero

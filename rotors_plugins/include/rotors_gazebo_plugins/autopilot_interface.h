@@ -43,6 +43,8 @@ class AutopilotInterface : public rotors_sim::ModelPlugin {
   void Apply(const std::vector<double>& u, bool armed);
   /// The disarmed values (zero_position_disarmed) on every channel, once per `why` (a lost link).
   void ApplyDisarmed();
+  /// The channels' references to the vehicle: motors and servos, and a fixed wing's normalized channels.
+  void Command(const std::vector<double>& references);
   /// One line on stderr/rosconsole, at most once a second of wall time per kind of fault (`kind` and
   /// the line without its numbers).
   void Error(const std::string& kind, const std::string& line);

@@ -15,9 +15,10 @@ std::string ControlChannel::Validate(int input_count) const {
   else if (!std::isfinite(input_offset) || !std::isfinite(input_scaling) || !std::isfinite(zero_position_armed) ||
            !std::isfinite(zero_position_disarmed))
     why << "input_offset, input_scaling, zero_position_armed and zero_position_disarmed must be finite";
-  else if (joint_control_type != "velocity" && joint_control_type != "position")
+  else if (joint_control_type != "velocity" && joint_control_type != "position" && joint_control_type != "normalized")
     why << "joint_control_type '" << joint_control_type
-        << "' is not one this simulator drives (velocity: a rotor speed, position: a servo angle)";
+        << "' is not one this simulator drives (velocity: a rotor speed, position: a servo angle, normalized: a "
+           "fixed wing's actuator channel)";
   return why.str();
 }
 

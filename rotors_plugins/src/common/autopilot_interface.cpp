@@ -66,22 +66,29 @@ void AutopilotInterface::Load(rotors_sim::physics::ModelPtr model, sdf::ElementP
 }
 
 bool AutopilotInterface::MakeDefaultChannels() {
-  if (static_cast<int>(given_channels_.size()) != bus_->rotor_count) {
+  const int channel_count = bus_->rotor_count + bus_->normalized_channels;
+  if (static_cast<int>(given_channels_.size()) != channel_count) {
     given_channels_.clear();
-    // one channel per motor: output i -> motor i, 0..1 -> 0..maxRotVelocity (a servo: -1..1 rad)
-    for (int i = 0; i < bus_->rotor_count; ++i) {
+    // one channel per motor: output i -> motor i, 0..1 -> 0..maxRotVelocity (a servo: -1..1 rad);
+    // then a fixed wing's normalized channels, output for output
+    for (int i = 0; i < channel_count; ++i) {
       ControlChannel c;
-      c.name = "motor_" + std::to_string(i);
       c.input_index = i;
-      c.input_scaling = bus_->is_servo[i] ? 1.0 : bus_->max_rot_velocity_rad_s[i];
-      c.joint_control_type = bus_->is_servo[i] ? "position" : "velocity";
+      if (i < bus_->rotor_count) {
+        c.name = "motor_" + std::to_string(i);
+        c.input_scaling = bus_->is_servo[i] ? 1.0 : bus_->max_rot_velocity_rad_s[i];
+        c.joint_control_type = bus_->is_servo[i] ? "position" : "velocity";
+      } else {
+        c.name = "normalized_" + std::to_string(i - bus_->rotor_count);
+        c.joint_control_type = "normalized";
+      }
       given_channels_.push_back(c);
     }
   }
   for (const ControlChannel& c : given_channels_) {
     const std::string why = c.Validate(OutputCount());
     if (!why.empty()) {
-      Error("channels", "the vehicle's " + std::to_string(bus_->rotor_count) + " motors need more outputs than the " +
+      Error("channels", "the vehicle's " + std::to_string(channel_count) + " actuators need more outputs than the " +
                             std::to_string(OutputCount()) + " the autopilot sends (" + why +
                             "): give <control_channels>; the motors stay stopped");
       return false;
@@ -189,12 +196,22 @@ VehicleSnapshot AutopilotInterface::Snapshot() {
 
 void AutopilotInterface::Apply(const std::vector<double>& u, bool armed) {
   ++bus_->autopilot_answers;
-  const std::string why = bus_->SetMotorCommand(channels_.References(u, armed));
-  if (!why.empty()) Error("command", std::string("motor command refused: ") + why);
+  Command(channels_.References(u, armed));
+}
+
+void AutopilotInterface::Command(const std::vector<double>& references) {
+  // the motors' channels make the motor command, the normalized ones a fixed wing's actuator command
+  std::vector<double> motors, normalized;
+  for (size_t i = 0; i < references.size(); ++i)
+    (channels_.Channels()[i].joint_control_type == "normalized" ? normalized : motors).push_back(references[i]);
+  std::string why;
+  if (bus_->rotor_count > 0 || !motors.empty()) why = bus_->SetMotorCommand(motors);
+  if (why.empty() && !normalized.empty()) why = bus_->SetNormalizedCommand(normalized);
+  if (!why.empty()) Error("command", "actuator command refused: " + why);
 }
 
 void AutopilotInterface::ApplyDisarmed() {
-  if (channels_ready_) bus_->SetMotorCommand(channels_.Disarmed());
+  if (channels_ready_) Command(channels_.Disarmed());
 }
 
 void AutopilotInterface::Error(const std::string& kind, const std::string& line) {

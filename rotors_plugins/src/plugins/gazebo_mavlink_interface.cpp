@@ -8,9 +8,10 @@
 // differential pressure when theirs are new), HIL_GPS when the GPS plugin has a new fix,
 // HIL_STATE_QUATERNION (ground truth) at the interval PX4 asks for, DISTANCE_SENSOR and
 // HIL_OPTICAL_FLOW when the vehicle has those sensors. HIL_ACTUATOR_CONTROLS come back through
-// <control_channels> to the motors. Lockstep (enable_lockstep, on by default, SITL only): once the
-// first HIL_ACTUATOR_CONTROLS has arrived, the world does not step past a HIL_SENSOR until its answer
-// is in; a link silent for link_timeout [s] of wall time, or closed, is lost: the motors go to their
+// <control_channels> to the motors. Lockstep (enable_lockstep, on by default, SITL only): until PX4
+// connects the world runs on (paced by the simulator; the vehicle waits on the ground, and other
+// vehicles can be spawned); once the first HIL_ACTUATOR_CONTROLS has arrived, the world does not step
+// past a HIL_SENSOR until its answer is in; a link silent for link_timeout [s] of wall time, or closed, is lost: the motors go to their
 // disarmed values and the world runs on (paced) until the autopilot is back.
 #include <cmath>
 #include <memory>
@@ -89,7 +90,6 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   }
 
   void Exchange(const VehicleSnapshot& s) override {
-    if (tcp_ && lockstep_ && !ever_connected_) WaitForFirstConnection();
     Poll(0.0);
     if (serial_enabled_ && !serial_) return;
     if (tcp_ && !tcp_->Connected()) return;
@@ -123,27 +123,9 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   }
 
  private:
-  /// Lockstep with PX4 starts with the world held until PX4 connects (as PX4's Gazebo plugins hold it);
-  /// after a loss the world runs on.
-  void WaitForFirstConnection() {
-    const auto start = std::chrono::steady_clock::now();
-    auto last_line = start;
-    while (!tcp_->Accept(0.5)) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last_line > std::chrono::seconds(5)) {
-        last_line = now;
-        Info("the world waits for PX4 on TCP port " + std::to_string(tcp_->Port()) + " (" +
-             std::to_string(static_cast<int>(std::chrono::duration<double>(now - start).count())) +
-             " s so far; start px4, or enable_lockstep false to run without it)");
-      }
-    }
-    OnConnected();
-  }
-
   void OnConnected() {
     endpoint_->ResetParser();
     autopilot_system_id_ = -1;
-    ever_connected_ = true;
     Info("autopilot connected on TCP port " + std::to_string(tcp_->Port()));
   }
 
@@ -318,7 +300,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   double link_timeout_s_ = 5.0, imu_interval_s_ = 0.0, state_interval_s_ = 0.0;
   // exchange state
   int autopilot_system_id_ = -1;
-  bool received_first_actuator_ = false, awaiting_answer_ = false, ever_connected_ = false;
+  bool received_first_actuator_ = false, awaiting_answer_ = false;
   uint64_t last_imu_count_ = 0, last_gps_count_ = 0, last_mag_count_ = 0, last_baro_count_ = 0, last_diff_count_ = 0,
            last_range_count_ = 0, last_flow_count_ = 0;
   double last_sensor_time_s_ = -1e9, last_state_time_s_ = -1e9;

@@ -3,7 +3,9 @@
 // motor command, as RotorS' plugin publishes its references):
 //   armed:     reference_i = (u[input_index_i] + input_offset_i) input_scaling_i + zero_position_armed_i
 //   disarmed:  reference_i = zero_position_disarmed_i
-// A rotor's reference is a speed [rad/s], a servo's (joint_control_type position) an angle [rad].
+// A rotor's reference is a speed [rad/s], a servo's (joint_control_type position) an angle [rad];
+// ours, joint_control_type normalized: a fixed wing's normalized actuator channel (a control
+// surface or the throttle, RotorS' mav_msgs/Actuators.normalized), in the order of the channels.
 #pragma once
 
 #include <string>
@@ -18,7 +20,7 @@ struct ControlChannel {
   double input_scaling = 1.0;
   double zero_position_disarmed = 0.0;
   double zero_position_armed = 0.0;
-  std::string joint_control_type = "velocity";  ///< velocity (a rotor) or position (a servo)
+  std::string joint_control_type = "velocity";  ///< velocity (a rotor), position (a servo), normalized (a fixed wing)
   std::string joint_name;                       ///< RotorS' field, kept for the record
   std::string gztopic;                          ///< RotorS' field, kept for the record
   /// "" or why the channel cannot work with `input_count` autopilot outputs.
