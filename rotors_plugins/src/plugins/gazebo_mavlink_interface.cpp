@@ -11,8 +11,9 @@
 // <control_channels> to the motors. Lockstep (enable_lockstep, on by default, SITL only): until PX4
 // connects the world runs on (paced by the simulator; the vehicle waits on the ground, and other
 // vehicles can be spawned); once the first HIL_ACTUATOR_CONTROLS has arrived, the world does not step
-// past a HIL_SENSOR until its answer is in; a link silent for link_timeout [s] of wall time, or closed, is lost: the
-// motors go to their disarmed values and the world runs on (paced) until the autopilot is back.
+// past a HIL_SENSOR until its answer is in; a link silent for link_timeout [s] of wall time, or
+// closed, is lost: the motors go to their disarmed values and the world runs on (paced) until the
+// autopilot is back.
 #include <cmath>
 #include <memory>
 #include <sstream>
