@@ -76,3 +76,39 @@ def test_optical_flow_on_a_depth_camera_is_one_line():
     with pytest.raises(rs.SimError, match=r"librotors_gazebo_optical_flow_plugin.so belongs in a <sensor "
                                           r"type=\"camera\">, not type 'depth'"):
         world.spawn(CAMERA.replace('type="camera"', 'type="depth"'), "cam")
+
+
+def test_a_world_with_a_camera_steps_from_a_new_thread_each_time():
+    """A world may step from any thread (a stepper thread per call, as test_px4_mavlink's lockstep
+    helper does): the camera renders from each. Before, the renderer's context stayed current on the
+    first thread, and once that thread had ended another one could not make it current (Mesa's
+    EGL_BAD_ACCESS), unless the new thread happened to get the old one's bookkeeping address."""
+    import threading
+
+    world = rs.World(sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="flow">
+      <physics type="ode"><max_step_size>0.001</max_step_size><real_time_factor>0</real_time_factor></physics>
+      <gravity>0 0 0</gravity>{GROUND["asphalt"]}</world></sdf>""")
+    world.spawn(CAMERA, "cam")
+    world.set_model_state("cam", [0, 0, 2.0], [0, math.sin(math.pi / 4), 0, math.cos(math.pi / 4)],
+                          velocity=[0.5, 0.0, 0.0])
+    errors, keep = [], []
+
+    def step():
+        keep.append(threading.local())  # the thread's own state, of a different size each time
+        keep[-1].pad = bytearray(len(keep) * 4096)
+        try:
+            world.step(50)  # five frames at 100 Hz, one flow sample at 20 Hz
+        except rs.SimError as e:
+            errors.append(str(e))
+
+    worker = threading.Thread(target=step)
+    worker.start()
+    worker.join()
+    world.step(50)  # this thread, while the first thread's state is still held
+    threads = [threading.Thread(target=step) for _ in range(20)]
+    for t in threads:
+        t.start()
+        t.join()
+    seen = world.message(TOPIC)
+    print(f"{len(threads) + 2} threads stepped the world to t = {world.time:.2f} s; errors: {errors[:1]}")
+    assert errors == [] and seen is not None and seen[1] >= 20

@@ -379,6 +379,33 @@ struct Renderer::Impl {
   std::map<const void*, GpuMesh> shadow_proxies;  // simplified copies of large meshes, by source object
 };
 
+/// Makes a renderer's context current on this thread for one render call and releases it after.
+/// A context left current on a thread that has ended cannot be made current on another one (Mesa
+/// answers EGL_BAD_ACCESS unless the new thread happens to get the old one's bookkeeping address),
+/// and a world may step from any thread. Nested calls (a distorted camera in a batch) reuse it.
+class Renderer::ContextBinding {
+ public:
+  explicit ContextBinding(const Impl& r) : display_(r.display), bound_here_(eglGetCurrentContext() != r.context) {
+    if (bound_here_ && !eglMakeCurrent(r.display, EGL_NO_SURFACE, EGL_NO_SURFACE, r.context))
+      throw SimError("camera renderer: cannot make its OpenGL context current (EGL error 0x" + Hex(eglGetError()) +
+                     ")");
+  }
+  ~ContextBinding() {
+    if (bound_here_) eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+  ContextBinding(const ContextBinding&) = delete;
+  ContextBinding& operator=(const ContextBinding&) = delete;
+
+ private:
+  static std::string Hex(EGLint code) {
+    char text[16];
+    std::snprintf(text, sizeof(text), "%04x", static_cast<unsigned>(code));
+    return text;
+  }
+  EGLDisplay display_;
+  bool bound_here_;
+};
+
 void Renderer::Impl::CreateContext() {
   auto get_platform_display =
       reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
@@ -408,6 +435,7 @@ void Renderer::Impl::CreateContext() {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // meshes of unknown winding; the optical frame mirrors GL's anyway
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);  // current only while rendering
 }
 
 const GpuMesh& Renderer::Impl::Upload(const void* key, std::shared_ptr<const void> source, std::vector<PartSoup> parts,
@@ -767,6 +795,7 @@ void AddNoise(const CameraSpec& camera, uint64_t seed, std::vector<uint8_t>* ima
 
 void Renderer::Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
                       uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
+  const ContextBinding current(*impl_);
   if (camera.distortion.IsIdentity()) {
     DrawPinhole(world, X_WC, camera, noise_seed, want_image, want_depth, 0);
     ReadPinhole(camera, want_image, want_depth, 0, out);
@@ -793,6 +822,7 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
 }
 
 void Renderer::RenderAll(const physics::World& world, const std::vector<FrameRequest>& requests) {
+  const ContextBinding current(*impl_);
   // each pinhole camera's drawing goes to the rasteriser (glFlush) before the next one is prepared,
   // and all are read back after: llvmpipe's threads draw one camera while this thread sets up the next
   std::vector<const FrameRequest*> pinholes;  // the slot of each is its index
@@ -813,10 +843,7 @@ void Renderer::RenderAll(const physics::World& world, const std::vector<FrameReq
 
 void Renderer::DrawPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
                            uint64_t noise_seed, bool want_image, bool want_depth, size_t slot) {
-  Impl& r = *impl_;
-  // each world's renderer has its own context; several worlds may render from one thread
-  if (eglGetCurrentContext() != r.context && !eglMakeCurrent(r.display, EGL_NO_SURFACE, EGL_NO_SURFACE, r.context))
-    throw SimError("camera renderer: cannot make its OpenGL context current");
+  Impl& r = *impl_;  // its context is current: Render and RenderAll bind it
   const CameraIntrinsics& in = camera.intrinsics;
   const int W = in.width_px, H = in.height_px;
   const PixelFormat format = camera.format;

@@ -61,6 +61,7 @@ class Renderer {
                    uint64_t noise_seed, bool want_image, bool want_depth, size_t slot);
   void ReadPinhole(const CameraSpec& camera, bool want_image, bool want_depth, size_t slot, RenderedFrame* out);
   struct Impl;
+  class ContextBinding;
   std::unique_ptr<Impl> impl_;
 };
 
