@@ -2,6 +2,7 @@
 one process (different seeds differ, the same seed repeats), sensors and contacts, the controllers
 from the vehicle yaml, and bad input as one clear exception with the world still working.
 (Bit for bit against a lockstep ROS flight: test_lockstep_determinism.py.)"""
+import io
 import math
 
 import numpy as np
@@ -9,6 +10,7 @@ import pytest
 
 import rotors_sim as rs
 from rotors_sim.examples import hovering_example
+from rotors_sim.world import message_class
 
 
 def test_the_hovering_example_from_python_hovers_with_the_ros_examples_offset():
@@ -67,19 +69,106 @@ def test_a_batch_of_16_worlds_with_different_seeds_flies_16_different_repeatable
     assert np.array_equal(again.link_state("firefly")[0], final[5])
 
 
-def test_reset_repeats_the_flight_and_set_model_state_moves_the_vehicle():
-    world = rs.World("basic")
-    first = fly(3, world)
-    world.reset()
+WIND_GUST_MODEL = rs.paths.package_path("rotors_description") / "urdf" / "mav_with_wind_gust.gazebo"
+
+
+def fly_recording_everything(world: rs.World, seconds: float = 3.0) -> dict[str, list[bytes]]:
+    """The hovering example's flight with a fresh Lee controller in a Python loop (set point
+    (0, 0, 1) due 0.5 s after the start): every message of every topic, serialized, by topic."""
     lee = rs.LeePositionController.for_mav("firefly")
-    lee.set_point([0.0, 0.0, 1.0])
+    lee.set_point([0.0, 0.0, 1.0], due=world.time + 0.5)
+    seen, last_odometry, log = {}, 0, {}
+    for _ in range(int(round(seconds / world.step_size))):
+        odometry = world.odometry("firefly")
+        if odometry is not None and odometry.count != last_odometry:
+            last_odometry = odometry.count
+            world.set_motor_speeds("firefly", lee.rotor_speeds(odometry))
+        world.step()
+        for topic, _, count in world.topics():
+            got = world.engine.message(topic)  # None after a reset until the topic's first message
+            if got is not None and count != seen.get(topic, 0):
+                seen[topic] = count
+                log.setdefault(topic, []).append(bytes(got[2]))
+    return log
+
+
+def first_differences(a: dict, b: dict, canonical=lambda topic, data: data) -> dict[str, str]:
+    """Per topic whose messages differ: where (message count, or the first index that differs)."""
+    out = {}
+    for topic in sorted(set(a) | set(b)):
+        x, y = a.get(topic, []), b.get(topic, [])
+        if len(x) != len(y):
+            out[topic] = f"{len(x)} against {len(y)} messages"
+            continue
+        first = next((i for i in range(len(x)) if canonical(topic, x[i]) != canonical(topic, y[i])), None)
+        if first is not None:
+            out[topic] = f"message {first} of {len(x)}"
+    return out
+
+
+def spawn_windy_firefly(world: rs.World, gust_start_s: float) -> None:
+    """The firefly with a 3 N gust and every noisy sensor seeded: IMU, odometry noise, GPS,
+    magnetometer (a random initial bias), pressure."""
+    world.spawn_mav("firefly", model=WIND_GUST_MODEL, random_seed=7, enable_navigation_sensors=True,
+                    wind_gust_start=gust_start_s, wind_gust_duration=1.0, wind_gust_force_mean=3.0,
+                    odometry_noise_position="0.01 0.01 0.01", odometry_noise_attitude="0.02 0.02 0.02")
+
+
+def test_reset_repeats_the_flight_bit_for_bit_with_wind_and_navigation_sensors():
+    """World.reset() (Gazebo's reset_simulation, also the server's /gazebo/reset_simulation): every
+    message of every topic of a second flight is byte for byte the first one's."""
+    world = rs.World("basic")
+    spawn_windy_firefly(world, gust_start_s=1.0)  # the gust inside each flight
+    first = fly_recording_everything(world)
+    world.reset()
     assert world.time == 0.0
+    second = fly_recording_everything(world)
+    counts = {t: len(m) for t, m in first.items()}
+    print(f"{len(first)} topics, {sum(counts.values())} messages; differing after reset: "
+          f"{first_differences(first, second) or 'none'}")
+    for topic in ("/firefly/imu", "/firefly/gps", "/firefly/magnetic_field", "/firefly/air_pressure",
+                  "/firefly/odometry_sensor1/odometry", "/firefly/ground_speed", "/firefly/wind_speed",
+                  "/firefly/external_force"):
+        assert counts.get(topic, 0) > 0, topic
+    assert first_differences(first, second) == {}
+    # the gust pushed the MAV: the flights are not a trivial hover
+    assert first["/firefly/external_force"] != [first["/firefly/external_force"][0]] * counts["/firefly/external_force"]
+
+
+def test_reset_world_repeats_the_flight_with_the_time_running_on():
+    """World.reset_world() (Gazebo's reset_world, also the server's /gazebo/reset_world): the time runs
+    on, so the messages are compared with their stamps set to 0; the gust, due at 40 s, stays out."""
+    import genpy
+
+    world = rs.World("basic")
+    spawn_windy_firefly(world, gust_start_s=40.0)
+    first = fly_recording_everything(world)
+    world.reset_world()
+    assert world.time == pytest.approx(3.0)
+    second = fly_recording_everything(world)
+    types = {topic: kind for topic, kind, _ in world.topics()}
+
+    def unstamped(topic: str, data: bytes) -> bytes:
+        msg = message_class(types[topic])().deserialize(data)
+        if hasattr(msg, "header"):
+            msg.header.stamp = genpy.Time(0)
+        buffer = io.BytesIO()
+        msg.serialize(buffer)
+        return buffer.getvalue()
+
+    print(f"{len(first)} topics; differing after reset_world (stamps aside): "
+          f"{first_differences(first, second, unstamped) or 'none'}")
+    assert first_differences(first, second, unstamped) == {}
+
+
+def test_set_model_state_moves_the_vehicle():
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=3)
     world.set_model_state("firefly", [2.0, -1.0, 3.0], [0, 0, math.sin(0.25), math.cos(0.25)], velocity=[1, 0, 0])
     world.step()
     p, q, v, _ = world.link_state("firefly")
     assert abs(p[0] - 2.01) < 1e-3 and abs(p[2] - 3.0) < 1e-3 and abs(v[0] - 1.0) < 1e-3
     assert abs(2 * math.atan2(q[2], q[3]) - 0.5) < 1e-9
-    assert first.position_W[-1][2] > 0.8
 
 
 def test_sensors_messages_and_contacts():

@@ -258,6 +258,7 @@ void RaySensor::OnUpdate(const common::Time& sim_time) {
 void RaySensor::OnReset() {
   scanning_ = false;
   next_column_ = 0;
+  scan_count_ = 0;  // the noise of scan n is seeded by n: a reset world scans as after load
 }
 
 }  // namespace sensors

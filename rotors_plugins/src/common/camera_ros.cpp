@@ -164,7 +164,8 @@ std::string JoinTopic(const std::string& prefix, const std::string& topic) {
 
 bool RateLimiter::Due(double t_s) {
   if (rate_hz_ <= 0.0) return true;
-  if (last_s_ >= 0.0 && t_s - last_s_ < 1.0 / rate_hz_ - 1e-6) return false;
+  // time before the last one: the world was reset, and the first update after it is due as after load
+  if (last_s_ >= 0.0 && t_s >= last_s_ && t_s - last_s_ < 1.0 / rate_hz_ - 1e-6) return false;
   last_s_ = t_s;
   return true;
 }

@@ -139,8 +139,9 @@ void LaserPlugin::Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sd
   ReadParam(Params(), "frameName", &frame_);
   ReadParam(Params(), "updateRate", &update_rate_hz_);
   if (!(update_rate_hz_ >= 0.0)) throw SimError("<updateRate> " + std::to_string(update_rate_hz_) + " must be >= 0");
-  rng_.seed(std::hash<std::string>()(sensor_->ParentLink()->GetModel()->GetName() + "::" + sensor_->Name() +
-                                     "::" + GetHandle()));
+  seed_ = std::hash<std::string>()(sensor_->ParentLink()->GetModel()->GetName() + "::" + sensor_->Name() + "::" +
+                                   GetHandle());
+  rng_.seed(seed_);
   Configure(Params());
   node_ = MakeNode(robot_namespace_);
   if (!Advertise()) return;  // no ROS in this process and no in-process reader: nothing to publish
@@ -154,6 +155,12 @@ void LaserPlugin::Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sd
     // a sweep is stamped with its start, as velodyne_pointcloud and LIO methods expect
     Publish(sensor_->LastScan(), ToRos(sensor_->LastScan().start));
   });
+}
+
+void LaserPlugin::Reset() {
+  rng_.seed(seed_);
+  last_published_s_ = -1.0;
+  published_scans_ = 0;
 }
 
 }  // namespace rotors_gazebo_plugins

@@ -15,6 +15,7 @@
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_gazebo_plugins/models/airspeed_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/camera_ros.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
@@ -35,7 +36,7 @@ class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
     ReadParam(Params(), "updateRate", &rate_hz);
     if (!(rate_hz >= 0.0)) throw rotors_sim::SimError("updateRate must be >= 0 Hz");
     ThrowIfInvalid(p.Validate());
-    model_ = std::make_unique<AirspeedModel>(p, ReadSeed(Params()));
+    model_.Emplace(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), ns);
@@ -46,6 +47,8 @@ class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
     if (!pub_) return;  // neither ROS nor in-process taps: nobody to publish to
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
+
+  void Reset() override { model_.Reset(); }
 
  private:
   void OnUpdate() {
@@ -60,7 +63,7 @@ class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
     pub_.publish(msg_);
   }
 
-  std::unique_ptr<AirspeedModel> model_;
+  SeededModel<AirspeedModel> model_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   std::shared_ptr<VehicleBus> bus_;

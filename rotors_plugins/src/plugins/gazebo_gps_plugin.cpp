@@ -15,6 +15,7 @@
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
@@ -40,7 +41,7 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     ThrowIfInvalid(p.Validate());
     sensor_ = sensor;
     const auto& o = sensor->ParentLink()->GetModel()->GetWorldRaw()->Origin();
-    model_ = std::make_unique<GpsModel>(
+    model_.Emplace(
         p, GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg}, ReadSeed(Params()));
     fix_.header.frame_id = sensor->ParentName();
     fix_.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
@@ -56,6 +57,8 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     if (!gps_pub_) return;  // neither ROS nor in-process taps: nobody to publish to
     connection_ = sensor->ConnectUpdated([this] { OnUpdate(); });
   }
+
+  void Reset() override { model_.Reset(); }
 
  private:
   void OnUpdate() {
@@ -74,7 +77,7 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
   }
 
   rotors_sim::sensors::SensorPtr sensor_;
-  std::unique_ptr<GpsModel> model_;
+  SeededModel<GpsModel> model_;
   sensor_msgs::NavSatFix fix_;
   std::shared_ptr<ros::NodeHandle> node_;
   // ListenedPublisher: no search through every topic per step

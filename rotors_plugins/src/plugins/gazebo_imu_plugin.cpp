@@ -18,6 +18,7 @@
 #include "rotors_core/ros/msg_conversions.h"
 #include "rotors_gazebo_plugins/models/imu_noise_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
@@ -46,9 +47,8 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     ReadParam(Params(), "accelerometerBiasCorrelationTime", &p.accelerometer_bias_correlation_time_s);
     ReadParam(Params(), "accelerometerTurnOnBiasSigma", &p.accelerometer_turn_on_bias_sigma);
     ThrowIfInvalid(p.Validate());
-    params_ = p;
-    seed_ = ReadSeed(Params());
-    noise_ = std::make_unique<ImuNoiseModel>(p, seed_);
+    const uint64_t seed = ReadSeed(Params());
+    noise_.Emplace(p, seed);
 
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
@@ -63,12 +63,12 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     if (!bias_topic.empty())
       bias_pub_ = Advertise<rotors_comm::ImuBias>(node_, ns, bias_topic, *model->GetWorldRaw(), 10);
     if (node_) {
-      ROS_DEBUG("[imu] %s/%s seed %lu", ns.c_str(), topic.c_str(), static_cast<unsigned long>(seed_));
+      ROS_DEBUG("[imu] %s/%s seed %lu", ns.c_str(), topic.c_str(), static_cast<unsigned long>(seed));
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 
-  void Reset() override { noise_ = std::make_unique<ImuNoiseModel>(params_, seed_); }
+  void Reset() override { noise_.Reset(); }
 
  private:
   void OnUpdate() {
@@ -93,9 +93,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     }
   }
 
-  ImuNoiseParams params_;
-  uint64_t seed_ = 0;
-  std::unique_ptr<ImuNoiseModel> noise_;
+  SeededModel<ImuNoiseModel> noise_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   sensor_msgs::Imu msg_;

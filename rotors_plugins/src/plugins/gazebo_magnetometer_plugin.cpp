@@ -13,6 +13,7 @@
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
@@ -31,7 +32,7 @@ class GazeboMagnetometerPlugin : public rotors_sim::ModelPlugin {
     ReadVector(Params(), "noiseNormal", &p.noise_normal_T);
     ReadVector(Params(), "noiseUniformInitialBias", &p.noise_uniform_initial_bias_T);
     ThrowIfInvalid(p.Validate());
-    model_ = std::make_unique<MagnetometerModel>(p, ReadSeed(Params()));
+    model_.Emplace(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     msg_.header.frame_id = link_name;
@@ -42,6 +43,8 @@ class GazeboMagnetometerPlugin : public rotors_sim::ModelPlugin {
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 
+  void Reset() override { model_.Reset(); }
+
  private:
   void OnUpdate() {
     const auto q = link_->WorldPose().Rot();
@@ -50,7 +53,7 @@ class GazeboMagnetometerPlugin : public rotors_sim::ModelPlugin {
     pub_.publish(msg_);
   }
 
-  std::unique_ptr<MagnetometerModel> model_;
+  SeededModel<MagnetometerModel> model_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   sensor_msgs::MagneticField msg_;

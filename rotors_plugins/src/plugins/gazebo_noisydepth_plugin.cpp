@@ -6,6 +6,7 @@
 #include "depth_camera_ros_plugin.h"
 #include "rotors_gazebo_plugins/models/depth_noise_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/seeded_model.h"
 
 namespace rotors_gazebo_plugins {
 
@@ -31,7 +32,7 @@ class GazeboNoisyDepth : public DepthCameraRosPlugin {
     ReadParam(Params(), "D435NoiseSubpixelErr", &noise.subpixel_error_px);
     ReadParam(Params(), "D435MaxStdev", &noise.max_stdev_m);
     ThrowIfInvalid(noise.Validate());
-    noise_ = std::make_unique<DepthNoiseModel>(noise, ReadSeed(Params()));
+    noise_.Emplace(noise, ReadSeed(Params()));
     return p;
   }
 
@@ -44,8 +45,10 @@ class GazeboNoisyDepth : public DepthCameraRosPlugin {
     return *scratch;
   }
 
+  void Reset() override { noise_.Reset(); }
+
  private:
-  std::unique_ptr<DepthNoiseModel> noise_;
+  SeededModel<DepthNoiseModel> noise_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -22,6 +22,7 @@
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/models/odometry_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
@@ -70,7 +71,7 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     ReadVector(Params(), "noiseUniformLinearVelocity", &noise.uniform_linear_velocity_m_s);
     ReadVector(Params(), "noiseUniformAngularVelocity", &noise.uniform_angular_velocity_rad_s);
     ThrowIfInvalid(noise.Validate());
-    noise_ = std::make_unique<OdometryNoise>(noise, ReadSeed(Params()));
+    noise_.Emplace(noise, ReadSeed(Params()));
     std::string image;
     double scale = 1.0;
     ReadParam(Params(), "covarianceImageScale", &scale);
@@ -101,6 +102,7 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
   }
 
   void Reset() override {
+    noise_.Reset();
     queue_.clear();
     step_ = 0;
   }
@@ -190,7 +192,7 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
   double unknown_delay_s_ = 0.0;
   long step_ = 0;
   bool broadcast_tf_ = true;
-  std::unique_ptr<OdometryNoise> noise_;
+  SeededModel<OdometryNoise> noise_;
   std::unique_ptr<OutageMap> outage_map_;
   std::deque<Pending> queue_;
   rotors_sim::physics::LinkPtr link_;

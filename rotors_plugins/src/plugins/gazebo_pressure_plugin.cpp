@@ -12,6 +12,7 @@
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
@@ -27,7 +28,7 @@ class GazeboPressurePlugin : public rotors_sim::ModelPlugin {
     ReadParam(Params(), "referenceAltitude", &p.reference_altitude_m);
     ReadParam(Params(), "pressureVariance", &p.pressure_variance_pa2);
     ThrowIfInvalid(p.Validate());
-    model_ = std::make_unique<PressureModel>(p, ReadSeed(Params()));
+    model_.Emplace(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     msg_.header.frame_id = link_name;
@@ -38,6 +39,8 @@ class GazeboPressurePlugin : public rotors_sim::ModelPlugin {
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 
+  void Reset() override { model_.Reset(); }
+
  private:
   void OnUpdate() {
     msg_.header.stamp = ToRos(world_->SimTime());
@@ -45,7 +48,7 @@ class GazeboPressurePlugin : public rotors_sim::ModelPlugin {
     pub_.publish(msg_);
   }
 
-  std::unique_ptr<PressureModel> model_;
+  SeededModel<PressureModel> model_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   sensor_msgs::FluidPressure msg_;

@@ -25,6 +25,7 @@
 #include "rotors_gazebo_plugins/models/wind_field.h"
 #include "rotors_gazebo_plugins/models/wind_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
@@ -71,7 +72,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     ReadParam(Params(), "windGustForceVariance", &p.wind_gust_force_variance);
     ReadVector(Params(), "windGustDirection", &p.wind_gust_direction);
     ThrowIfInvalid(p.Validate());
-    wind_ = std::make_unique<WindModel>(p, ReadSeed(Params()));
+    wind_.Emplace(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     offset_L_ = {offset.x(), offset.y(), offset.z()};
     world_ = model->GetWorldRaw();
@@ -85,6 +86,12 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     }
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
         [this](const rotors_sim::common::UpdateInfo& info) { OnUpdate(info); });
+  }
+
+  /// The gusts drawn again from the seed; an external wind received before is forgotten.
+  void Reset() override {
+    wind_.Reset();
+    external_speed_W_.reset();
   }
 
  private:
@@ -132,7 +139,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
 
   std::string namespace_, frame_id_ = "world";
   rotors_sim::physics::Vector3d offset_L_;
-  std::unique_ptr<WindModel> wind_;
+  SeededModel<WindModel> wind_;
   std::unique_ptr<WindField> field_;
   std::unique_ptr<WindProfile> profile_;
   std::optional<Eigen::Vector3d> external_speed_W_;

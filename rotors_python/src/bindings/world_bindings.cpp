@@ -383,6 +383,7 @@ void BindWorld(py::module_& m) {
       .def("remove_model", [](PyWorld& w, const std::string& name) { return w.W().RemoveModel(name); })
       .def("step", &PyWorld::Step, py::arg("n") = 1)
       .def("reset", [](PyWorld& w) { w.W().ResetSimulation(); })
+      .def("reset_world", [](PyWorld& w) { w.W().ResetWorld(); })
       .def_property_readonly("time", [](const PyWorld& w) { return w.W().SimTime().Double(); })
       .def_property_readonly("iterations", [](const PyWorld& w) { return w.W().Iterations(); })
       .def_property(

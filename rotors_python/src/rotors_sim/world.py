@@ -113,8 +113,14 @@ class World:
         self._w.step(int(n))
 
     def reset(self) -> None:
-        """Gazebo's reset_simulation: time 0, models at their spawn poses, plugins reset."""
+        """Gazebo's reset_simulation: time 0, models at their spawn poses, every plugin reset (noise
+        generators at their seeds again, an external wind forgotten): a flight after it repeats the
+        first one bit for bit."""
         self._w.reset()
+
+    def reset_world(self) -> None:
+        """Gazebo's reset_world: as reset(), but the time runs on."""
+        self._w.reset_world()
 
     @property
     def time(self) -> float:

@@ -15,6 +15,7 @@
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
 
+#include "rotors_core/event.h"
 #include "rotors_core/physics/world.h"
 
 namespace rotors_sim {
@@ -60,11 +61,21 @@ struct TappedMessage {
 
 class MessageTaps {
  public:
-  /// The world's taps (created on first use, disabled).
+  /// The world's taps (created on first use, disabled). A reset of the world forgets the last
+  /// messages (as after load, no reader sees one from before the reset); the counts run on.
   static MessageTaps& Of(physics::World& world) {
     std::shared_ptr<void>& state = world.PluginState("rotors_sim/message_taps");
-    if (!state) state = std::make_shared<MessageTaps>();
+    if (!state) {
+      auto taps = std::make_shared<MessageTaps>();
+      MessageTaps* raw = taps.get();
+      taps->reset_connection_ = world.Events().world_reset.Connect([raw] { raw->ForgetMessages(); });
+      state = taps;
+    }
     return *std::static_pointer_cast<MessageTaps>(state);
+  }
+  /// Drops every topic's last message; the counts (messages since load) stay.
+  void ForgetMessages() {
+    for (auto& slot : slots_) slot.second.message.reset();
   }
   /// From now on, publishers made for this world keep their messages here.
   void Enable() { enabled_ = true; }
@@ -110,6 +121,7 @@ class MessageTaps {
 
  private:
   bool enabled_ = false;
+  event::ConnectionPtr reset_connection_;
   std::map<std::string, TappedMessage> slots_;  // std::map: pointers to its values stay valid
 };
 

@@ -77,7 +77,8 @@ class CameraChannel {
   ros::Publisher depth_pub_;  ///< ground-truth depth, when asked for
 };
 
-/// <updateRate> of a plugin below its sensor's rate: true when the next message is due.
+/// <updateRate> of a plugin below its sensor's rate: true when the next message is due (after a
+/// reset, when the time is before the last update's, the next update is due).
 class RateLimiter {
  public:
   explicit RateLimiter(double rate_hz) : rate_hz_(rate_hz) {}

@@ -56,6 +56,8 @@ void AddRangeNoise(double sigma_m, std::mt19937_64* rng, RayScan* scan);
 class LaserPlugin : public rotors_sim::SensorPlugin {
  public:
   void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) final;
+  /// The noise generator at its seed again and the scan count from 0 (the sensor's restarts too).
+  void Reset() final;
 
  protected:
   /// The plugin's default topic.
@@ -71,6 +73,7 @@ class LaserPlugin : public rotors_sim::SensorPlugin {
   std::shared_ptr<ros::NodeHandle> node_;
   std::string robot_namespace_, topic_, frame_;
   std::mt19937_64 rng_;  ///< for the plugin's own noise, seeded by model, sensor and plugin name
+  uint64_t seed_ = 0;
 
  private:
   double update_rate_hz_ = 0.0, last_published_s_ = -1.0;
