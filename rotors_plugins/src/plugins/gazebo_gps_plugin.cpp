@@ -41,8 +41,8 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     ThrowIfInvalid(p.Validate());
     sensor_ = sensor;
     const auto& o = sensor->ParentLink()->GetModel()->GetWorldRaw()->Origin();
-    model_.Emplace(
-        p, GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg}, ReadSeed(Params()));
+    model_.Emplace(p, GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg},
+                   ReadSeed(Params()));
     fix_.header.frame_id = sensor->ParentName();
     fix_.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
     fix_.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
