@@ -139,8 +139,8 @@ void LaserPlugin::Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sd
   ReadParam(Params(), "frameName", &frame_);
   ReadParam(Params(), "updateRate", &update_rate_hz_);
   if (!(update_rate_hz_ >= 0.0)) throw SimError("<updateRate> " + std::to_string(update_rate_hz_) + " must be >= 0");
-  seed_ = std::hash<std::string>()(sensor_->ParentLink()->GetModel()->GetName() + "::" + sensor_->Name() + "::" +
-                                   GetHandle());
+  seed_ = std::hash<std::string>()(sensor_->ParentLink()->GetModel()->GetName() + "::" + sensor_->Name() +
+                                   "::" + GetHandle());
   rng_.seed(seed_);
   Configure(Params());
   node_ = MakeNode(robot_namespace_);
