@@ -100,3 +100,35 @@ def test_matched_controller_parameters_remove_the_offset(ros: RosGraph, tmp_path
     window = data.position.window(wp.t + 5, wp.t + 15)
     assert rms_error(window, wp.position) < 0.005
     assert abs(window.values[-1, 2] - 1.0) < 1e-3
+
+
+def test_a_rosbag_record_of_the_hovering_example_evaluates_unchanged(ros: RosGraph, tmp_path: Path):
+    """As a new user does: the hovering example without the bag plugin, `rosbag record -a` beside it,
+    then hovering_eval.py and waypoints_eval.py on that bag. rosbag record holds no
+    ground_truth/twist (only the bag plugin writes it) and ground_truth/pose is an unstamped
+    geometry_msgs/Pose: the scripts take ground_truth/odometry instead and say so."""
+    bag = tmp_path / "recorded.bag"
+    recorder = ros.start(["rosbag", "record", "-a", "-O", str(bag), "__name:=recorder"], "rosbag_record")
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=5")
+    try:
+        wait_sim_time(ros, 21.0)
+    finally:
+        stop_launch(recorder)
+        stop_launch(proc)
+    assert bag.is_file(), Path(recorder.log_path).read_text()[-2000:]
+    recorded = FlightBag(bag)
+    assert "firefly/ground_truth/twist" not in recorded.topics
+    assert recorded.topics["firefly/ground_truth/pose"] == "geometry_msgs/msg/Pose"
+    recorded.close()
+    hover = subprocess.run(["rosrun", "rotors_evaluation", "hovering_eval.py", "-b", str(bag), "--mav_name", "firefly",
+                            "--plot", "False"], capture_output=True, text=True, env=ros.env)
+    print(hover.stdout, hover.stderr)
+    assert hover.returncode == 0, hover.stderr
+    assert "Position RMS error: 0.040 m" in hover.stdout
+    assert "note: pose from 'firefly/ground_truth/odometry' (nav_msgs/msg/Odometry)" in hover.stderr
+    assert "note: twist from 'firefly/ground_truth/odometry' (nav_msgs/msg/Odometry)" in hover.stderr
+    waypoints = subprocess.run(["rosrun", "rotors_evaluation", "waypoints_eval.py", "-b", str(bag), "--mav_name",
+                                "firefly", "--plot", "False"], capture_output=True, text=True, env=ros.env)
+    print(waypoints.stdout, waypoints.stderr)
+    assert waypoints.returncode == 0, waypoints.stderr
+    assert "waypoint" in waypoints.stdout.lower()

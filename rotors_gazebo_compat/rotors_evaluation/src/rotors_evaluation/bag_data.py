@@ -1,7 +1,8 @@
 """Reads the series the evaluation needs from a ROS 1 bag with rosbags (pure Python).
 
 Understands bags written by the simulator's bag plugin, bags from `rosbag record` (topics with a
-leading slash), compressed bags, and bags of every RotorS generation: topics with or without the
+leading slash; the ground truth taken from ground_truth/odometry when the bag has no
+ground_truth/twist or holds ground_truth/pose unstamped, said in one line), compressed bags, and bags of every RotorS generation: topics with or without the
 MAV prefix, the pre-2.0 names (`motors`, `collisions`, `command/trajectory_position_yaw`) and types
 (mav_msgs/MotorSpeed, CommandMotorSpeed, CommandTrajectoryPositionYaw and any other set point with
 `position` and `yaw` fields). Message types are taken from the definitions stored in the bag. A
@@ -80,6 +81,15 @@ OLD_TOPIC_NAMES = {
     "/wrench": ("/collisions",),
     "/command/trajectory": (POSE_COMMAND_TOPIC, "/command/trajectory_position_yaw"),
 }
+# The same ground truth in the other forms the odometry plugin publishes (ROS topics a `rosbag record`
+# holds; only the bag plugin writes ground_truth/twist), tried in this order when the bag lacks the
+# asked topic or holds it unstamped (RotorS' ground_truth/pose is a geometry_msgs/Pose: its time
+# would be the recorder's receive time).
+GROUND_TRUTH_FORMS = {
+    "/ground_truth/pose": ("/ground_truth/odometry", "/ground_truth/transform", "/ground_truth/position"),
+    "/ground_truth/twist": ("/ground_truth/odometry",),
+}
+UNSTAMPED_TYPES = ("geometry_msgs/msg/Pose", "geometry_msgs/msg/Twist")
 TWIST_TYPES = ("geometry_msgs/msg/TwistStamped", "nav_msgs/msg/Odometry", "geometry_msgs/msg/Twist")
 POSE_TYPES = ("geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/TransformStamped",
               "geometry_msgs/msg/PointStamped", "nav_msgs/msg/Odometry", "geometry_msgs/msg/Pose")
@@ -179,6 +189,21 @@ class FlightBag:
                            f"topic options); the bag has: {', '.join(sorted(self.topics))}")
         return found
 
+    def require_ground_truth(self, mav_name: str, topic: str, what: str, usable: tuple) -> str:
+        """require() of a ground-truth topic, else (or when the bag holds it unstamped) the same
+        ground truth in another form the bag holds (GROUND_TRUTH_FORMS), said in one line on stderr."""
+        found = self.resolve(mav_name, topic)
+        if found is not None and self.topics[found] not in UNSTAMPED_TYPES:
+            return found
+        for form in GROUND_TRUTH_FORMS.get("/" + topic.lstrip("/"), ()):
+            other = self.resolve(mav_name, form)
+            if other is not None and self.topics[other] in usable and self.topics[other] not in UNSTAMPED_TYPES:
+                why = (f"'{found}' is unstamped ({self.topics[found]})" if found is not None
+                       else f"the bag has no '{mav_name.strip('/')}/{topic.lstrip('/')}'")
+                print(f"note: {what} from '{other}' ({self.topics[other]}): {why}", file=sys.stderr)
+                return other
+        return found if found is not None else self.require(mav_name, topic, what)
+
     def flight_end(self, mav_name: str) -> Optional[FlightEnd]:
         """The last pause or stop that was not followed by a resume, from the bag plugin's
         simulation_status markers; None for bags without them (rosbag record, RotorS)."""
@@ -243,7 +268,7 @@ def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, wa
     bag = FlightBag(path)
     try:
         used = {}
-        pose = used["pose"] = bag.require(mav_name, pose_topic, "pose")
+        pose = used["pose"] = bag.require_ground_truth(mav_name, pose_topic, "pose", POSE_TYPES)
         if bag.topics[pose] not in POSE_TYPES:
             raise BagError(f"pose topic '{pose}' has type {bag.topics[pose]}; expected one of {', '.join(POSE_TYPES)}")
         t, p = [], []
@@ -252,7 +277,7 @@ def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, wa
             p.append(_position(msg, msgtype))
         if not t:
             raise BagError(f"pose topic '{pose}' has no messages in bag '{bag.path.name}'")
-        twist = used["twist"] = bag.require(mav_name, twist_topic, "twist")
+        twist = used["twist"] = bag.require_ground_truth(mav_name, twist_topic, "twist", TWIST_TYPES)
         if bag.topics[twist] not in TWIST_TYPES:
             raise BagError(f"twist topic '{twist}' has type {bag.topics[twist]}; expected one of {', '.join(TWIST_TYPES)}")
         tw, w = [], []
