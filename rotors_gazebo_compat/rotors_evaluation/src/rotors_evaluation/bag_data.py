@@ -3,10 +3,11 @@
 Understands bags written by the simulator's bag plugin, bags from `rosbag record` (topics with a
 leading slash; the ground truth taken from ground_truth/odometry when the bag has no
 ground_truth/twist or holds ground_truth/pose unstamped, said in one line), compressed bags, and
-bags of every RotorS generation: topics with or without the MAV prefix, the pre-2.0 names (`motors`, `collisions`, `command/trajectory_position_yaw`) and types
-(mav_msgs/MotorSpeed, CommandMotorSpeed, CommandTrajectoryPositionYaw and any other set point with
-`position` and `yaw` fields). Message types are taken from the definitions stored in the bag. A
-topic of a type the evaluation cannot use is one line naming the topic and the type.
+bags of every RotorS generation: topics with or without the MAV prefix, the pre-2.0 names (`motors`,
+`collisions`, `command/trajectory_position_yaw`) and types (mav_msgs/MotorSpeed, CommandMotorSpeed,
+CommandTrajectoryPositionYaw and any other set point with `position` and `yaw` fields). Message
+types are taken from the definitions stored in the bag. A topic of a type the evaluation cannot use
+is one line naming the topic and the type.
 """
 import sys
 from dataclasses import dataclass, field
