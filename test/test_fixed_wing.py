@@ -2,7 +2,9 @@
 Python without ROS: trimmed level flight holds altitude and airspeed for 20 s, lift equals weight
 at trim within 2 %, and an aileron step rolls right wing down at the rate the coefficients predict."""
 import math
+import sys
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,7 +13,7 @@ import rotors_sim as rs
 from rotors_sim import _engine
 from rotors_sim.world import run_xacro
 
-from conftest import launch, stop_launch
+from conftest import REPO, launch, stop_launch
 
 URDF = rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"
 FW = rs.paths.resource("fixed_wing")
@@ -129,7 +131,7 @@ def test_fixed_wing_with_joy_launches_the_techpod_and_it_flies_on_joystick_comma
     model = _engine.FixedWingModel(str(FW / "aero_params_techpod.yaml"), str(FW / "techpod.yaml"))
     alpha, elevator, throttle = trim(model, techpod_mass())
     proc = launch(ros, "rotors_gazebo", "fixed_wing_with_joy.launch", "gui:=false", "joystick:=none",
-                  "world_name:=basic", "real_time_factor:=5")
+                  "world_name:=basic", "real_time_factor:=5", "enable_logging:=true")
     try:
         got = ros.rospy(f"""
             from gazebo_msgs.msg import ModelState
@@ -170,6 +172,17 @@ def test_fixed_wing_with_joy_launches_the_techpod_and_it_flies_on_joystick_comma
           f"height {got['z0']:.1f} -> {got['z']:.1f} m, forward speed {got['vx']:.1f} m/s")
     assert got["launched_vx"] > 10.0 and got["reset"]
     assert got["x"] > 120.0 and abs(got["z"] - got["z0"]) < 3.0 and got["vx"] > 12.0
+    # enable_logging:=true reaches the techpod's bag plugin (RotorS' spawn_fixed_wing.launch drops it)
+    bags = sorted(Path(ros.env["ROS_HOME"]).glob("techpod_*.bag"))
+    assert bags, "fixed_wing_with_joy.launch enable_logging:=true wrote no bag"
+    sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
+    from rotors_evaluation.bag_data import FlightBag
+
+    bag = FlightBag(bags[-1])
+    x_m = [m.pose.position.x for m, _, _ in bag.messages("techpod/ground_truth/pose")]
+    bag.close()
+    print(f"bag {bags[-1].name}: {len(x_m)} ground-truth poses, x up to {max(x_m):.0f} m")
+    assert max(x_m) > 120.0
 
 
 @pytest.mark.parametrize("wind_direction, wind_speed", [("-1 0 0", 5.0), ("0 0 1", 1.0)])
