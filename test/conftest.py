@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Dict, Iterator, List
 
 import pytest
-from rotors_evaluation.processes import restore_sigint, stop_process_group
+from rotors_evaluation.processes import kill_graph_leftovers, restore_sigint, stop_process_group
 from rotors_evaluation.ros_master import start_own_master
 
 REPO = Path(__file__).resolve().parents[1]
@@ -107,6 +107,9 @@ class RosGraph:
                 print(f"TEARDOWN-TIMEOUT {p.args}", file=sys.stderr)
                 os.killpg(p.pid, signal.SIGKILL)
                 p.wait()
+        # the nodes of a roslaunch that was SIGKILLed (a fault test, or the timeout above) outlive it,
+        # each in a session of its own: whatever still talks to this graph's master goes too
+        kill_graph_leftovers(self.port)
 
 
 @pytest.fixture

@@ -245,7 +245,7 @@ def test_the_controllers_read_the_vehicle_yaml_and_name_a_missing_parameter(tmp_
     (lambda w: w.step(-1), "must be >= 0"),
     (lambda w: w.laser_scan("firefly", "imu"), "has no sensor 'imu'"),
     (lambda w: rs.World("nowhere"), "unknown world 'nowhere'"),
-    (lambda w: w.spawn("<robot name='x'><link name='a'></robot>", "x"), "x"),
+    (lambda w: w.spawn("<robot name='x'><link name='a'></robot>", "x"), "model 'x': the description does not parse"),
 ])
 def test_bad_input_is_one_clear_exception_and_the_world_keeps_working(bad, match):
     world = rs.World("basic")

@@ -1,9 +1,11 @@
 """Stopping a process and its process group as Ctrl-C does: SIGINT (roslaunch then stops its nodes
 and the bag plugin closes its bag), then SIGKILL after a grace time."""
 import os
+import re
 import signal
 import subprocess
-from typing import Optional
+from pathlib import Path
+from typing import List, Optional
 
 
 def restore_sigint() -> None:
@@ -34,3 +36,30 @@ def stop_process_group(proc: Optional[subprocess.Popen], grace_s: float, first_s
     except ProcessLookupError:
         proc.wait(timeout=30)
         return True
+
+
+def graph_processes(port: int, comm: str = "") -> List[int]:
+    """Pids of the processes that talk to the master on this port (ROS_MASTER_URI in their
+    environment; roslaunch puts every node in a session of its own, so process groups do not
+    find them), optionally only those named comm."""
+    uri = re.compile(rb"(?:^|\0)ROS_MASTER_URI=http://[^:/]+:%d/?(?:\0|$)" % port)
+    pids = []
+    for proc in Path("/proc").glob("[0-9]*"):
+        try:
+            if int(proc.name) == os.getpid() or (comm and (proc / "comm").read_text().strip() != comm[:15]):
+                continue
+            if uri.search((proc / "environ").read_bytes()):
+                pids.append(int(proc.name))
+        except (OSError, ValueError):
+            continue
+    return pids
+
+
+def kill_graph_leftovers(port: int) -> None:
+    """SIGKILL to every process still talking to the master on this port: the nodes of a roslaunch
+    that was itself SIGKILLed (they outlive it, each in its own session)."""
+    for pid in graph_processes(port):
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass

@@ -5,7 +5,6 @@ status 'failed', the reason and the last lines of its log, so the sweep goes on.
 import json
 import math
 import os
-import re
 import shutil
 import signal
 import socket
@@ -14,13 +13,13 @@ import threading
 import time
 import traceback
 from pathlib import Path
-from typing import Any, Dict, List
+from typing import Any, Dict
 
 import yaml
 from xml.sax.saxutils import quoteattr
 
 from rotors_evaluation import watchers
-from rotors_evaluation.processes import stop_process_group
+from rotors_evaluation.processes import graph_processes, kill_graph_leftovers, stop_process_group
 from rotors_evaluation.ros_master import MasterStartError, start_own_master
 from rotors_evaluation.sweep_spec import FORCED_ARGS
 
@@ -32,23 +31,6 @@ class FlightFailed(Exception):
     pass
 
 
-def _graph_processes(port: int, comm: str = "") -> List[int]:
-    """Pids of the processes that talk to the master on this port (ROS_MASTER_URI in their
-    environment; roslaunch puts every node in a session of its own, so process groups do not
-    find them), optionally only those named comm."""
-    uri = re.compile(rb"(?:^|\0)ROS_MASTER_URI=http://[^:/]+:%d/?(?:\0|$)" % port)
-    pids = []
-    for proc in Path("/proc").glob("[0-9]*"):
-        try:
-            if int(proc.name) == os.getpid() or (comm and (proc / "comm").read_text().strip() != comm[:15]):
-                continue
-            if uri.search((proc / "environ").read_bytes()):
-                pids.append(int(proc.name))
-        except (OSError, ValueError):
-            continue
-    return pids
-
-
 def _alive(pid: int) -> bool:
     """The process exists and is not a zombie waiting for its parent."""
     try:
@@ -56,14 +38,6 @@ def _alive(pid: int) -> bool:
     except OSError:
         return False
     return stat[stat.rindex(")") + 2] != "Z"
-
-
-def _kill_leftovers(port: int) -> None:
-    for pid in _graph_processes(port):
-        try:
-            os.kill(pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
 
 
 def _default_signals() -> None:
@@ -185,7 +159,7 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
                 raise FlightFailed(f"roslaunch exited with code {launch.returncode} at sim time {max(t, 0):.2f} s")
             # /proc is scanned until the simulator appears; after that only its pids are watched
             servers = [p for p in servers if _alive(p)] if servers else \
-                _graph_processes(port, "rotors_sim_server")
+                graph_processes(port, "rotors_sim_server")
             simulator_seen = simulator_seen or bool(servers)
             if simulator_seen and not servers:
                 raise FlightFailed(f"the simulator (rotors_sim_server) died at sim time {max(t, 0):.2f} s")
@@ -201,7 +175,7 @@ def _fly(sweep: Dict[str, Any], flight: Dict[str, Any], flight_dir: Path, row: D
     finally:
         stop_process_group(watch, 5, signal.SIGKILL)
         stop_process_group(launch, STOP_GRACE_S)
-        _kill_leftovers(port)  # a node roslaunch could not stop (or every node, if roslaunch was killed)
+        kill_graph_leftovers(port)  # a node roslaunch could not stop (or every node, if roslaunch was killed)
         stop_process_group(master, 10)
     bags = sorted(flight_dir.glob("*.bag"))
     if not bags:
