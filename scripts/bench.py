@@ -326,8 +326,8 @@ def soak_rows(k: Dict) -> List:
             ("soak: simulator CPU per sim second, first / last tenth",
              f"{k['cpu_ms_per_sim_s_first']:.0f} / {k['cpu_ms_per_sim_s_last']:.0f} ms "
              f"(CPU seconds per wall second {k['cpu_share_first']:.2f} / {k['cpu_share_last']:.2f})", "flat"),
-            ("soak: the nine fireflies' largest height offset from 1.04 m at the end (the hover height of their 1 m set points)", f"{k['hover_error_m_at_end'] * 1000:.1f} mm",
-             "")]
+            ("soak: the nine fireflies' largest height offset from 1.04 m at the end (their 1 m set points' hover height)",
+             f"{k['hover_error_m_at_end'] * 1000:.1f} mm", "")]
 
 
 # The Python peers, each in a venv of its own under build/bench (pinned: crazyflow 0.0.2 runs with
