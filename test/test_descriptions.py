@@ -82,3 +82,22 @@ def test_every_multirotor_takes_each_autopilot_interface_before_the_sensors_it_r
         assert navigation <= set(plugins) or flag == "enable_betaflight_interface"
 
 
+
+
+def test_every_launch_file_with_a_lee_or_attitude_controller_offers_in_process():
+    """README: in_process:=true on every launch file that starts lee_position_controller_node or
+    roll_pitch_yawrate_thrust_controller_node (they can run as nodelets in the simulator)."""
+    nodelet_nodes = {"lee_position_controller_node", "roll_pitch_yawrate_thrust_controller_node"}
+    lacking, checked = [], 0
+    for path in sorted((package_path("rotors_gazebo") / "launch").glob("*.launch")):
+        root = ET.parse(path).getroot()
+        nodes = [n for n in root.iter("node") if n.get("type") in nodelet_nodes]
+        if not nodes:
+            continue
+        checked += 1
+        declared = any(a.get("name") == "in_process" for a in root.iter("arg"))
+        passed = all("--in-simulator" in (n.get("args") or "") and "in_process" in n.get("args") for n in nodes)
+        if not (declared and passed):
+            lacking.append(path.name)
+    print(f"{checked} launch files start a Lee or attitude controller; without in_process: {lacking or 'none'}")
+    assert checked >= 10 and lacking == []
