@@ -313,3 +313,18 @@ def test_set_model_state_moves_a_static_model_with_its_collision_as_gazebo_does(
     assert abs(world.link_state("crate")[0][2] - 1.2) < 0.01  # on the table's top, not on the ground (0.2)
     world.reset()
     assert np.allclose(world.link_state("table")[0], [5.0, 0.0, 0.5])
+
+
+def test_a_world_given_twice_to_step_all_or_a_batch_is_one_clear_error():
+    """step_all steps each world on a thread: a world given twice would be stepped by two threads at
+    once. It is refused, naming the two positions, and nothing is stepped."""
+    world = rs.World("basic")
+    other = rs.World("basic")
+    with pytest.raises(rs.SimError, match=r"worlds\[0\] and worlds\[2\] are the same world"):
+        rs.step_all([world.engine, other.engine, world.engine], 10)
+    assert world.time == 0.0 and other.time == 0.0
+    batch = rs.Batch(lambda i: world, 2)
+    with pytest.raises(rs.SimError, match="are the same world"):
+        batch.step(1)
+    rs.step_all([world.engine, other.engine], 10)
+    assert world.time == pytest.approx(0.1) and other.time == pytest.approx(0.1)

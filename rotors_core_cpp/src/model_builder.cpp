@@ -193,8 +193,10 @@ void AddCollisions(const physics::WorldPtr& world, const physics::ModelPtr& mode
 /// A <material><script> whose .material files are found (model://, file://, ...): the named OGRE
 /// material's diffuse colour and texture. Gazebo's built-in names (file://media/materials/scripts/
 /// gazebo.material) come from the engine's own copy of their colours; a script none of whose
-/// <uri>s resolves keeps its SDF colour (one line says so).
-void ApplyMaterialScript(const sdf::ElementPtr& material, const std::string& sdf_file, geometry::Visual* out) {
+/// <uri>s resolves keeps its SDF colour (one line per material name and world says so; `told` holds
+/// the names said).
+void ApplyMaterialScript(const sdf::ElementPtr& material, const std::string& sdf_file, std::set<std::string>* told,
+                         geometry::Visual* out) {
   if (!material || !material->HasElement("script")) return;
   const sdf::ElementPtr script = material->GetElement("script");
   const std::string name = script->Get<std::string>("name");
@@ -209,8 +211,7 @@ void ApplyMaterialScript(const sdf::ElementPtr& material, const std::string& sdf
   }
   if (name.empty() || name == "__default__") return;
   if (folders.empty()) {
-    static std::set<std::string> told;
-    if (told.insert(name).second)
+    if (told->insert(name).second)
       std::cerr << "[rotors_sim] visual '" << out->scoped_name << "': material script '" << name
                 << "' is not available here (none of its <uri>s resolves); drawn in its SDF colour\n";
     return;
@@ -230,6 +231,10 @@ void ApplyMaterialScript(const sdf::ElementPtr& material, const std::string& sdf
 /// sdformat as <material><diffuse>.
 void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const physics::LinkPtr& link,
                 const std::string& sdf_file) {
+  // per world (worlds load on threads of their own): the material scripts already said to be missing
+  std::shared_ptr<void>& state = model->GetWorldRaw()->PluginState("rotors_sim/missing_material_scripts");
+  if (!state) state = std::make_shared<std::set<std::string>>();
+  auto* told = static_cast<std::set<std::string>*>(state.get());
   for (uint64_t v = 0; v < sdf_link.VisualCount(); ++v) {
     const sdf::Visual* visual = sdf_link.VisualByIndex(v);
     geometry::Visual out;
@@ -244,7 +249,7 @@ void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const
       out.rgba = {static_cast<float>(c.R()), static_cast<float>(c.G()), static_cast<float>(c.B()),
                   static_cast<float>(c.A())};
       out.has_material = true;
-      ApplyMaterialScript(visual->Material()->Element(), sdf_file, &out);
+      ApplyMaterialScript(visual->Material()->Element(), sdf_file, told, &out);
     } else if (out.shape.mesh) {
       out.rgba = out.shape.mesh->rgba;
     }

@@ -11,6 +11,8 @@
 namespace rotors_sim {
 namespace {
 
+constexpr double kPingTimeoutS = 1.0;  // [s wall] one getPid call
+
 std::vector<std::string> PublisherNodes(const std::string& topic) {
   XmlRpc::XmlRpcValue request, response, payload;
   request[0] = ros::this_node::getName();
@@ -39,7 +41,14 @@ bool NodeAnswersPing(const std::string& node) {
   XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
   XmlRpc::XmlRpcValue args, result;
   args[0] = ros::this_node::getName();
-  const bool ok = client.execute("getPid", args, result) && !client.isFault();
+  // execute() would wait for ever on a node that accepts the connection and never answers (one
+  // stopped in a debugger): the request is sent without blocking and the dispatcher given at most
+  // kPingTimeoutS; a node that has not answered by then does not answer
+  bool ok = false;
+  if (client.executeNonBlock("getPid", args)) {
+    client._disp.work(kPingTimeoutS);  // returns when the answer is in, or after the timeout
+    ok = client.executeCheckDone(result) && result.valid() && !client.isFault();
+  }
   client.close();
   return ok;
 }
@@ -80,8 +89,8 @@ void NodePinger::Request(const std::string& topic) {
     Entry& e = shared_->entries[topic];
     if (e.under_way) return;
     e.under_way = true;
+    e.started = false;
     e.overdue_reported = false;
-    e.asked = ros::WallTime::now();
     shared_->queue.push_back(topic);
   }
   shared_->wake.notify_one();
@@ -97,7 +106,8 @@ NodePinger::Answer NodePinger::Take(const std::string& topic) {
     e.answer = Answer::kNone;
     return a;
   }
-  if (e.under_way && !e.overdue_reported && ros::WallTime::now() - e.asked > ros::WallDuration(deadline_s_)) {
+  if (e.under_way && e.started && !e.overdue_reported &&
+      ros::WallTime::now() - e.started_at > ros::WallDuration(deadline_s_)) {
     e.overdue_reported = true;
     return Answer::kDead;
   }
@@ -112,12 +122,15 @@ void NodePinger::Work(const std::shared_ptr<Shared>& shared) {
     const std::string topic = shared->queue.front();
     shared->queue.pop_front();
     shared->busy = true;
+    Entry& started = shared->entries[topic];
+    started.started = true;
+    started.started_at = ros::WallTime::now();
     lock.unlock();
     const bool alive = AnyPublisherAlive(topic);  // on the network, without the lock
     lock.lock();
     shared->busy = false;
     Entry& e = shared->entries[topic];
-    e.under_way = false;
+    e.under_way = e.started = false;
     // an overdue ping was already reported dead; a late "alive" still counts (the node is back)
     if (!(e.overdue_reported && !alive)) e.answer = alive ? Answer::kAlive : Answer::kDead;
   }

@@ -328,6 +328,12 @@ class PyWorld {
 /// Steps every world n times, the worlds shared out over `threads` threads, with the GIL released.
 void StepAll(const std::vector<PyWorld*>& worlds, long steps, int threads) {
   if (steps < 0) throw SimError("step_all: n = " + std::to_string(steps) + " must be >= 0");
+  // a world given twice would be stepped by two threads at once
+  for (size_t i = 0; i < worlds.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (worlds[i] == worlds[j])
+        throw SimError("step_all: worlds[" + std::to_string(j) + "] and worlds[" + std::to_string(i) +
+                       "] are the same world; give each world once");
   if (threads < 1) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = std::min<int>(threads, static_cast<int>(worlds.size()));
   py::gil_scoped_release release;

@@ -28,14 +28,16 @@ class NodePinger {
   /// Starts a ping of the nodes publishing `topic`, unless one is under way. Never blocks.
   void Request(const std::string& topic);
   /// The answer to the latest request for `topic` once (then kNone until the next one finishes);
-  /// kDead when it has been under way longer than the deadline. Never blocks.
+  /// kDead when its ping has run longer than the deadline (a request still queued behind another
+  /// topic's ping is not overdue: only pings that ran are judged). Never blocks.
   Answer Take(const std::string& topic);
 
  private:
   struct Entry {
-    bool under_way = false;
+    bool under_way = false;   // requested, answer not in yet
+    bool started = false;     // the worker is pinging it
     bool overdue_reported = false;
-    ros::WallTime asked;
+    ros::WallTime started_at;
     Answer answer = Answer::kNone;
   };
   struct Shared {  // shared with the worker, which may outlive the pinger while stuck on the network
