@@ -34,8 +34,8 @@ class NodePinger {
 
  private:
   struct Entry {
-    bool under_way = false;   // requested, answer not in yet
-    bool started = false;     // the worker is pinging it
+    bool under_way = false;  // requested, answer not in yet
+    bool started = false;    // the worker is pinging it
     bool overdue_reported = false;
     ros::WallTime started_at;
     Answer answer = Answer::kNone;
