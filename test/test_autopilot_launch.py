@@ -119,20 +119,21 @@ def test_mav_ardupilot_sitl_launch_takes_servo_frames_on_9002_plus_10_instance(r
 
 
 def test_mav_px4_sitl_multi_launch_gives_each_vehicle_its_port(ros):
+    """Each of the three instances answers on its own port. One link at a time, closed after its first
+    HIL_SENSOR: a connected link that nobody reads fills its socket and holds the world in send() (as
+    a PX4 stopped in a debugger would), so reading the links one after another while all three are
+    open can stall the world before the last one is accepted."""
     launch(ros, "rotors_gazebo", "mav_px4_sitl_multi.launch", "real_time_factor:=0")
-    links = []
-    for instance in range(3):  # all three PX4 instances connect (the world waits for each first connection)
+    for instance in range(3):
         deadline = time.monotonic() + 60
         while True:
             try:
-                links.append(mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1,
-                                                        autoreconnect=False))
+                link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1,
+                                                  autoreconnect=False)
                 break
             except OSError:
                 assert time.monotonic() < deadline, f"nothing listens on TCP {4560 + instance}"
                 time.sleep(0.2)
-    for instance, link in enumerate(links):
         m = link.recv_match(type="HIL_SENSOR", blocking=True, timeout=30)
-        assert m is not None, f"no HIL_SENSOR on TCP {4560 + instance}"
-    for link in links:
         link.close()
+        assert m is not None, f"no HIL_SENSOR on TCP {4560 + instance}"

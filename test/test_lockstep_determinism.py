@@ -36,14 +36,16 @@ INPUT_TOPIC = "firefly/command/pose"  # the test's own input; rospy numbers its 
 
 
 def messages(bag: Path, until_s: float):
-    """(topic, time, payload) of everything recorded; the input command without its header
-    (seq and stamp are the publishing client's, not the simulation's)."""
+    """(topic, time, payload) of everything recorded; the input command and the waypoint node's set
+    point without their headers (seq and stamp are the publishing node's, which is not a lockstep
+    participant: it stamps with the sim time it has seen when it wakes, which a busy machine can
+    delay by a step; the Lee controller's due time, and so the flight, does not depend on it)."""
     out = []
     with Reader(bag) as r:
         for conn, t, raw in r.messages():
             if t <= until_s * 1e9:
                 payload = bytes(raw)
-                if conn.topic == INPUT_TOPIC:  # Header = seq, sec, nsec, frame_id (uint32 length + bytes)
+                if conn.topic == INPUT_TOPIC or conn.topic in SETPOINT_TOPICS:  # Header = seq, sec, nsec, frame_id (uint32 length + bytes)
                     frame_len = int.from_bytes(payload[12:16], "little")
                     payload = payload[16 + frame_len:]
                 out.append((conn.topic, t, payload))

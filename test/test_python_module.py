@@ -234,6 +234,12 @@ def test_the_controllers_read_the_vehicle_yaml_and_name_a_missing_parameter(tmp_
                                  typo)
 
 
+BOX = """<?xml version="1.0"?><sdf version="1.6"><model name="b"><static>true</static><link name="l">
+  <collision name="c"><geometry><box><size>{}</size></box></geometry></collision></link></model></sdf>"""
+SPHERE = """<?xml version="1.0"?><sdf version="1.6"><model name="s"><link name="l">
+  <collision name="c"><geometry><sphere><radius>{}</radius></sphere></geometry></collision></link></model></sdf>"""
+
+
 @pytest.mark.parametrize("bad, match", [
     (lambda w: w.spawn_mav("fireflyy"), "unknown vehicle mav_name 'fireflyy'"),
     (lambda w: w.set_motor_speeds("firefly", [500.0] * 4), "has 4 angular_velocities, the vehicle has 6 motors"),
@@ -246,6 +252,9 @@ def test_the_controllers_read_the_vehicle_yaml_and_name_a_missing_parameter(tmp_
     (lambda w: w.laser_scan("firefly", "imu"), "has no sensor 'imu'"),
     (lambda w: rs.World("nowhere"), "unknown world 'nowhere'"),
     (lambda w: w.spawn("<robot name='x'><link name='a'></robot>", "x"), "model 'x': the description does not parse"),
+    (lambda w: w.spawn(BOX.format("1 0 1"), "b"), r"box <size> y 0\.000000 must be finite and > 0"),
+    (lambda w: w.spawn(BOX.format("1 nan 1"), "b"), r"does not parse: Error reading element <size>"),  # sdformat
+    (lambda w: w.spawn(SPHERE.format("-0.5"), "s"), r"sphere <radius> -0\.500000 must be finite and > 0"),
 ])
 def test_bad_input_is_one_clear_exception_and_the_world_keeps_working(bad, match):
     world = rs.World("basic")

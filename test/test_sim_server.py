@@ -3,6 +3,8 @@
 and one-line errors for bad input."""
 from pathlib import Path
 
+import pytest
+
 from conftest import RosGraph, package_path
 
 BOX_URDF = """<robot name="box"><link name="box/base_link"><inertial><mass value="1"/>
@@ -171,3 +173,29 @@ def test_unparsable_world_exits_with_one_line(ros: RosGraph, tmp_path: Path):
     assert len(errors) == 1 and "broken.world" in errors[0], res.stdout + res.stderr
     res = ros.run(["rosrun", "rotors_core", "rotors_sim_server", str(tmp_path / "missing.world")], check=False)
     assert res.returncode == 1 and "missing.world" in res.stderr
+
+
+def test_spawn_normalises_the_quaternion_as_set_model_state_does(ros: RosGraph, tmp_path: Path):
+    """A hand-typed quaternion (0, 0, 0.7, 0.7) is not a unit one: the model is spawned turned by
+    90 deg about z with a unit orientation, not scaled; all zeros (rosservice's default) is the identity."""
+    start_server(ros, "--rtf", "0")
+    urdf = tmp_path / "box.urdf"
+    urdf.write_text(BOX_URDF)
+    result = ros.rospy(f"""
+        from gazebo_msgs.srv import GetModelState, SpawnModel
+        from geometry_msgs.msg import Pose, Quaternion, Point
+        rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=30)
+        spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
+        xml = open({str(urdf)!r}).read()
+        a = spawn('turned', xml, '', Pose(position=Point(0, 0, 1), orientation=Quaternion(0, 0, 0.7, 0.7)), 'world')
+        b = spawn('plain', xml, '', Pose(position=Point(2, 0, 1)), 'world')
+        get = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
+        q, p = get('turned', 'world').pose.orientation, get('plain', 'world').pose.orientation
+        result.update(ok=[a.success, b.success], turned=[q.x, q.y, q.z, q.w], plain=[p.x, p.y, p.z, p.w])
+    """)
+    print(result)
+    assert result["ok"] == [True, True]
+    assert sum(c * c for c in result["turned"]) == pytest.approx(1.0, abs=1e-9)
+    assert result["turned"][2] == pytest.approx(2 ** -0.5, abs=1e-6) and result["turned"][3] == pytest.approx(2 ** -0.5,
+                                                                                                               abs=1e-6)
+    assert result["plain"] == pytest.approx([0, 0, 0, 1], abs=1e-9)

@@ -1,3 +1,6 @@
+#include <cmath>
+#include <string>
+
 #include "physics/collision_geometry.h"
 
 #include <sdf/Box.hh>
@@ -26,6 +29,15 @@ std::shared_ptr<void> TriMeshData(const std::shared_ptr<const geometry::Triangle
 
 }  // namespace
 
+namespace {
+/// A size that ODE and the renderer can take: finite and > 0 (ODE asserts, or builds a geom that
+/// never collides, on 0, negative or NaN sizes).
+void RequirePositive(double value, const std::string& what) {
+  if (!(value > 0.0) || !std::isfinite(value))
+    throw SimError(what + " " + std::to_string(value) + " must be finite and > 0");
+}
+}  // namespace
+
 geometry::Shape ReadShape(const sdf::Geometry& g, const std::string& where, const std::string& sdf_file) {
   using geometry::Shape;
   Shape s;
@@ -34,15 +46,21 @@ geometry::Shape ReadShape(const sdf::Geometry& g, const std::string& where, cons
       case sdf::GeometryType::BOX:
         s.type = Shape::Type::kBox;
         s.box_size_m = g.BoxShape()->Size();
+        RequirePositive(s.box_size_m.X(), "box <size> x");
+        RequirePositive(s.box_size_m.Y(), "box <size> y");
+        RequirePositive(s.box_size_m.Z(), "box <size> z");
         break;
       case sdf::GeometryType::CYLINDER:
         s.type = Shape::Type::kCylinder;
         s.radius_m = g.CylinderShape()->Radius();
         s.length_m = g.CylinderShape()->Length();
+        RequirePositive(s.radius_m, "cylinder <radius>");
+        RequirePositive(s.length_m, "cylinder <length>");
         break;
       case sdf::GeometryType::SPHERE:
         s.type = Shape::Type::kSphere;
         s.radius_m = g.SphereShape()->Radius();
+        RequirePositive(s.radius_m, "sphere <radius>");
         break;
       case sdf::GeometryType::PLANE:
         s.type = Shape::Type::kPlane;
@@ -54,6 +72,9 @@ geometry::Shape ReadShape(const sdf::Geometry& g, const std::string& where, cons
         const std::string base = m.FilePath().empty() ? sdf_file : m.FilePath();
         s.mesh_file = geometry::UriResolver::Resolve(m.Uri(), base);
         s.mesh_scale = {m.Scale().X(), m.Scale().Y(), m.Scale().Z()};
+        for (int i = 0; i < 3; ++i)  // a negative factor mirrors the mesh; 0 or NaN flattens it to nothing
+          if (!(m.Scale()[i] != 0.0) || !std::isfinite(m.Scale()[i]))
+            throw SimError("mesh <scale> " + std::to_string(m.Scale()[i]) + " must be finite and non-zero");
         if (geometry::IsOcTreeFile(s.mesh_file)) {
           if (m.Scale() != ignition::math::Vector3d::One) throw SimError("an octomap cannot be scaled");
           s.type = Shape::Type::kOcTree;

@@ -121,6 +121,27 @@ ModelPtr World::ModelByName(const std::string& name) const {
   return nullptr;
 }
 
+namespace {
+/// `params` with one change, if it validates; else SimError naming the world and the value.
+PhysicsParams Checked(const std::string& world, PhysicsParams params) {
+  const std::string why = params.Validate();
+  if (!why.empty()) throw SimError("world '" + world + "': " + why);
+  return params;
+}
+}  // namespace
+
+void World::SetRealTimeFactor(double rtf) {
+  PhysicsParams changed = params_;
+  changed.real_time_factor = rtf;
+  params_ = Checked(name_, changed);
+}
+
+void World::SetMaxStepSize(double step_s) {
+  PhysicsParams changed = params_;
+  changed.max_step_size_s = step_s;
+  params_ = Checked(name_, changed);
+}
+
 void World::SetPaused(bool paused, const std::string& reason) {
   pause_reason_ = paused ? reason : "";
   if (paused == paused_) return;

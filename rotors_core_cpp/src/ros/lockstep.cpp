@@ -13,7 +13,25 @@
 
 namespace rotors_sim {
 
+/// True when the first field of a message definition is a std_msgs/Header (constants, which are
+/// not serialized, and comments skipped): only then are bytes 4..12 a stamp.
+bool StartsWithHeader(const std::string& definition) {
+  std::istringstream lines(definition);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#' || line.find('=') != std::string::npos) continue;
+    if (line.rfind("MSG:", first) == first || line.rfind("===", first) == first) return false;
+    std::istringstream words(line.substr(first));
+    std::string type;
+    words >> type;
+    return type == "Header" || type == "std_msgs/Header";
+  }
+  return false;
+}
+
 bool HeaderStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp) {
+  if (!StartsWithHeader(msg.getMessageDefinition())) return false;
   std::vector<uint8_t> buffer(msg.size());
   if (buffer.size() < 12) return false;
   ros::serialization::OStream out(buffer.data(), buffer.size());
@@ -84,7 +102,14 @@ void Lockstep::Answered(Participant* p, const ros::Time& stamp) {
 
 void Lockstep::OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstPtr& msg) {
   ros::Time stamp;
-  if (HeaderStamp(*msg, &stamp)) Answered(p, stamp);
+  if (HeaderStamp(*msg, &stamp)) {
+    Answered(p, stamp);
+    return;
+  }
+  ROS_ERROR_THROTTLE(5.0,
+                     "[rotors_sim] lockstep: %s carries %s, which has no Header: its messages cannot answer a step "
+                     "(lockstep needs a stamped type, e.g. mav_msgs/Actuators)",
+                     p->topics.answer_topic.c_str(), msg->getDataType().c_str());
 }
 
 void Lockstep::Apply(Participant* p, ParticipantEvent event, double sim_time_s) {

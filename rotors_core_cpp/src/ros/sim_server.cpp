@@ -172,10 +172,13 @@ bool SimServer::OnSpawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::Spaw
   spawn.xml = req.model_xml;
   spawn.model_name = req.model_name;
   spawn.skip_broken_sensors = skip_broken_sensors_;
-  spawn.X_WM = physics::Pose3d(p.position.x, p.position.y, p.position.z, p.orientation.w, p.orientation.x,
-                               p.orientation.y, p.orientation.z);
-  if (p.orientation.w == 0 && p.orientation.x == 0 && p.orientation.y == 0 && p.orientation.z == 0)
-    spawn.X_WM.Rot() = ignition::math::Quaterniond::Identity;
+  // normalised as set_model_state does (a hand-typed 0.707 quaternion is not a unit one); all zeros, as
+  // rosservice call's default initial_pose has it, is the identity
+  const auto& q = p.orientation;
+  const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  spawn.X_WM = physics::Pose3d(
+      physics::Vector3d(p.position.x, p.position.y, p.position.z),
+      n > 1e-9 ? physics::Quaterniond(q.w / n, q.x / n, q.y / n, q.z / n) : ignition::math::Quaterniond::Identity);
   try {
     physics::ModelPtr model = ModelBuilder::Spawn(world_, spawn);
     res.success = true;

@@ -5,6 +5,7 @@
 // ~reset (std_srvs/Empty) and ~save_map (std_srvs/Trigger, writes ~save_path as .bt).
 // Private parameters as octomap_server names them: resolution, frame_id, sensor_model/max_range,
 // sensor_model/hit, sensor_model/miss, sensor_model/min, sensor_model/max; ours: save_path.
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -54,6 +55,26 @@ class MappingNode {
   }
 
  private:
+  /// "" or why a cloud cannot be read: its data must hold height rows of row_step bytes, each of
+  /// width points of point_step bytes (a malformed header would make the iterators read past it).
+  static std::string CloudShapeProblem(const sensor_msgs::PointCloud2& c) {
+    const uint64_t row_bytes = static_cast<uint64_t>(c.width) * c.point_step;
+    if (c.width > 0 && c.height > 0 && c.point_step == 0) return "point_step is 0";
+    if (c.row_step < row_bytes)
+      return "row_step " + std::to_string(c.row_step) + " < width " + std::to_string(c.width) + " x point_step " +
+             std::to_string(c.point_step);
+    for (const char* name : {"x", "y", "z"}) {
+      const auto field = std::find_if(c.fields.begin(), c.fields.end(), [&](const auto& f) { return f.name == name; });
+      if (field == c.fields.end()) return std::string("no field '") + name + "' (x, y, z float32 fields needed)";
+      if (field->datatype != sensor_msgs::PointField::FLOAT32 || field->offset + 4u > c.point_step)
+        return std::string("field '") + name + "' is not a float32 inside point_step " + std::to_string(c.point_step);
+    }
+    const uint64_t need = static_cast<uint64_t>(c.row_step) * c.height;
+    if (c.data.size() < need)
+      return "data holds " + std::to_string(c.data.size()) + " bytes, height x row_step needs " + std::to_string(need);
+    return "";
+  }
+
   void OnCloud(const sensor_msgs::PointCloud2ConstPtr& cloud) {
     geometry_msgs::TransformStamped X_WS;
     try {
@@ -67,12 +88,20 @@ class MappingNode {
     const auto& t = X_WS.transform.translation;
     const Eigen::Matrix3d R_WS = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
     const Eigen::Vector3d p_WS(t.x, t.y, t.z);
+    const std::string malformed = CloudShapeProblem(*cloud);
+    if (!malformed.empty()) {
+      ROS_ERROR_THROTTLE(5.0, "[mapping] cloud on %s dropped: %s", cloud_sub_.getTopic().c_str(), malformed.c_str());
+      return;
+    }
     std::vector<Eigen::Vector3d> points_W;
-    points_W.reserve(cloud->width * cloud->height);
     try {
+      points_W.reserve(static_cast<size_t>(cloud->width) * cloud->height);
       sensor_msgs::PointCloud2ConstIterator<float> x(*cloud, "x"), y(*cloud, "y"), z(*cloud, "z");
-      for (; x != x.end(); ++x, ++y, ++z) points_W.push_back(p_WS + R_WS * Eigen::Vector3d(*x, *y, *z));
-    } catch (const std::runtime_error& e) {
+      for (; x != x.end(); ++x, ++y, ++z) {
+        const Eigen::Vector3d p_S(*x, *y, *z);
+        if (p_S.allFinite()) points_W.push_back(p_WS + R_WS * p_S);  // NaN: no return (depth cameras)
+      }
+    } catch (const std::exception& e) {
       ROS_ERROR_THROTTLE(5.0, "[mapping] cloud on %s dropped: %s (x, y, z float32 fields needed)",
                          cloud_sub_.getTopic().c_str(), e.what());
       return;

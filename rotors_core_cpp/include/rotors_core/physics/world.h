@@ -66,9 +66,10 @@ class World : public std::enable_shared_from_this<World> {
 
   const std::string& Name() const { return name_; }
   const PhysicsParams& Physics() const { return params_; }
-  void SetRealTimeFactor(double rtf) { params_.real_time_factor = rtf; }
+  /// Throw SimError (the world unchanged) when the new value fails PhysicsParams::Validate().
+  void SetRealTimeFactor(double rtf);
   /// The physics step [s]; set it before spawning models with plugins (they read it when they load).
-  void SetMaxStepSize(double step_s) { params_.max_step_size_s = step_s; }
+  void SetMaxStepSize(double step_s);
   Vector3d Gravity() const { return params_.gravity_W; }
   const SphericalCoordinates& Origin() const { return origin_; }
   void SetOrigin(const SphericalCoordinates& origin) { origin_ = origin; }

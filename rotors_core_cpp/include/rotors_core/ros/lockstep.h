@@ -130,7 +130,7 @@ class Lockstep {
 };
 
 /// Reads the header stamp of a serialized message that starts with std_msgs/Header
-/// (uint32 seq, uint32 sec, uint32 nsec); false if it is too short.
+/// (uint32 seq, uint32 sec, uint32 nsec); false if its type has no Header first, or it is too short.
 bool HeaderStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp);
 
 }  // namespace rotors_sim
