@@ -14,7 +14,7 @@ GTESTS = {
     "mav_msgs_api_user/test_mav_msgs_api": 8,
     "msf_updates/test_msf_pose_ekf": 10,
     "rotors_control/test_rotors_control": 18,
-    "rotors_core/test_rotors_core_engine": 63,
+    "rotors_core/test_rotors_core_engine": 64,
     "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 55,
     "rotors_planning/test_rotors_planning": 9,
 }

@@ -1,0 +1,1 @@
+// The translation unit that builds precompiled.h for the plugin libraries (CMakeLists.txt).
