@@ -34,6 +34,7 @@ def reached(position: np.ndarray, goal: np.ndarray, tolerance_m: float) -> np.nd
     return np.linalg.norm(position - goal, axis=1) < tolerance_m
 
 
+@pytest.mark.long  # about 45 s here: the long tier keeps make test under 25 min (the bad goals below stay quick)
 def test_the_power_plant_example_with_the_planner_reaches_every_waypoint_without_collision(ros: RosGraph, tmp_path: Path):
     # 5 s until the planner starts, then a leg per waypoint, each at least its 110 s wait time; the
     # last (25 m home from (25, 0, 5)) starts at about 335 s and takes about 65 s
