@@ -74,12 +74,9 @@ def flight(tmp_path_factory):
     pilot.sticks(1000, armed=False)
     workdir = tmp_path_factory.mktemp("betaflight")
     with BetaflightSitl(workdir, read_cli_file(resource("betaflight_iris.cli"))) as fc:
-        # until the firmware answers steadily, the world runs paced (the interface does not wait yet)
-        start = time.monotonic()
-        while world.autopilot_answers("iris") < 200:
-            assert time.monotonic() - start < 30, f"Betaflight did not answer (log: {fc.log_path})"
-            world.step(1)
-            time.sleep(DT)
+        # until the firmware answers steadily, the world runs paced; a firmware that stays silent after
+        # its start (a race in Betaflight's sitl.c, more often on a loaded machine) is started again
+        fc.wait_until_answering(world, "iris", step_s=DT)
         wall = time.monotonic()
         phases = {"disarmed": pilot.fly(6.0, throttle=1000, armed=False)}  # boot grace, gyro calibration
         phases["idle"] = pilot.fly(1.0, throttle=1000)
@@ -132,8 +129,10 @@ def test_it_takes_off_in_angle_mode_and_holds_the_altitude_band_level(flight):
 
 def test_a_roll_and_a_pitch_command_are_held_and_move_it_the_right_way(flight):
     roll, pitch = flight["roll"], flight["pitch"]
-    settled_roll = col(roll, "roll")[25:]  # after 0.5 s
-    settled_pitch = col(pitch, "pitch")[25:]
+    # the last second of each 2 s command: the firmware's clock follows the state packets' rate, so
+    # on a loaded machine its RC smoothing and angle loop settle later in sim time than on a quiet one
+    settled_roll = col(roll, "roll")[50:]
+    settled_pitch = col(pitch, "pitch")[50:]
     print(f"roll stick 1600: roll {settled_roll.mean():.2f} deg (ptp {np.ptp(settled_roll):.2f}); "
           f"pitch stick 1600: pitch {settled_pitch.mean():.2f} deg (ptp {np.ptp(settled_pitch):.2f})")
     # right stick: right wing down (roll > 0 about forward), the vehicle drifts right (-y in ENU)

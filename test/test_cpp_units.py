@@ -11,8 +11,9 @@ from conftest import REPO, WS
 
 # binary (devel/lib/<package>/<name>) -> the number of tests it holds; change it when you add or remove tests
 GTESTS = {
-    "mav_msgs_api_user/test_mav_msgs_api": 8,
+    "mav_msgs_api_user/test_mav_msgs_api": 11,
     "msf_updates/test_msf_pose_ekf": 10,
+    "rotors_control_api_user/test_rotors_control_api": 5,
     "rotors_control/test_rotors_control": 18,
     "rotors_core/test_rotors_core_engine": 64,
     "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 55,

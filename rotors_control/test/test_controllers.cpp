@@ -6,7 +6,7 @@
 
 #include "rotors_control/attitude_control_law.h"
 #include "rotors_control/attitude_controllers.h"
-#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/lee_controller.h"
 #include "rotors_control/motor_mixer.h"
 #include "test_fixtures.h"
 
@@ -16,8 +16,8 @@ namespace {
 Eigen::Matrix3d Rot(double angle, const Eigen::Vector3d& axis) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }
-LeePositionControllerParameters FireflyLee() {
-  LeePositionControllerParameters p;
+LeeControllerParameters FireflyLee() {
+  LeeControllerParameters p;
   p.position_gain = {6, 6, 6};
   p.velocity_gain = {4.7, 4.7, 4.7};
   p.attitude.attitude_gain = {3, 3, 0.15};
@@ -66,8 +66,8 @@ TEST(AttitudeControlLaw, CompensatesGyroscopicTorque) {
   EXPECT_NEAR(alpha.z(), 0.227976, 1e-6);
 }
 
-TEST(LeePositionController, HoverThrustEqualsWeightAndRotorsStopWithoutReference) {
-  LeePositionController lee(FireflyLee());
+TEST(LeeController, HoverThrustEqualsWeightAndRotorsStopWithoutReference) {
+  LeeController lee(FireflyLee());
   VehicleState s;
   s.position_W = {0, 0, 1};
   EXPECT_TRUE(lee.RotorSpeeds(s).isZero());  // no reference yet
@@ -83,8 +83,8 @@ TEST(LeePositionController, HoverThrustEqualsWeightAndRotorsStopWithoutReference
   EXPECT_NEAR(omega.mean(), 547.6, 0.1);
 }
 
-TEST(LeePositionController, FailedRotorIsLeftOutAndTheOthersCarryTheHover) {
-  LeePositionController lee(FireflyLee());
+TEST(LeeController, FailedRotorIsLeftOutAndTheOthersCarryTheHover) {
+  LeeController lee(FireflyLee());
   VehicleState s;
   s.position_W = {0, 0, 1};
   TrajectoryPoint ref;
@@ -108,7 +108,7 @@ TEST(LeePositionController, FailedRotorIsLeftOutAndTheOthersCarryTheHover) {
   EXPECT_NEAR(omega[4], 0.0, 0.01);
   for (int i : {0, 2, 3, 5}) EXPECT_NEAR(k_F * omega[i] * omega[i], quarter_weight, 1e-4) << "rotor " << i;
   // derated to half speed: rotor 1 is commanded so that it gives its share at half the speed
-  LeePositionController derated(FireflyLee());
+  LeeController derated(FireflyLee());
   derated.SetTrajectoryPoint(ref);
   ASSERT_EQ(derated.SetRotorSpeedFactor(1, 0.5), "");
   EXPECT_FALSE(derated.YawReleased());
@@ -122,7 +122,7 @@ TEST(LeePositionController, FailedRotorIsLeftOutAndTheOthersCarryTheHover) {
   // torques the five rotors cannot make (rotor 4 would have to push down): the yaw gives way to the
   // nearest feasible value, roll, pitch and thrust stay exact
   const MotorMixer five_rotors([] {
-    VehicleParameters v = FireflyYaml();
+    MultirotorParameters v = FireflyYaml();
     v.rotors[1].rotor_force_constant = 0.0;
     return v;
   }());
@@ -150,14 +150,14 @@ TEST(LeePositionController, FailedRotorIsLeftOutAndTheOthersCarryTheHover) {
   // refused: a rotor that does not exist, a factor outside [0, 1], a quadrotor losing a rotor
   EXPECT_NE(lee.SetRotorSpeedFactor(6, 0.0).find("does not exist"), std::string::npos);
   EXPECT_NE(lee.SetRotorSpeedFactor(0, 1.5).find("must be in [0, 1]"), std::string::npos);
-  LeePositionControllerParameters quad = FireflyLee();
+  LeeControllerParameters quad = FireflyLee();
   quad.vehicle = PelicanYaml();
-  LeePositionController pelican(quad);
+  LeeController pelican(quad);
   EXPECT_NE(pelican.SetRotorSpeedFactor(0, 0.0).find("rank 3"), std::string::npos);
 }
 
-TEST(LeePositionController, PositionErrorTiltsTowardsTheReferenceAndYawFollows) {
-  LeePositionController lee(FireflyLee());
+TEST(LeeController, PositionErrorTiltsTowardsTheReferenceAndYawFollows) {
+  LeeController lee(FireflyLee());
   TrajectoryPoint ref;
   ref.position_W = {1, 0, 1};
   ref.yaw_rad = 0.5;
@@ -200,11 +200,11 @@ TEST(AccelerationSaturation, VerticalPriorityThenTiltAndThrust) {
   EXPECT_TRUE(SaturatedAcceleration({1.0, 2.0, 10.0}, limits).isApprox(Eigen::Vector3d(1.0, 2.0, 10.0)));
 }
 
-TEST(LeePositionController, FarSetPointClimbsFirstWhenTheThrustSaturates) {
-  LeePositionControllerParameters p = FireflyLee();
+TEST(LeeController, FarSetPointClimbsFirstWhenTheThrustSaturates) {
+  LeeControllerParameters p = FireflyLee();
   for (auto& r : p.vehicle.rotors) r.max_rot_velocity_rad_s = 838.0;
   p.max_tilt_angle_rad = M_PI / 4;
-  LeePositionController lee(p);
+  LeeController lee(p);
   TrajectoryPoint ref;
   ref.position_W = {2.0, -27.0, 15.0};  // the powerplant's first waypoint, from the ground
   lee.SetTrajectoryPoint(ref);
@@ -215,18 +215,18 @@ TEST(LeePositionController, FarSetPointClimbsFirstWhenTheThrustSaturates) {
   EXPECT_NEAR(thrust, 6 * 8.54858e-6 * 838.0 * 838.0, 1e-9);
   // without the limits (RotorS): tilted 57 deg, and m a . e3 = 6 * 15 + m g = 105 N asked of rotors
   // that give 36 N
-  LeePositionController rotors(FireflyLee());
+  LeeController rotors(FireflyLee());
   rotors.SetTrajectoryPoint(ref);
   rotors.ComputeThrustAndAttitude(VehicleState(), &thrust, &R_d);
   EXPECT_NEAR(thrust, 6.0 * 15.0 + 1.56779 * 9.81, 1e-9);
   EXPECT_LT(R_d(2, 2), std::cos(0.9));
 }
 
-TEST(LeePositionController, InvalidParametersAreRejected) {
-  LeePositionControllerParameters p = FireflyLee();
+TEST(LeeController, InvalidParametersAreRejected) {
+  LeeControllerParameters p = FireflyLee();
   p.vehicle.mass_kg = -1.0;
   try {
-    LeePositionController lee(p);
+    LeeController lee(p);
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("mass = -1"), std::string::npos);

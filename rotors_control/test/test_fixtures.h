@@ -7,8 +7,8 @@
 
 namespace rotors_control {
 
-inline VehicleParameters FireflyYaml() {
-  VehicleParameters v;
+inline MultirotorParameters FireflyYaml() {
+  MultirotorParameters v;
   v.mass_kg = 1.56779;
   v.inertia_kg_m2 = Eigen::Vector3d(0.0347563, 0.0458929, 0.0977).asDiagonal();
   const double angles[6] = {0.5236, 1.5708, 2.6180, -2.6180, -1.5708, -0.5236};
@@ -16,8 +16,8 @@ inline VehicleParameters FireflyYaml() {
   return v;
 }
 
-inline VehicleParameters PelicanYaml() {
-  VehicleParameters v;
+inline MultirotorParameters PelicanYaml() {
+  MultirotorParameters v;
   v.mass_kg = 1.0;
   v.inertia_kg_m2 = Eigen::Vector3d(0.01, 0.01, 0.02).asDiagonal();
   const double angles[4] = {0.0, M_PI / 2, M_PI, -M_PI / 2};

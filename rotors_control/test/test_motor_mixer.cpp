@@ -22,7 +22,7 @@ TEST(MotorMixer, FireflyAllocationMatchesReferenceNumbers) {
 }
 
 TEST(MotorMixer, AllocationTimesMixerIsIdentityForHexaAndQuad) {
-  for (const VehicleParameters& v : {FireflyYaml(), PelicanYaml()}) {
+  for (const MultirotorParameters& v : {FireflyYaml(), PelicanYaml()}) {
     const MotorMixer mixer(v);
     const Eigen::Matrix4Xd& A = mixer.Allocation();
     // a command that keeps all rotors spinning: alpha and thrust come back through A
@@ -46,7 +46,7 @@ TEST(MotorMixer, HoverSpeedsMatchTheReference) {
 }
 
 TEST(MotorMixer, RankDeficientConfigurationIsAClearError) {
-  VehicleParameters v = PelicanYaml();
+  MultirotorParameters v = PelicanYaml();
   for (auto& r : v.rotors) r.angle_rad = 0.0;  // all rotors on one arm: no roll authority
   try {
     MotorMixer mixer(v);
@@ -57,7 +57,7 @@ TEST(MotorMixer, RankDeficientConfigurationIsAClearError) {
 }
 
 TEST(MotorMixer, SaturatedThrustKeepsTheTorquesAndTheLimit) {
-  VehicleParameters v = FireflyYaml();
+  MultirotorParameters v = FireflyYaml();
   for (auto& r : v.rotors) r.max_rot_velocity_rad_s = 838.0;
   const MotorMixer mixer(v);
   const Eigen::Vector3d alpha(4.0, -3.0, 0.5);  // [rad/s^2]

@@ -5,7 +5,6 @@ height, roll and pitch against the RC the pilot sends (the flight of test/test_b
 """
 import sys
 import tempfile
-import time
 
 import matplotlib
 
@@ -44,10 +43,8 @@ def main(out: str) -> None:
             log.append((world.time, p[2], *euler_deg(q), throttle, roll, pitch, armed))
 
     world.set_rc("iris", [1500, 1500, 1000, 1500, 1000, 1800])
-    with BetaflightSitl(tempfile.mkdtemp(), read_cli_file(resource("betaflight_iris.cli"))):
-        while world.autopilot_answers("iris") < 200:
-            world.step(1)
-            time.sleep(DT)
+    with BetaflightSitl(tempfile.mkdtemp(), read_cli_file(resource("betaflight_iris.cli"))) as fc:
+        fc.wait_until_answering(world, "iris", step_s=DT)
         fly(6.0, armed=False)
         fly(1.0)
         fly(8.0, z_ref=1.5)

@@ -6,14 +6,14 @@
 #include <Eigen/Geometry>
 
 #include "rotors_control/attitude_control_law.h"
-#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/lee_controller.h"
 #include "rotors_control/motor_mixer.h"
 
 namespace rotors_control {
 
 struct AttitudeControllerParameters {
   AttitudeGains attitude;
-  VehicleParameters vehicle;
+  MultirotorParameters vehicle;
 };
 
 class AttitudeLevelController {

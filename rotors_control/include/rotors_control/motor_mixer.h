@@ -12,12 +12,12 @@ namespace rotors_control {
 
 /// A (4 x N): [tau_x; tau_y; tau_z; T] = A * omega^2, with columns
 /// (sin(theta) l k_F, -cos(theta) l k_F, -d k_F k_M, k_F).
-Eigen::Matrix4Xd AllocationMatrix(const VehicleParameters& vehicle);
+Eigen::Matrix4Xd AllocationMatrix(const MultirotorParameters& vehicle);
 
 class MotorMixer {
  public:
   /// Throws std::invalid_argument if A does not have rank 4 (the vehicle is not controllable).
-  explicit MotorMixer(const VehicleParameters& vehicle);
+  explicit MotorMixer(const MultirotorParameters& vehicle);
   /// omega = sqrt(max(0, A^T (A A^T)^-1 [J alpha; T])): alpha [rad/s^2] body frame, thrust [N].
   /// When every rotor has a max_rot_velocity and the thrust would push one beyond it, the thrust is
   /// lowered until none is (the torques keep priority: attitude control survives saturation).

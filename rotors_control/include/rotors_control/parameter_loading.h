@@ -15,7 +15,7 @@
 #include <string>
 
 #include "rotors_control/attitude_control_law.h"
-#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/lee_controller.h"
 #include "rotors_control/tilt_rotor_controller.h"
 #include "rotors_control/vehicle_parameters.h"
 
@@ -32,7 +32,7 @@ template <class Reader>
 std::string LoadRigidBody(Reader& reader, double* mass_kg, double* gravity_m_s2, Eigen::Matrix3d* inertia_kg_m2) {
   std::string why = reader.Require("mass", mass_kg, parameter_hints::kVehicle);
   if (!why.empty()) return why;
-  *gravity_m_s2 = VehicleParameters{}.gravity_m_s2;  // the one default, whatever it held
+  *gravity_m_s2 = MultirotorParameters{}.gravity_m_s2;  // the one default, whatever it held
   why = reader.Optional("gravity", gravity_m_s2, "RotorS' value; the world's may differ, as in the book's example");
   if (!why.empty()) return why;
   const char* keys[3][3] = {{"inertia/xx", "inertia/xy", "inertia/xz"},
@@ -50,13 +50,13 @@ std::string LoadRigidBody(Reader& reader, double* mass_kg, double* gravity_m_s2,
 }
 
 template <class Reader>
-std::string LoadVehicleParameters(Reader& reader, VehicleParameters* v) {
+std::string LoadVehicleParameters(Reader& reader, MultirotorParameters* v) {
   std::string why = LoadRigidBody(reader, &v->mass_kg, &v->gravity_m_s2, &v->inertia_kg_m2);
   if (!why.empty()) return why;
   v->rotors.clear();
   for (int i = 0; reader.Has("rotor_configuration/" + std::to_string(i)); ++i) {
     const std::string base = "rotor_configuration/" + std::to_string(i) + "/";
-    Rotor r;
+    RotorGeometry r;
     for (const auto& field : {std::make_pair("angle", &r.angle_rad), std::make_pair("arm_length", &r.arm_length_m),
                               std::make_pair("rotor_force_constant", &r.rotor_force_constant),
                               std::make_pair("rotor_moment_constant", &r.rotor_moment_constant)}) {
@@ -84,7 +84,7 @@ std::string LoadAttitudeGains(Reader& reader, AttitudeGains* gains) {
 }
 
 template <class Reader>
-std::string LoadLeeParameters(Reader& reader, LeePositionControllerParameters* p) {
+std::string LoadLeeParameters(Reader& reader, LeeControllerParameters* p) {
   std::string why = reader.RequireVector("position_gain", &p->position_gain, parameter_hints::kGain);
   if (why.empty()) why = reader.RequireVector("velocity_gain", &p->velocity_gain, parameter_hints::kGain);
   if (why.empty()) why = LoadAttitudeGains(reader, &p->attitude);

@@ -18,7 +18,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "rotors_control/lee_position_controller.h"  // VehicleState
+#include "rotors_control/lee_controller.h"  // VehicleState
 
 namespace rotors_control {
 

@@ -9,7 +9,7 @@
 
 namespace rotors_control {
 
-struct Rotor {
+struct RotorGeometry {
   double angle_rad = 0.0;  ///< from body +x about +z
   double arm_length_m = 0.215;
   double rotor_force_constant = 8.54858e-6;  ///< k_F [N/(rad/s)^2]
@@ -19,14 +19,14 @@ struct Rotor {
   double max_rot_velocity_rad_s = 0.0;
 };
 
-struct VehicleParameters {
+struct MultirotorParameters {
   double mass_kg = 0.0;
   double gravity_m_s2 = 9.81;  ///< RotorS' controllers assume 9.81 (book section 3.6, reference section 9)
   Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();
-  std::vector<Rotor> rotors;
+  std::vector<RotorGeometry> rotors;
   /// Every rotor has a max_rot_velocity (the thrust limit is known).
   bool AllRotorsLimited() const {
-    for (const Rotor& r : rotors)
+    for (const RotorGeometry& r : rotors)
       if (!(r.max_rot_velocity_rad_s > 0.0)) return false;
     return !rotors.empty();
   }

@@ -9,10 +9,10 @@
 
 namespace rotors_control {
 
-Eigen::Matrix4Xd AllocationMatrix(const VehicleParameters& vehicle) {
+Eigen::Matrix4Xd AllocationMatrix(const MultirotorParameters& vehicle) {
   Eigen::Matrix4Xd A(4, vehicle.rotors.size());
   for (size_t i = 0; i < vehicle.rotors.size(); ++i) {
-    const Rotor& r = vehicle.rotors[i];
+    const RotorGeometry& r = vehicle.rotors[i];
     const double k = r.rotor_force_constant;
     A(0, i) = std::sin(r.angle_rad) * r.arm_length_m * k;   // roll torque
     A(1, i) = -std::cos(r.angle_rad) * r.arm_length_m * k;  // pitch torque
@@ -22,7 +22,7 @@ Eigen::Matrix4Xd AllocationMatrix(const VehicleParameters& vehicle) {
   return A;
 }
 
-MotorMixer::MotorMixer(const VehicleParameters& vehicle) : A_(AllocationMatrix(vehicle)) {
+MotorMixer::MotorMixer(const MultirotorParameters& vehicle) : A_(AllocationMatrix(vehicle)) {
   Eigen::FullPivLU<Eigen::MatrixXd> lu(A_);
   lu.setThreshold(1e-9);
   if (lu.rank() < 4) {

@@ -5,7 +5,7 @@
 
 namespace rotors_control {
 
-std::string VehicleParameters::Validate() const {
+std::string MultirotorParameters::Validate() const {
   std::ostringstream why;
   if (!(mass_kg > 0.0) || !std::isfinite(mass_kg)) {
     why << "mass = " << mass_kg << " must be > 0 kg";
@@ -17,7 +17,7 @@ std::string VehicleParameters::Validate() const {
     why << "rotor_configuration has " << rotors.size() << " rotors; at least 4 are needed";
   } else {
     for (size_t i = 0; i < rotors.size(); ++i) {
-      const Rotor& r = rotors[i];
+      const RotorGeometry& r = rotors[i];
       if (!(r.rotor_force_constant > 0.0) || !(r.arm_length_m >= 0.0) || (r.direction != 1 && r.direction != -1)) {
         why << "rotor_configuration/" << i << " needs rotor_force_constant > 0, arm_length >= 0 and direction +1 or -1";
         break;

@@ -16,7 +16,7 @@
 #include <ros/ros.h>
 
 #include "rotors_control/attitude_controllers.h"
-#include "rotors_control/parameters_ros.h"
+#include "rotors_control/parameter_report_ros.h"
 #include "ros_conversions.h"
 
 namespace rotors_control {

@@ -21,8 +21,8 @@
 #include <ros/ros.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
-#include "rotors_control/lee_position_controller.h"
-#include "rotors_control/parameters_ros.h"
+#include "rotors_control/lee_controller.h"
+#include "rotors_control/parameter_report_ros.h"
 #include "ros_conversions.h"
 
 namespace rotors_control {
@@ -46,8 +46,8 @@ class LeePositionControllerRos {
   }
 
  private:
-  static LeePositionControllerParameters LoadParameters(const ros::NodeHandle& private_nh) {
-    LeePositionControllerParameters params;
+  static LeeControllerParameters LoadParameters(const ros::NodeHandle& private_nh) {
+    LeeControllerParameters params;
     ParameterReader reader(private_nh);
     const std::string why = LoadLeeParameters(reader, &params);
     if (!why.empty()) throw std::invalid_argument(why);
@@ -166,7 +166,7 @@ class LeePositionControllerRos {
 
   static constexpr double kMaxTimeFromStart_s = 86400.0;
   ros::NodeHandle nh_;
-  LeePositionController controller_;
+  LeeController controller_;
   std::deque<std::pair<double, TrajectoryPoint>> pending_;  ///< (due sim time [s], point)
   double t_odometry_s_ = 0.0;                               ///< stamp of the latest odometry
   ros::Publisher motor_pub_;

@@ -10,7 +10,7 @@
 #include <ros/ros.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
-#include "rotors_control/parameters_ros.h"
+#include "rotors_control/parameter_report_ros.h"
 #include "rotors_control/tilt_rotor_controller.h"
 #include "ros_conversions.h"
 

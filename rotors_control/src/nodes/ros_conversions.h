@@ -9,7 +9,7 @@
 #include <mav_msgs/conversions.h>
 #include <nav_msgs/Odometry.h>
 
-#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/lee_controller.h"
 
 namespace rotors_control {
 

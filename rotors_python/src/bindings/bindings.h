@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <pybind11/pybind11.h>
 
-#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/lee_controller.h"
 
 namespace rotors_python {
 

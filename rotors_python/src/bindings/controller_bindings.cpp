@@ -16,7 +16,7 @@
 
 #include "bindings.h"
 #include "rotors_control/attitude_controllers.h"
-#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/lee_controller.h"
 #include "rotors_control/parameter_loading.h"
 #include "rotors_gazebo_plugins/models/fixed_wing_model.h"
 #include "rotors_core/error.h"
@@ -98,13 +98,13 @@ class PyLee : public OdometryController {
     return controller_.RotorSpeeds(state);
   }
   const LoadReport& Report() const { return report_; }
-  const rotors_control::LeePositionControllerParameters& Params() const { return params_; }
+  const rotors_control::LeeControllerParameters& Params() const { return params_; }
   bool HasReference() const { return controller_.HasReference(); }
 
  private:
-  rotors_control::LeePositionControllerParameters params_;
+  rotors_control::LeeControllerParameters params_;
   LoadReport report_;
-  rotors_control::LeePositionController controller_;
+  rotors_control::LeeController controller_;
   std::optional<std::pair<double, rotors_control::TrajectoryPoint>> pending_;  ///< (due sim time, point)
   double t_odometry_s_ = -std::numeric_limits<double>::infinity();             ///< stamp of the last odometry
 };
@@ -150,7 +150,7 @@ class PyAttitude : public OdometryController {
   rotors_control::AttitudeLevelController controller_;
 };
 
-py::dict VehicleDict(const rotors_control::VehicleParameters& v) {
+py::dict VehicleDict(const rotors_control::MultirotorParameters& v) {
   py::dict d;
   d["mass_kg"] = v.mass_kg;
   d["gravity_m_s2"] = v.gravity_m_s2;

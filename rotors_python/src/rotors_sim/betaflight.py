@@ -89,6 +89,33 @@ class BetaflightSitl:
             self._launch(timeout_s)
         time.sleep(settle_s)
 
+    def restart(self, timeout_s: float = 20.0, settle_s: float = 3.0) -> None:
+        """Stops the firmware and starts it again with the configuration it saved (eeprom.bin in
+        the work directory): the way out when it stays silent after its start (see start())."""
+        self.stop()
+        self._launch(timeout_s)
+        time.sleep(settle_s)
+
+    def wait_until_answering(self, world, namespace: str, answers: int = 200, step_s: float = 0.002,
+                             silent_s: float = 10.0, starts: int = 3) -> None:
+        """Steps `world` paced (one physics step of step_s per step_s of wall time: the interface
+        does not wait for the firmware before its first answers) until the firmware has answered
+        `answers` state packets. A firmware silent for `silent_s` is started again (restart), at most
+        `starts` times in all; then SimError."""
+        for attempt in range(starts):
+            start, before = time.monotonic(), world.autopilot_answers(namespace)
+            while world.autopilot_answers(namespace) < before + answers:
+                if time.monotonic() - start > silent_s:
+                    break
+                world.step(1)
+                time.sleep(step_s)
+            else:
+                return
+            if attempt + 1 < starts:
+                print(f"[betaflight] silent for {silent_s:.0f} s after start {attempt + 1}: starting it again")
+                self.restart()
+        raise SimError(f"Betaflight's SITL did not answer after {starts} starts (log: {self.log_path})")
+
     def _launch(self, timeout_s: float) -> None:
         log = open(self.log_path, "ab")
         self.process = subprocess.Popen([str(self.firmware)], cwd=self.workdir, stdout=log, stderr=subprocess.STDOUT)

@@ -1,5 +1,6 @@
 // The mav_msgs C++ API against hand-computed values: frames, yaw, gravity, conversions.
 #include <cmath>
+#include <functional>
 
 #include <gtest/gtest.h>
 #include <mav_msgs/conversions.h>
@@ -155,6 +156,99 @@ TEST(MavMsgsCommon, SquaredRotorSpeedsGiveTheRequestedWrench) {
 }
 
 }  // namespace
+
+// ---- the helpers of mav_comm's common.h and the flat-state conversion, against finite differences
+
+TEST(MavMsgsCommon, YawMessagesAndNanoseconds) {
+  geometry_msgs::Quaternion q;
+  mav_msgs::setQuaternionMsgFromYaw(0.7, &q);
+  EXPECT_NEAR(q.w, std::cos(0.35), 1e-12);
+  EXPECT_NEAR(q.z, std::sin(0.35), 1e-12);
+  EXPECT_EQ(q.x, 0.0);
+  geometry_msgs::Vector3 w;
+  mav_msgs::setAngularVelocityMsgFromYawRate(-0.4, &w);
+  EXPECT_EQ(w.x, 0.0);
+  EXPECT_EQ(w.y, 0.0);
+  EXPECT_EQ(w.z, -0.4);
+  EXPECT_DOUBLE_EQ(mav_msgs::nanosecondsToSeconds(1500000000), 1.5);
+  EXPECT_EQ(mav_msgs::secondsToNanoseconds(2.25), 2250000000);
+  EXPECT_EQ(mav_msgs::secondsToNanoseconds(mav_msgs::nanosecondsToSeconds(123456789)), 123456789);
+}
+
+Eigen::Matrix3d Exp(const Eigen::Vector3d& phi) {
+  Eigen::Matrix3d R;
+  mav_msgs::matrixFromRotationVector(phi, &R);
+  return R;
+}
+
+/// omega_W = vee(dR/dt R^T) by central differences.
+Eigen::Vector3d OmegaWorldNumeric(const std::function<Eigen::Matrix3d(double)>& R, double t, double h = 1e-5) {
+  const Eigen::Matrix3d R_dot = (R(t + h) - R(t - h)) / (2.0 * h);
+  return mav_msgs::vectorFromSkewMatrix(R_dot * R(t).transpose());
+}
+
+TEST(MavMsgsCommon, AngularVelocityAndAccelerationFromARotationVector) {
+  const Eigen::Vector3d phi0(0.4, -0.9, 1.3), phi_dot(0.5, 0.2, -0.7), phi_ddot(-0.3, 0.8, 0.1);
+  auto phi = [&](double t) -> Eigen::Vector3d { return phi0 + phi_dot * t + 0.5 * phi_ddot * t * t; };
+  auto R = [&](double t) { return Exp(phi(t)); };
+  for (double t : {0.0, 0.3, 1.0}) {
+    const Eigen::Vector3d rate = phi_dot + phi_ddot * t;
+    const Eigen::Vector3d omega = mav_msgs::omegaFromRotationVector(phi(t), rate);
+    EXPECT_TRUE(omega.isApprox(OmegaWorldNumeric(R, t), 1e-7)) << omega.transpose();
+    const double h = 1e-5;
+    const Eigen::Vector3d omega_dot_numeric = (mav_msgs::omegaFromRotationVector(phi(t + h), rate + phi_ddot * h) -
+                                               mav_msgs::omegaFromRotationVector(phi(t - h), rate - phi_ddot * h)) /
+                                              (2.0 * h);
+    EXPECT_TRUE(mav_msgs::omegaDotFromRotationVector(phi(t), rate, phi_ddot).isApprox(omega_dot_numeric, 1e-6));
+  }
+  // no rotation: omega = dphi/dt
+  EXPECT_TRUE(mav_msgs::omegaFromRotationVector(Eigen::Vector3d::Zero(), phi_dot).isApprox(phi_dot));
+}
+
+TEST(MavMsgsConversions, FlatOutputsGiveTheStateThatFliesThem) {
+  // a(t) = a0 + j0 t + s0 t^2 / 2 and psi(t) = psi0 + r t + r' t^2 / 2 (a flat output's derivatives)
+  const Eigen::Vector3d a0(1.2, -0.8, 0.9), j0(0.7, 1.1, -0.5), s0(-0.6, 0.4, 0.8);
+  const double psi0 = 0.6, r = 0.9, r_dot = -0.5, g = 9.81;
+  struct State {
+    Eigen::Quaterniond q;
+    Eigen::Vector3d f_B, w_B, dw_B;
+  };
+  auto state = [&](double t) {
+    State x;
+    mav_msgs::EigenMavStateFromEigenTrajectoryPoint(a0 + j0 * t + 0.5 * s0 * t * t, j0 + s0 * t, s0,
+                                                    psi0 + r * t + 0.5 * r_dot * t * t, r + r_dot * t, r_dot, g, &x.q,
+                                                    &x.f_B, &x.w_B, &x.dw_B);
+    return x;
+  };
+  for (double t : {0.0, 0.5}) {
+    const State x = state(t);
+    const Eigen::Matrix3d R = x.q.toRotationMatrix();
+    const Eigen::Vector3d a = a0 + j0 * t + 0.5 * s0 * t * t;
+    // the thrust is along body z and gives the acceleration; the heading is psi
+    EXPECT_TRUE((R * x.f_B).isApprox(a + Eigen::Vector3d(0, 0, g), 1e-12));
+    EXPECT_NEAR(x.f_B.x(), 0.0, 1e-12);
+    EXPECT_NEAR(x.f_B.y(), 0.0, 1e-12);
+    const double psi = psi0 + r * t + 0.5 * r_dot * t * t;
+    EXPECT_NEAR(R.col(1).dot(Eigen::Vector3d(std::cos(psi), std::sin(psi), 0.0)), 0.0, 1e-12);
+    // body rates against the orientation's derivative, and their derivative
+    auto R_of = [&](double tau) { return state(tau).q.toRotationMatrix(); };
+    const Eigen::Vector3d w_B_numeric = R.transpose() * OmegaWorldNumeric(R_of, t);
+    EXPECT_TRUE(x.w_B.isApprox(w_B_numeric, 1e-6)) << x.w_B.transpose() << " vs " << w_B_numeric.transpose();
+    const double h = 1e-5;
+    const Eigen::Vector3d dw_numeric = (state(t + h).w_B - state(t - h).w_B) / (2.0 * h);
+    EXPECT_TRUE(x.dw_B.isApprox(dw_numeric, 1e-5)) << x.dw_B.transpose() << " vs " << dw_numeric.transpose();
+  }
+  // the trajectory-point form: a hover point gives level attitude, g along body z, no rates
+  mav_msgs::EigenTrajectoryPoint hover;
+  hover.position_W = {1, 2, 3};
+  hover.setFromYaw(0.3);
+  mav_msgs::EigenMavState s;
+  mav_msgs::EigenMavStateFromEigenTrajectoryPoint(hover, &s);
+  EXPECT_TRUE(s.position_W.isApprox(hover.position_W));
+  EXPECT_TRUE(s.orientation_W_B.isApprox(mav_msgs::quaternionFromYaw(0.3), 1e-12));
+  EXPECT_NEAR(s.acceleration_B.z(), mav_msgs::kGravity, 1e-12);
+  EXPECT_NEAR(s.angular_velocity_B.norm() + s.angular_acceleration_B.norm(), 0.0, 1e-12);
+}
 
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);

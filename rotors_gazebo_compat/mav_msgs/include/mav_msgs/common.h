@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -104,6 +105,67 @@ inline void getEulerAnglesFromQuaternion(const Eigen::Quaternion<double>& q, Eig
   const double sin_pitch = std::max(-1.0, std::min(1.0, 2.0 * (w * y - z * x)));
   *euler_angles = {roll, std::asin(sin_pitch), yawFromQuaternion(q)};
 }
+
+/// The yaw-only orientation quaternion into a message.
+inline void setQuaternionMsgFromYaw(double yaw, geometry_msgs::Quaternion* msg) {
+  quaternionEigenToMsg(quaternionFromYaw(yaw), msg);
+}
+
+/// The angular velocity (0, 0, yaw_rate) into a message.
+inline void setAngularVelocityMsgFromYawRate(double yaw_rate, geometry_msgs::Vector3* msg) {
+  vectorEigenToMsg(Eigen::Vector3d(0.0, 0.0, yaw_rate), msg);
+}
+
+namespace internal {
+/// Coefficients of the left Jacobian of SO(3), J(phi) = I + a [phi]x + b [phi]x^2, and their
+/// derivatives by theta = |phi|: a = (1 - cos t) / t^2, b = (t - sin t) / t^3 (series near 0).
+struct LeftJacobianCoefficients {
+  double a, b, da_dtheta, db_dtheta;
+  explicit LeftJacobianCoefficients(double t) {
+    if (t < 1e-4) {
+      a = 0.5 - t * t / 24.0;
+      b = 1.0 / 6.0 - t * t / 120.0;
+      da_dtheta = -t / 12.0;
+      db_dtheta = -t / 60.0;
+      return;
+    }
+    const double s = std::sin(t), c = std::cos(t);
+    a = (1.0 - c) / (t * t);
+    b = (t - s) / (t * t * t);
+    da_dtheta = (t * s - 2.0 * (1.0 - c)) / (t * t * t);
+    db_dtheta = (3.0 * s - 2.0 * t - t * c) / (t * t * t * t);
+  }
+};
+}  // namespace internal
+
+/// Angular velocity (world frame) of R = exp([phi]x) from the rotation vector's rate:
+/// omega = J(phi) dphi/dt, J the left Jacobian of SO(3) (Peres, "Finite rotations and angular velocity").
+inline Eigen::Vector3d omegaFromRotationVector(const Eigen::Vector3d& rot_vec, const Eigen::Vector3d& rot_vec_vel) {
+  const internal::LeftJacobianCoefficients k(rot_vec.norm());
+  const Eigen::Matrix3d Phi = skewMatrixFromVector(rot_vec);
+  // omega = (I + a [phi]x + b [phi]x^2) dphi/dt
+  return rot_vec_vel + k.a * Phi * rot_vec_vel + k.b * Phi * Phi * rot_vec_vel;
+}
+
+/// Angular acceleration (world frame): d/dt (J(phi) dphi/dt) = dJ/dt dphi/dt + J(phi) d2phi/dt2.
+inline Eigen::Vector3d omegaDotFromRotationVector(const Eigen::Vector3d& rot_vec, const Eigen::Vector3d& rot_vec_vel,
+                                                  const Eigen::Vector3d& rot_vec_acc) {
+  const double theta = rot_vec.norm();
+  const internal::LeftJacobianCoefficients k(theta);
+  const double theta_dot = theta > 0.0 ? rot_vec.dot(rot_vec_vel) / theta : 0.0;
+  const Eigen::Matrix3d Phi = skewMatrixFromVector(rot_vec), Phi_dot = skewMatrixFromVector(rot_vec_vel);
+  // dJ/dt = a' theta' [phi]x + a [phi']x + b' theta' [phi]x^2 + b ([phi']x [phi]x + [phi]x [phi']x)
+  const Eigen::Matrix3d J_dot = k.da_dtheta * theta_dot * Phi + k.a * Phi_dot + k.db_dtheta * theta_dot * Phi * Phi +
+                                k.b * (Phi_dot * Phi + Phi * Phi_dot);
+  return J_dot * rot_vec_vel + omegaFromRotationVector(rot_vec, rot_vec_acc);
+}
+
+inline double nanosecondsToSeconds(int64_t nanoseconds) {
+  return static_cast<double>(nanoseconds) / kNumNanosecondsPerSecond;
+}
+
+/// Truncated towards zero, as a cast.
+inline int64_t secondsToNanoseconds(double seconds) { return static_cast<int64_t>(seconds * kNumNanosecondsPerSecond); }
 
 /// Normal gravity [m/s^2] at a height [m] and latitude [rad]:
 /// g = 9.780327 ((1 + 0.0053024 sin^2 phi - 0.0000058 sin^2 2 phi) - 3.155e-7 h)

@@ -18,6 +18,7 @@
 #include "mav_msgs/TorqueThrust.h"
 #include "mav_msgs/common.h"
 #include "mav_msgs/default_topics.h"
+#include "mav_msgs/default_values.h"
 #include "mav_msgs/eigen_mav_msgs.h"
 
 namespace mav_msgs {
@@ -245,6 +246,85 @@ inline void msgMultiDofJointTrajectoryFromPositionYaw(const Eigen::Vector3d& pos
   point.position_W = position;
   point.setFromYaw(yaw);
   msgMultiDofJointTrajectoryFromEigen(point, "base_link", msg);
+}
+
+// ---- flat outputs -> full state (differential flatness) --------------------------------------
+
+/// The state of a multirotor (thrust along body z) that flies a flat output's acceleration a, jerk j,
+/// snap s (world) with yaw psi, its rate and acceleration (Mellinger 2012, section 2.4), with exact
+/// yaw-rate terms for the heading definition x_C = (cos psi, sin psi, 0), y_B = z_B x x_C / |.|:
+/// orientation R_WB = [x_B y_B z_B], acceleration_body = R^T (a + g e_z) (what an IMU reads),
+/// angular velocity and acceleration in the body frame.
+inline void EigenMavStateFromEigenTrajectoryPoint(const Eigen::Vector3d& acceleration, const Eigen::Vector3d& jerk,
+                                                  const Eigen::Vector3d& snap, double yaw, double yaw_rate,
+                                                  double yaw_acceleration, double magnitude_of_gravity,
+                                                  Eigen::Quaterniond* orientation, Eigen::Vector3d* acceleration_body,
+                                                  Eigen::Vector3d* angular_velocity_body,
+                                                  Eigen::Vector3d* angular_acceleration_body) {
+  // c z_B = a + g e_z: c the mass-normalised thrust
+  const Eigen::Vector3d thrust_W = acceleration + Eigen::Vector3d(0.0, 0.0, magnitude_of_gravity);
+  const double c = thrust_W.norm();
+  const Eigen::Vector3d z_B = thrust_W / c;
+  const Eigen::Vector3d x_C(std::cos(yaw), std::sin(yaw), 0.0), y_C(-std::sin(yaw), std::cos(yaw), 0.0);
+  const Eigen::Vector3d y_B = z_B.cross(x_C).normalized();
+  const Eigen::Vector3d x_B = y_B.cross(z_B);
+  Eigen::Matrix3d R_WB;
+  R_WB << x_B, y_B, z_B;
+  *orientation = Eigen::Quaterniond(R_WB);
+  *acceleration_body = R_WB.transpose() * thrust_W;
+  // j = c' z_B + c dz_B/dt, dz_B/dt = w_y x_B - w_x y_B
+  const double c_dot = z_B.dot(jerk);
+  const double w_x = -y_B.dot(jerk) / c, w_y = x_B.dot(jerk) / c;
+  // y_B . x_C = 0 differentiated: (-w_z x_B + w_x z_B) . x_C + y_B . (psi' y_C) = 0
+  const double w_z = (w_x * z_B.dot(x_C) + yaw_rate * y_B.dot(y_C)) / x_B.dot(x_C);
+  *angular_velocity_body = Eigen::Vector3d(w_x, w_y, w_z);
+  // body axes' rates (world): dx_B = w_z y_B - w_y z_B, dy_B = -w_z x_B + w_x z_B, dz_B = w_y x_B - w_x y_B
+  const Eigen::Vector3d dx_B = w_z * y_B - w_y * z_B, dy_B = -w_z * x_B + w_x * z_B, dz_B = w_y * x_B - w_x * y_B;
+  // s = c'' z_B + 2 c' dz_B + c (dw_y x_B - dw_x y_B + w_y dx_B - w_x dy_B)
+  const Eigen::Vector3d rest = snap - 2.0 * c_dot * dz_B - c * (w_y * dx_B - w_x * dy_B);
+  const double dw_x = -y_B.dot(rest) / c, dw_y = x_B.dot(rest) / c;
+  // the heading constraint differentiated twice
+  const Eigen::Vector3d dx_C = yaw_rate * y_C, ddx_C = yaw_acceleration * y_C - yaw_rate * yaw_rate * x_C;
+  const double dw_z =
+      (dw_x * z_B.dot(x_C) + (-w_z * dx_B + w_x * dz_B).dot(x_C) + 2.0 * dy_B.dot(dx_C) + y_B.dot(ddx_C)) /
+      x_B.dot(x_C);
+  *angular_acceleration_body = Eigen::Vector3d(dw_x, dw_y, dw_z);
+}
+
+/// The same with mav_msgs' gravity (kGravity, Zurich).
+inline void EigenMavStateFromEigenTrajectoryPoint(const Eigen::Vector3d& acceleration, const Eigen::Vector3d& jerk,
+                                                  const Eigen::Vector3d& snap, double yaw, double yaw_rate,
+                                                  double yaw_acceleration, Eigen::Quaterniond* orientation,
+                                                  Eigen::Vector3d* acceleration_body,
+                                                  Eigen::Vector3d* angular_velocity_body,
+                                                  Eigen::Vector3d* angular_acceleration_body) {
+  EigenMavStateFromEigenTrajectoryPoint(acceleration, jerk, snap, yaw, yaw_rate, yaw_acceleration, kGravity,
+                                        orientation, acceleration_body, angular_velocity_body,
+                                        angular_acceleration_body);
+}
+
+/// A trajectory point to the state that flies it: a 4-DOF point (a multirotor) through flatness; a
+/// 6-DOF point (fully actuated) keeps its orientation and rates (rotated into the body frame).
+inline void EigenMavStateFromEigenTrajectoryPoint(const EigenTrajectoryPoint& point, double magnitude_of_gravity,
+                                                  EigenMavState* state) {
+  state->position_W = point.position_W;
+  state->velocity_W = point.velocity_W;
+  if (point.degrees_of_freedom == MavActuation::DOF4) {
+    EigenMavStateFromEigenTrajectoryPoint(point.acceleration_W, point.jerk_W, point.snap_W, point.getYaw(),
+                                          point.getYawRate(), point.getYawAcc(), magnitude_of_gravity,
+                                          &state->orientation_W_B, &state->acceleration_B, &state->angular_velocity_B,
+                                          &state->angular_acceleration_B);
+    return;
+  }
+  const Eigen::Matrix3d R_BW = point.orientation_W_B.toRotationMatrix().transpose();
+  state->orientation_W_B = point.orientation_W_B;
+  state->acceleration_B = R_BW * (point.acceleration_W + Eigen::Vector3d(0.0, 0.0, magnitude_of_gravity));
+  state->angular_velocity_B = R_BW * point.angular_velocity_W;
+  state->angular_acceleration_B = R_BW * point.angular_acceleration_W;
+}
+
+inline void EigenMavStateFromEigenTrajectoryPoint(const EigenTrajectoryPoint& point, EigenMavState* state) {
+  EigenMavStateFromEigenTrajectoryPoint(point, kGravity, state);
 }
 
 }  // namespace mav_msgs

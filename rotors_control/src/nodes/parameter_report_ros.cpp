@@ -1,4 +1,4 @@
-#include "rotors_control/parameters_ros.h"
+#include "rotors_control/parameter_report_ros.h"
 
 #include <sstream>
 

@@ -1,4 +1,4 @@
-#include "rotors_control/lee_position_controller.h"
+#include "rotors_control/lee_controller.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 namespace rotors_control {
 
-std::string LeePositionControllerParameters::Validate() const {
+std::string LeeControllerParameters::Validate() const {
   const std::string vehicle_why = vehicle.Validate();
   if (!vehicle_why.empty()) return vehicle_why;
   std::ostringstream why;
@@ -38,12 +38,12 @@ Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const Acce
 }
 
 namespace {
-AccelerationLimits LimitsOf(const LeePositionControllerParameters& p) {
+AccelerationLimits LimitsOf(const LeeControllerParameters& p) {
   AccelerationLimits limits;
   limits.max_tilt_rad = p.max_tilt_angle_rad;
   if (p.vehicle.AllRotorsLimited()) {
     double max_thrust_N = 0.0;
-    for (const Rotor& r : p.vehicle.rotors)
+    for (const RotorGeometry& r : p.vehicle.rotors)
       max_thrust_N += r.rotor_force_constant * r.max_rot_velocity_rad_s * r.max_rot_velocity_rad_s;  // eq. 1
     limits.max_m_s2 = max_thrust_N / p.vehicle.mass_kg;
   }
@@ -52,22 +52,22 @@ AccelerationLimits LimitsOf(const LeePositionControllerParameters& p) {
 }
 }  // namespace
 
-LeePositionController::LeePositionController(const LeePositionControllerParameters& params)
+LeeController::LeeController(const LeeControllerParameters& params)
     : params_(Validated(params)),
       attitude_law_(params.attitude, params.vehicle.inertia_kg_m2),
       mixer_(params.vehicle),
       limits_(LimitsOf(params_)) {
-  for (const Rotor& r : params_.vehicle.rotors) nominal_force_constants_.push_back(r.rotor_force_constant);
+  for (const RotorGeometry& r : params_.vehicle.rotors) nominal_force_constants_.push_back(r.rotor_force_constant);
   speed_factors_.assign(nominal_force_constants_.size(), 1.0);
 }
 
-std::string LeePositionController::SetRotorSpeedFactor(size_t rotor, double speed_factor) {
+std::string LeeController::SetRotorSpeedFactor(size_t rotor, double speed_factor) {
   if (rotor >= nominal_force_constants_.size())
     return "rotor " + std::to_string(rotor) + " does not exist (the vehicle has " +
            std::to_string(nominal_force_constants_.size()) + ")";
   if (!(speed_factor >= 0.0 && speed_factor <= 1.0))
     return "speed_factor " + std::to_string(speed_factor) + " must be in [0, 1]";
-  LeePositionControllerParameters p = params_;
+  LeeControllerParameters p = params_;
   // omega_real = s omega_cmd: thrust and moment k_F omega_real^2 = (s^2 k_F) omega_cmd^2 (eqs. 1, 4)
   p.vehicle.rotors[rotor].rotor_force_constant = nominal_force_constants_[rotor] * speed_factor * speed_factor;
   try {
@@ -82,13 +82,12 @@ std::string LeePositionController::SetRotorSpeedFactor(size_t rotor, double spee
   return {};
 }
 
-void LeePositionController::SetTrajectoryPoint(const TrajectoryPoint& point) {
+void LeeController::SetTrajectoryPoint(const TrajectoryPoint& point) {
   reference_ = point;
   has_reference_ = true;
 }
 
-void LeePositionController::ComputeThrustAndAttitude(const VehicleState& s, double* thrust_N,
-                                                     Eigen::Matrix3d* R_WD) const {
+void LeeController::ComputeThrustAndAttitude(const VehicleState& s, double* thrust_N, Eigen::Matrix3d* R_WD) const {
   const double m = params_.vehicle.mass_kg, g = params_.vehicle.gravity_m_s2;
   const Eigen::Vector3d e3 = Eigen::Vector3d::UnitZ();
   const Eigen::Matrix3d R = s.orientation_W_B.toRotationMatrix();
@@ -112,7 +111,7 @@ void LeePositionController::ComputeThrustAndAttitude(const VehicleState& s, doub
   R_WD->col(2) = b3_d;
 }
 
-Eigen::VectorXd LeePositionController::RotorSpeeds(const VehicleState& s) const {
+Eigen::VectorXd LeeController::RotorSpeeds(const VehicleState& s) const {
   if (!has_reference_) return Eigen::VectorXd::Zero(params_.vehicle.rotors.size());
   double thrust_N = 0.0;
   Eigen::Matrix3d R_WD;
