@@ -1,5 +1,5 @@
-"""Interface contract: our mav_msgs, rotors_comm, gazebo_msgs, sensor_fusion_comm, octomap_msgs and mavros_msgs
-definitions have the md5sums of the upstream packages, so bags and nodes from real RotorS set-ups
+"""Interface contract: our mav_msgs, rotors_comm, gazebo_msgs, sensor_fusion_comm, octomap_msgs, mavros_msgs and
+mav_planning_msgs definitions have the md5sums of the upstream packages, so bags and nodes from real RotorS set-ups
 interoperate. The values are pinned literals, as the upstream packages' generated code states them
 (rosserial ros_lib getMD5(), gennodejs md5sum(), genlisp md5sum of mav_comm, rotors_simulator,
 gazebo_ros_pkgs, ethzasl_msf and mavros, looked up in public repositories), not recomputed from our files."""
@@ -23,6 +23,17 @@ UPSTREAM_MSG_MD5 = {
     "sensor_fusion_comm/DoubleMatrixStamped": "c58f6b7538f12163211fe0ce597bbfd8",
     "octomap_msgs/Octomap": "9a45536b45c5e409cd49f04bb2d9999f",
     "mavros_msgs/OpticalFlowRad": "65d93e03c6188c7ee30415b2a39ad40d",
+    # mav_comm's mav_planning_msgs (PolynomialTrajectory4D and PlannerService also in public gennodejs,
+    # genlisp and rosserial code; the others computed by genmsg from mav_comm's own .msg files)
+    "mav_planning_msgs/Point2D": "209f516d3eb691f0663e25cb750d67c1",
+    "mav_planning_msgs/PointCloudWithPose": "2a8b498d41262fbae6e2ab39e0965442",
+    "mav_planning_msgs/Polygon2D": "8f02263beef99aa03117a577a3eb879d",
+    "mav_planning_msgs/PolygonWithHoles": "df7f266352dfcf3e4d29156dd85febf9",
+    "mav_planning_msgs/PolygonWithHolesStamped": "75e2ac63509c016edab7c5a5ed67059b",
+    "mav_planning_msgs/PolynomialSegment": "1bfc920140297f14773c46c1eacc4c1d",
+    "mav_planning_msgs/PolynomialSegment4D": "c85fa40c94ff35d242df13d4d3a57809",
+    "mav_planning_msgs/PolynomialTrajectory": "2daf5d705534e84f80980f4673a0e62b",
+    "mav_planning_msgs/PolynomialTrajectory4D": "4d68d15524ede489eecd674bb6dc3ee8",
 }
 UPSTREAM_SRV_MD5 = {
     "rotors_comm/RecordRosbag": "5504376d5b4669d33bfb29107c817d83",
@@ -32,6 +43,9 @@ UPSTREAM_SRV_MD5 = {
     "gazebo_msgs/GetModelState": "4c515e936d3319c9610c559c60bfc3d4",  # noetic, with the response header
     "sensor_fusion_comm/InitScale": "f8ea41d14f4e256b53793fe5b7588158",
     "sensor_fusion_comm/InitHeight": "6b19ce060384743d60708a804f1c749f",
+    "mav_planning_msgs/ChangeNameService": "d82dc6474dd88dad5e1615ab1b2ca74c",
+    "mav_planning_msgs/PlannerService": "118771e195038ced9b4ddec299814131",
+    "mav_planning_msgs/PolygonService": "7e5305932db903eed4a95dd3377ac6bc",
 }
 
 

@@ -1,4 +1,4 @@
 from catkin_pkg.python_setup import generate_distutils_setup
 from setuptools import setup
 
-setup(**generate_distutils_setup(packages=["rotors_evaluation"], package_dir={"": "src"}))
+setup(**generate_distutils_setup(packages=["rotors_evaluation", "rosbag_tools"], package_dir={"": "src"}))
