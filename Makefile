@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test test-long test-all lint demo demo-msf bench clean
+.PHONY: setup build test test-long test-all test-sanitize lint demo demo-msf bench clean
 
 setup:
 	@bash scripts/setup.sh
@@ -19,6 +19,11 @@ test-long: build
 
 test-all: build
 	@ROTORS_TEST_TIER=all bash scripts/run_tests.sh
+
+# the gtests and the Python-module tests under ASan + UBSan, the batch / step_all tests under TSan
+# (own workspaces in build/sanitize; scripts/test_sanitize.sh)
+test-sanitize: build
+	@bash scripts/test_sanitize.sh
 
 lint: setup
 	@bash scripts/lint.sh

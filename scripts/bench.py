@@ -371,16 +371,17 @@ def peer_available(peer: str) -> bool:
     return peer != "gym_pybullet_drones" or (GYM_PYBULLET_DRONES_SRC / "gym_pybullet_drones").is_dir()
 
 
-def hover_drone_s_per_s(peer: str, worlds: int, seconds: float, rates_hz=()) -> Dict:
+def hover_drone_s_per_s(peer: str, worlds: int, seconds: float, rates_hz=(), mode: str = "") -> Dict:
     """One closed-loop hover run of a peer script (scripts/peers/<peer>_hover.py): its JSON line.
-    rates_hz: (physics, control) where the script takes them (gym-pybullet-drones), else 500 / 100."""
+    rates_hz: (physics, control) where the script takes them (gym-pybullet-drones), else 500 / 100;
+    mode: "loop" or "one_call" for the scripts that have both (PEER_MODES)."""
     if peer == "rotors_sim":
         python = sys.executable
     elif peer == "rotorpy":
         python = str(rotorpy_python())
     else:
         python = str(peer_python(peer))
-    args = [str(worlds), str(seconds), *(str(hz) for hz in rates_hz)]
+    args = [str(worlds), str(seconds), *(str(hz) for hz in rates_hz), *([mode] if mode else [])]
     out = subprocess.run([python, str(ROOT / "scripts" / "peers" / f"{peer}_hover.py"), *args],
                          capture_output=True, text=True, timeout=1800, cwd=OUT)  # MuJoCo writes its log to cwd
     lines = [line for line in out.stdout.splitlines() if line.startswith("{")]
@@ -391,46 +392,64 @@ def hover_drone_s_per_s(peer: str, worlds: int, seconds: float, rates_hz=()) -> 
 
 PYTHON_PEERS = (("rotors_sim", 20.0), ("crazyflow", 20.0), ("pyflyt", 5.0), ("gym_pybullet_drones", 5.0),
                 ("rotorpy", 5.0))
+# Each peer at its fastest documented use for the same task, and as a Python loop that computes the
+# control each period. "loop": Python in the loop every control period; "one_call": one call runs
+# many control periods with the simulator's own controller inside (where the simulator has one).
+PEER_MODES = {"rotors_sim": ("loop", "one_call"), "crazyflow": ("loop", "one_call")}
+NO_ONE_CALL = {"pyflyt": "no call that runs more than one control period (Aviary.step is one)",
+               "gym_pybullet_drones": "no call that runs more than one control period (env.step is one)",
+               "rotorpy": "its simulate() runs a whole flight but with the controller in Python each step"}
+MODE_WORDS = {"loop": "Python loop, control computed each period", "one_call": "one call, controller inside",
+              "": "Python loop, control computed each period"}
 
 
 def python_peers() -> Dict:
-    """Hover, closed loop, 500 Hz physics and 100 Hz control, for 1 and 64 worlds: best of 3 runs each."""
+    """Hover, closed loop, 500 Hz physics and 100 Hz control, for 1 and 64 worlds, in each mode a
+    peer has: best of 3 runs each."""
     table: Dict = {}
     for peer, seconds in PYTHON_PEERS:
         if not peer_available(peer):
             continue
-        for worlds in ((1,) if peer == "rotorpy" else (1, 64)):  # RotorPy: no batch of worlds
-            slow = peer in ("pyflyt", "gym_pybullet_drones")  # 64 PyBullet drones: well below real time
-            sim_s = seconds if worlds == 1 or not slow else 1.0
-            runs = [hover_drone_s_per_s(peer, worlds, sim_s) for _ in range(3)]
-            table[f"{peer}/{worlds}"] = max(runs, key=lambda r: r["drone_s_per_s"])
+        for mode in PEER_MODES.get(peer, ("",)):
+            for worlds in ((1,) if peer == "rotorpy" else (1, 64)):  # RotorPy: no batch of worlds
+                slow = peer in ("pyflyt", "gym_pybullet_drones") or (peer == "rotors_sim" and mode == "loop")
+                sim_s = seconds if worlds == 1 or not slow else 2.0
+                runs = [hover_drone_s_per_s(peer, worlds, sim_s, mode=mode) for _ in range(3)]
+                table[f"{peer}/{mode or 'loop'}/{worlds}"] = max(runs, key=lambda r: r["drone_s_per_s"])
     return table
 
 
 def python_peer_rows(t: Dict) -> List:
     rows = []
-    notes = {"rotors_sim": "firefly, 12 RotorS plugins, Lee controller library attached, worlds on threads",
+    notes = {"rotors_sim": "firefly, 12 RotorS plugins, Lee controller library, worlds on threads",
              "crazyflow": "Crazyflie, onboard state controller, JAX on the CPU (vmap over worlds)",
              "pyflyt": "QuadX in position mode; 64 = 64 drones in one Aviary (no batch of worlds)",
              "gym_pybullet_drones": f"CtrlAviary, Crazyflie 2.X, DSL PID controller, clone {source_commit(GYM_PYBULLET_DRONES_SRC)}; "
                                     "64 = 64 drones in one aviary (no batch of worlds)",
              "rotorpy": "SE3 controller at the physics rate, 500 Hz (no separate control rate); no batch of worlds"}
     for peer, _ in PYTHON_PEERS:
-        if f"{peer}/1" not in t:
-            rows += [(f"hover, 500 Hz physics, 100 Hz control: {peer}", "not measured", "")]
-            continue
-        one, many = t[f"{peer}/1"], t.get(f"{peer}/64")
-        many_text = f"{many['drone_s_per_s']:,.0f} drone-s/s" if many else "not run (no batch of worlds)"
-        rows += [(f"hover, 500 Hz physics, 100 Hz control: {peer} ({notes[peer]})",
-                  f"1 world {one['drone_s_per_s']:,.1f} x real time; 64 worlds {many_text}", "")]
-    ours1, ours64 = t["rotors_sim/1"]["drone_s_per_s"], t["rotors_sim/64"]["drone_s_per_s"]
-    if "gym_pybullet_drones/1" in t:
-        rows += [("  ratio, one world: rotors_sim / gym-pybullet-drones",
-                  f"{ours1 / t['gym_pybullet_drones/1']['drone_s_per_s']:,.0f} x", "")]
-    rows += [("  ratio, one world: rotors_sim / PyFlyt", f"{ours1 / t['pyflyt/1']['drone_s_per_s']:,.0f} x", ">= 200"),
-             ("  ratio, one world: rotors_sim / crazyflow", f"{ours1 / t['crazyflow/1']['drone_s_per_s']:.1f} x", ">= 10"),
-             ("  ratio, 64 worlds: rotors_sim / crazyflow (aggregate drone-s/s)",
-              f"{ours64 / t['crazyflow/64']['drone_s_per_s']:.2f} x", ">= 1")]
+        for mode in PEER_MODES.get(peer, ("loop",)):
+            one, many = t.get(f"{peer}/{mode}/1"), t.get(f"{peer}/{mode}/64")
+            label = f"hover, 500 Hz physics, 100 Hz control: {peer}, {MODE_WORDS[mode]} ({notes[peer]})"
+            if one is None:
+                rows += [(label, "not measured", "")]
+                continue
+            many_text = f"{many['drone_s_per_s']:,.0f} drone-s/s" if many else "not run (no batch of worlds)"
+            rows += [(label, f"1 world {one['drone_s_per_s']:,.1f} x real time; 64 worlds {many_text}", "")]
+        if peer in NO_ONE_CALL:
+            rows += [(f"  {peer}, one call: not measured", NO_ONE_CALL[peer], "")]
+
+    def ratio(ours: str, theirs: str, digits: int = 2) -> str:
+        return f"{t[ours]['drone_s_per_s'] / t[theirs]['drone_s_per_s']:,.{digits}f} x" if ours in t and theirs in t else "n/a"
+
+    for mode in ("loop", "one_call"):
+        rows += [(f"  ratio, one world, {MODE_WORDS[mode]}: rotors_sim / crazyflow",
+                  ratio(f"rotors_sim/{mode}/1", f"crazyflow/{mode}/1"), ""),
+                 (f"  ratio, 64 worlds, {MODE_WORDS[mode]}: rotors_sim / crazyflow (aggregate drone-s/s)",
+                  ratio(f"rotors_sim/{mode}/64", f"crazyflow/{mode}/64"), "")]
+    for peer in ("pyflyt", "gym_pybullet_drones"):
+        rows += [(f"  ratio, one world, Python loop: rotors_sim / {peer}",
+                  ratio("rotors_sim/loop/1", f"{peer}/loop/1", 0), "")]
     return rows
 
 

@@ -21,7 +21,8 @@ def pytest_configure(config):
     restore_sigint()  # run as a background job (nohup make test &), the ROS processes would ignore Ctrl-C
     config.addinivalue_line("markers", "long: the long tier (minutes each): run by make test-all and make test-long, "
                                        "not by make test")
-WS = REPO / "build" / "ws"
+# make test-sanitize points ROTORS_WS at a sanitizer's workspace (scripts/test_sanitize.sh)
+WS = Path(os.environ.get("ROTORS_WS", REPO / "build" / "ws"))
 
 
 # Process helpers for rospy client code (RosGraph.rospy): a node's pid from the master, whether a

@@ -184,15 +184,20 @@ result['samples'] = state['samples']
 '''
 
 WATCHED = ["/gazebo", "/firefly/lee_position_controller_node", "/firefly/robot_state_publisher", "/bystanders/msf",
-           "/bystanders/roll_pitch_yawrate_thrust_controller_node", "/bystanders/rotors_joy_interface"]
+           "/bystanders/roll_pitch_yawrate_thrust_controller_node", "/bystanders/rotors_joy_interface",
+           "/bystanders/planner", "/bystanders/mapping", "/bystanders/omav_pose_controller_node",
+           "/bystanders/fixed_wing_joy_interface"]
 
-# The hovering example, plus the project's other input-taking nodes outside its control loop
-# ("bystanders": the estimator, the attitude controller and the joystick mapping), so that their
-# inputs are fuzzed too without steering the MAV.
+# The hovering example with the camera gimbal (its command topics in the simulator), plus the
+# project's other input-taking nodes outside its control loop ("bystanders": the estimator, the
+# attitude controller, the joystick mapping for multirotors and for the fixed wing, the planner, the
+# mapping node and the omav's pose controller), so that their inputs are fuzzed too without steering
+# the MAV.
 FUZZ_LAUNCH = """<launch>
   <include file="$(find rotors_gazebo)/launch/mav_hovering_example.launch">
     <arg name="real_time_factor" value="1"/>
     <arg name="gui" value="false"/>
+    <arg name="enable_gimbal" value="true"/>
   </include>
   <group ns="bystanders">
     <node name="msf" pkg="msf_updates" type="pose_sensor" clear_params="true" output="screen">
@@ -204,6 +209,21 @@ FUZZ_LAUNCH = """<launch>
       <rosparam command="load" file="$(find rotors_gazebo)/resource/firefly.yaml"/>
     </node>
     <node name="rotors_joy_interface" pkg="rotors_joy_interface" type="rotors_joy_interface" output="screen"/>
+    <node name="fixed_wing_joy_interface" pkg="rotors_joy_interface" type="rotors_joy_interface" output="screen">
+      <param name="is_fixed_wing" value="true"/>
+      <remap from="joy" to="fixed_wing_joy"/>
+    </node>
+    <node name="planner" pkg="rotors_planning" type="rotors_planner_node" output="screen">
+      <param name="map_source" value="topic"/>
+      <param name="robot_radius" value="0.3"/>
+    </node>
+    <node name="mapping" pkg="rotors_planning" type="rotors_mapping_node" output="screen">
+      <param name="frame_id" value="world"/>
+    </node>
+    <node name="omav_pose_controller_node" pkg="rotors_control" type="omav_pose_controller_node" output="screen">
+      <rosparam command="load" file="$(find rotors_gazebo)/resource/omav_pose_controller.yaml"/>
+      <rosparam command="load" file="$(find rotors_gazebo)/resource/omav.yaml"/>
+    </node>
   </group>
 </launch>
 """
@@ -239,7 +259,9 @@ def test_fuzzing_every_input_of_the_hovering_example(ros: RosGraph, tmp_path: Pa
                      "/firefly/motor_failure", "/gazebo/spawn_urdf_model", "/gazebo/delete_model",
                      "/firefly/set_motor_failure", "/bystanders/msf_core/imu_state_input",
                      "/bystanders/msf_updates/pose_with_covariance_input", "/bystanders/command/roll_pitch_yawrate_thrust",
-                     "/bystanders/joy", "/bystanders/msf/pose_sensor/initialize_msf_scale"):
+                     "/bystanders/joy", "/bystanders/msf/pose_sensor/initialize_msf_scale",
+                     "/bystanders/fixed_wing_joy", "/bystanders/goal", "/bystanders/octomap_binary",
+                     "/bystanders/cloud_in", "/firefly/gimbal_pitch_cmd"):
         assert expected in names, f"{expected} was not fuzzed: {sorted(names)}"
     for r in rows:
         assert r["crashed"] == [], f"{r['name']}: {r['crashed']} crashed"

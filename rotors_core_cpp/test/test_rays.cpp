@@ -195,7 +195,9 @@ TEST(Rays, RangesToASphereAreTheFirstRootOfTheQuadratic) {
       const double b = u.dot(oc), disc = b * b - (oc.squaredNorm() - R * R);
       const float r = laser->LastScan().ranges_m[j * spec.horizontal_count + i];
       if (disc < 1e-6) {  // beams that graze the sphere are left out
-        if (disc < -1e-3) EXPECT_EQ(r, INFINITY);
+        if (disc < -1e-3) {
+          EXPECT_EQ(r, INFINITY);
+        }
         continue;
       }
       worst = std::max(worst, std::abs(r - (-b - std::sqrt(disc))));

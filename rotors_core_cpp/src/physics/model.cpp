@@ -134,7 +134,7 @@ void Model::SetWorldTwist(const Vector3d& v_W, const Vector3d& omega_W) {
 
 Model::GeomInfo* Model::AddGeom(GeomHandle* geom, Link* link, const std::string& scoped_name,
                                 const SurfaceParams& surface) {
-  auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name, surface, nullptr});
+  auto info = std::make_unique<GeomInfo>(GeomInfo{link, scoped_name, surface, nullptr, Pose3d()});
   dGeomSetData(Ode(geom), info.get());
   geoms_.emplace_back(geom, std::move(info));
   return geoms_.back().second.get();

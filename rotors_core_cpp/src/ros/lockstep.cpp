@@ -30,8 +30,7 @@ bool StartsWithHeader(const std::string& definition) {
   return false;
 }
 
-bool HeaderStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp) {
-  if (!StartsWithHeader(msg.getMessageDefinition())) return false;
+bool SerializedStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp) {
   std::vector<uint8_t> buffer(msg.size());
   if (buffer.size() < 12) return false;
   ros::serialization::OStream out(buffer.data(), buffer.size());
@@ -101,8 +100,12 @@ void Lockstep::Answered(Participant* p, const ros::Time& stamp) {
 }
 
 void Lockstep::OnMessage(Participant* p, const topic_tools::ShapeShifter::ConstPtr& msg) {
+  if (msg->getMD5Sum() != p->answer_md5) {  // the definition is parsed once per answer type
+    p->answer_md5 = msg->getMD5Sum();
+    p->answer_stamped = StartsWithHeader(msg->getMessageDefinition());
+  }
   ros::Time stamp;
-  if (HeaderStamp(*msg, &stamp)) {
+  if (p->answer_stamped && SerializedStamp(*msg, &stamp)) {
     Answered(p, stamp);
     return;
   }

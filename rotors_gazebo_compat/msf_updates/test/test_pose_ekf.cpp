@@ -245,7 +245,9 @@ TEST(PoseEkf, MahalanobisGateRejectsAnOutlierOnlyWhenEnabled) {
     for (int k = 1; k <= 500; ++k) {
       s = truth.Step(k);
       ekf.AddImu(s.imu);
-      if (k % 10 == 0) ASSERT_EQ(ekf.AddPose(truth.Measure(s.x)), PoseStatus::kApplied);
+      if (k % 10 == 0) {
+        ASSERT_EQ(ekf.AddPose(truth.Measure(s.x)), PoseStatus::kApplied);
+      }
     }
     for (int k = 501; k <= 506; ++k) {  // beyond pose_measurement_minimum_dt
       s = truth.Step(k);

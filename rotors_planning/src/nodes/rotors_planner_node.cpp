@@ -8,8 +8,11 @@
 // the Lee controller), planner/goal (PoseStamped, each goal when its leg starts), planner/path.
 // A goal that cannot be flown (inside an obstacle, outside the map, unreachable, no map) is one
 // line of error; the MAV keeps hovering where it is.
+// Threads: odometry, goals and maps arrive on roscpp's global queue (ros::spin in main); planning
+// runs in the timer on its own queue and thread, so a long plan does not hold back the odometry.
 #include <deque>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -17,6 +20,7 @@
 #include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
 #include <octomap_msgs/Octomap.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <rotors_comm/Octomap.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
@@ -87,7 +91,15 @@ class PlannerNode {
     ROS_INFO("[planner] radius %.3f m + margin %.2f m; limits %.2f m/s, %.2f m/s^2; map box %s - %s from %s",
              params.radius_m, params.margin_m, limits_.max_speed_mps, limits_.max_acceleration_mps2,
              Text(map_min_W_).c_str(), Text(map_max_W_).c_str(), map_source_.c_str());
-    timer_ = nh_.createTimer(ros::Duration(0.1), &PlannerNode::OnTimer, this);
+    ros::NodeHandle planning_nh(nh_);
+    planning_nh.setCallbackQueue(&planning_queue_);
+    timer_ = planning_nh.createTimer(ros::Duration(0.1), &PlannerNode::OnTimer, this);
+    planning_spinner_.start();
+  }
+
+  ~PlannerNode() {
+    timer_.stop();
+    planning_spinner_.stop();
   }
 
  private:
@@ -139,7 +151,9 @@ class PlannerNode {
 
   void OnMap(const octomap_msgs::OctomapConstPtr& msg) {
     try {
-      pending_map_ = FromMsg(*msg);
+      std::unique_ptr<octomap::OcTree> map = FromMsg(*msg);
+      std::lock_guard<std::mutex> lock(inputs_mutex_);
+      pending_map_ = std::move(map);
     } catch (const std::exception& e) {
       ROS_ERROR_THROTTLE(5.0, "[planner] map on %s ignored: %s", map_sub_.getTopic().c_str(), e.what());
     }
@@ -147,6 +161,7 @@ class PlannerNode {
 
   void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
     const auto& p = msg->pose.pose.position;
+    std::lock_guard<std::mutex> lock(inputs_mutex_);
     p_W_ = Eigen::Vector3d(p.x, p.y, p.z);
     yaw_rad_ = Yaw(msg->pose.pose.orientation);
     if (!start_time_) start_time_ = ros::Time::now() + ros::Duration(start_delay_s_);
@@ -156,42 +171,56 @@ class PlannerNode {
     Waypoint w;
     w.p_W = Eigen::Vector3d(msg->pose.position.x, msg->pose.position.y, msg->pose.position.z);
     w.yaw_rad = Yaw(msg->pose.orientation);
+    std::lock_guard<std::mutex> lock(inputs_mutex_);
     goals_.assign(1, w);
     next_goal_time_ = ros::Time(0);
   }
 
+  /// The planning thread: takes the inputs under the lock, then maps and plans without it.
   void OnTimer(const ros::TimerEvent&) {
     const ros::Time now = ros::Time::now();
-    if (pending_map_ && (now - map_time_).toSec() >= 0.5) {
-      SetMap(*pending_map_);
-      pending_map_.reset();
-      map_time_ = now;
+    std::unique_ptr<octomap::OcTree> map;
+    std::optional<Waypoint> goal;
+    {
+      std::lock_guard<std::mutex> lock(inputs_mutex_);
+      if (pending_map_ && (now - map_time_).toSec() >= 0.5) {
+        map = std::move(pending_map_);
+        map_time_ = now;
+      }
+      const bool waiting_for_first_map = !grid_ && !map && map_source_ == "topic";
+      if (start_time_ && now >= *start_time_ && !goals_.empty() && now >= next_goal_time_ && !waiting_for_first_map) {
+        goal = goals_.front();
+        goals_.pop_front();
+      }
+      here_ = {p_W_, yaw_rad_};
+    }
+    if (map) {
+      SetMap(*map);
       CheckAhead(now);
     }
-    if (!start_time_ || now < *start_time_ || goals_.empty() || now < next_goal_time_) return;
-    if (!grid_ && map_source_ == "topic") return;  // the first map has not come yet
-    const Waypoint goal = goals_.front();
-    goals_.pop_front();
-    StartLeg(goal, now);
+    if (goal) StartLeg(*goal, now);
   }
 
   /// Plans from where the MAV is to the goal and sends the trajectory; on failure it stays put.
   bool StartLeg(const Waypoint& goal, const ros::Time& now) {
     ++legs_;
-    next_goal_time_ = now + ros::Duration(goal.wait_time_s);
+    SetNextGoalTime(now + ros::Duration(goal.wait_time_s));
     if (!grid_) {
       ROS_ERROR("[planner] goal %s refused: no map (%s); hovering", Text(goal.p_W).c_str(),
                 no_map_reason_.empty() ? "none received yet" : no_map_reason_.c_str());
       return false;
     }
-    const PlannedPath path = planner_->Plan(*grid_, p_W_, goal.p_W);
+    const PlannedPath path = planner_->Plan(*grid_, here_.p_W, goal.p_W);
     if (!path.ok) {
       ROS_ERROR("[planner] goal %s refused: %s; hovering", Text(goal.p_W).c_str(), path.reason.c_str());
       return false;
     }
-    leg_ = Leg{goal, RestToRestTrajectory(path.p_W, yaw_rad_, goal.yaw_rad, limits_), now};
+    leg_ = Leg{goal, RestToRestTrajectory(path.p_W, here_.yaw_rad, goal.yaw_rad, limits_), now};
     const double duration_s = leg_->trajectory.Duration_s();
-    if (now + ros::Duration(duration_s) > next_goal_time_) next_goal_time_ = now + ros::Duration(duration_s);
+    {
+      std::lock_guard<std::mutex> lock(inputs_mutex_);
+      if (now + ros::Duration(duration_s) > next_goal_time_) next_goal_time_ = now + ros::Duration(duration_s);
+    }
     ROS_INFO("[planner] leg %d to %s: %zu vertices (RRT-Connect %zu) in %.3f s, %.1f s of flight, %d replans so far",
              legs_, Text(goal.p_W).c_str(), path.p_W.size(), path.raw_vertices, path.planning_time_s, duration_s,
              replans_);
@@ -276,11 +305,17 @@ class PlannerNode {
     }
   }
 
+  void SetNextGoalTime(const ros::Time& t) {
+    std::lock_guard<std::mutex> lock(inputs_mutex_);
+    next_goal_time_ = t;
+  }
+
   /// Holds the position the MAV is at.
   void Hover(const ros::Time& now) {
     PlannedPath here;
-    here.p_W = {p_W_, p_W_};
-    leg_ = Leg{Waypoint{0.0, p_W_, yaw_rad_}, RestToRestTrajectory(here.p_W, yaw_rad_, yaw_rad_, limits_), now};
+    here.p_W = {here_.p_W, here_.p_W};
+    leg_ = Leg{Waypoint{0.0, here_.p_W, here_.yaw_rad},
+               RestToRestTrajectory(here.p_W, here_.yaw_rad, here_.yaw_rad, limits_), now};
     Send(here, now);
   }
 
@@ -289,6 +324,10 @@ class PlannerNode {
     RestToRestTrajectory trajectory;
     ros::Time start;
   };
+  struct Pose {
+    Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
+    double yaw_rad = 0.0;
+  };
 
   ros::NodeHandle nh_;
   std::unique_ptr<PathPlanner> planner_;
@@ -296,7 +335,13 @@ class PlannerNode {
   double sample_dt_s_ = 0.05, start_delay_s_ = 5.0;
   std::string frame_id_, map_source_, no_map_reason_;
   Eigen::Vector3d map_min_W_, map_max_W_;
+  // the planning thread's own
   std::unique_ptr<OccupancyGrid> grid_;
+  std::optional<Leg> leg_;
+  Pose here_;  ///< where the MAV was when this timer call began
+  int replans_ = 0, legs_ = 0;
+  // shared with the callbacks of the global queue
+  std::mutex inputs_mutex_;
   std::unique_ptr<octomap::OcTree> pending_map_;
   ros::Time map_time_;
   Eigen::Vector3d p_W_ = Eigen::Vector3d::Zero();
@@ -304,10 +349,10 @@ class PlannerNode {
   std::optional<ros::Time> start_time_;
   std::deque<Waypoint> goals_;
   ros::Time next_goal_time_;
-  std::optional<Leg> leg_;
-  int replans_ = 0, legs_ = 0;
   ros::Publisher trajectory_pub_, goal_pub_, path_pub_;
   ros::Subscriber odometry_sub_, goal_sub_, map_sub_;
+  ros::CallbackQueue planning_queue_;
+  ros::AsyncSpinner planning_spinner_{1, &planning_queue_};
   ros::Timer timer_;
 };
 

@@ -164,8 +164,14 @@ std::string JoinTopic(const std::string& prefix, const std::string& topic) {
 
 bool RateLimiter::Due(double t_s) {
   if (rate_hz_ <= 0.0) return true;
+  const double period = 1.0 / rate_hz_;
   // time before the last one: the world was reset, and the first update after it is due as after load
-  if (last_s_ >= 0.0 && t_s >= last_s_ && t_s - last_s_ < 1.0 / rate_hz_ - 1e-6) return false;
+  const bool fresh = last_s_ < 0.0 || t_s < last_s_;
+  if (!fresh && t_s < next_due_s_ - 1e-9) return false;
+  // the next is due one period after this one was due (as the sensors' own rate), so that a sensor
+  // at this same rate whose frames come 3, 3, 4, ... steps apart is never thinned, and the mean
+  // rate is rate_hz when the period is not a whole number of steps
+  next_due_s_ = (!fresh && t_s < next_due_s_ + period) ? next_due_s_ + period : t_s + period;
   last_s_ = t_s;
   return true;
 }

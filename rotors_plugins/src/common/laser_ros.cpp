@@ -126,7 +126,7 @@ void AddRangeNoise(double sigma_m, std::mt19937_64* rng, RayScan* scan) {
     if (std::isfinite(r)) r = static_cast<float>(r + noise(*rng));
 }
 
-void LaserPlugin::Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) {
+void LaserPlugin::Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr /*sdf*/) {
   sensor_ = std::dynamic_pointer_cast<rotors_sim::sensors::RaySensor>(sensor);
   if (!sensor_)
     throw SimError(GetFilename() + " belongs in a <sensor type=\"ray\"> (or gpu_ray), not type '" + sensor->Type() +

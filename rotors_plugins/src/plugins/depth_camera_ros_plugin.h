@@ -16,7 +16,7 @@ namespace rotors_gazebo_plugins {
 
 class DepthCameraRosPlugin : public rotors_sim::SensorPlugin {
  public:
-  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr /*sdf*/) override {
     sensor_ = std::dynamic_pointer_cast<rotors_sim::sensors::CameraSensor>(sensor);
     if (!sensor_ || !sensor_->IsDepth())
       throw rotors_sim::SimError(GetFilename() + " belongs in a <sensor type=\"depth\">, not type '" + sensor->Type() +

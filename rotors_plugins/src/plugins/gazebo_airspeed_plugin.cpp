@@ -6,29 +6,19 @@
 #include <Eigen/Geometry>
 #include <geometry_msgs/Vector3Stamped.h>
 
-#include "rotors_core/ros/publish_counts.h"
-#include "rotors_core/event.h"
-#include "rotors_core/physics/link.h"
-#include "rotors_core/physics/model.h"
-#include "rotors_core/physics/world.h"
-#include "rotors_core/plugin.h"
-#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_gazebo_plugins/models/airspeed_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/link_sensor_plugin.h"
 #include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/camera_ros.h"
-#include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace rotors_gazebo_plugins {
 
-class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
+class GazeboAirspeedPlugin : public LinkSensorPlugin<geometry_msgs::Vector3Stamped> {
  public:
-  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
-    const std::string ns = ReadRobotNamespace(Params());
-    std::string link_name, topic = "air_speed";
-    RequireParam(Params(), "linkName", &link_name);
-    ReadParam(Params(), "airspeedTopic", &topic);
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
+    LoadLink(model, "airspeedTopic", "air_speed");
     AirspeedParams p;
     ReadParam(Params(), "noiseStdDev", &p.noise_stddev_m_s);
     ReadVector(Params(), "pitotAxis", &p.pitot_axis_B);
@@ -37,21 +27,15 @@ class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
     if (!(rate_hz >= 0.0)) throw rotors_sim::SimError("updateRate must be >= 0 Hz");
     ThrowIfInvalid(p.Validate());
     model_.Emplace(p, ReadSeed(Params()));
-    link_ = RequireLink(model, link_name);
-    world_ = model->GetWorldRaw();
-    bus_ = VehicleBus::For(*model->GetWorldRaw(), ns);
+    bus_ = VehicleBus::For(*model->GetWorldRaw(), ns_);
     limiter_ = RateLimiter(rate_hz);
-    msg_.header.frame_id = link_name;
-    node_ = MakeNode(ns);
-    pub_ = Advertise<geometry_msgs::Vector3Stamped>(node_, ns, topic, *model->GetWorldRaw(), 10);
-    if (!pub_) return;  // neither ROS nor in-process taps: nobody to publish to
-    connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
+    StartPublishing();
   }
 
   void Reset() override { model_.Reset(); }
 
  private:
-  void OnUpdate() {
+  void OnUpdate() override {
     const double t = world_->SimTime().Double();
     if (!limiter_.Due(t)) return;
     const auto X_WB = link_->WorldPose();
@@ -64,14 +48,8 @@ class GazeboAirspeedPlugin : public rotors_sim::ModelPlugin {
   }
 
   SeededModel<AirspeedModel> model_;
-  rotors_sim::physics::LinkPtr link_;
-  rotors_sim::physics::World* world_ = nullptr;
   std::shared_ptr<VehicleBus> bus_;
   RateLimiter limiter_{0.0};
-  geometry_msgs::Vector3Stamped msg_;
-  std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher pub_;
-  rotors_sim::event::ConnectionPtr connection_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -42,7 +42,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
  public:
   ~GazeboBagPlugin() override { Close(); }
 
-  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     ns_ = ReadRobotNamespace(Params());
     std::string link_name = "base_link", service = "record_rosbag";
     bool wait_to_record = false;

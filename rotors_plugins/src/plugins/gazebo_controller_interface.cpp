@@ -25,7 +25,7 @@ namespace rotors_gazebo_plugins {
 
 class GazeboControllerInterface : public rotors_sim::ModelPlugin {
  public:
-  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     namespace_ = ReadRobotNamespace(Params());
     std::string command_topic = "command/motor_speed", direct_topic = "gazebo/command/motor_speed";
     ReadParam(Params(), "commandMotorSpeedSubTopic", &command_topic);

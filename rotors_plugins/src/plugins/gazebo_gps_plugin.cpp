@@ -22,7 +22,7 @@ namespace rotors_gazebo_plugins {
 
 class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
  public:
-  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr /*sdf*/) override {
     if (sensor->Type() != "gps" && sensor->Type() != "navsat")
       throw rotors_sim::SimError("librotors_gazebo_gps_plugin.so belongs in a <sensor type=\"gps\">, not type '" +
                                  sensor->Type() + "'");

@@ -25,7 +25,7 @@ namespace rotors_gazebo_plugins {
 
 class GazeboImuPlugin : public rotors_sim::ModelPlugin {
  public:
-  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     const std::string ns = ReadRobotNamespace(Params());
     std::string link_name, topic = "imu", bias_topic;
     RequireParam(Params(), "linkName", &link_name);

@@ -5,6 +5,12 @@
 // With <motorType>position</motorType> (the omav's tilt units) it is a servo instead: its command
 // entry is a joint angle [rad], TiltServoModel's PID (<joint_control_pid>) turns the error into a
 // joint torque, and it publishes the joint angle [rad] on <motorPositionPubTopic>.
+// With <motorType>force</motorType> (RotorS') its command entry is the joint effort [N m or N] itself,
+// limited to +-<maxForce> when given. <motorForcePubTopic> (any type) publishes the effort applied to
+// the joint each step: 0 for a rotor, whose joint is driven by speed and whose thrust acts on its link.
+#include <algorithm>
+#include <limits>
+
 #include <std_msgs/Float32.h>
 
 #include "rotors_core/ros/publish_counts.h"
@@ -33,7 +39,7 @@ Vector3d FromEigen(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 class GazeboMotorModel : public rotors_sim::ModelPlugin {
  public:
-  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     namespace_ = ReadRobotNamespace(Params());
     // RotorS' ROS topics between the plugins: here the command and the wind travel in memory (VehicleBus)
     Params().Accept("commandSubTopic", "the motor command comes over the vehicle bus");
@@ -52,17 +58,25 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
       LoadRotor(model);
     } else if (motor_type == "position") {
       LoadServo(model);
+    } else if (motor_type == "force") {
+      LoadEffort(model);
     } else {
-      throw rotors_sim::SimError("motorType = '" + motor_type + "' is not known; use 'velocity' (a rotor) or " +
-                                 "'position' (a servo such as the omav's tilt units)");
+      throw rotors_sim::SimError("motorType = '" + motor_type + "' is not known; use 'velocity' (a rotor), " +
+                                 "'position' (a servo such as the omav's tilt units) or 'force' (a joint effort)");
     }
+    std::string force_topic;
+    if (ReadParam(Params(), "motorForcePubTopic", &force_topic))
+      force_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, force_topic, *model->GetWorldRaw(), 1);
     connection_ =
         rotors_sim::event::Events::ConnectWorldUpdateBegin([this](const rotors_sim::common::UpdateInfo& info) {
           if (rotor_) {
             OnRotorUpdate(info.simTime.Double());
-          } else {
+          } else if (servo_) {
             OnServoUpdate();
+          } else {
+            OnEffortUpdate();
           }
+          PublishEffort();
         });
   }
 
@@ -122,12 +136,47 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, position_topic, *model->GetWorldRaw(), 1);
   }
 
+  void LoadEffort(const rotors_sim::physics::ModelPtr& model) {
+    if (joint_->GetType() != rotors_sim::physics::Joint::Type::kRevolute &&
+        joint_->GetType() != rotors_sim::physics::Joint::Type::kPrismatic)
+      throw rotors_sim::SimError("motorType 'force' needs a revolute, continuous or prismatic solver joint; '" +
+                                 joint_->GetName() + "' is not one (a <kinematic_joint> cannot take an effort)");
+    ReadParam(Params(), "maxForce", &max_force_);
+    if (!(max_force_ > 0.0)) throw rotors_sim::SimError("maxForce must be > 0 (the effort limit, N m or N)");
+    std::string speed_topic = "motor_speed/" + std::to_string(motor_number_);
+    ReadParam(Params(), "motorSpeedPubTopic", &speed_topic);
+    bus_->RegisterServo(motor_number_);
+    speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 1);
+  }
+
+  void OnEffortUpdate() {
+    const auto& cmd = bus_->motor_command_rad_s;
+    const double command = motor_number_ < static_cast<int>(cmd.size()) ? cmd[motor_number_] : 0.0;
+    applied_effort_ = std::clamp(command, -max_force_, max_force_);
+    joint_->SetForce(0, applied_effort_);
+    const double rate = joint_->GetVelocity(0);
+    bus_->rotor_speed_rad_s[motor_number_] = rate;
+    if (speed_pub_ && speed_pub_.getNumSubscribers() > 0) {
+      std_msgs::Float32 msg;
+      msg.data = static_cast<float>(rate);
+      speed_pub_.publish(msg);
+    }
+  }
+
+  void PublishEffort() {
+    if (!force_pub_ || force_pub_.getNumSubscribers() == 0) return;
+    std_msgs::Float32 msg;
+    msg.data = static_cast<float>(applied_effort_);
+    force_pub_.publish(msg);
+  }
+
   void OnServoUpdate() {
     const auto& cmd = bus_->motor_command_rad_s;
     // before the first command the servo holds its zero angle (as RotorS' zero-filled command)
     const double theta_ref = motor_number_ < static_cast<int>(cmd.size()) ? cmd[motor_number_] : 0.0;
     const double theta = joint_->Position(0);
-    joint_->SetForce(0, servo_->Torque(theta, theta_ref, dt_s_));
+    applied_effort_ = servo_->Torque(theta, theta_ref, dt_s_);
+    joint_->SetForce(0, applied_effort_);
     bus_->rotor_speed_rad_s[motor_number_] = theta;
     if (speed_pub_ && speed_pub_.getNumSubscribers() > 0) {
       std_msgs::Float32 msg;
@@ -167,7 +216,10 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
   double slowdown_ = 10.0;
   double dt_s_ = 0.001;
   std::unique_ptr<RotorModel> rotor_;      ///< a rotor (motorType velocity), or
-  std::unique_ptr<TiltServoModel> servo_;  ///< a servo (motorType position)
+  std::unique_ptr<TiltServoModel> servo_;  ///< a servo (motorType position), or neither: an effort motor
+  double max_force_ = std::numeric_limits<double>::infinity();
+  double applied_effort_ = 0.0;  ///< the joint effort of the last step [N m or N]
+  rotors_sim::ListenedPublisher force_pub_;
   rotors_sim::physics::JointPtr joint_;
   rotors_sim::physics::LinkPtr link_, parent_link_;
   std::shared_ptr<VehicleBus> bus_;  ///< shared by the vehicle's plugins

@@ -26,7 +26,7 @@ namespace rotors_gazebo_plugins {
 
 class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
  public:
-  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     namespace_ = ReadRobotNamespace(Params());
     // RotorS scales the joint speeds it publishes by this; the bus holds the real speeds already
     Params().Accept("rotorVelocitySlowdownSim", "the published speeds are the real ones");

@@ -1,6 +1,7 @@
 // librotors_gazebo_noisydepth_plugin.so (RotorS): a depth camera with axial noise,
 // <depthNoiseModelName> Kinect (default), D435 or PMD (models/depth_noise_model.h); for D435 also
-// <horizontal_fov>, <baseline>, <D435NoiseSubpixelErr>, <D435MaxStdev>. Its defaults: image on
+// <horizontal_fov>, <baseline>, <D435NoiseSubpixelErr>, <D435MaxStdev>; <depthNoiseMinDist> and
+// <depthNoiseMaxDist> [m] bound the valid depths (NaN outside). Its defaults: image on
 // ir/image_raw + ir/camera_info, cloud on points, depth on depth/image_raw, cutoff 0.4-5 m.
 // <randomEngineSeed> makes the noise repeatable.
 #include "depth_camera_ros_plugin.h"
@@ -23,8 +24,12 @@ class GazeboNoisyDepth : public DepthCameraRosPlugin {
     std::string model = "Kinect";
     ReadParam(Params(), "depthNoiseModelName", &model);
     noise.model = DepthNoiseParams::ParseModel(model);
+    // RotorS: depths outside [depthNoiseMinDist, depthNoiseMaxDist] are invalid (NaN); by default
+    // the point cloud's cutoff
     noise.min_depth_m = p.cloud_cutoff_min_m;
     noise.max_depth_m = p.cloud_cutoff_max_m;
+    ReadParam(Params(), "depthNoiseMinDist", &noise.min_depth_m);
+    ReadParam(Params(), "depthNoiseMaxDist", &noise.max_depth_m);
     noise.width_px = sensor_->Camera(0).intrinsics.width_px;
     noise.horizontal_fov_rad = sensor_->Camera(0).intrinsics.horizontal_fov_rad;
     ReadParam(Params(), "horizontal_fov", &noise.horizontal_fov_rad);

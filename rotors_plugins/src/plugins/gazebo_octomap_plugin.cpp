@@ -22,7 +22,7 @@ namespace rotors_gazebo_plugins {
 
 class GazeboOctomapPlugin : public rotors_sim::WorldPlugin {
  public:
-  void Load(rotors_sim::physics::WorldPtr world, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::physics::WorldPtr world, sdf::ElementPtr /*sdf*/) override {
     world_ = world;
     std::string topic = "world/octomap", service = "world/get_octomap";
     ReadParam(Params(), "octomapPubTopic", &topic);

@@ -40,7 +40,7 @@ std::string ResolvePackageUrl(const std::string& url) {
 
 class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
  public:
-  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     const std::string ns = ReadRobotNamespace(Params());
     std::string link_name = "odometry_sensor_link", parent_frame = "world";
     std::string pose_topic = "pose", pose_cov_topic = "pose_with_covariance", position_topic = "position",
@@ -76,6 +76,8 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     double scale = 1.0;
     ReadParam(Params(), "covarianceImageScale", &scale);
     if (ReadParam(Params(), "covarianceImage", &image) && !image.empty()) {
+      // a bare file name is one of rotors_gazebo/resource's maps, as RotorS reads it
+      if (image.find('/') == std::string::npos) image = "package://rotors_gazebo/resource/" + image;
       try {
         outage_map_ = std::make_unique<OutageMap>(ResolvePackageUrl(image), scale);
       } catch (const std::runtime_error& e) {

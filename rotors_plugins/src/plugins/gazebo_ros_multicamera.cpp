@@ -12,7 +12,7 @@ namespace rotors_gazebo_plugins {
 
 class GazeboRosMultiCamera : public rotors_sim::SensorPlugin {
  public:
-  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::sensors::SensorPtr sensor, sdf::ElementPtr /*sdf*/) override {
     sensor_ = std::dynamic_pointer_cast<rotors_sim::sensors::CameraSensor>(sensor);
     if (!sensor_ || sensor_->Type() != "multicamera")
       throw rotors_sim::SimError("libgazebo_ros_multicamera.so belongs in a <sensor type=\"multicamera\">, not type '" +

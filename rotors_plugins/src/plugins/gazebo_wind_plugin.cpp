@@ -33,7 +33,7 @@ namespace rotors_gazebo_plugins {
 
 class GazeboWindPlugin : public rotors_sim::ModelPlugin {
  public:
-  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr sdf) override {
+  void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     namespace_ = ReadRobotNamespace(Params());
     std::string link_name = "base_link", force_topic = "external_force", speed_topic = "wind_speed";
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();

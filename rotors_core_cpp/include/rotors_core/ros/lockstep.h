@@ -101,6 +101,8 @@ class Lockstep {
     mutable PublicationCache input_pub;     ///< the simulator's publication of its input
     mutable PublicationCache answer_pub;    ///< its answer's publication in this process (a hosted nodelet)
     bool local = false;                     ///< its answer is published in this process (a hosted nodelet)
+    std::string answer_md5;                 ///< the answer type last seen, and whether it starts with a
+    bool answer_stamped = false;            ///< Header (read once per type, not per message)
   };
   /// Moves p along the transition table, logging what a user must know (went away, back, ...).
   void Apply(Participant* p, ParticipantEvent event, double sim_time_s);
@@ -129,8 +131,10 @@ class Lockstep {
   std::string first_unwaited_reason_;
 };
 
-/// Reads the header stamp of a serialized message that starts with std_msgs/Header
-/// (uint32 seq, uint32 sec, uint32 nsec); false if its type has no Header first, or it is too short.
-bool HeaderStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp);
+/// True when the first field of a message definition is a std_msgs/Header.
+bool StartsWithHeader(const std::string& definition);
+/// Reads bytes 4..12 of a serialized message (uint32 seq, uint32 sec, uint32 nsec of a leading
+/// std_msgs/Header); false if it is too short. The caller checks the type (StartsWithHeader).
+bool SerializedStamp(const topic_tools::ShapeShifter& msg, ros::Time* stamp);
 
 }  // namespace rotors_sim

@@ -85,7 +85,7 @@ class RateLimiter {
   bool Due(double t_s);
 
  private:
-  double rate_hz_, last_s_ = -1.0;
+  double rate_hz_, last_s_ = -1.0, next_due_s_ = 0.0;
 };
 
 /// A topic under a prefix: "image_raw" under "vi_sensor/left" is "vi_sensor/left/image_raw".
