@@ -66,6 +66,7 @@ def client(ros: RosGraph, scenario: str, timeout: float = 240) -> dict:
     return ros.rospy(NODE_PROCESS_HELPERS + CLIENT + textwrap.dedent(scenario), timeout=timeout)
 
 
+@pytest.mark.long  # the long tier (about 40 s): make test under 25 min
 def test_controller_killed_without_lockstep_recovers_if_back_soon_else_the_fall_is_reported(ros: RosGraph,
                                                                                             tmp_path: Path):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "real_time_factor:=1", "enable_logging:=true",

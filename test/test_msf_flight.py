@@ -35,6 +35,7 @@ def fly_msf(ros: RosGraph, until_s: float, *args: str, during=None):
     return bags[-1], topics, info, Path(proc.log_path).read_text(), extra
 
 
+@pytest.mark.long  # the long tier (about 40 s): make test under 25 min
 def test_firefly_hovers_on_the_estimate_and_the_filter_is_consistent(ros: RosGraph, tmp_path: Path):
     bag, topics, info, log, _ = fly_msf(ros, 46.0)
     # MSF's outputs (its inputs are remapped to imu and odometry_sensor1/pose_with_covariance)
