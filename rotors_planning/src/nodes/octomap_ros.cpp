@@ -1,6 +1,7 @@
 #include "octomap_ros.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -17,6 +18,10 @@ octomap_msgs::Octomap ToMsg(const octomap::OcTree& tree, const std::string& fram
 }
 
 std::unique_ptr<octomap::OcTree> FromMsg(const octomap_msgs::Octomap& msg) {
+  // checked before OctoMap's factory, which prints a line of its own for every unknown type
+  if (msg.id != "OcTree") throw std::runtime_error("the map message holds a '" + msg.id + "', not an OcTree");
+  if (!(std::isfinite(msg.resolution) && msg.resolution > 0.0))
+    throw std::runtime_error("the map message's resolution " + std::to_string(msg.resolution) + " is not > 0");
   std::unique_ptr<octomap::AbstractOcTree> tree(octomap_msgs::msgToMap(msg));
   if (!tree) throw std::runtime_error("the map message (id '" + msg.id + "') does not read as an OctoMap");
   auto* octree = dynamic_cast<octomap::OcTree*>(tree.get());

@@ -76,6 +76,13 @@ class MappingNode {
   }
 
   void OnCloud(const sensor_msgs::PointCloud2ConstPtr& cloud) {
+    // tf2 logs every lookup of an empty or '/'-prefixed frame id itself: refuse those here, once in 5 s
+    const std::string& frame = cloud->header.frame_id;
+    if (frame.empty() || frame.front() == '/') {
+      ROS_WARN_THROTTLE(5.0, "[mapping] cloud on %s dropped: header.frame_id '%s' is %s", cloud_sub_.getTopic().c_str(),
+                        frame.c_str(), frame.empty() ? "empty" : "not a tf2 frame id (it starts with '/')");
+      return;
+    }
     geometry_msgs::TransformStamped X_WS;
     try {
       X_WS = tf_buffer_.lookupTransform(frame_id_, cloud->header.frame_id, cloud->header.stamp, ros::Duration(0.5));
@@ -151,7 +158,8 @@ class MappingNode {
 
   bool Save() {
     if (save_path_.empty() || !builder_->Tree().writeBinaryConst(save_path_)) {
-      ROS_ERROR("[mapping] cannot write the map to '%s'; set ~save_path to a writable .bt path", save_path_.c_str());
+      ROS_ERROR_THROTTLE(5.0, "[mapping] cannot write the map to '%s'; set ~save_path to a writable .bt path",
+                         save_path_.c_str());  // the service's response says so on every call
       return false;
     }
     ROS_INFO("[mapping] %zu leaves from %zu clouds written to %s", builder_->Tree().getNumLeafNodes(), clouds_,
