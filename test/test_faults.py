@@ -213,6 +213,7 @@ def test_pause_for_10_s_and_resume(ros: RosGraph):
     assert r["worst_after_resume"] < 0.01
 
 
+@pytest.mark.long  # the long tier (about 20-25 s): make test under 25 min
 def test_a_controller_stopped_as_in_a_debugger_never_freezes_the_simulator(ros: RosGraph):
     # lockstep: SIGSTOP the controller (a debugger's breakpoint). Its node still accepts connections
     # but answers nothing; the simulator pings it from a worker thread with a deadline, so services

@@ -2,6 +2,7 @@
 messages in memory) fly the flight they fly as separate nodes, bit for bit in lockstep; and the
 rotors as kinematic joints on the body (the default) fly the flight that hinged rotor bodies fly,
 within 0.1 mm."""
+import pytest
 import numpy as np
 from rosbags.rosbag1 import Reader
 from rosbags.typesys import Stores, get_typestore
@@ -32,6 +33,7 @@ def positions(bag, topic: str = "firefly/ground_truth/pose") -> np.ndarray:
     return np.array(sorted(out))
 
 
+@pytest.mark.long  # the long tier (about 20-25 s): make test under 25 min
 def test_lumped_and_hinged_rotors_fly_the_same_hover(ros: RosGraph):
     lumped = positions(fly_once(ros, "lumped"))
     hinged = positions(fly_once(ros, "hinged", "lump_rotors:=false"))

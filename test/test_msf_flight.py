@@ -224,6 +224,7 @@ def test_estimator_refuses_what_it_does_not_do_and_names_typos(ros: RosGraph):
     assert "non-finite values; dropped" in text, text
 
 
+@pytest.mark.long  # the long tier (about 20-25 s): make test under 25 min
 def test_any_vehicle_hovers_on_the_estimate(ros: RosGraph):
     # the generic pose sensor carries the same mount on every vehicle, so msf_simulator.yaml fits
     bag, _, _, _, _ = fly_msf(ros, 30.0, "mav_name:=hummingbird")

@@ -115,7 +115,8 @@ def test_the_warehouse_loads_with_rotors_models_nested_models_and_the_stand_ins(
 
 # the warehouse flight (about 90 s here) in the long tier, which keeps make test under 25 min; the
 # power plant flight stays in the quick tier
-@pytest.mark.parametrize("world_name", [pytest.param("warehouse", marks=pytest.mark.long), "powerplant"])
+@pytest.mark.parametrize("world_name", [pytest.param("warehouse", marks=pytest.mark.long),
+                                        pytest.param("powerplant", marks=pytest.mark.long)])
 def test_a_vi_sensor_flight_gives_corners_tracks_and_stereo_depth(world_name):
     start, corners, facing = {"warehouse": (WAREHOUSE_START, WAREHOUSE_LOOP, WAREHOUSE_FACING),
                               "powerplant": (POWERPLANT_START, POWERPLANT_PATH, POWERPLANT_FACING)}[world_name]

@@ -103,6 +103,7 @@ def send_goal(ros: RosGraph, x: float, y: float, z: float) -> None:
     """)
 
 
+@pytest.mark.long  # the long tier (about 20-25 s): make test under 25 min
 def test_goals_that_cannot_be_flown_are_one_line_each_and_the_mav_keeps_hovering(ros: RosGraph):
     # the box ends 3.3 m high and 3.3 m to the sides: the wall (3 m high, y -3..3) plus the
     # clearance (0.57 m; over its top edge sqrt(0.3^2 + 0.3^2) = 0.42 m) closes it, so nothing behind

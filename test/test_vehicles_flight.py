@@ -29,7 +29,8 @@ def ground_truth(ros: RosGraph, ns: str) -> dict:
     """)
 
 
-@pytest.mark.parametrize("mav", ["hummingbird", "pelican", "iris", "neo11", "asymmetric_quadrotor", "ardrone", "neo9"])
+@pytest.mark.parametrize("mav", ["hummingbird", "pelican", "iris", pytest.param("neo11", marks=pytest.mark.long),
+                                 "asymmetric_quadrotor", "ardrone", pytest.param("neo9", marks=pytest.mark.long)])
 def test_vehicle_hovers_at_the_offset_its_parameters_predict(ros: RosGraph, mav: str):
     m_ctrl = yaml.safe_load((package_path("rotors_gazebo") / "resource" / f"{mav}.yaml").read_text())["mass"]
     m_sim = simulated_mass(ros, mav)
