@@ -9,7 +9,8 @@ build: setup
 	@bash scripts/build.sh
 
 # make test: the quick tier (every test but those marked long, under 25 min here from a fresh clone,
-# setup and build included); make test-long: only the long tier (about 19 min); make test-all: both
+# setup and build included); make test-long: only the long tier (19 min before eleven more tests
+# moved there); make test-all: both
 # in one run. .ci/run runs test and test-long.
 test: build
 	@ROTORS_TEST_TIER=quick bash scripts/run_tests.sh
