@@ -8,7 +8,7 @@ setup:
 build: setup
 	@bash scripts/build.sh
 
-# make test: the quick tier (every test but those marked long, under 25 min here from a fresh clone,
+# make test: the quick tier (every test but those marked long; target: under 25 min from a fresh clone,
 # setup and build included); make test-long: only the long tier (19 min before eleven more tests
 # moved there); make test-all: both
 # in one run. .ci/run runs test and test-long.
