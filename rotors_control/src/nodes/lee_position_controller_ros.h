@@ -22,6 +22,7 @@
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
 #include "rotors_control/lee_controller.h"
+#include "rotors_control/rotors_api_conversions.h"
 #include "rotors_control/parameter_report_ros.h"
 #include "ros_conversions.h"
 
@@ -109,12 +110,7 @@ class LeePositionControllerRos {
       }
       mav_msgs::EigenTrajectoryPoint eigen_point;
       mav_msgs::eigenTrajectoryPointFromMsg(pt, &eigen_point);
-      TrajectoryPoint p;
-      p.position_W = eigen_point.position_W;
-      p.velocity_W = eigen_point.velocity_W;
-      p.acceleration_W = eigen_point.acceleration_W;
-      p.yaw_rad = eigen_point.getYaw();
-      p.yaw_rate_rad_s = eigen_point.getYawRate();
+      const TrajectoryPoint p = TrajectoryPointFromEigen(eigen_point);
       if (!p.IsFinite()) {
         ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: point %zu has NaN or inf", i);
         return;

@@ -36,13 +36,7 @@ void LeePositionController::SetTrajectoryPoint(const mav_msgs::EigenTrajectoryPo
   command_trajectory_ = command_trajectory;
   controller_active_ = true;
   if (!law_) return;  // applied by InitializeParameters()
-  TrajectoryPoint point;
-  point.position_W = command_trajectory.position_W;
-  point.velocity_W = command_trajectory.velocity_W;
-  point.acceleration_W = command_trajectory.acceleration_W;
-  point.yaw_rad = command_trajectory.getYaw();
-  point.yaw_rate_rad_s = command_trajectory.getYawRate();
-  law_->SetTrajectoryPoint(point);
+  law_->SetTrajectoryPoint(TrajectoryPointFromEigen(command_trajectory));
 }
 
 }  // namespace rotors_control
