@@ -6,6 +6,7 @@
 
 #include <xmlrpcpp/XmlRpcValue.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -95,7 +96,8 @@ void Lockstep::Resubscribe() {
 }
 
 void Lockstep::Answered(Participant* p, const ros::Time& stamp) {
-  if (stamp > p->last_stamp) p->last_stamp = stamp;
+  // an answer stamped after the latest step answers a step from before a rewind
+  if (stamp > p->last_stamp && stamp <= latest_step_) p->last_stamp = stamp;
   Apply(p, ParticipantEvent::kAnswered, stamp.toSec());
 }
 
@@ -245,7 +247,13 @@ void Lockstep::CountUnwaited(const ros::Time& stamp) {
   }
 }
 
+void Lockstep::Rewind(const ros::Time& now) {
+  latest_step_ = now;
+  for (auto& p : participants_) p.last_stamp = std::min(p.last_stamp, now);
+}
+
 bool Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop) {
+  latest_step_ = stamp;
   for (auto& p : participants_) {
     FlushInput(&p);
     p.input_published = p.topics.input_topic.empty() || *p.input_count != p.input_count_before;

@@ -148,6 +148,7 @@ bool SimServer::OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Respons
 
 bool SimServer::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_->ResetSimulation();
+  lockstep_->Rewind(ros::Time().fromNSec(world_->SimTime().Nanoseconds()));
   pacer_.Restart(world_->SimTime());
   PublishClock(true);
   state_publisher_->Update(*world_, true);

@@ -82,6 +82,9 @@ class Lockstep {
   /// for, answered `stamp`. Returns false when a participant went away meanwhile (the caller
   /// pauses; HoldReason says why). Gives up when `stop` returns true (the simulator is shutting down).
   bool WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop);
+  /// The sim time went back to `now` (reset_simulation): answers stamped before the rewind no longer
+  /// count, and one that arrives later (stamped after `now`) is not taken for an answer of the new run.
+  void Rewind(const ros::Time& now);
   /// Steps after which a published input's answer was not waited for (see lockstep_state.h).
   uint64_t UnwaitedSteps() const { return unwaited_steps_; }
   /// Why the first of them was not waited for (empty while there was none).
@@ -126,6 +129,7 @@ class Lockstep {
   LockstepOptions options_;
   PublishCounts& counts_;
   NodePinger pinger_;
+  ros::Time latest_step_;  ///< the stamp of the latest step waited for: no answer can be later
   ros::WallTime next_report_;
   uint64_t unwaited_steps_ = 0;
   std::string first_unwaited_reason_;
