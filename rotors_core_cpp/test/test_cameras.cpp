@@ -22,6 +22,7 @@
 #include "rotors_core/rendering/tessellation.h"
 #include "rotors_core/sensors/camera_sensor.h"
 #include "rotors_core/world_loader.h"
+#include "rendering/lru_cache.h"
 #include "test_worlds.h"
 
 using namespace rotors_sim;
@@ -346,6 +347,56 @@ TEST(Camera, APairRenderedTogetherIsThePairRenderedOneByOne) {
   renderer.Render(*g.world, cam->CameraWorldPose(1), cam->Camera(1), seed_right, true, false, &expected);
   EXPECT_TRUE(right == expected.image);
   EXPECT_FALSE(left == first_left);  // a new update: new noise
+}
+
+// The renderer's caches are bounded: the least recently used entry goes first, at the start of a
+// frame, never one the frame before used, never a pinned one.
+TEST(RendererCache, DropsTheLeastRecentlyUsedBeyondItsCapacityAtAFramesStart) {
+  rendering::LruCache<int, std::string> cache(2);
+  cache.Insert(0, "unit box", true);  // pinned
+  cache.Insert(1, "a");
+  cache.NextFrame();
+  cache.Insert(2, "b");
+  cache.Insert(3, "c");
+  EXPECT_EQ(cache.Size(), 4u);  // nothing goes during a frame
+  cache.NextFrame();            // 1 was used two frames ago: it goes; 2 and 3 the frame before: they stay
+  EXPECT_EQ(cache.Size(), 3u);
+  EXPECT_EQ(cache.Find(1), nullptr);
+  ASSERT_NE(cache.Find(2), nullptr);
+  cache.NextFrame();  // 3 is the least recently used now; 0 is pinned
+  EXPECT_EQ(cache.Find(3), nullptr);
+  EXPECT_NE(cache.Find(0), nullptr);
+  EXPECT_NE(cache.Find(2), nullptr);
+  EXPECT_EQ(cache.Dropped(), 2u);
+}
+
+// A camera whose image size changes every frame (40 sizes) keeps at most the render-target cache's
+// capacity of framebuffers (32) and the last frame's new one, and a size whose target was dropped renders the same image again.
+TEST(RendererCache, RenderTargetsStayBoundedAndADroppedOneRendersTheSameImage) {
+  WorldGuard g{WorldLoader::LoadString(
+      World(BoxModel("box", Pose3d(3.0, 0.3, 0.2, 0, 0, 0.4), 1, 1, 1) +
+            Rig(X_WM, X_LS, "camera", 30, Camera("", Pose3d(), 64, 48, 1.3962634, "R8G8B8", 0.0))),
+      "cache_bound")};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  rendering::Renderer& renderer = rendering::Renderer::Of(*g.world);
+  rendering::CameraSpec spec = cam->Camera(0);
+  rendering::RenderedFrame first, again;
+  renderer.Render(*g.world, cam->CameraWorldPose(0), spec, 1, true, true, &first);
+  for (int i = 1; i <= 40; ++i) {
+    rendering::CameraSpec other = spec;
+    other.intrinsics.width_px += i;
+    rendering::RenderedFrame frame;
+    renderer.Render(*g.world, cam->CameraWorldPose(0), other, 1, true, true, &frame);
+    EXPECT_EQ(frame.width_px, spec.intrinsics.width_px + i);
+  }
+  const rendering::Renderer::CacheSizes sizes = renderer.CachedObjects();
+  std::printf("after 41 sizes: %zu render targets, %zu meshes, %zu textures\n", sizes.targets, sizes.meshes,
+              sizes.textures);
+  EXPECT_LE(sizes.targets, 32u + 1u);  // the capacity, and the one the last frame made (dropped at the next)
+  renderer.Render(*g.world, cam->CameraWorldPose(0), spec, 1, true, true, &again);
+  EXPECT_TRUE(first.image == again.image);
+  EXPECT_EQ(std::memcmp(first.depth_m.data(), again.depth_m.data(), first.depth_m.size() * sizeof(float)), 0);
 }
 
 TEST(Camera, NoiseOfAFlatGreyImageHasTheDeclaredSigmaAndIsDeterministic) {

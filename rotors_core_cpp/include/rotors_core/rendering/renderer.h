@@ -1,5 +1,7 @@
 // Renders the world's visual geometry as a camera sees it: headless OpenGL 3.3 through EGL on
-// Mesa's surfaceless platform (llvmpipe), no X server. One renderer (and GL context, with its
+// Mesa's surfaceless platform (llvmpipe), no X server. Its parts live in src/rendering: the
+// context (gl_context), shader programs, GPU mesh and texture caches (gpu_cache), render targets,
+// the sun's shadow map (sun_shadow); this class draws a frame with them. One renderer (and GL context, with its
 // uploaded meshes) per world, kept in the world; used from the thread that steps that world. Colour is Lambert shading
 // under the world's sun plus Gaussian pixel noise (a hash of pixel, frame and seed: deterministic); depth is the
 // optical-axis distance written by the fragment shader as a float, so it is exact to float precision.
@@ -50,8 +52,13 @@ class Renderer {
   /// the work overlap.
   void RenderAll(const physics::World& world, const std::vector<FrameRequest>& requests);
 
-  /// Triangles uploaded so far (all cached shapes), for benchmarks.
+  /// Triangles of the shapes cached now, for benchmarks.
   size_t CachedTriangles() const;
+  /// Entries of each cache now; each is bounded (least recently used dropped first).
+  struct CacheSizes {
+    size_t meshes = 0, textures = 0, targets = 0, distortion_maps = 0;
+  };
+  CacheSizes CachedObjects() const;
 
  private:
   Renderer();
@@ -60,8 +67,7 @@ class Renderer {
   void DrawPinhole(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
                    uint64_t noise_seed, bool want_image, bool want_depth, size_t slot);
   void ReadPinhole(const CameraSpec& camera, bool want_image, bool want_depth, size_t slot, RenderedFrame* out);
-  struct Impl;
-  class ContextBinding;
+  struct Impl;  // the GL context, shader programs, caches and shadow map (src/rendering)
   std::unique_ptr<Impl> impl_;
 };
 
