@@ -371,7 +371,8 @@ TEST(RendererCache, DropsTheLeastRecentlyUsedBeyondItsCapacityAtAFramesStart) {
 }
 
 // A camera whose image size changes every frame (40 sizes) keeps at most the render-target cache's
-// capacity of framebuffers (32) and the last frame's new one, and a size whose target was dropped renders the same image again.
+// capacity of framebuffers (32) and the last frame's new one, and a size whose target was dropped renders the same
+// image again.
 TEST(RendererCache, RenderTargetsStayBoundedAndADroppedOneRendersTheSameImage) {
   WorldGuard g{WorldLoader::LoadString(
       World(BoxModel("box", Pose3d(3.0, 0.3, 0.2, 0, 0, 0.4), 1, 1, 1) +
