@@ -103,7 +103,7 @@ bool SunShadow::Update(const physics::World& world, const ignition::math::Pose3d
 }
 
 void SunShadow::DrawCasters(const physics::World& world, const Eigen::Matrix4d& T_clip_W, bool static_models,
-                                 ShadowLayer* layer) {
+                            ShadowLayer* layer) {
   if (!layer->fbo) {
     glGenTextures(1, &layer->depth);
     glBindTexture(GL_TEXTURE_2D, layer->depth);
