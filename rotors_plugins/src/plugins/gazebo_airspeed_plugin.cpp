@@ -44,7 +44,7 @@ class GazeboAirspeedPlugin : public LinkSensorPlugin<geometry_msgs::Vector3Stamp
     const auto v = link_->WorldLinearVel();
     msg_.header.stamp = ToRos(world_->SimTime());
     msg_.vector = ToVector3Msg(model_->Measure(R_WB, Eigen::Vector3d(v.X(), v.Y(), v.Z()), bus_->wind_velocity_W));
-    pub_.publish(msg_);
+    Publish();
   }
 
   SeededModel<AirspeedModel> model_;

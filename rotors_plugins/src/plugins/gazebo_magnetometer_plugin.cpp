@@ -34,7 +34,7 @@ class GazeboMagnetometerPlugin : public LinkSensorPlugin<sensor_msgs::MagneticFi
     const auto q = link_->WorldPose().Rot();
     msg_.header.stamp = ToRos(world_->SimTime());
     msg_.magnetic_field = ToVector3Msg(model_->Measure(Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z())));
-    pub_.publish(msg_);
+    Publish();
   }
 
   SeededModel<MagnetometerModel> model_;

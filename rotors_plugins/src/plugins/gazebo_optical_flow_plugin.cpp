@@ -19,6 +19,7 @@
 #include "rotors_gazebo_plugins/models/optical_flow_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/camera_ros.h"
+#include "rotors_gazebo_plugins/ros/link_sensor_plugin.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
@@ -32,9 +33,7 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
           "librotors_gazebo_optical_flow_plugin.so belongs in a <sensor type=\"camera\">, not "
           "type '" +
           sensor->Type() + "'");
-    const std::string ns = ReadRobotNamespace(Params());
-    std::string topic = "px4flow/raw/optical_flow_rad";
-    ReadParam(Params(), "opticalFlowTopic", &topic);
+    topic_.Read(Params(), "opticalFlowTopic", "px4flow/raw/optical_flow_rad");
     const rotors_sim::rendering::CameraSpec& camera = sensor_->Camera(0);
     OpticalFlowParams p;
     p.focal_length_px = camera.intrinsics.FocalLengthPx();
@@ -43,13 +42,10 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     const std::string why = p.Validate();
     if (!why.empty()) throw rotors_sim::SimError("optical flow on sensor '" + sensor_->Name() + "': " + why);
     model_ = std::make_unique<OpticalFlowModel>(p);
-    msg_.header.frame_id = ns + "/" + sensor_->Name();
+    msg_.header.frame_id = topic_.Namespace() + "/" + sensor_->Name();
     msg_.temperature = 2000;  // centi-degC
     msg_.distance = -1.0f;
-    node_ = MakeNode(ns);
-    pub_ =
-        Advertise<mavros_msgs::OpticalFlowRad>(node_, ns, topic, *sensor_->ParentLink()->GetModel()->GetWorldRaw(), 10);
-    if (!pub_) return;  // neither ROS nor in-process taps: nobody to publish to
+    if (!topic_.Advertise(*sensor_->ParentLink()->GetModel()->GetWorldRaw())) return;  // nobody to publish to
     connection_ = sensor_->ConnectUpdated([this] { OnFrame(); });
   }
 
@@ -74,15 +70,14 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     msg_.integrated_x = sample->integrated_x;
     msg_.integrated_y = sample->integrated_y;
     msg_.quality = sample->quality;
-    pub_.publish(msg_);
+    topic_.Publish(msg_);
   }
 
   rotors_sim::sensors::CameraSensorPtr sensor_;
   std::unique_ptr<OpticalFlowModel> model_;
   std::vector<uint8_t> grey_;
   mavros_msgs::OpticalFlowRad msg_;
-  std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher pub_;
+  SensorTopic<mavros_msgs::OpticalFlowRad> topic_;
   rotors_sim::event::ConnectionPtr connection_;
 };
 

@@ -29,7 +29,7 @@ class GazeboPressurePlugin : public LinkSensorPlugin<sensor_msgs::FluidPressure>
   void OnUpdate() override {
     msg_.header.stamp = ToRos(world_->SimTime());
     msg_.fluid_pressure = model_->Measure(link_->WorldPose().Pos().Z());
-    pub_.publish(msg_);
+    Publish();
   }
 
   SeededModel<PressureModel> model_;

@@ -1,7 +1,9 @@
-// The Load() skeleton the link-mounted sensor plugins share (pressure, magnetometer, airspeed):
-// robotNamespace, linkName (required) and the topic parameter; the link and its world; one
-// advertised message type; OnUpdate() after every world step while someone listens (ROS or the
-// in-process taps). A plugin reads its own parameters between LoadLink() and StartPublishing().
+// The Load() skeleton the small sensor plugins share. SensorTopic: robotNamespace, the topic
+// parameter and one advertised message type (ROS, or the in-process taps), for every one of them
+// (pressure, magnetometer, airspeed, optical flow). LinkSensorPlugin adds what the link-mounted
+// ones share (pressure, magnetometer, airspeed): linkName (required), the link and its world, and
+// OnUpdate() after every world step while someone listens. A plugin reads its own parameters
+// between LoadLink() and StartPublishing().
 #pragma once
 
 #include <memory>
@@ -20,18 +22,42 @@
 
 namespace rotors_gazebo_plugins {
 
+/// A sensor plugin's topic: where it publishes and how.
+template <class Msg>
+class SensorTopic {
+ public:
+  /// The namespace (robotNamespace) and the topic (<topic_param>, default_topic when absent).
+  void Read(rotors_sim::SdfParams& params, const std::string& topic_param, const std::string& default_topic) {
+    ns_ = ReadRobotNamespace(params);
+    topic_ = default_topic;
+    ReadParam(params, topic_param, &topic_);
+  }
+  /// Advertises the topic; false when nobody can listen (neither ROS nor the world's taps).
+  bool Advertise(rotors_sim::physics::World& world) {
+    node_ = MakeNode(ns_);
+    pub_ = rotors_gazebo_plugins::Advertise<Msg>(node_, ns_, topic_, world, 10);
+    return static_cast<bool>(pub_);
+  }
+  void Publish(const Msg& msg) { pub_.publish(msg); }
+  const std::string& Namespace() const { return ns_; }
+
+ private:
+  std::string ns_, topic_;
+  std::shared_ptr<ros::NodeHandle> node_;
+  rotors_sim::ListenedPublisher pub_;  // no search through every topic per step
+};
+
 template <class Msg>
 class LinkSensorPlugin : public rotors_sim::ModelPlugin {
  protected:
-  /// First in Load(): the namespace, the link (linkName, required; also the messages' frame_id) and
-  /// the topic (<topic_param>, default_topic when absent).
+  /// First in Load(): the namespace and topic (SensorTopic::Read), the link (linkName, required;
+  /// also the messages' frame_id).
   void LoadLink(const rotors_sim::physics::ModelPtr& model, const std::string& topic_param,
                 const std::string& default_topic) {
-    ns_ = ReadRobotNamespace(Params());
+    topic_.Read(Params(), topic_param, default_topic);
+    ns_ = topic_.Namespace();
     std::string link_name;
     RequireParam(Params(), "linkName", &link_name);
-    topic_ = default_topic;
-    ReadParam(Params(), topic_param, &topic_);
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     msg_.header.frame_id = link_name;
@@ -40,23 +66,21 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
   /// Last in Load(): advertises the topic and calls OnUpdate() after each world step (not at all
   /// when nobody can listen).
   void StartPublishing() {
-    node_ = MakeNode(ns_);
-    pub_ = Advertise<Msg>(node_, ns_, topic_, *world_, 10);
-    if (!pub_) return;
+    if (!topic_.Advertise(*world_)) return;
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
   }
 
-  /// Fills msg_ (its stamp too) and publishes it with pub_.
+  /// Fills msg_ (its stamp too) and publishes it with Publish().
   virtual void OnUpdate() = 0;
+  void Publish() { topic_.Publish(msg_); }
 
-  std::string ns_, topic_;
+  std::string ns_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   Msg msg_;
-  rotors_sim::ListenedPublisher pub_;  // no search through every topic per step
 
  private:
-  std::shared_ptr<ros::NodeHandle> node_;
+  SensorTopic<Msg> topic_;
   rotors_sim::event::ConnectionPtr connection_;
 };
 
