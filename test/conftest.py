@@ -150,10 +150,11 @@ def wait_sim_time(ros: RosGraph, t_s: float, timeout_s: float = 300.0) -> float:
     """, timeout=timeout_s + 60)["t"]
 
 
-def send_hover_pose(ros: RosGraph, then: str = "") -> None:
+def send_hover_pose(ros: RosGraph, then: str = "") -> Dict:
     """Sends the set point (0, 0, 1) latched on /firefly/command/pose once the controller listens,
-    then runs the rospy code `then` in the same client (the latched message lives as long as it)."""
-    ros.rospy(textwrap.dedent("""
+    then runs the rospy code `then` in the same client (the latched message lives as long as it);
+    returns the `result` that code filled."""
+    return ros.rospy(textwrap.dedent("""
         from geometry_msgs.msg import PoseStamped
         pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
         while pub.get_num_connections() == 0:  # the controller is up and listens to poses

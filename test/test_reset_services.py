@@ -6,7 +6,7 @@ every message of every /firefly topic repeats the first flight's byte for byte; 
 import textwrap
 from pathlib import Path
 
-from conftest import REPO, RosGraph, stop_launch
+from conftest import REPO, RosGraph, send_hover_pose, stop_launch
 
 FLIGHT_S = 3.0
 COMPARED_S = 2.5  # each flight stops at FLIGHT_S, give or take the steps a pause call takes to land
@@ -14,7 +14,6 @@ COMPARED_S = 2.5  # each flight stops at FLIGHT_S, give or take the steps a paus
 RECORD_AND_RESET = textwrap.dedent("""
     import io
     import genpy, roslib.message
-    from geometry_msgs.msg import PoseStamped
     from rosgraph_msgs.msg import Clock
     from std_srvs.srv import Empty
 
@@ -29,14 +28,8 @@ RECORD_AND_RESET = textwrap.dedent("""
 
     subs = [rospy.Subscriber(t, rospy.AnyMsg, recorder(t), queue_size=100000) for t in types]
     rospy.Subscriber('/clock', Clock, lambda m: clock.__setitem__(0, m.clock.to_sec()), queue_size=10)
-    pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
-    while pub.get_num_connections() == 0 or any(s.get_num_connections() == 0 for s in subs):
+    while any(s.get_num_connections() == 0 for s in subs):
         time.sleep(0.05)
-    cmd = PoseStamped()
-    cmd.pose.position.z = 1.0
-    cmd.pose.orientation.w = 1.0
-    pub.publish(cmd)
-    time.sleep(1.0)
     pause, unpause = rospy.ServiceProxy('/gazebo/pause_physics', Empty), rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
 
     def fly(name, start_s):
@@ -111,7 +104,7 @@ def test_reset_simulation_and_reset_world_repeat_the_flight_bit_for_bit(ros: Ros
     try:
         ready = ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         assert ready, Path(proc.log_path).read_text()[-2000:]
-        r = ros.rospy(RECORD_AND_RESET, timeout=400)
+        r = send_hover_pose(ros, then=RECORD_AND_RESET)  # the set point, then the flights
     finally:
         stop_launch(proc)
     for name in ("simulation", "world"):
