@@ -1,11 +1,14 @@
 #include "rotors_core/model_builder.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include <sdf/Collision.hh>
+#include <sdf/Heightmap.hh>
 #include <sdf/Material.hh>
 #include <sdf/Visual.hh>
 
@@ -227,6 +230,49 @@ void ApplyMaterialScript(const sdf::ElementPtr& material, const std::string& sdf
   }
 }
 
+/// A heightmap visual's <texture>s and <blend>s (at most 4 drawn, as Gazebo's terrain). A diffuse
+/// image that is not here (Gazebo's media) leaves the visual's colour in its place: one line says so.
+std::vector<geometry::TerrainLayer> TerrainLayers(const sdf::Heightmap& h, const std::string& where,
+                                                  const std::string& sdf_file) {
+  constexpr uint64_t kMaxLayers = 4;
+  std::vector<geometry::TerrainLayer> layers;
+  if (h.TextureCount() > kMaxLayers)
+    std::cerr << "[rotors_sim] " << where << ": " << h.TextureCount() << " heightmap textures; the first " << kMaxLayers
+              << " are drawn\n";
+  const std::string base = h.FilePath().empty() ? sdf_file : h.FilePath();
+  for (uint64_t i = 0; i < std::min(h.TextureCount(), kMaxLayers); ++i) {
+    const sdf::HeightmapTexture& t = *h.TextureByIndex(i);
+    geometry::TerrainLayer layer;
+    if (!(t.Size() > 0.0))
+      throw SimError(where + ": heightmap <texture> " + std::to_string(i) + ": <size> " + std::to_string(t.Size()) +
+                     " must be > 0 m");
+    layer.size_m = t.Size();
+    try {
+      layer.diffuse_file = geometry::UriResolver::Resolve(t.Diffuse(), base);
+    } catch (const SimError&) {
+      layer.diffuse_file.clear();
+    }
+    if (layer.diffuse_file.empty() || !std::filesystem::exists(layer.diffuse_file)) {
+      std::cerr << "[rotors_sim] " << where << ": heightmap texture '" << t.Diffuse()
+                << "' is not available here; its layer is drawn in the visual's colour\n";
+      layer.diffuse_file.clear();
+    }
+    if (i > 0) {
+      if (i - 1 >= h.BlendCount())
+        throw SimError(where + ": heightmap <texture> " + std::to_string(i) + " has no <blend> (each texture after " +
+                       "the first needs one: <min_height>, <fade_dist>)");
+      const sdf::HeightmapBlend& b = *h.BlendByIndex(i - 1);
+      layer.min_height_m = b.MinHeight();
+      layer.fade_m = b.FadeDistance();
+      if (!(layer.fade_m >= 0.0))
+        throw SimError(where + ": heightmap <blend> " + std::to_string(i - 1) + ": <fade_dist> " +
+                       std::to_string(layer.fade_m) + " must be >= 0 m");
+    }
+    layers.push_back(layer);
+  }
+  return layers;
+}
+
 /// <visual> elements, kept for whoever draws the world. URDF <material> colours come through
 /// sdformat as <material><diffuse>.
 void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const physics::LinkPtr& link,
@@ -244,6 +290,9 @@ void AddVisuals(const physics::ModelPtr& model, const sdf::Link& sdf_link, const
     if (!errors.empty()) throw SimError("visual '" + out.scoped_name + "': " + errors.front().Message());
     out.shape = ReadShape(*visual->Geom(), "visual '" + out.scoped_name + "'", sdf_file);
     out.cast_shadows = visual->CastShadows();
+    if (visual->Geom()->HeightmapShape())
+      out.terrain_layers =
+          TerrainLayers(*visual->Geom()->HeightmapShape(), "visual '" + out.scoped_name + "'", sdf_file);
     if (visual->Material()) {
       const auto c = visual->Material()->Diffuse();
       out.rgba = {static_cast<float>(c.R()), static_cast<float>(c.G()), static_cast<float>(c.B()),

@@ -67,6 +67,12 @@ std::string World(const std::string& models, const std::string& background = "0 
 }
 
 /// The optical frame in the camera frame: x right = -y, y down = -z, z forward = x.
+std::string Str(const Eigen::Vector3d& v) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "(%.0f, %.0f, %.0f)", v.x(), v.y(), v.z());
+  return text;
+}
+
 Eigen::Isometry3d T_CO() {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
@@ -766,6 +772,72 @@ TEST(Camera, HeightmapDepthFollowsTheTerrain) {
   EXPECT_GT(checked, 1000);
   EXPECT_LT(worst, 0.001);
   std::filesystem::remove(pgm);
+}
+
+// A heightmap's <texture>s are laid by height as Gazebo's terrain blends them: on a ramp (0 to 2 m
+// along x) a red texture below, a blue one from 1.0 m (faded in over 0.4 m) and, from 1.8 m, a
+// third whose image is not here: the visual's colour (green) in its place.
+TEST(Camera, HeightmapTexturesAreBlendedByHeight) {
+  const std::string folder =
+      std::filesystem::temp_directory_path().string() + "/rotors_terrain_" + std::to_string(getpid());
+  std::filesystem::create_directories(folder);
+  {
+    std::ofstream f(folder + "/ramp.pgm", std::ios::binary);
+    f << "P5\n33 33\n255\n";
+    for (int r = 0; r < 33; ++r)
+      for (int c = 0; c < 33; ++c) f.put(static_cast<char>(c * 255 / 32));
+  }
+  auto solid = [&](const std::string& name, unsigned char r, unsigned char g, unsigned char b) {
+    std::ofstream ppm(folder + "/" + name, std::ios::binary);
+    ppm << "P6\n2 2\n255\n";
+    for (int i = 0; i < 4; ++i) ppm << r << g << b;
+  };
+  solid("red.ppm", 255, 0, 0);
+  solid("blue.ppm", 0, 0, 255);
+  auto texture = [&](const std::string& file, double size) {
+    return "<texture><diffuse>file://" + file + "</diffuse><normal>file://media/materials/textures/flat_normal.png" +
+           "</normal><size>" + std::to_string(size) + "</size></texture>";
+  };
+  auto blend = [](double min_height, double fade) {
+    return "<blend><min_height>" + std::to_string(min_height) + "</min_height><fade_dist>" + std::to_string(fade) +
+           "</fade_dist></blend>";
+  };
+  const std::string terrain =
+      "<model name='terrain'><static>true</static><link name='link'><visual name='v'><geometry><heightmap>" +
+      texture(folder + "/red.ppm", 5) + texture(folder + "/blue.ppm", 5) + texture(folder + "/not_here.png", 5) +
+      blend(1.0, 0.4) + blend(1.8, 0.0) + "<uri>" + folder + "/ramp.pgm" +
+      "</uri><size>20 20 2</size><pos>0 0 0</pos></heightmap></geometry><material><diffuse>0 1 0 1</diffuse>" +
+      "</material></visual></link></model>";
+  // looking straight down from 12 m
+  const Pose3d X_WM_rig(0, 0, 12.0, 0, M_PI / 2, 0);
+  WorldGuard g{WorldLoader::LoadString(
+      World(terrain + Rig(X_WM_rig, Pose3d(), "camera", 30, Camera("", Pose3d(), 200, 200, 1.6, "R8G8B8", 0.0, 50.0))),
+      "terrain_textures")};
+  g.world->Step(1);
+  auto cam = TheCamera(g.world);
+  const auto& f = cam->Frame(0);
+  const Eigen::Isometry3d T_OW = (ToEigen(X_WM_rig) * T_CO()).inverse();
+  const double fpx = cam->Camera(0).intrinsics.FocalLengthPx();
+  // the colour at the terrain point above (x, 0): the ramp's height there is (x + 10) / 10
+  auto rgb_at = [&](double x) {
+    const Eigen::Vector3d p_O = T_OW * Eigen::Vector3d(x, 0.0, (x + 10.0) / 10.0);
+    const int u = static_cast<int>(std::lround(fpx * p_O.x() / p_O.z() + 99.5));
+    const int v = static_cast<int>(std::lround(fpx * p_O.y() / p_O.z() + 99.5));
+    const size_t i = 3 * (static_cast<size_t>(v) * 200 + u);
+    return Eigen::Vector3d(f.image[i], f.image[i + 1], f.image[i + 2]);
+  };
+  const Eigen::Vector3d low = rgb_at(-5.0), mid = rgb_at(2.0), high = rgb_at(5.0), top = rgb_at(9.0);
+  std::printf("rgb at 0.5 m %s, 1.2 m %s, 1.5 m %s, 1.9 m %s\n", Str(low).c_str(), Str(mid).c_str(), Str(high).c_str(),
+              Str(top).c_str());
+  EXPECT_GT(low.x(), 100);  // red
+  EXPECT_LT(low.y() + low.z(), 2);
+  EXPECT_GT(high.z(), 100);  // blue
+  EXPECT_LT(high.x() + high.y(), 2);
+  EXPECT_NEAR(mid.x(), mid.z(), 0.1 * mid.z());  // half way through the fade: half red, half blue
+  EXPECT_GT(mid.x(), 30);
+  EXPECT_GT(top.y(), 100);  // the missing image: the visual's green
+  EXPECT_LT(top.x() + top.z(), 2);
+  std::filesystem::remove_all(folder);
 }
 
 TEST(Camera, TwoWorldsInOneProcessRenderEachItsOwnScene) {

@@ -40,6 +40,32 @@ struct VisualDraw {
   size_t first = 0, end = 0;
 };
 
+constexpr int kTerrainUnit = 3;  // texture units 3..6: a heightmap's layers (0: a part's texture, 1, 2: shadows)
+
+/// Sets a heightmap's texture layers for the shading pass (none for another visual); true when it has some.
+bool SetTerrain(const geometry::Visual& visual, const FragmentUniforms& u, TextureCache* textures) {
+  const size_t n = std::min<size_t>(visual.terrain_layers.size(), 4);
+  glUniform1i(u.terrain_layers, static_cast<GLint>(n));
+  if (n == 0) return false;
+  float layers[4][4] = {};
+  GLuint texture[4] = {};
+  for (size_t i = 0; i < n; ++i) {  // all loaded first: loading binds a new texture to the active unit
+    const geometry::TerrainLayer& layer = visual.terrain_layers[i];
+    texture[i] = layer.diffuse_file.empty() ? 0 : textures->For(layer.diffuse_file);
+    layers[i][0] = static_cast<float>(1.0 / layer.size_m);
+    layers[i][1] = static_cast<float>(layer.min_height_m);
+    layers[i][2] = static_cast<float>(layer.fade_m);
+    layers[i][3] = texture[i] != 0 ? 1.0f : 0.0f;
+  }
+  for (size_t i = 0; i < n; ++i) {
+    glActiveTexture(GL_TEXTURE0 + kTerrainUnit + static_cast<GLenum>(i));
+    glBindTexture(GL_TEXTURE_2D, texture[i]);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  glUniform4fv(u.terrain_layer, 4, &layers[0][0]);
+  return true;
+}
+
 }  // namespace
 
 /// The renderer's parts, in the order they are made: the context first (released last, after
@@ -199,6 +225,8 @@ void Renderer::DrawPinhole(const physics::World& world, const ignition::math::Po
     glUniform1i(u.shadow_map, 1);
     glUniform1i(u.use_moving_shadows, shadows && !r.shadow.Moving().empty);
     glUniform1i(u.moving_shadow_map, 2);
+    glUniform1i(u.terrain_layers, 0);
+    for (int i = 0; i < 4; ++i) glUniform1i(u.terrain_texture[i], kTerrainUnit + i);
     glUniform1i(u.grey, format == PixelFormat::kL8);
     glUniform2f(u.noise, static_cast<float>(camera.noise_mean), static_cast<float>(camera.noise_stddev));
     glUniform2ui(u.seed, static_cast<GLuint>(noise_seed), static_cast<GLuint>(noise_seed >> 32));
@@ -277,6 +305,7 @@ void Renderer::DrawPinhole(const physics::World& world, const ignition::math::Po
     glBindTexture(GL_TEXTURE_2D, r.shadow.Moving().depth);
   }
   glActiveTexture(GL_TEXTURE0);
+  bool terrain_drawn = false;  // the terrain uniforms are set (the visual before was a textured heightmap)
   for (const VisualDraw& draw : draws) {
     const geometry::Visual& visual = *draw.visual;
     const GpuMesh& mesh = *draw.mesh;
@@ -285,6 +314,7 @@ void Renderer::DrawPinhole(const physics::World& world, const ignition::math::Po
     if (shadows) glUniformMatrix4fv(vertex.T_SV, 1, GL_FALSE, draw.T_SV.data());
     // an SDF/URDF <material> colours the whole visual; else the mesh's own colours and texture
     const bool own = mesh.own_colours && !visual.has_material;
+    if (!visual.terrain_layers.empty() || terrain_drawn) terrain_drawn = SetTerrain(visual, fragment, &r.textures);
     if (own) glUniform3f(fragment.albedo, 1.0f, 1.0f, 1.0f);
     else glUniform3f(fragment.albedo, visual.rgba[0], visual.rgba[1], visual.rgba[2]);
     glUniform1i(fragment.use_vertex_colour, own);

@@ -23,6 +23,7 @@ out vec3 n_O;
 out vec3 vertex_colour;
 out vec2 uv;
 out vec3 p_S;
+out float z_V;            // height in the visual frame (a terrain's blend)
 invariant gl_Position;  // the depth pre-pass and the shading pass give the same depth, bit for bit
 void main() {
   vec4 p = T_OV * vec4(p_V, 1.0);
@@ -31,6 +32,7 @@ void main() {
   n_O = N_OV * n_V;
   vertex_colour = colour_V;
   uv = uv_V;
+  z_V = p_V.z;
   float near = projection.z, far = projection.w;
   // x_ndc = 2 f x / (W z) + principal.x, likewise y: pixel u = f x / z + c_x, rows top down
   gl_Position = vec4(projection.x * p.x + principal.x * p.z, projection.y * p.y + principal.y * p.z,
@@ -43,6 +45,7 @@ out vec3 n_O;
 out vec3 vertex_colour;
 out vec2 uv;
 out vec3 p_S;
+out float z_V;
 void main() {
   // one triangle covering the viewport, on the far plane
   vec2 corner = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
@@ -51,6 +54,7 @@ void main() {
   vertex_colour = vec3(1.0);
   uv = vec2(0.0);
   p_S = vec3(0.0);
+  z_V = 0.0;
   gl_Position = vec4(corner, 1.0, 1.0);
 })";
 
@@ -73,6 +77,7 @@ in vec3 n_O;
 in vec3 vertex_colour;
 in vec2 uv;
 in vec3 p_S;
+in float z_V;
 uniform vec3 albedo;
 uniform bool use_vertex_colour;
 uniform bool use_texture;
@@ -85,6 +90,12 @@ uniform bool use_shadows;
 uniform sampler2DShadow shadow_map;         // static models' casters
 uniform bool use_moving_shadows;
 uniform sampler2DShadow moving_shadow_map;  // the other models' (vehicles), same region
+uniform int terrain_layers;     // a heightmap's textures (0: none), blended by height
+uniform vec4 terrain_layer[4];  // each: repeats per metre (1 / size), min height, fade distance, 1 if textured
+uniform sampler2D terrain_texture0;
+uniform sampler2D terrain_texture1;
+uniform sampler2D terrain_texture2;
+uniform sampler2D terrain_texture3;
 uniform bool background;
 uniform bool grey;
 uniform vec2 noise;       // mean, stddev (full scale 1)
@@ -112,8 +123,22 @@ float SunLit() {
   return lit;
 }
 
+// a terrain layer's colour: its texture repeated every size metres, or the visual's colour
+vec3 Layer(sampler2D image, vec4 layer) { return layer.w > 0.5 ? texture(image, uv * layer.x).rgb : albedo; }
+// how much of layer i lies over those below it: 0 below its min height, 1 from min height + fade up
+// (Gazebo's terrain blend)
+float Blend(vec4 layer) { return layer.z > 0.0 ? clamp((z_V - layer.y) / layer.z, 0.0, 1.0) : step(layer.y, z_V); }
+
+vec3 Terrain() {
+  vec3 c = Layer(terrain_texture0, terrain_layer[0]);
+  if (terrain_layers > 1) c = mix(c, Layer(terrain_texture1, terrain_layer[1]), Blend(terrain_layer[1]));
+  if (terrain_layers > 2) c = mix(c, Layer(terrain_texture2, terrain_layer[2]), Blend(terrain_layer[2]));
+  if (terrain_layers > 3) c = mix(c, Layer(terrain_texture3, terrain_layer[3]), Blend(terrain_layer[3]));
+  return c;
+}
+
 void main() {
-  vec3 c = albedo;
+  vec3 c = terrain_layers > 0 ? Terrain() : albedo;
   if (use_vertex_colour) c *= vertex_colour;
   if (use_texture) c *= texture(texture_image, uv * uv_scale).rgb;
   if (!background) {

@@ -18,7 +18,9 @@ GLint RequireUniform(GLuint program, const char* name);
 struct FragmentUniforms {
   GLint albedo = -1, use_vertex_colour = -1, use_texture = -1, texture_image = -1, uv_scale = -1, to_sun_O = -1,
         ambient = -1, sun_diffuse = -1, use_shadows = -1, shadow_map = -1, use_moving_shadows = -1,
-        moving_shadow_map = -1, background = -1, grey = -1, noise = -1, seed = -1;
+        moving_shadow_map = -1, background = -1, grey = -1, noise = -1, seed = -1, terrain_layers = -1,
+        terrain_layer = -1;
+  GLint terrain_texture[4] = {-1, -1, -1, -1};
   FragmentUniforms() = default;
   FragmentUniforms(GLuint program, bool draws_meshes) {
     auto mesh_only = [&](const char* name) {
@@ -40,6 +42,10 @@ struct FragmentUniforms {
     shadow_map = mesh_only("shadow_map");
     use_moving_shadows = mesh_only("use_moving_shadows");
     moving_shadow_map = mesh_only("moving_shadow_map");
+    terrain_layers = mesh_only("terrain_layers");
+    terrain_layer = mesh_only("terrain_layer");
+    const char* textures[4] = {"terrain_texture0", "terrain_texture1", "terrain_texture2", "terrain_texture3"};
+    for (int i = 0; i < 4; ++i) terrain_texture[i] = mesh_only(textures[i]);
   }
 };
 

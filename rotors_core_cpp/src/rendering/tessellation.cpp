@@ -249,6 +249,7 @@ TriangleSoup FromHeightField(const geometry::HeightField& h) {
       const Vector3f p = at(r, c), normal = Eigen::Vector3d(-dz_dx, -dz_dy, 1.0).normalized().cast<float>();
       soup.positions_m.insert(soup.positions_m.end(), {p.x(), p.y(), p.z()});
       soup.normals.insert(soup.normals.end(), {normal.x(), normal.y(), normal.z()});
+      soup.uvs.insert(soup.uvs.end(), {p.x(), p.y()});  // metres: a terrain texture repeats every <size>
     }
   auto index = [&](int r, int c) { return static_cast<uint32_t>(r * n + c); };
   for (int r = 0; r + 1 < n; ++r)

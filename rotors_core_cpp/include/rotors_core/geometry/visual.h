@@ -5,6 +5,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <ignition/math/Pose3.hh>
 #include <ignition/math/Vector3.hh>
@@ -31,6 +32,16 @@ struct Shape {
   std::shared_ptr<const octomap::OcTree> octree;   ///< in the element's frame
 };
 
+/// One texture of a heightmap (SDF <heightmap><texture>): its diffuse image, repeated every size_m,
+/// and (from the second on) the <blend> that lays it over the ones before: from min_height_m up,
+/// faded in over fade_m (heights in the visual frame). An image that is not here: "" (the visual's
+/// colour in its place).
+struct TerrainLayer {
+  std::string diffuse_file;
+  double size_m = 1.0;
+  double min_height_m = 0.0, fade_m = 0.0;
+};
+
 /// A <visual> (or, for a model without visuals, nothing: collisions are not drawn).
 struct Visual {
   std::string scoped_name;  ///< "model::link::visual"
@@ -43,8 +54,9 @@ struct Visual {
   /// texture scale (texture coordinates 0..1 per face of a box or over a plane, divided by it)
   std::string texture_file;
   std::array<float, 2> texture_scale{1.0f, 1.0f};
-  float texture_max_anisotropy = 1.0f;  ///< 1: trilinear only
-  bool cast_shadows = true;             ///< <cast_shadows>: drawn into the sun's shadow map
+  float texture_max_anisotropy = 1.0f;       ///< 1: trilinear only
+  bool cast_shadows = true;                  ///< <cast_shadows>: drawn into the sun's shadow map
+  std::vector<TerrainLayer> terrain_layers;  ///< a heightmap's textures, blended by height (at most 4)
 };
 
 }  // namespace geometry
