@@ -719,16 +719,19 @@ TEST(Camera, AMissingTextureFailsTheModelUnlessBrokenSensorsAreSkipped) {
   std::filesystem::remove_all(folder);
 }
 
+/// A 33 x 33 heightmap image rising along +x (column c: c 255 / 32), the same in every row.
+void WriteRamp(const std::string& pgm) {
+  std::ofstream f(pgm, std::ios::binary);
+  f << "P5\n33 33\n255\n";
+  for (int r = 0; r < 33; ++r)
+    for (int c = 0; c < 33; ++c) f.put(static_cast<char>(c * 255 / 32));
+}
+
 TEST(Camera, HeightmapDepthFollowsTheTerrain) {
   // a 33 x 33 ramp rising along +x over 20 x 20 m, 0 to 2 m
   const std::string pgm =
       std::filesystem::temp_directory_path().string() + "/rotors_ramp_" + std::to_string(getpid()) + ".pgm";
-  {
-    std::ofstream f(pgm, std::ios::binary);
-    f << "P5\n33 33\n255\n";
-    for (int r = 0; r < 33; ++r)
-      for (int c = 0; c < 33; ++c) f.put(static_cast<char>(c * 255 / 32));
-  }
+  WriteRamp(pgm);
   // the terrain: sample c (x = -10 + c 20 / 32) at height floor(c 255 / 32) / 255 * 2, linear between
   auto terrain_z = [](double x) {
     const double s = std::clamp((x + 10.0) / 20.0 * 32.0, 0.0, 32.0);
@@ -781,12 +784,7 @@ TEST(Camera, HeightmapTexturesAreBlendedByHeight) {
   const std::string folder =
       std::filesystem::temp_directory_path().string() + "/rotors_terrain_" + std::to_string(getpid());
   std::filesystem::create_directories(folder);
-  {
-    std::ofstream f(folder + "/ramp.pgm", std::ios::binary);
-    f << "P5\n33 33\n255\n";
-    for (int r = 0; r < 33; ++r)
-      for (int c = 0; c < 33; ++c) f.put(static_cast<char>(c * 255 / 32));
-  }
+  WriteRamp(folder + "/ramp.pgm");
   auto solid = [&](const std::string& name, unsigned char r, unsigned char g, unsigned char b) {
     std::ofstream ppm(folder + "/" + name, std::ios::binary);
     ppm << "P6\n2 2\n255\n";
