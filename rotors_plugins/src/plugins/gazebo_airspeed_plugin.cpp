@@ -27,7 +27,7 @@ class GazeboAirspeedPlugin : public LinkSensorPlugin<geometry_msgs::Vector3Stamp
     if (!(rate_hz >= 0.0)) throw rotors_sim::SimError("updateRate must be >= 0 Hz");
     ThrowIfInvalid(p.Validate());
     model_.Emplace(p, ReadSeed(Params()));
-    bus_ = VehicleBus::For(*model->GetWorldRaw(), ns_);
+    bus_ = VehicleBus::For(*model->GetWorldRaw(), Namespace());
     limiter_ = RateLimiter(rate_hz);
     StartPublishing();
   }

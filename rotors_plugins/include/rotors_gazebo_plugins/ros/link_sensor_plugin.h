@@ -55,7 +55,6 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
   void LoadLink(const rotors_sim::physics::ModelPtr& model, const std::string& topic_param,
                 const std::string& default_topic) {
     topic_.Read(Params(), topic_param, default_topic);
-    ns_ = topic_.Namespace();
     std::string link_name;
     RequireParam(Params(), "linkName", &link_name);
     link_ = RequireLink(model, link_name);
@@ -73,8 +72,9 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
   /// Fills msg_ (its stamp too) and publishes it with Publish().
   virtual void OnUpdate() = 0;
   void Publish() { topic_.Publish(msg_); }
+  /// robotNamespace, as LoadLink() read it.
+  const std::string& Namespace() const { return topic_.Namespace(); }
 
-  std::string ns_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
   Msg msg_;
