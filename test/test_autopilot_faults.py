@@ -11,7 +11,7 @@ import pytest
 from pymavlink import mavutil
 
 import rotors_sim as rs
-from test_px4_mavlink import DT, answer, connect, free_port, make_world, next_sensor, start_lockstep
+from test_px4_mavlink import DT, SteppingWorld, answer, connect, free_port, make_world, next_sensor, start_lockstep
 
 
 def run_until_sensor(link, n=1):
@@ -22,7 +22,7 @@ def run_until_sensor(link, n=1):
 
 def test_malformed_and_truncated_frames_are_dropped_with_one_line_and_the_link_stays_up(capfd):
     port = free_port()
-    world = make_world(port)
+    world = make_world(port, mavlink_answer_timeout=0.01)  # PX4's plugin's wait: the lost answer costs 10 ms
     stepper, link = start_lockstep(world, port, 40)
     run_until_sensor(link, 5)
     good = link.mav.hil_actuator_controls_encode(0, [0.5] * 16, 129, 1).pack(link.mav)
@@ -39,6 +39,54 @@ def test_malformed_and_truncated_frames_are_dropped_with_one_line_and_the_link_s
     print(lines[0])
     assert lines and "dropped" in lines[0]
     assert world.time == pytest.approx(42 * DT)  # one answer was lost with the truncated frame: the step went on
+
+
+def test_skipped_answers_never_end_the_session(capfd):
+    """PX4's Gazebo plugin (PX4-SITL_gazebo-classic src/gazebo_mavlink_interface.cpp) waits at most
+    10 ms for HIL_ACTUATOR_CONTROLS, only while PX4 is armed, and never closes the link for silence
+    (PX4's simulator_mavlink connects once: a closed link needs a PX4 restart). A stand-in that stops
+    answering for 50 steps: the world goes on with the last outputs, the link stays up, and the
+    answers that come again are applied."""
+    port = free_port()
+    world = make_world(port, mavlink_answer_timeout=0.01)
+    stepper, link = start_lockstep(world, port, 200)
+    run_until_sensor(link, 20)
+    for _ in range(50):
+        next_sensor(link)  # read, never answered
+    answers_before = world.autopilot_answers("firefly")
+    for _ in range(100):
+        next_sensor(link)
+        answer(link, [0.5] * 6, armed=True)
+    stepper.join()
+    err = capfd.readouterr().err
+    late = [line for line in err.splitlines() if "no HIL_ACTUATOR_CONTROLS within" in line]
+    print(late[0])
+    print(f"answers applied after the silence: {world.autopilot_answers('firefly') - answers_before}; "
+          f"t = {world.time:.3f} s")
+    assert late and "the link stays up" in late[0]
+    assert "closed the connection" not in err
+    assert world.autopilot_answers("firefly") - answers_before >= 95  # the link is still up
+    assert world.time == pytest.approx(202 * DT)
+
+
+def test_a_disarmed_autopilot_is_not_waited_for():
+    """PX4's Gazebo plugin waits for answers only while PX4 is armed: a disarmed stand-in that never
+    answers again does not slow the world."""
+    port = free_port()
+    world = make_world(port, mavlink_answer_timeout=30.0)
+    stepper = SteppingWorld(world)
+    stepper.run(1)
+    stepper.join()
+    link = connect(port)
+    stepper.run(1)
+    stepper.join()
+    next_sensor(link)
+    answer(link, [0.0] * 6, armed=False)
+    start = time.monotonic()
+    stepper.run(500)
+    stepper.join()
+    print(f"500 steps without answers in {time.monotonic() - start:.2f} s of wall time")
+    assert world.time == pytest.approx(502 * DT) and time.monotonic() - start < 20.0
 
 
 def test_a_message_from_another_system_id_is_ignored_with_one_line(capfd):

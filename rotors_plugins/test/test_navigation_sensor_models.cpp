@@ -75,6 +75,40 @@ TEST(GpsModel, NoiseHasTheDeclaredStandardDeviations) {
   EXPECT_FALSE((GpsParams{-1.0, 6.0, 0.1, 0.1}).Validate().empty());
 }
 
+// PX4's Gazebo GPS integrated every step dt: b_{k+1} = (1 - 1/tau) b_k + sigma_rw dt^(3/2) n_k, so at
+// steady state var(b) = sigma_rw^2 dt^3 / (1 - (1 - 1/tau)^2), and each fix is the reading of 0.12 s ago.
+TEST(RandomWalkGpsModel, BiasHasThePx4StationaryVarianceAndFixesAreDelayed) {
+  GpsParams p;
+  p.noise_model = GpsNoiseModel::kRandomWalk;
+  p.xy_noise_density = p.z_noise_density = p.vxy_noise_density = p.vz_noise_density = 0.0;
+  const double dt = 0.004, tau = p.correlation_time_steps;
+  RandomWalkGpsModel gps(p, kZurich, 3);
+  const int warmup = 2000, n = 200000;
+  Eigen::Vector3d sum_sq = Eigen::Vector3d::Zero();
+  for (int k = 0; k < warmup + n; ++k) {
+    gps.Step(k * dt, dt, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+    if (k >= warmup) sum_sq += gps.Bias().cwiseAbs2();
+  }
+  const double decay = 1.0 - 1.0 / tau;
+  const double sigma_xy = 2.0 * std::pow(dt, 1.5) / std::sqrt(1.0 - decay * decay);
+  const double sigma_z = 4.0 * std::pow(dt, 1.5) / std::sqrt(1.0 - decay * decay);
+  const Eigen::Vector3d sigma = (sum_sq / n).cwiseSqrt();
+  EXPECT_TRUE(sigma.isApprox(Eigen::Vector3d(sigma_xy, sigma_xy, sigma_z), 0.05))
+      << sigma.transpose() << " against " << sigma_xy << ", " << sigma_z;
+  EXPECT_NEAR(sigma_xy, 0.0028, 0.0002);  // about 3 mm: PX4's GPS at rest holds still
+
+  // a vehicle moving along x at 1 m/s: the fix at t is the reading of t - 0.12 s
+  p.xy_random_walk = p.z_random_walk = 0.0;
+  RandomWalkGpsModel moving(p, kZurich, 3);
+  GpsSample fix;
+  EXPECT_FALSE(moving.Fix(0.0, &fix));
+  for (int k = 1; k <= 250; ++k) moving.Step(k * dt, dt, Eigen::Vector3d(k * dt, 0, 0), Eigen::Vector3d(1, 0, 0));
+  ASSERT_TRUE(moving.Fix(250 * dt, &fix));
+  EXPECT_NEAR(EnuOf(fix.latitude_longitude_altitude).x(), 250 * dt - 0.12, 1e-6);
+  p.correlation_time_steps = 0.5;
+  EXPECT_FALSE(p.Validate().empty());
+}
+
 TEST(MagnetometerModel, FieldInTheBodyFrameWithTheDeclaredNoiseAndBias) {
   MagnetometerParams p;  // RotorS' default_magnetometer: sigma 8e-8 T, bias bound 4e-7 T
   p.noise_normal_T.setConstant(8e-8);

@@ -51,6 +51,9 @@ class AutopilotInterface : public rotors_sim::ModelPlugin {
   void Info(const std::string& line);
 
   const std::string& Namespace() const { return namespace_; }
+  /// The world's physics step and its sim time now [s].
+  double PhysicsStep_s() const;
+  double SimTime_s() const;
   VehicleBus& Bus() const { return *bus_; }
 
  private:

@@ -1,5 +1,6 @@
 #include "rotors_gazebo_plugins/autopilot/ardupilot_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -61,7 +62,21 @@ class JsonWriter {
 };
 }  // namespace
 
-std::string StateJson(const VehicleSnapshot& s, double airspeed_m_s, bool has_airspeed, int* non_finite) {
+FrameOrder OrderOf(uint32_t frame_count, bool have_last, uint32_t last_frame_count) {
+  if (!have_last) return FrameOrder::kFirst;
+  if (frame_count == last_frame_count) return FrameOrder::kRepeated;
+  return frame_count < last_frame_count ? FrameOrder::kBackwards : FrameOrder::kNext;
+}
+
+bool PwmToInput(uint16_t pwm_us, bool centred, double* u) {
+  if (pwm_us == 0) return false;
+  // motors: u = (pwm - 1000) / 1000; surfaces: u = (pwm - 1500) / 500
+  const double v = centred ? (pwm_us - 1500.0) / 500.0 : (pwm_us - 1000.0) / 1000.0;
+  *u = std::max(centred ? -1.0 : 0.0, std::min(1.0, v));
+  return true;
+}
+
+std::string StateJson(const VehicleSnapshot& s, int* non_finite) {
   *non_finite = 0;
   JsonWriter w(non_finite);
   const Eigen::Quaterniond q = frames::NedFrdFromEnuFlu(s.q_WB);
@@ -73,9 +88,12 @@ std::string StateJson(const VehicleSnapshot& s, double airspeed_m_s, bool has_ai
        << ",\"position\":" << w.Vector(frames::NedFromEnu(s.p_W)) << ",\"quaternion\":[" << w.Number(q.w()) << ","
        << w.Number(q.x()) << "," << w.Number(q.y()) << "," << w.Number(q.z()) << "]"
        << ",\"velocity\":" << w.Vector(frames::NedFromEnu(s.v_W));
-  if (s.has_range) json << ",\"rng_1\":" << w.Number(s.range_m);
-  if (has_airspeed) json << ",\"airspeed\":" << w.Number(airspeed_m_s);
-  json << "}\n";
+  if (s.has_range) {
+    const bool out_of_range_high = !std::isfinite(s.range_m) || s.range_m > s.range_max_m;
+    json << ",\"rng_1\":" << w.Number(out_of_range_high ? 2.0 * s.range_max_m : s.range_m);
+  }
+  if (s.has_diff_pressure) json << ",\"airspeed\":" << w.Number(s.airspeed_m_s);
+  json << ",\"no_time_sync\":true}\n";
   return json.str();
 }
 

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "rotors_gazebo_plugins/autopilot/frames.h"
 
 namespace rotors_gazebo_plugins {
 namespace px4 {
 namespace {
-constexpr double kStandardGravity = 9.80665;  // [m/s^2]
 constexpr double kIsaSeaLevelPressure = 101325.0, kIsaSeaLevelTemperature = 288.15, kIsaLapseRate = 0.0065;
 constexpr double kIsaExponent = 0.190263;  // R L / (g M)
 
@@ -51,9 +51,9 @@ mavlink_hil_sensor_t HilSensor(const VehicleSnapshot& s, bool new_mag, bool new_
   return m;
 }
 
-mavlink_hil_gps_t HilGps(const VehicleSnapshot& s) {
+mavlink_hil_gps_t HilGps(const VehicleSnapshot& s, uint64_t utc_at_sim_zero_us) {
   mavlink_hil_gps_t m{};
-  m.time_usec = Microseconds(s.time_s);
+  m.time_usec = utc_at_sim_zero_us + Microseconds(s.time_s);
   m.fix_type = 3;  // 3D fix
   m.lat = static_cast<int32_t>(std::llround(s.gps_latitude_longitude_altitude.x() * 1e7));
   m.lon = static_cast<int32_t>(std::llround(s.gps_latitude_longitude_altitude.y() * 1e7));
@@ -93,10 +93,10 @@ mavlink_hil_state_quaternion_t HilStateQuaternion(const VehicleSnapshot& s) {
   m.vy = ClampInt16(v_NED.y() * 100.0);
   m.vz = ClampInt16(v_NED.z() * 100.0);
   m.ind_airspeed = m.true_airspeed = ClampUint16(s.v_W.norm() * 100.0);
-  const Eigen::Vector3d f_FRD_mG = frames::FrdFromFlu(s.specific_force_B) / kStandardGravity * 1000.0;
-  m.xacc = ClampInt16(f_FRD_mG.x());
-  m.yacc = ClampInt16(f_FRD_mG.y());
-  m.zacc = ClampInt16(f_FRD_mG.z());
+  const Eigen::Vector3d a_NED_1000 = frames::NedFromEnu(s.a_W) * 1000.0;
+  m.xacc = ClampInt16(a_NED_1000.x());
+  m.yacc = ClampInt16(a_NED_1000.y());
+  m.zacc = ClampInt16(a_NED_1000.z());
   return m;
 }
 
@@ -121,9 +121,11 @@ mavlink_hil_optical_flow_t HilOpticalFlow(const VehicleSnapshot& s) {
   m.integration_time_us = s.flow_integration_time_us;
   m.integrated_x = static_cast<float>(s.flow_integrated_xy_rad.x());
   m.integrated_y = static_cast<float>(s.flow_integrated_xy_rad.y());
-  m.integrated_xgyro = static_cast<float>(s.flow_integrated_gyro_rad.x());
-  m.integrated_ygyro = static_cast<float>(s.flow_integrated_gyro_rad.y());
-  m.integrated_zgyro = static_cast<float>(s.flow_integrated_gyro_rad.z());
+  const bool has_gyro = !s.flow_integrated_gyro_rad.isZero(0.0);
+  const float no_gyro = std::numeric_limits<float>::quiet_NaN();
+  m.integrated_xgyro = has_gyro ? static_cast<float>(s.flow_integrated_gyro_rad.x()) : no_gyro;
+  m.integrated_ygyro = has_gyro ? static_cast<float>(s.flow_integrated_gyro_rad.y()) : no_gyro;
+  m.integrated_zgyro = has_gyro ? static_cast<float>(s.flow_integrated_gyro_rad.z()) : no_gyro;
   m.quality = static_cast<uint8_t>(std::max(0, std::min(255, s.flow_quality)));
   m.time_delta_distance_us = s.flow_integration_time_us;
   m.distance = static_cast<float>(s.flow_distance_m);

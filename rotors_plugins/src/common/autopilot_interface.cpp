@@ -101,6 +101,10 @@ bool AutopilotInterface::MakeDefaultChannels() {
 
 void AutopilotInterface::Reset() { OnReset(); }
 
+double AutopilotInterface::PhysicsStep_s() const { return world_->Physics().max_step_size_s; }
+
+double AutopilotInterface::SimTime_s() const { return world_->SimTime().Double(); }
+
 const rotors_sim::TappedMessage* AutopilotInterface::PinTopic(const std::string& param,
                                                               const std::string& default_topic) {
   std::string topic = default_topic;
@@ -143,7 +147,9 @@ VehicleSnapshot AutopilotInterface::Snapshot() {
   const auto w_B = link_->RelativeAngularVel();
   s.omega_B = {w_B.X(), w_B.Y(), w_B.Z()};
   // specific force: f_B = R_WB^T (a_W - g_W)
-  const auto f_B = X_WB.Rot().RotateVectorReverse(link_->WorldLinearAccel() - world_->Gravity());
+  const auto a_W = link_->WorldLinearAccel();
+  s.a_W = {a_W.X(), a_W.Y(), a_W.Z()};
+  const auto f_B = X_WB.Rot().RotateVectorReverse(a_W - world_->Gravity());
   s.specific_force_B = {f_B.X(), f_B.Y(), f_B.Z()};
   const auto& o = world_->Origin();
   s.latitude_longitude_altitude =
@@ -190,6 +196,7 @@ VehicleSnapshot AutopilotInterface::Snapshot() {
     constexpr double kAirDensity = 1.225;  // [kg/m^3] sea level
     // a pitot tube's differential pressure: q = rho v_x^2 / 2
     s.diff_pressure_Pa = 0.5 * kAirDensity * airspeed->vector.x * airspeed->vector.x;
+    s.airspeed_m_s = ToEigen(airspeed->vector).norm();
   }
   return s;
 }

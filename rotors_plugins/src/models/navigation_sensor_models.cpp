@@ -32,10 +32,20 @@ Eigen::Vector3d GeodeticFromWorld(const GeodeticOrigin& origin, const Eigen::Vec
 }
 
 std::string GpsParams::Validate() const {
+  if (!(correlation_time_steps >= 1.0) || !std::isfinite(correlation_time_steps))
+    return "gpsCorrelationTime = " + std::to_string(correlation_time_steps) +
+           " must be >= 1 (physics steps, as PX4's plugin counts it)";
   return CheckNonNegative({{"horPosStdDev", hor_pos_std_dev_m},
                            {"verPosStdDev", ver_pos_std_dev_m},
                            {"horVelStdDev", hor_vel_std_dev_m_s},
-                           {"verVelStdDev", ver_vel_std_dev_m_s}});
+                           {"verVelStdDev", ver_vel_std_dev_m_s},
+                           {"gpsXYRandomWalk", xy_random_walk},
+                           {"gpsZRandomWalk", z_random_walk},
+                           {"gpsXYNoiseDensity", xy_noise_density},
+                           {"gpsZNoiseDensity", z_noise_density},
+                           {"gpsVXYNoiseDensity", vxy_noise_density},
+                           {"gpsVZNoiseDensity", vz_noise_density},
+                           {"gpsDelay", delay_s}});
 }
 
 GpsModel::GpsModel(const GpsParams& params, const GeodeticOrigin& origin, uint64_t seed)
@@ -48,6 +58,31 @@ GpsSample GpsModel::Measure(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v
   for (int i = 0; i < 3; ++i) n_p[i] = sigma_p[i] * unit_normal_(rng_);
   for (int i = 0; i < 3; ++i) n_v[i] = sigma_v[i] * unit_normal_(rng_);
   return {GeodeticFromWorld(origin_, p_W + n_p), v_W + n_v};
+}
+
+RandomWalkGpsModel::RandomWalkGpsModel(const GpsParams& params, const GeodeticOrigin& origin, uint64_t seed)
+    : params_(params), origin_(origin), rng_(seed) {}
+
+void RandomWalkGpsModel::Step(double t_s, double dt_s, const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W) {
+  const double root_dt = std::sqrt(dt_s);
+  const Eigen::Vector3d sigma_p(params_.xy_noise_density, params_.xy_noise_density, params_.z_noise_density);
+  const Eigen::Vector3d sigma_v(params_.vxy_noise_density, params_.vxy_noise_density, params_.vz_noise_density);
+  const Eigen::Vector3d sigma_rw(params_.xy_random_walk, params_.xy_random_walk, params_.z_random_walk);
+  Eigen::Vector3d n_p, n_v, n_rw;
+  for (int i = 0; i < 3; ++i) n_p[i] = sigma_p[i] * root_dt * unit_normal_(rng_);
+  for (int i = 0; i < 3; ++i) n_v[i] = sigma_v[i] * root_dt * unit_normal_(rng_);
+  for (int i = 0; i < 3; ++i) n_rw[i] = sigma_rw[i] * root_dt * unit_normal_(rng_);
+  // b_{k+1} = b_k + sigma_rw sqrt(dt) n_k dt - b_k / tau
+  bias_W_m_ += n_rw * dt_s - bias_W_m_ / params_.correlation_time_steps;
+  delay_line_.push_back({t_s, {GeodeticFromWorld(origin_, p_W + n_p + bias_W_m_), v_W + n_v}});
+}
+
+bool RandomWalkGpsModel::Fix(double t_s, GpsSample* sample) {
+  // drop the readings older than the delay, keeping the last one
+  while (delay_line_.size() > 1 && t_s - delay_line_.front().t_s > params_.delay_s + 1e-9) delay_line_.pop_front();
+  if (delay_line_.empty()) return false;
+  *sample = delay_line_.front().sample;
+  return true;
 }
 
 std::string MagnetometerParams::Validate() const {

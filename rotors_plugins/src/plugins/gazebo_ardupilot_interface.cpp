@@ -1,15 +1,20 @@
 // librotors_gazebo_ardupilot_interface.so (ours): ArduPilot's SITL flies the vehicle through its JSON
-// interface (sim_vehicle.py -f JSON, libraries/SITL/SIM_JSON.cpp). ArduPilot sends a servo packet
-// each of its frames to servo_port (9002); the interface answers to the sender with the JSON state
-// line (ardupilot_json.h). One servo frame per physics step: the frame received at the start of a
-// step drives that step (PWM 1000..2000 us -> 0..1, through <control_channels>), and the state at the
-// end of the step answers it. With lockstep (the default), once the first frame has come, the world
-// does not start a step before the next frame is in; ArduPilot advances its clock by the
-// differences of our timestamps, so the pair runs as fast as both can. A link silent for
-// link_timeout [s] of wall time is lost (motors disarmed; ArduPilot resends after 1 s and the exchange
-// starts again). A timestamp that goes back (reset) is, for ArduPilot, a physics reset.
+// interface (libraries/SITL/SIM_JSON.cpp). ArduPilot sends a servo packet each of its frames to
+// servo_port (9002 + 10 instance); the interface answers to the sender with the JSON state line
+// (ardupilot_json.h). One servo frame per physics step: the frame received at the start of a step
+// drives that step (PWM through <control_channels>: motors 1000..2000 us -> 0..1, the outputs listed
+// in centred_outputs, a plane's surfaces, 1500 +- 500 us -> -1..1; 0 us: no output), and the state at
+// the end of the step answers it. As ArduPilot's Gazebo plugin (ArduPilot/ardupilot_gazebo
+// src/ArduPilotPlugin.cc): a frame whose frame_count repeats the last one is SIM_JSON resending it
+// for want of an answer, and is answered again with the last state, without a step; a count that
+// goes back is a restarted ArduPilot (said in one line; the exchange starts again). With lockstep (the
+// default), once the first frame has come, the world does not start a step before the next frame is
+// in, waiting as long as ArduPilot takes (link_timeout > 0 [s of wall time]: at most that long, then
+// the motors are disarmed and the world runs on).
 #include <cmath>
 #include <memory>
+#include <set>
+#include <sstream>
 
 #include "rotors_core/error.h"
 #include "rotors_gazebo_plugins/autopilot/ardupilot_json.h"
@@ -25,26 +30,43 @@ class GazeboArdupilotInterface : public AutopilotInterface {
   int OutputCount() const override { return 32; }  // a 16- or 32-channel servo packet
 
   void LoadProtocol() override {
-    std::string addr = "127.0.0.1";
+    std::string addr = "127.0.0.1", centred;
     int port = 9002;
     ReadParam(Params(), "ardupilot_addr", &addr);
     ReadParam(Params(), "servo_port", &port);
     ReadParam(Params(), "enable_lockstep", &lockstep_);
     ReadParam(Params(), "link_timeout", &link_timeout_s_);
-    if (!(link_timeout_s_ > 0.0)) throw rotors_sim::SimError("link_timeout must be > 0 s of wall time");
+    ReadParam(Params(), "centred_outputs", &centred);
+    if (!(link_timeout_s_ >= 0.0))
+      throw rotors_sim::SimError("link_timeout = " + std::to_string(link_timeout_s_) +
+                                 " must be >= 0 s of wall time (0: wait as long as ArduPilot takes)");
+    std::istringstream list(centred);
+    int output;
+    while (list >> output) {
+      if (output < 0 || output >= OutputCount())
+        throw rotors_sim::SimError("centred_outputs: output " + std::to_string(output) + " is not in 0.." +
+                                   std::to_string(OutputCount() - 1));
+      centred_.insert(output);
+    }
+    if (!list.eof())
+      throw rotors_sim::SimError("centred_outputs '" + centred + "' must be servo output indices, e.g. \"0 1 3\"");
     socket_ = std::make_unique<UdpSocket>(addr, port);
     Info("waiting for ArduPilot's servo packets on UDP " + addr + ":" + std::to_string(port) +
          (lockstep_ ? " (lockstep)" : ""));
   }
 
-  void OnReset() override { linked_ = false; }
+  void OnReset() override {
+    linked_ = false;
+    have_frame_ = false;
+    last_json_.clear();
+  }
 
   void Exchange(const VehicleSnapshot& s) override {
     if (answer_due_) {  // the state after the last frame's step answers it
       int non_finite = 0;
-      const std::string json = ardupilot::StateJson(s, s.v_W.norm(), s.has_diff_pressure, &non_finite);
+      last_json_ = ardupilot::StateJson(s, &non_finite);
       if (non_finite > 0) Error("nan", std::to_string(non_finite) + " state values not finite: sent as 0");
-      socket_->Reply(json.data(), json.size());
+      socket_->Reply(last_json_.data(), last_json_.size());
       answer_due_ = false;
     }
     if (!lockstep_ || !linked_) {
@@ -54,20 +76,19 @@ class GazeboArdupilotInterface : public AutopilotInterface {
     const auto start = std::chrono::steady_clock::now();
     while (!answer_due_) {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (waited > link_timeout_s_) {
+      if (link_timeout_s_ > 0.0 && waited > link_timeout_s_) {
         linked_ = false;
         Error("lost", "no servo packet for " + std::to_string(link_timeout_s_) +
-                          " s (link_timeout): motors "
-                          "disarmed, the world runs on until ArduPilot sends again");
+                          " s (link_timeout): motors disarmed, the world runs on until ArduPilot sends again");
         ApplyDisarmed();
         return;
       }
-      ReadFrames(std::min(0.05, link_timeout_s_ - waited));
+      ReadFrames(link_timeout_s_ > 0.0 ? std::min(0.05, link_timeout_s_ - waited) : 0.05);
     }
   }
 
  private:
-  /// Takes the servo frames there are (waiting up to timeout_s for one); the last one drives the step.
+  /// Takes the servo frames there are (waiting up to timeout_s for one); a new frame drives the step.
   void ReadFrames(double timeout_s) {
     uint8_t buffer[512];
     int n;
@@ -80,20 +101,40 @@ class GazeboArdupilotInterface : public AutopilotInterface {
         Error("packet", why + " (from " + socket_->Peer() + "): ignored");
         continue;
       }
+      switch (ardupilot::OrderOf(frame.frame_count, have_frame_, last_frame_count_)) {
+        case ardupilot::FrameOrder::kRepeated:
+          // SIM_JSON resends a frame it got no answer to: the same answer again, no step
+          if (!last_json_.empty()) socket_->Reply(last_json_.data(), last_json_.size());
+          continue;
+        case ardupilot::FrameOrder::kBackwards:
+          Info("servo frame_count went back from " + std::to_string(last_frame_count_) + " to " +
+               std::to_string(frame.frame_count) + ": ArduPilot restarted; the exchange starts again");
+          last_json_.clear();
+          break;
+        case ardupilot::FrameOrder::kFirst:
+        case ardupilot::FrameOrder::kNext:
+          break;
+      }
+      have_frame_ = true;
+      last_frame_count_ = frame.frame_count;
       if (!linked_) {
         linked_ = true;
         Info("servo packets from ArduPilot at " + socket_->Peer() + " (" + std::to_string(frame.frame_rate) + " Hz)" +
              (lockstep_ ? ": lockstep from now on" : ""));
       }
-      std::vector<double> u(frame.pwm_us.size());
-      for (size_t i = 0; i < u.size(); ++i) u[i] = (frame.pwm_us[i] - 1000.0) / 1000.0;  // 1000..2000 us -> 0..1
+      std::vector<double> u(frame.pwm_us.size(), 0.0);
+      for (size_t i = 0; i < u.size(); ++i)
+        ardupilot::PwmToInput(frame.pwm_us[i], centred_.count(static_cast<int>(i)) > 0, &u[i]);  // 0 us: u = 0
       Apply(u, true);
       answer_due_ = true;
     }
   }
 
-  bool lockstep_ = true, linked_ = false, answer_due_ = false;
-  double link_timeout_s_ = 2.0;
+  bool lockstep_ = true, linked_ = false, answer_due_ = false, have_frame_ = false;
+  uint32_t last_frame_count_ = 0;
+  double link_timeout_s_ = 0.0;
+  std::set<int> centred_;
+  std::string last_json_;
   std::unique_ptr<UdpSocket> socket_;
 };
 

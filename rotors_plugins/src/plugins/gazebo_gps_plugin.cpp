@@ -2,7 +2,9 @@
 // updated at the sensor's <update_rate>. Publishes <ns>/<gpsTopic> (sensor_msgs/NavSatFix: WGS84 at the
 // world's <spherical_coordinates>, fix, GPS service, covariance diag(h^2, h^2, v^2)) and
 // <ns>/<groundSpeedTopic> (geometry_msgs/TwistStamped, world-frame velocity), both noisy with the
-// plugin's standard deviations and stamped with the sensor's update time.
+// plugin's standard deviations and stamped with the sensor's update time. gpsNoiseModel random_walk:
+// PX4's Gazebo GPS instead (RandomWalkGpsModel, stepped with the physics; each fix the reading of
+// gpsDelay ago), the covariance from horPosStdDev / verPosStdDev as the accuracy the fix reports.
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/NavSatFix.h>
 
@@ -34,6 +36,20 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
       throw rotors_sim::SimError("<linkName> '" + link_name + "' is not the sensor's link '" + sensor->ParentName() +
                                  "'");
     GpsParams p;
+    std::string noise_model = "white";
+    ReadParam(Params(), "gpsNoiseModel", &noise_model);
+    if (noise_model == "random_walk") p.noise_model = GpsNoiseModel::kRandomWalk;
+    else if (noise_model != "white")
+      throw rotors_sim::SimError("gpsNoiseModel '" + noise_model +
+                                 "' is not a GPS noise model: white (RotorS') or random_walk (PX4's Gazebo GPS)");
+    ReadParam(Params(), "gpsXYRandomWalk", &p.xy_random_walk);
+    ReadParam(Params(), "gpsZRandomWalk", &p.z_random_walk);
+    ReadParam(Params(), "gpsXYNoiseDensity", &p.xy_noise_density);
+    ReadParam(Params(), "gpsZNoiseDensity", &p.z_noise_density);
+    ReadParam(Params(), "gpsVXYNoiseDensity", &p.vxy_noise_density);
+    ReadParam(Params(), "gpsVZNoiseDensity", &p.vz_noise_density);
+    ReadParam(Params(), "gpsCorrelationTime", &p.correlation_time_steps);
+    ReadParam(Params(), "gpsDelay", &p.delay_s);
     ReadParam(Params(), "horPosStdDev", &p.hor_pos_std_dev_m);
     ReadParam(Params(), "verPosStdDev", &p.ver_pos_std_dev_m);
     ReadParam(Params(), "horVelStdDev", &p.hor_vel_std_dev_m_s);
@@ -41,8 +57,9 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     ThrowIfInvalid(p.Validate());
     sensor_ = sensor;
     const auto& o = sensor->ParentLink()->GetModel()->GetWorldRaw()->Origin();
-    model_.Emplace(p, GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg},
-                   ReadSeed(Params()));
+    const GeodeticOrigin origin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg};
+    if (p.noise_model == GpsNoiseModel::kRandomWalk) random_walk_.Emplace(p, origin, ReadSeed(Params()));
+    else model_.Emplace(p, origin, ReadSeed(Params()));
     fix_.header.frame_id = sensor->ParentName();
     fix_.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
     fix_.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
@@ -56,15 +73,43 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
                                                                *sensor->ParentLink()->GetModel()->GetWorldRaw(), 10);
     if (!gps_pub_) return;  // neither ROS nor in-process taps: nobody to publish to
     connection_ = sensor->ConnectUpdated([this] { OnUpdate(); });
+    if (random_walk_) {
+      world_ = sensor->ParentLink()->GetModel()->GetWorldRaw();
+      step_connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnPhysicsStep(); });
+    }
   }
 
-  void Reset() override { model_.Reset(); }
+  void Reset() override {
+    model_.Reset();
+    random_walk_.Reset();
+    last_step_s_ = -1.0;
+  }
 
  private:
-  void OnUpdate() {
+  Eigen::Vector3d Position() const {
     const auto X_WS = sensor_->WorldPose();
+    return {X_WS.Pos().X(), X_WS.Pos().Y(), X_WS.Pos().Z()};
+  }
+  Eigen::Vector3d Velocity() const {
     const auto v_W = sensor_->ParentLink()->WorldLinearVel();
-    const GpsSample m = model_->Measure({X_WS.Pos().X(), X_WS.Pos().Y(), X_WS.Pos().Z()}, {v_W.X(), v_W.Y(), v_W.Z()});
+    return {v_W.X(), v_W.Y(), v_W.Z()};
+  }
+
+  /// The random-walk model runs with the physics: every step, as PX4's plugin.
+  void OnPhysicsStep() {
+    const double t_s = world_->SimTime().Double();
+    const double dt_s = last_step_s_ < 0.0 ? world_->Physics().max_step_size_s : t_s - last_step_s_;
+    last_step_s_ = t_s;
+    if (dt_s > 0.0) random_walk_->Step(t_s, dt_s, Position(), Velocity());
+  }
+
+  void OnUpdate() {
+    GpsSample m;
+    if (random_walk_) {
+      if (!random_walk_->Fix(world_->SimTime().Double(), &m)) return;
+    } else {
+      m = model_->Measure(Position(), Velocity());
+    }
     fix_.header.stamp = ToRos(sensor_->LastUpdateTime());
     fix_.latitude = m.latitude_longitude_altitude.x();
     fix_.longitude = m.latitude_longitude_altitude.y();
@@ -78,6 +123,10 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
 
   rotors_sim::sensors::SensorPtr sensor_;
   SeededModel<GpsModel> model_;
+  SeededModel<RandomWalkGpsModel> random_walk_;
+  rotors_sim::physics::World* world_ = nullptr;
+  double last_step_s_ = -1.0;
+  rotors_sim::event::ConnectionPtr step_connection_;
   sensor_msgs::NavSatFix fix_;
   std::shared_ptr<ros::NodeHandle> node_;
   // ListenedPublisher: no search through every topic per step

@@ -8,12 +8,13 @@
 // differential pressure when theirs are new), HIL_GPS when the GPS plugin has a new fix,
 // HIL_STATE_QUATERNION (ground truth) at the interval PX4 asks for, DISTANCE_SENSOR and
 // HIL_OPTICAL_FLOW when the vehicle has those sensors. HIL_ACTUATOR_CONTROLS come back through
-// <control_channels> to the motors. Lockstep (enable_lockstep, on by default, SITL only): until PX4
-// connects the world runs on (paced by the simulator; the vehicle waits on the ground, and other
-// vehicles can be spawned); once the first HIL_ACTUATOR_CONTROLS has arrived, the world does not step
-// past a HIL_SENSOR until its answer is in; a link silent for link_timeout [s] of wall time, or
-// closed, is lost: the motors go to their disarmed values and the world runs on (paced) until the
-// autopilot is back.
+// <control_channels> to the motors. Lockstep (enable_lockstep, on by default, SITL only), as PX4's
+// Gazebo plugin (PX4-SITL_gazebo-classic src/gazebo_mavlink_interface.cpp): PX4 sets its clock from
+// each HIL_SENSOR and never runs ahead of it; once the first HIL_ACTUATOR_CONTROLS has arrived and
+// while PX4 says it is armed, a step waits for the answer to its HIL_SENSOR at most answer_timeout
+// [s of wall time, 0.01] and then goes on with the last outputs. Silence never closes the link: only
+// PX4 closing it does (the motors go to their disarmed values, and a restarted PX4 may connect
+// again; a running PX4's simulator module connects only once).
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -48,7 +49,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     ReadParam(Params(), "hil_mode", &hil_mode_);
     ReadParam(Params(), "hil_state_level", &hil_state_level_);
     ReadParam(Params(), "enable_lockstep", &lockstep_);
-    ReadParam(Params(), "link_timeout", &link_timeout_s_);
+    ReadParam(Params(), "answer_timeout", &answer_timeout_s_);
     ReadParam(Params(), "protocol_version", &protocol_version);
     double imu_rate_hz = 0.0;
     ReadParam(Params(), "imu_rate", &imu_rate_hz);
@@ -58,9 +59,17 @@ class GazeboMavlinkInterface : public AutopilotInterface {
       throw rotors_sim::SimError("protocol_version " + std::to_string(protocol_version) +
                                  ": this interface speaks MAVLink 2 (2.0), as PX4 does since v1.9");
     if (!(imu_rate_hz >= 0.0)) throw rotors_sim::SimError("imu_rate must be >= 0 Hz (0: every step)");
-    if (!(link_timeout_s_ > 0.0)) throw rotors_sim::SimError("link_timeout must be > 0 s of wall time");
+    if (!(answer_timeout_s_ >= 0.0))
+      throw rotors_sim::SimError("answer_timeout = " + std::to_string(answer_timeout_s_) +
+                                 " must be >= 0 s of wall time (PX4's Gazebo plugin waits 0.01 s)");
     if (system_id < 1 || system_id > 255) throw rotors_sim::SimError("system_id must be 1..255");
     imu_interval_s_ = imu_rate_hz > 0.0 ? 1.0 / imu_rate_hz : 0.0;
+    CheckImuRate(imu_rate_hz);
+    // HIL_GPS carries UTC: the wall clock when the sim time was zero (PX4's plugin: the world's start time)
+    utc_at_sim_zero_us_ = static_cast<uint64_t>(
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+            .count() -
+        static_cast<int64_t>(SimTime_s() * 1e6));
     // component 200, as PX4's Gazebo plugins frame their messages
     endpoint_ = std::make_unique<px4::MavlinkEndpoint>(static_cast<uint8_t>(system_id), 200);
     if (hil_mode_) lockstep_ = false;  // hardware in the loop runs on the autopilot's clock
@@ -84,6 +93,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
 
   void OnReset() override {
     awaiting_answer_ = false;
+    armed_ = false;
     received_first_actuator_ = false;  // the next answer starts the exchange again
     last_imu_count_ = last_gps_count_ = last_mag_count_ = last_baro_count_ = last_diff_count_ = 0;
     last_range_count_ = last_flow_count_ = 0;
@@ -100,26 +110,23 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     last_imu_count_ = s.imu_count;
     last_sensor_time_s_ = s.time_s;
     Send(s);
-    if (!lockstep_ || !received_first_actuator_) return;
-    // lockstep: this step waits for the answer to the HIL_SENSOR just sent
+    if (hil_mode_ && !heard_heartbeat_) Write(endpoint_->Frame(SimulatorHeartbeat()));
+    if (!lockstep_ || !received_first_actuator_ || !armed_) return;
+    // lockstep while armed: this step waits for the answer to the HIL_SENSOR just sent, at most answer_timeout
     awaiting_answer_ = true;
     const auto start = std::chrono::steady_clock::now();
-    const uint64_t bad_before = endpoint_->BadFrames();
     while (awaiting_answer_) {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (endpoint_->BadFrames() != bad_before && waited > kLostAnswerWait_s) {
-        // a corrupt frame took the answer with it (the autopilot waits for the next HIL_SENSOR)
-        Error("lost answer", "no HIL_ACTUATOR_CONTROLS for the HIL_SENSOR of t = " + std::to_string(s.time_s) +
-                                 " s after a malformed frame: the step goes on with the last outputs");
+      if (waited >= answer_timeout_s_) {
+        ++missed_answers_;
+        Error("late answer", "no HIL_ACTUATOR_CONTROLS within " + std::to_string(answer_timeout_s_) +
+                                 " s (answer_timeout) for the HIL_SENSOR of t = " + std::to_string(s.time_s) + " s (" +
+                                 std::to_string(missed_answers_) +
+                                 " so far): the step goes on with the last outputs, the link stays up");
         awaiting_answer_ = false;
         return;
       }
-      if (waited > link_timeout_s_) {
-        LinkLost("no HIL_ACTUATOR_CONTROLS for " + std::to_string(link_timeout_s_) +
-                 " s after the HIL_SENSOR of t = " + std::to_string(s.time_s) + " s (link_timeout)");
-        return;
-      }
-      if (!Poll(std::min(0.05, link_timeout_s_ - waited))) return;  // the link closed
+      if (!Poll(answer_timeout_s_ - waited)) return;  // the link closed
     }
   }
 
@@ -127,6 +134,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   void OnConnected() {
     endpoint_->ResetParser();
     autopilot_system_id_ = -1;
+    armed_ = false;
     Info("autopilot connected on TCP port " + std::to_string(tcp_->Port()));
   }
 
@@ -150,9 +158,11 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     if (!hil_state_level_) Write(endpoint_->Frame(px4::HilSensor(s, new_mag, new_baro, new_diff)));
     if (s.has_gps && s.gps_count != last_gps_count_) {
       last_gps_count_ = s.gps_count;
-      if (!hil_state_level_) Write(endpoint_->Frame(px4::HilGps(s)));
+      if (!hil_state_level_) Write(endpoint_->Frame(px4::HilGps(s, utc_at_sim_zero_us_)));
     }
-    if (hil_state_level_ || s.time_s - last_state_time_s_ >= state_interval_s_ - 1e-9) {
+    // ground truth: in SITL, and in HITL only at state level (sensor-level HITL: PX4's own estimate)
+    const bool send_state = !hil_mode_ || hil_state_level_;
+    if (send_state && (hil_state_level_ || s.time_s - last_state_time_s_ >= state_interval_s_ - 1e-9)) {
       last_state_time_s_ = s.time_s;
       Write(endpoint_->Frame(px4::HilStateQuaternion(s)));
     }
@@ -222,9 +232,12 @@ class GazeboMavlinkInterface : public AutopilotInterface {
       qgc_->SendTo(qgc_addr_, qgc_port_, bytes.data(), bytes.size());
     }
     if (m.msgid == MAVLINK_MSG_ID_HEARTBEAT) {
-      if (autopilot_system_id_ < 0) {
+      heard_heartbeat_ = true;
+      if (autopilot_system_id_ != m.sysid) {
+        // the first heartbeat, or PX4 took another system id (MAV_SYS_ID): follow it
+        Info("autopilot heartbeat from system id " + std::to_string(m.sysid) +
+             (autopilot_system_id_ < 0 ? std::string() : " (was " + std::to_string(autopilot_system_id_) + ")"));
         autopilot_system_id_ = m.sysid;
-        Info("autopilot heartbeat from system id " + std::to_string(m.sysid));
       }
       return;
     }
@@ -263,7 +276,31 @@ class GazeboMavlinkInterface : public AutopilotInterface {
       }
       u[i] = std::max(-1.0, std::min(1.0, static_cast<double>(a.controls[i])));
     }
-    Apply(u, (a.mode & px4::kArmed) != 0);
+    armed_ = (a.mode & px4::kArmed) != 0;
+    Apply(u, armed_);
+  }
+
+  /// HITL: the simulator's heartbeat, each step until the autopilot's first one (current PX4 starts
+  /// MAVLink on USB only after it hears one), as PX4's Gazebo plugin sends it.
+  static mavlink_heartbeat_t SimulatorHeartbeat() {
+    mavlink_heartbeat_t h{};
+    h.type = MAV_TYPE_GENERIC;
+    h.autopilot = MAV_AUTOPILOT_INVALID;
+    h.system_status = MAV_STATE_ACTIVE;
+    return h;
+  }
+
+  /// PX4 integrates its IMU at IMU_INTEG_RATE (250 Hz in its SITL): one line when the HIL_SENSOR rate
+  /// (the physics rate, or imu_rate) is not a whole multiple of it.
+  void CheckImuRate(double imu_rate_hz) {
+    if (hil_mode_ || serial_enabled_) return;
+    const double step_s = PhysicsStep_s();
+    const double rate_hz = imu_rate_hz > 0.0 ? std::min(imu_rate_hz, 1.0 / step_s) : 1.0 / step_s;
+    const double multiple = rate_hz / kPx4ImuIntegrationRate_Hz;
+    if (multiple < 1.0 - 1e-6 || std::abs(multiple - std::round(multiple)) > 1e-6)
+      Error("imu rate", "HIL_SENSOR at " + std::to_string(rate_hz) + " Hz (physics step " + std::to_string(step_s) +
+                            " s): PX4 integrates its IMU at " + std::to_string(kPx4ImuIntegrationRate_Hz) +
+                            " Hz and needs a whole multiple of it: use a step of 0.004 s (or 0.002, 0.001)");
   }
 
   void RelayFromQgc() {
@@ -276,8 +313,9 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   void LinkLost(const std::string& why) {
     awaiting_answer_ = false;
     received_first_actuator_ = false;
+    armed_ = false;
     if (tcp_) tcp_->Drop();
-    Error("lost", why + ": motors disarmed, the world runs on until the autopilot is back");
+    Error("lost", why + ": motors disarmed, the world runs on (a restarted PX4 may connect again)");
     ApplyDisarmed();
   }
 
@@ -294,14 +332,16 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   int udp_port_ = 0, qgc_port_ = 0, baud_ = 0;
   std::chrono::steady_clock::time_point last_serial_try_;
   std::unique_ptr<px4::MavlinkEndpoint> endpoint_;
-  /// How long an answer may still come after a malformed frame before the step goes on without it [s wall]
-  static constexpr double kLostAnswerWait_s = 0.1;
+  /// PX4's IMU_INTEG_RATE in its SITL [Hz]
+  static constexpr double kPx4ImuIntegrationRate_Hz = 250.0;
   // parameters
   bool serial_enabled_ = false, hil_mode_ = false, hil_state_level_ = false, lockstep_ = true;
-  double link_timeout_s_ = 5.0, imu_interval_s_ = 0.0, state_interval_s_ = 0.0;
+  double answer_timeout_s_ = 0.01, imu_interval_s_ = 0.0, state_interval_s_ = 0.0;
+  uint64_t utc_at_sim_zero_us_ = 0;
   // exchange state
   int autopilot_system_id_ = -1;
-  bool received_first_actuator_ = false, awaiting_answer_ = false;
+  bool received_first_actuator_ = false, awaiting_answer_ = false, armed_ = false, heard_heartbeat_ = false;
+  uint64_t missed_answers_ = 0;
   uint64_t last_imu_count_ = 0, last_gps_count_ = 0, last_mag_count_ = 0, last_baro_count_ = 0, last_diff_count_ = 0,
            last_range_count_ = 0, last_flow_count_ = 0;
   double last_sensor_time_s_ = -1e9, last_state_time_s_ = -1e9;

@@ -29,9 +29,21 @@ std::vector<uint8_t> WriteServoPacket(const ServoFrame& frame);
 
 /// The state line: timestamp [s]; imu.gyro [rad/s] and imu.accel_body [m/s^2] (specific force) in
 /// body FRD from the IMU plugin (ground truth without one); position [m] and velocity [m/s] NED from
-/// the world origin; quaternion w x y z, NED <- FRD; rng_1 [m] with a range sensor, airspeed [m/s]
-/// with an airspeed sensor. Numbers that are not finite are written as 0 and counted in *non_finite.
-std::string StateJson(const VehicleSnapshot& s, double airspeed_m_s, bool has_airspeed, int* non_finite);
+/// the world origin; quaternion w x y z, NED <- FRD; rng_1 [m] with a range sensor (no return, or
+/// beyond its range: twice its maximum, which ArduPilot reads as "out of range high", as ArduPilot's
+/// Gazebo plugin sends it); airspeed [m/s] with an airspeed sensor, its wind-relative reading (ArduPilot
+/// takes it as airspeed and pitot); no_time_sync (ArduPilot does not pace itself to real time: the
+/// world sets the pace). Numbers that are not finite are written as 0 and counted in *non_finite.
+std::string StateJson(const VehicleSnapshot& s, int* non_finite);
+
+/// What a servo frame's count says against the last one's (SIM_JSON resends a frame unchanged when it
+/// got no answer; a restarted ArduPilot counts from 0 again).
+enum class FrameOrder { kFirst, kNext, kRepeated, kBackwards };
+FrameOrder OrderOf(uint32_t frame_count, bool have_last, uint32_t last_frame_count);
+
+/// A servo channel's PWM [us] as the control channel's input u: motors 1000..2000 us -> 0..1,
+/// surfaces centred on 1500 us -> -1..1 (clamped); 0 us is "no output" (false).
+bool PwmToInput(uint16_t pwm_us, bool centred, double* u);
 
 }  // namespace ardupilot
 }  // namespace rotors_gazebo_plugins

@@ -32,12 +32,17 @@ double IsaTemperature(double altitude_m);
 /// IMU (always), magnetometer, barometer and differential pressure (each when `new_*`), as
 /// fields_updated says; accelerometer and gyroscope in body FRD, the field in gauss.
 mavlink_hil_sensor_t HilSensor(const VehicleSnapshot& s, bool new_mag, bool new_baro, bool new_diff_pressure);
-/// The GPS plugin's reading: 1e-7 deg, mm, cm/s NED, eph/epv in cm from its standard deviations.
-mavlink_hil_gps_t HilGps(const VehicleSnapshot& s);
-/// Ground truth: q NED <- FRD, FRD rates, 1e-7 deg, mm, cm/s NED, specific force in mG.
+/// The GPS plugin's reading: 1e-7 deg, mm, cm/s NED, eph/epv in cm from its standard deviations;
+/// time_usec UTC (PX4 takes it as the fix's UTC time): sim time + `utc_at_sim_zero_us`, as PX4's Gazebo
+/// plugin adds the world's start wall time.
+mavlink_hil_gps_t HilGps(const VehicleSnapshot& s, uint64_t utc_at_sim_zero_us);
+/// Ground truth: q NED <- FRD, FRD rates, 1e-7 deg, mm, cm/s NED, the acceleration in NED [m/s^2 * 1000]
+/// (PX4 reads xacc / 1000 as m/s^2, its Gazebo plugin sends a_NED * 1000).
 mavlink_hil_state_quaternion_t HilStateQuaternion(const VehicleSnapshot& s);
 /// A downward range sensor (ROTATION_PITCH_270), cm.
 mavlink_distance_sensor_t DistanceSensor(const VehicleSnapshot& s);
+/// The flow plugin's integrals; gyro integrals NaN when the flow sensor has none (all three 0 from our
+/// plugin): PX4 then compensates rotation with its own gyro, as with PX4's Gazebo flow plugin.
 mavlink_hil_optical_flow_t HilOpticalFlow(const VehicleSnapshot& s);
 
 /// One end of a MAVLink 2 link: frames outgoing messages with its own system and component ids and

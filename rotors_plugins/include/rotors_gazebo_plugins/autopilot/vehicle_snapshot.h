@@ -19,6 +19,7 @@ struct VehicleSnapshot {
   Eigen::Vector3d v_W = Eigen::Vector3d::Zero();                          ///< [m/s] ENU
   Eigen::Vector3d omega_B = Eigen::Vector3d::Zero();                      ///< [rad/s] FLU
   Eigen::Vector3d specific_force_B = Eigen::Vector3d::Zero();             ///< [m/s^2] FLU, true (R^T (a - g))
+  Eigen::Vector3d a_W = Eigen::Vector3d::Zero();                          ///< [m/s^2] ENU, true acceleration
   Eigen::Vector3d latitude_longitude_altitude = Eigen::Vector3d::Zero();  ///< [deg, deg, m] of p_W
 
   // the IMU plugin (imuSubTopic)
@@ -37,10 +38,11 @@ struct VehicleSnapshot {
   uint64_t baro_count = 0;
   double pressure_Pa = 101325.0;
 
-  // the airspeed plugin (airspeedSubTopic): differential pressure
+  // the airspeed plugin (airspeedSubTopic): its wind-relative reading and a pitot's differential pressure
   bool has_diff_pressure = false;
   uint64_t diff_pressure_count = 0;
   double diff_pressure_Pa = 0.0;
+  double airspeed_m_s = 0.0;  ///< the norm of the sensor's reading (along its pitot axis, or 3-axis)
 
   // the GPS plugin (gpsSubTopic, groundSpeedSubTopic)
   bool has_gps = false;

@@ -1,11 +1,16 @@
 // Navigation sensors of RotorS (rotors_reference.md 4.9-4.11), engine-free:
 //   GPS:          position in the world (ENU) + N(0, sigma_h/v) -> WGS84 latitude, longitude, altitude
 //                 at the world's <spherical_coordinates>; ground speed = v_W + N(0, sigma)
+//   GPS, PX4's:   PX4-SITL_gazebo-classic's gazebo_gps_plugin: every physics step dt a bias walks,
+//                 b_{k+1} = b_k + sigma_rw sqrt(dt) n_k dt - b_k / tau  (tau counted in steps, as PX4
+//                 integrates it), the reading p_W + sigma_p sqrt(dt) n + b joins a delay line, and a
+//                 fix publishes the reading of `delay` ago
 //   magnetometer: B_B = R_WB^T m_W + b_B + n,  m_W the reference field (NED parameters rotated into
 //                 the ENU world: RotorS used N, E, D as x, y, z), b_B drawn once from U(-b, b)
 //   barometer:    the 1976 standard atmosphere below 11 km + N(0, sigma^2)
 #pragma once
 
+#include <deque>
 #include <random>
 #include <string>
 
@@ -24,11 +29,26 @@ struct GeodeticOrigin {
 /// WGS84 latitude [deg], longitude [deg] and altitude [m] of a point given in the world frame.
 Eigen::Vector3d GeodeticFromWorld(const GeodeticOrigin& origin, const Eigen::Vector3d& p_W);
 
+/// gpsNoiseModel: RotorS' white noise on each fix, or PX4's Gazebo GPS (a random-walk bias).
+enum class GpsNoiseModel { kWhite, kRandomWalk };
+
 struct GpsParams {
-  double hor_pos_std_dev_m = 3.0;    ///< horPosStdDev
-  double ver_pos_std_dev_m = 6.0;    ///< verPosStdDev
-  double hor_vel_std_dev_m_s = 0.1;  ///< horVelStdDev
-  double ver_vel_std_dev_m_s = 0.1;  ///< verVelStdDev
+  /// horPosStdDev, verPosStdDev: the accuracy each fix reports (NavSatFix covariance, HIL_GPS eph/epv);
+  /// with the white model also the noise it adds
+  double hor_pos_std_dev_m = 3.0;
+  double ver_pos_std_dev_m = 6.0;
+  double hor_vel_std_dev_m_s = 0.1;  ///< horVelStdDev (white model)
+  double ver_vel_std_dev_m_s = 0.1;  ///< verVelStdDev (white model)
+  GpsNoiseModel noise_model = GpsNoiseModel::kWhite;  ///< gpsNoiseModel: "white" or "random_walk"
+  // the random-walk model; defaults: PX4-SITL_gazebo-classic's include/gazebo_gps_plugin.h
+  double xy_random_walk = 2.0;          ///< gpsXYRandomWalk [(m/s)/sqrt(Hz)]
+  double z_random_walk = 4.0;           ///< gpsZRandomWalk [(m/s)/sqrt(Hz)]
+  double xy_noise_density = 2e-4;       ///< gpsXYNoiseDensity [m/sqrt(Hz)]
+  double z_noise_density = 4e-4;        ///< gpsZNoiseDensity [m/sqrt(Hz)]
+  double vxy_noise_density = 0.2;       ///< gpsVXYNoiseDensity [(m/s)/sqrt(Hz)]
+  double vz_noise_density = 0.4;        ///< gpsVZNoiseDensity [(m/s)/sqrt(Hz)]
+  double correlation_time_steps = 60.0;  ///< gpsCorrelationTime: tau of the bias, in physics steps (as PX4)
+  double delay_s = 0.12;                ///< gpsDelay [s]
   std::string Validate() const;
 };
 
@@ -48,6 +68,30 @@ class GpsModel {
   GeodeticOrigin origin_;
   std::mt19937_64 rng_;
   StandardNormal unit_normal_{0.0, 1.0};
+};
+
+/// PX4's Gazebo GPS (the random-walk model), stepped with the physics.
+class RandomWalkGpsModel {
+ public:
+  RandomWalkGpsModel(const GpsParams& params, const GeodeticOrigin& origin, uint64_t seed);
+  /// One physics step of dt_s ending at t_s: the bias walks and the step's reading joins the delay line.
+  void Step(double t_s, double dt_s, const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W);
+  /// The fix at t_s: the oldest reading not older than delay_s (false before the first step).
+  bool Fix(double t_s, GpsSample* sample);
+  const Eigen::Vector3d& Bias() const { return bias_W_m_; }
+  const GpsParams& Params() const { return params_; }
+
+ private:
+  struct Reading {
+    double t_s;
+    GpsSample sample;
+  };
+  GpsParams params_;
+  GeodeticOrigin origin_;
+  std::mt19937_64 rng_;
+  StandardNormal unit_normal_{0.0, 1.0};
+  Eigen::Vector3d bias_W_m_ = Eigen::Vector3d::Zero();
+  std::deque<Reading> delay_line_;
 };
 
 struct MagnetometerParams {
