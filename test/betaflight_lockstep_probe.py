@@ -182,6 +182,7 @@ def lockstep_run(binary: str, steps: int, timeout_s: float = float(os.environ.ge
             fc.start_configured()
             link.drain()
             answers, missing, extra = [], 0, 0
+            cpu0 = cpu_s(fc.process.pid)
             start = time.monotonic()
             for k in range(1, steps + 1):
                 t = k * DT
@@ -197,13 +198,20 @@ def lockstep_run(binary: str, steps: int, timeout_s: float = float(os.environ.ge
                 answers.append(a)
                 extra += link.drain()
             wall = time.monotonic() - start
+            cpu = cpu_s(fc.process.pid) - cpu0
             time.sleep(0.05)
             extra += link.drain()
-            return {"answers": answers, "missing": missing, "extra": extra, "wall": wall,
+            return {"answers": answers, "missing": missing, "extra": extra, "wall": wall, "cpu": cpu,
                     "log": Path(workdir, "betaflight.log").read_text(errors="replace")}
         finally:
             fc.stop()
             link.close()
+
+
+def cpu_s(pid: int) -> float:
+    """User + system CPU time of a process [s]."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def motors(a: bytes) -> tuple[float, ...]:
@@ -239,7 +247,8 @@ def cmd_speed(binary: str) -> None:
     r = lockstep_run(binary, steps, rc=True)
     rate = steps / r["wall"]
     print(f"{steps} states in {r['wall']:.2f} s wall: {rate:.0f} states/s = {rate * DT:.1f} x real time "
-          f"at {DT * 1e3:.0f} ms steps (missing {r['missing']}, extra {r['extra']})")
+          f"at {DT * 1e3:.0f} ms steps (missing {r['missing']}, extra {r['extra']}); the firmware's CPU time "
+          f"{r['cpu'] / steps * 1e6:.1f} us per state")
 
 
 def cmd_starts(binary: str, n: int) -> None:

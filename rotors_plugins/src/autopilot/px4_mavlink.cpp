@@ -6,24 +6,16 @@
 #include <limits>
 
 #include "rotors_gazebo_plugins/autopilot/frames.h"
+#include "rotors_gazebo_plugins/models/standard_atmosphere.h"
 
 namespace rotors_gazebo_plugins {
 namespace px4 {
 namespace {
-constexpr double kIsaSeaLevelPressure = 101325.0, kIsaSeaLevelTemperature = 288.15, kIsaLapseRate = 0.0065;
-constexpr double kIsaExponent = 0.190263;  // R L / (g M)
 
 int16_t ClampInt16(double v) { return static_cast<int16_t>(std::max(-32767.0, std::min(32767.0, std::round(v)))); }
 uint16_t ClampUint16(double v) { return static_cast<uint16_t>(std::max(0.0, std::min(65534.0, std::round(v)))); }
 uint64_t Microseconds(double t_s) { return static_cast<uint64_t>(std::llround(t_s * 1e6)); }
 }  // namespace
-
-double PressureAltitude(double pressure_Pa) {
-  // h = T_0 / L (1 - (p / p_0)^(R L / (g M)))
-  return kIsaSeaLevelTemperature / kIsaLapseRate * (1.0 - std::pow(pressure_Pa / kIsaSeaLevelPressure, kIsaExponent));
-}
-
-double IsaTemperature(double altitude_m) { return kIsaSeaLevelTemperature - kIsaLapseRate * altitude_m - 273.15; }
 
 mavlink_hil_sensor_t HilSensor(const VehicleSnapshot& s, bool new_mag, bool new_baro, bool new_diff_pressure) {
   mavlink_hil_sensor_t m{};
@@ -43,7 +35,7 @@ mavlink_hil_sensor_t HilSensor(const VehicleSnapshot& s, bool new_mag, bool new_
   if (new_mag) m.fields_updated |= kMag;
   m.abs_pressure = static_cast<float>(s.pressure_Pa / 100.0);  // [hPa]
   m.pressure_alt = static_cast<float>(PressureAltitude(s.pressure_Pa));
-  m.temperature = static_cast<float>(IsaTemperature(m.pressure_alt));
+  m.temperature = static_cast<float>(StandardAtmosphereTemperature_C(m.pressure_alt));
   if (new_baro) m.fields_updated |= kBaro;
   m.diff_pressure = static_cast<float>(s.diff_pressure_Pa / 100.0);  // [hPa]
   if (new_diff_pressure) m.fields_updated |= kDiffPressure;

@@ -115,17 +115,6 @@ std::string PressureParams::Validate() const {
   return CheckNonNegative({{"pressureVariance", pressure_variance_pa2}});
 }
 
-double StandardAtmospherePressure(double h_m) {
-  constexpr double kEarthRadius_m = 6356766.0, kT0_K = 288.15, kP0_Pa = 101325.0, kLapse_K_m = 0.0065;
-  constexpr double kG0 = 9.80665, kMolarMass_kg_kmol = 28.9644, kGasConstant_J_kmol_K = 8314.32;
-  // h_gp = R_e h / (R_e + h)
-  const double h_gp = kEarthRadius_m * h_m / (kEarthRadius_m + h_m);
-  // T = T_0 - L h_gp
-  const double T = kT0_K - kLapse_K_m * h_gp;
-  // p = p_0 (T / T_0)^(g_0 M / (R L))
-  return kP0_Pa * std::pow(T / kT0_K, kG0 * kMolarMass_kg_kmol / (kGasConstant_J_kmol_K * kLapse_K_m));
-}
-
 PressureModel::PressureModel(const PressureParams& params, uint64_t seed) : params_(params), rng_(seed) {}
 
 double PressureModel::Measure(double z_W_m) {

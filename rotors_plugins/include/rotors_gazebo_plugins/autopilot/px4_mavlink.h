@@ -24,11 +24,6 @@ constexpr uint8_t kArmed = MAV_MODE_FLAG_SAFETY_ARMED;
 /// HIL_ACTUATOR_CONTROLS.flags bit 0: PX4 runs lockstep
 constexpr uint64_t kLockstepFlag = 1;
 
-/// The international standard atmosphere: pressure altitude [m] of `pressure_Pa`, and the
-/// temperature [deg C] at `altitude_m`.
-double PressureAltitude(double pressure_Pa);
-double IsaTemperature(double altitude_m);
-
 /// IMU (always), magnetometer, barometer and differential pressure (each when `new_*`), as
 /// fields_updated says; accelerometer and gyroscope in body FRD, the field in gauss.
 mavlink_hil_sensor_t HilSensor(const VehicleSnapshot& s, bool new_mag, bool new_baro, bool new_diff_pressure);

@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "rotors_gazebo_plugins/models/standard_atmosphere.h"
 #include "rotors_gazebo_plugins/models/standard_normal.h"
 
 namespace rotors_gazebo_plugins {
@@ -124,9 +125,6 @@ struct PressureParams {
   std::string Validate() const;
 };
 
-/// Standard-atmosphere pressure [Pa] at a geometric altitude [m] (troposphere):
-/// h_gp = R_e h / (R_e + h), T = T_0 - L h_gp, p = p_0 (T / T_0)^(g_0 M / (R L)).
-double StandardAtmospherePressure(double altitude_m);
 
 class PressureModel {
  public:
