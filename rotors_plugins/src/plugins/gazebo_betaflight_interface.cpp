@@ -4,11 +4,17 @@
 // outputs Betaflight sends to motor_port (9002) through <control_channels> to the motors (output i
 // drives motor i by default: Betaflight's packet is in the ArduCopter plugin's order, front right,
 // rear left, front left, rear right, which is the iris'). Betaflight answers each state packet with
-// one motor packet; with lockstep (the default), once it has answered the first, the world does not
-// step past a state packet until the answer is in. Betaflight's own clock is scaled to the
-// simulator's rate from the state timestamps (its sitl.c), so its loops are not repeatable from run
-// to run; the exchange is. A firmware silent for link_timeout [s] of wall time is lost: motors to
-// their disarmed values, the world runs on until it answers again.
+// one motor packet.
+//   firmware_lockstep true (our lockstep build, resource/betaflight_lockstep.patch): the firmware's
+//     clock is the state packets' timestamps and it runs one gyro/PID loop per state; the RC packet
+//     goes before its state, every step waits for its answer from the first one on (at most
+//     link_timeout), and the physics step must be the firmware's loop period (lockstep_rate, 500 Hz).
+//     Two flights with the same inputs are the same, bit for bit.
+//   firmware_lockstep false (Betaflight's own build): its clock is scaled to the simulator's rate from
+//     the state timestamps (its sitl.c), so its loops are not repeatable from run to run; the exchange
+//     is: once it answers steadily, each state waits for its answer at most answer_timeout.
+// A firmware silent for link_timeout [s] of wall time is lost: motors to their disarmed values, the
+// world runs on until it answers again.
 #include <sensor_msgs/Joy.h>
 
 #include <array>
@@ -17,6 +23,7 @@
 
 #include "rotors_core/error.h"
 #include "rotors_gazebo_plugins/autopilot/betaflight_packets.h"
+#include "rotors_gazebo_plugins/autopilot/link_session.h"
 #include "rotors_gazebo_plugins/autopilot/links.h"
 #include "rotors_gazebo_plugins/autopilot_interface.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
@@ -41,7 +48,20 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     ReadParam(Params(), "answer_timeout", &answer_timeout_s_);
     if (!(answer_timeout_s_ > 0.0)) throw rotors_sim::SimError("answer_timeout must be > 0 s of wall time");
     ReadParam(Params(), "rcSubTopic", &rc_topic);
+    ReadParam(Params(), "firmware_lockstep", &firmware_lockstep_);
+    ReadParam(Params(), "rc_rate", &rc_rate_hz_);
+    if (!(rc_rate_hz_ >= 0.0)) throw rotors_sim::SimError("rc_rate must be >= 0 Hz (0: an RC packet with every state)");
+    double lockstep_rate_hz = 500.0;
+    ReadParam(Params(), "lockstep_rate", &lockstep_rate_hz);
     if (!(link_timeout_s_ > 0.0)) throw rotors_sim::SimError("link_timeout must be > 0 s of wall time");
+    if (firmware_lockstep_ && std::abs(PhysicsStep_s() * lockstep_rate_hz - 1.0) > 1e-6)
+      throw rotors_sim::SimError("physics step " + std::to_string(PhysicsStep_s()) +
+                                 " s: Betaflight's lockstep firmware runs one gyro/PID loop per state at " +
+                                 std::to_string(lockstep_rate_hz) + " Hz (lockstep_rate): use a step of " +
+                                 std::to_string(1.0 / lockstep_rate_hz) + " s");
+    if (firmware_lockstep_) lockstep_ = true;  // the firmware waits for each state: so must the world
+    session_ = firmware_lockstep_ ? LinkSession({true, link_timeout_s_, false, /*from the first state*/ 0})
+                                  : LinkSession({lockstep_, answer_timeout_s_, false, kAnswersBeforeLockstep});
     motors_ = std::make_unique<UdpSocket>("127.0.0.1", motor_port);
     states_ = std::make_unique<UdpSocket>("0.0.0.0", 0);
     node_ = MakeNode(Namespace());
@@ -49,23 +69,31 @@ class GazeboBetaflightInterface : public AutopilotInterface {
       rc_sub_ =
           node_->subscribe(rc_topic, 1, &GazeboBetaflightInterface::OnRc, this, ros::TransportHints().tcpNoDelay());
     Info("state to " + addr_ + ":" + std::to_string(state_port_) + ", RC to :" + std::to_string(rc_port_) +
-         ", motor outputs on :" + std::to_string(motor_port) + (lockstep_ ? " (lockstep)" : ""));
+         ", motor outputs on :" + std::to_string(motor_port) +
+         (firmware_lockstep_ ? " (the firmware in lockstep)" : lockstep_ ? " (lockstep)" : ""));
   }
 
-  void OnReset() override { answers_ = 0; }
+  void OnReset() override {
+    session_.On(LinkEvent::kReset);
+    last_rc_s_ = -1e9;
+  }
 
   void Exchange(const VehicleSnapshot& s) override {
     ReadMotors(0.0);
+    if (firmware_lockstep_) {
+      ExchangeInLockstep(s);
+      return;
+    }
     const betaflight::FdmPacket state = betaflight::StatePacket(s);
     states_->SendTo(addr_, state_port_, &state, sizeof(state));
     // RC only once the firmware answers steadily: its sitl.c hooks the UDP receiver up with the first
     // RC packet, and a packet that comes before the firmware's receiver is set up is lost for good
     // (RXLOSS until a restart)
-    if (!Bus().rc_channels_us.empty() && answers_ >= kAnswersBeforeLockstep) {
+    if (!Bus().rc_channels_us.empty() && session_.State() == LinkState::kLockstep) {
       const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
       states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
     }
-    if (!lockstep_ || answers_ < kAnswersBeforeLockstep) return;
+    if (!session_.Waits(true)) return;
     // wait for the answer to this state, at most answer_timeout: Betaflight's clock follows the
     // state timestamps (its simRate), and a world that stalled on it would slow its clock to a crawl
     answered_ = false;
@@ -79,16 +107,47 @@ class GazeboBetaflightInterface : public AutopilotInterface {
       last_answer_ = std::chrono::steady_clock::now();
       return;
     }
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_answer_).count() > link_timeout_s_) {
-      answers_ = 0;
-      Error("lost", "no motor packet for " + std::to_string(link_timeout_s_) +
-                        " s of wall time (link_timeout) at t = " + std::to_string(s.time_s) +
-                        " s: motors disarmed, the world runs on until Betaflight answers again");
-      ApplyDisarmed();
-    }
+    session_.On(LinkEvent::kLate);
+    if (SilentFor_s() > link_timeout_s_) LoseLink(s.time_s);
   }
 
  private:
+  /// The lockstep firmware: RC, then the state, then its answer (it reads the RC that came before it).
+  void ExchangeInLockstep(const VehicleSnapshot& s) {
+    // RC frames at the radio link's rate (rc_rate), as a receiver delivers them
+    const bool rc_due = rc_rate_hz_ <= 0.0 || s.time_s - last_rc_s_ >= 1.0 / rc_rate_hz_ - 1e-9;
+    if (!Bus().rc_channels_us.empty() && rc_due) {
+      last_rc_s_ = s.time_s;
+      const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
+      states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
+    }
+    const betaflight::FdmPacket state = betaflight::StatePacket(s);
+    states_->SendTo(addr_, state_port_, &state, sizeof(state));
+    if (!session_.Waits(true)) return;
+    answered_ = false;
+    const auto start = std::chrono::steady_clock::now();
+    while (!answered_) {
+      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (waited >= link_timeout_s_) {
+        LoseLink(s.time_s);
+        return;
+      }
+      ReadMotors(std::min(0.05, link_timeout_s_ - waited));
+    }
+    last_answer_ = std::chrono::steady_clock::now();
+  }
+
+  double SilentFor_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - last_answer_).count();
+  }
+
+  void LoseLink(double t_s) {
+    session_.On(LinkEvent::kSilent);
+    Error("lost", "no motor packet for " + std::to_string(link_timeout_s_) + " s of wall time (link_timeout) at t = " +
+                      std::to_string(t_s) + " s: motors disarmed, the world runs on until Betaflight answers again");
+    ApplyDisarmed();
+  }
+
   /// Takes every motor packet there is (waiting up to timeout_s for the first).
   void ReadMotors(double timeout_s) {
     uint8_t buffer[256];
@@ -103,8 +162,12 @@ class GazeboBetaflightInterface : public AutopilotInterface {
         Error("packet", why + ": ignored, the last valid outputs stay in force");
         continue;
       }
-      if (++answers_ == kAnswersBeforeLockstep)
-        Info(std::string("Betaflight answers") + (lockstep_ ? ": each state waits for its answer from now on" : ""));
+      const bool now_steady = session_.On(LinkEvent::kAnswered) && session_.State() == LinkState::kLockstep;
+      if (now_steady || (firmware_lockstep_ && session_.AnswersSinceStart() == 1))
+        Info(std::string("Betaflight answers") +
+             (firmware_lockstep_ ? ": the firmware in lockstep, each state waits for its answer"
+              : lockstep_       ? ": each state waits for its answer from now on"
+                                : ""));
       last_answer_ = std::chrono::steady_clock::now();
       // Betaflight sends 0 for a stopped motor whether armed or not: its outputs are the command
       Apply({u.begin(), u.end()}, true);
@@ -131,8 +194,9 @@ class GazeboBetaflightInterface : public AutopilotInterface {
   /// Betaflight answers its first state packets while it boots, then falls silent for a while: the
   /// waiting starts once it has answered this many.
   static constexpr uint64_t kAnswersBeforeLockstep = 100;
-  bool lockstep_ = true, answered_ = false;
-  uint64_t answers_ = 0;
+  LinkSession session_{WaitPolicy{}};
+  bool lockstep_ = true, answered_ = false, firmware_lockstep_ = false;
+  double rc_rate_hz_ = 0.0, last_rc_s_ = -1e9;
   double link_timeout_s_ = 2.0, answer_timeout_s_ = 0.02;
   std::chrono::steady_clock::time_point last_answer_;
   std::unique_ptr<UdpSocket> motors_, states_;

@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "rotors_core/error.h"
+#include "rotors_gazebo_plugins/autopilot/link_session.h"
 #include "rotors_gazebo_plugins/autopilot/links.h"
 #include "rotors_gazebo_plugins/autopilot/px4_mavlink.h"
 #include "rotors_gazebo_plugins/autopilot_interface.h"
@@ -64,6 +65,8 @@ class GazeboMavlinkInterface : public AutopilotInterface {
                                  " must be >= 0 s of wall time (PX4's Gazebo plugin waits 0.01 s)");
     if (system_id < 1 || system_id > 255) throw rotors_sim::SimError("system_id must be 1..255");
     imu_interval_s_ = imu_rate_hz > 0.0 ? 1.0 / imu_rate_hz : 0.0;
+    if (hil_mode_ || serial_enabled_) lockstep_ = false;  // a real autopilot runs on its own clock
+    session_ = LinkSession({lockstep_, answer_timeout_s_, /*only_while_armed=*/true, 1});
     CheckImuRate(imu_rate_hz);
     // HIL_GPS carries UTC: the wall clock when the sim time was zero (PX4's plugin: the world's start time)
     utc_at_sim_zero_us_ = static_cast<uint64_t>(
@@ -94,7 +97,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   void OnReset() override {
     awaiting_answer_ = false;
     armed_ = false;
-    received_first_actuator_ = false;  // the next answer starts the exchange again
+    session_.On(LinkEvent::kReset);  // the next answer starts the exchange again
     last_imu_count_ = last_gps_count_ = last_mag_count_ = last_baro_count_ = last_diff_count_ = 0;
     last_range_count_ = last_flow_count_ = 0;
     last_sensor_time_s_ = last_state_time_s_ = -1e9;
@@ -111,17 +114,17 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     last_sensor_time_s_ = s.time_s;
     Send(s);
     if (hil_mode_ && !heard_heartbeat_) Write(endpoint_->Frame(SimulatorHeartbeat()));
-    if (!lockstep_ || !received_first_actuator_ || !armed_) return;
+    if (!session_.Waits(armed_)) return;
     // lockstep while armed: this step waits for the answer to the HIL_SENSOR just sent, at most answer_timeout
     awaiting_answer_ = true;
     const auto start = std::chrono::steady_clock::now();
     while (awaiting_answer_) {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (waited >= answer_timeout_s_) {
-        ++missed_answers_;
+        session_.On(LinkEvent::kLate);
         Error("late answer", "no HIL_ACTUATOR_CONTROLS within " + std::to_string(answer_timeout_s_) +
                                  " s (answer_timeout) for the HIL_SENSOR of t = " + std::to_string(s.time_s) + " s (" +
-                                 std::to_string(missed_answers_) +
+                                 std::to_string(session_.LateAnswers()) +
                                  " so far): the step goes on with the last outputs, the link stays up");
         awaiting_answer_ = false;
         return;
@@ -135,6 +138,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     endpoint_->ResetParser();
     autopilot_system_id_ = -1;
     armed_ = false;
+    session_.On(LinkEvent::kConnected);
     Info("autopilot connected on TCP port " + std::to_string(tcp_->Port()));
   }
 
@@ -259,10 +263,8 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     mavlink_hil_actuator_controls_t a;
     mavlink_msg_hil_actuator_controls_decode(&m, &a);
     awaiting_answer_ = false;  // an answer, used or not: lockstep goes on
-    if (!received_first_actuator_) {
-      received_first_actuator_ = true;
-      Info(std::string("first HIL_ACTUATOR_CONTROLS") + (lockstep_ ? ": lockstep from now on" : ""));
-    }
+    if (session_.On(LinkEvent::kAnswered) && session_.State() == LinkState::kLockstep)
+      Info(std::string("first HIL_ACTUATOR_CONTROLS") + (lockstep_ ? ": lockstep from now on (while armed)" : ""));
     std::vector<double> u(16);
     for (int i = 0; i < 16; ++i) {
       if (!std::isfinite(a.controls[i])) {
@@ -312,7 +314,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
 
   void LinkLost(const std::string& why) {
     awaiting_answer_ = false;
-    received_first_actuator_ = false;
+    session_.On(LinkEvent::kClosed);
     armed_ = false;
     if (tcp_) tcp_->Drop();
     Error("lost", why + ": motors disarmed, the world runs on (a restarted PX4 may connect again)");
@@ -340,8 +342,8 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   uint64_t utc_at_sim_zero_us_ = 0;
   // exchange state
   int autopilot_system_id_ = -1;
-  bool received_first_actuator_ = false, awaiting_answer_ = false, armed_ = false, heard_heartbeat_ = false;
-  uint64_t missed_answers_ = 0;
+  LinkSession session_{WaitPolicy{}};
+  bool awaiting_answer_ = false, armed_ = false, heard_heartbeat_ = false;
   uint64_t last_imu_count_ = 0, last_gps_count_ = 0, last_mag_count_ = 0, last_baro_count_ = 0, last_diff_count_ = 0,
            last_range_count_ = 0, last_flow_count_ = 0;
   double last_sensor_time_s_ = -1e9, last_state_time_s_ = -1e9;

