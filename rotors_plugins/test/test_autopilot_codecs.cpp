@@ -19,18 +19,18 @@ VehicleSnapshot AtRestFacingEast() {
   VehicleSnapshot s;
   s.time_s = 1.5;
   s.has_imu = true;
-  s.gyro_B = {0.1, 0.2, 0.3};                   // FLU
-  s.accel_B = {0.0, 0.0, 9.81};                 // FLU: at rest the specific force points up
+  s.gyro_B = {0.1, 0.2, 0.3};    // FLU
+  s.accel_B = {0.0, 0.0, 9.81};  // FLU: at rest the specific force points up
   s.has_mag = true;
-  s.mag_B_T = {2e-5, 1e-6, -4e-5};              // FLU [T]
+  s.mag_B_T = {2e-5, 1e-6, -4e-5};  // FLU [T]
   s.has_baro = true;
   s.pressure_Pa = StandardAtmospherePressure(500.0);
   s.has_gps = true;
   s.gps_latitude_longitude_altitude = {47.3667, 8.55, 500.0};
   s.gps_hor_std_m = 1.0;
   s.gps_ver_std_m = 1.0;
-  s.gps_velocity_W = {1.0, 2.0, -0.5};          // ENU
-  s.a_W = {0.1, 0.2, 0.3};                      // ENU
+  s.gps_velocity_W = {1.0, 2.0, -0.5};  // ENU
+  s.a_W = {0.1, 0.2, 0.3};              // ENU
   return s;
 }
 

@@ -25,7 +25,8 @@ bool LinkSession::On(LinkEvent event) {
   const LinkState before = state_;
   const bool starting_over = before == LinkState::kWaiting || before == LinkState::kLost;
   // answers count from the start of a session (a new connection, or the first answer after none)
-  if (event == LinkEvent::kReset || (starting_over && (event == LinkEvent::kConnected || event == LinkEvent::kAnswered)))
+  if (event == LinkEvent::kReset ||
+      (starting_over && (event == LinkEvent::kConnected || event == LinkEvent::kAnswered)))
     answers_ = 0;
   if (event == LinkEvent::kAnswered) ++answers_;
   if (event == LinkEvent::kLate) ++late_;

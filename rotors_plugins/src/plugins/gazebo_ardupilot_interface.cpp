@@ -114,8 +114,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
           last_json_.clear();
           break;
         case ardupilot::FrameOrder::kFirst:
-        case ardupilot::FrameOrder::kNext:
-          break;
+        case ardupilot::FrameOrder::kNext: break;
       }
       have_frame_ = true;
       last_frame_count_ = frame.frame_count;

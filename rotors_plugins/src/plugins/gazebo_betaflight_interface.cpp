@@ -70,7 +70,9 @@ class GazeboBetaflightInterface : public AutopilotInterface {
           node_->subscribe(rc_topic, 1, &GazeboBetaflightInterface::OnRc, this, ros::TransportHints().tcpNoDelay());
     Info("state to " + addr_ + ":" + std::to_string(state_port_) + ", RC to :" + std::to_string(rc_port_) +
          ", motor outputs on :" + std::to_string(motor_port) +
-         (firmware_lockstep_ ? " (the firmware in lockstep)" : lockstep_ ? " (lockstep)" : ""));
+         (firmware_lockstep_ ? " (the firmware in lockstep)"
+          : lockstep_        ? " (lockstep)"
+                             : ""));
   }
 
   void OnReset() override {
@@ -164,10 +166,10 @@ class GazeboBetaflightInterface : public AutopilotInterface {
       }
       const bool now_steady = session_.On(LinkEvent::kAnswered) && session_.State() == LinkState::kLockstep;
       if (now_steady || (firmware_lockstep_ && session_.AnswersSinceStart() == 1))
-        Info(std::string("Betaflight answers") +
-             (firmware_lockstep_ ? ": the firmware in lockstep, each state waits for its answer"
-              : lockstep_       ? ": each state waits for its answer from now on"
-                                : ""));
+        Info(std::string("Betaflight answers") + (firmware_lockstep_
+                                                      ? ": the firmware in lockstep, each state waits for its answer"
+                                                  : lockstep_ ? ": each state waits for its answer from now on"
+                                                              : ""));
       last_answer_ = std::chrono::steady_clock::now();
       // Betaflight sends 0 for a stopped motor whether armed or not: its outputs are the command
       Apply({u.begin(), u.end()}, true);

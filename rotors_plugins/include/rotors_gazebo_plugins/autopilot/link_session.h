@@ -34,9 +34,9 @@ enum class LinkEvent {
 };
 
 struct WaitPolicy {
-  bool lockstep = true;                ///< enable_lockstep
-  double answer_timeout_s = 0.0;       ///< wall time a step waits for its answer; 0: no limit
-  bool only_while_armed = false;       ///< PX4: no waiting while the autopilot is disarmed
+  bool lockstep = true;                  ///< enable_lockstep
+  double answer_timeout_s = 0.0;         ///< wall time a step waits for its answer; 0: no limit
+  bool only_while_armed = false;         ///< PX4: no waiting while the autopilot is disarmed
   uint64_t answers_before_lockstep = 1;  ///< answers in kStarting before the steps wait (0: from the start)
 };
 

@@ -38,18 +38,18 @@ struct GpsParams {
   /// with the white model also the noise it adds
   double hor_pos_std_dev_m = 3.0;
   double ver_pos_std_dev_m = 6.0;
-  double hor_vel_std_dev_m_s = 0.1;  ///< horVelStdDev (white model)
-  double ver_vel_std_dev_m_s = 0.1;  ///< verVelStdDev (white model)
+  double hor_vel_std_dev_m_s = 0.1;                   ///< horVelStdDev (white model)
+  double ver_vel_std_dev_m_s = 0.1;                   ///< verVelStdDev (white model)
   GpsNoiseModel noise_model = GpsNoiseModel::kWhite;  ///< gpsNoiseModel: "white" or "random_walk"
   // the random-walk model; defaults: PX4-SITL_gazebo-classic's include/gazebo_gps_plugin.h
-  double xy_random_walk = 2.0;          ///< gpsXYRandomWalk [(m/s)/sqrt(Hz)]
-  double z_random_walk = 4.0;           ///< gpsZRandomWalk [(m/s)/sqrt(Hz)]
-  double xy_noise_density = 2e-4;       ///< gpsXYNoiseDensity [m/sqrt(Hz)]
-  double z_noise_density = 4e-4;        ///< gpsZNoiseDensity [m/sqrt(Hz)]
-  double vxy_noise_density = 0.2;       ///< gpsVXYNoiseDensity [(m/s)/sqrt(Hz)]
-  double vz_noise_density = 0.4;        ///< gpsVZNoiseDensity [(m/s)/sqrt(Hz)]
+  double xy_random_walk = 2.0;           ///< gpsXYRandomWalk [(m/s)/sqrt(Hz)]
+  double z_random_walk = 4.0;            ///< gpsZRandomWalk [(m/s)/sqrt(Hz)]
+  double xy_noise_density = 2e-4;        ///< gpsXYNoiseDensity [m/sqrt(Hz)]
+  double z_noise_density = 4e-4;         ///< gpsZNoiseDensity [m/sqrt(Hz)]
+  double vxy_noise_density = 0.2;        ///< gpsVXYNoiseDensity [(m/s)/sqrt(Hz)]
+  double vz_noise_density = 0.4;         ///< gpsVZNoiseDensity [(m/s)/sqrt(Hz)]
   double correlation_time_steps = 60.0;  ///< gpsCorrelationTime: tau of the bias, in physics steps (as PX4)
-  double delay_s = 0.12;                ///< gpsDelay [s]
+  double delay_s = 0.12;                 ///< gpsDelay [s]
   std::string Validate() const;
 };
 
@@ -124,7 +124,6 @@ struct PressureParams {
   double pressure_variance_pa2 = 0.0;   ///< pressureVariance [Pa^2]
   std::string Validate() const;
 };
-
 
 class PressureModel {
  public:
