@@ -105,7 +105,7 @@ def speeds(samples):
 def test_disarmed_betaflight_keeps_the_motors_stopped_on_the_ground(flight):
     s = flight["disarmed"]
     assert speeds(s).max() < 1.0
-    assert np.all(col(s, "z") < 0.1)
+    assert np.all(col(s, "z") < 0.11)  # spawned at 0.1 m, it settles on its legs
 
 
 def test_armed_over_rc_the_motors_idle_without_lifting_off(flight):

@@ -88,3 +88,31 @@ def test_fixed_wing_hil_launch_exchanges_hil_messages_with_an_autopilot(ros):
     mode = autopilot.wait_for("SET_MODE", 1, timeout=10)[0]
     assert mode.base_mode & mavutil.mavlink.MAV_MODE_FLAG_HIL_ENABLED and mode.target_system == 1
     autopilot.stop = True
+
+
+def test_one_frames_module_the_codecs_and_the_hil_node_share():
+    """rotors_sim.frames is rotors_plugins' autopilot/frames.h, bound: checked here against the
+    rotation matrices (R_NED_FRD = T_NED_ENU R_ENU_FLU T_FLU_FRD) for random attitudes, and the HIL
+    node's HIL_STATE_QUATERNION fields use it."""
+    import numpy as np
+
+    from rotors_hil_interface import hil_messages as hm
+    from rotors_sim import frames
+    T_NED_ENU = np.array([[0, 1, 0], [1, 0, 0], [0, 0, -1]])
+    T_FLU_FRD = np.diag([1, -1, -1])
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        q = rng.normal(size=4)
+        q /= np.linalg.norm(q)
+        R_ENU_FLU = np.array([hm.world_from_body(q, e) for e in np.eye(3)]).T
+        q_ned = np.asarray(frames.ned_frd_from_enu_flu(q))
+        R_NED_FRD = np.array([hm.world_from_body(q_ned, e) for e in np.eye(3)]).T
+        np.testing.assert_allclose(R_NED_FRD, T_NED_ENU @ R_ENU_FLU @ T_FLU_FRD, atol=1e-12)
+        assert q_ned[0] >= 0.0
+        v = rng.normal(size=3)
+        np.testing.assert_allclose(frames.ned_from_enu(v), T_NED_ENU @ v)
+        np.testing.assert_allclose(frames.frd_from_flu(v), T_FLU_FRD @ v)
+        fields = hm.hil_state_fields(q, v, v, 47.0, 8.0, 500.0, hm.world_from_body([q[0], -q[1], -q[2], -q[3]],
+                                                                                     [0, 0, 9.80665]))
+        np.testing.assert_allclose(fields["attitude_quaternion"], q_ned, atol=1e-7)
+        assert max(abs(fields["xacc"]), abs(fields["yacc"]), abs(fields["zacc"])) <= 1  # at rest: a = 0

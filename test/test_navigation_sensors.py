@@ -134,3 +134,36 @@ def rotate(q_xyzw, v, inverse=False):
                   [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
                   [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
     return (r.T if inverse else r) @ np.asarray(v)
+
+
+def test_the_world_magnetic_model_field_at_the_worlds_origin():
+    """With PX4's autopilot profile the magnetometer's reference field is the World Magnetic Model's at
+    the world's <spherical_coordinates> (as PX4's Gazebo magnetometer), checked against pygeomag's WMM
+    at Canberra, where RotorS' fixed Zurich field would be far off (another hemisphere)."""
+    import datetime
+
+    import numpy as np
+    from pygeomag import GeoMag
+
+    import rotors_sim as rs
+    lat, lon, elevation = -35.363261, 149.165230, 584.0
+    world = rs.World(sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="canberra">
+      <physics type="ode"><max_step_size>0.004</max_step_size><real_time_factor>0</real_time_factor></physics>
+      <spherical_coordinates><surface_model>EARTH_WGS84</surface_model><latitude_deg>{lat}</latitude_deg>
+      <longitude_deg>{lon}</longitude_deg><elevation>{elevation}</elevation><heading_deg>0</heading_deg>
+      </spherical_coordinates>
+      <include><uri>model://ground_plane</uri></include></world></sdf>""")
+    world.spawn_mav("iris", random_seed=3, enable_navigation_sensors=True, autopilot_profile="px4")
+    readings = []
+    for _ in range(400):
+        world.step(1)
+        m = world.message("/iris/magnetic_field")[0].magnetic_field
+        readings.append([m.x, m.y, m.z])
+    mean_B = np.mean(readings[100:], axis=0)  # FLU body, facing east and level: x east, y north, z up
+    now = datetime.datetime.now(datetime.timezone.utc)
+    year = now.year + (now.timetuple().tm_yday - 1) / 365.25
+    wmm = GeoMag().calculate(glat=lat, glon=lon, alt=elevation / 1000, time=year)
+    expected_B = np.array([wmm.y, wmm.x, -wmm.z]) * 1e-9
+    print(f"magnetometer at Canberra {mean_B * 1e9} nT, WMM {expected_B * 1e9} nT")
+    # the profile's noise (4e-7 T per sample) averages out; RotorS' initial bias is within 4e-7 T per axis
+    np.testing.assert_allclose(mean_B, expected_B, atol=5e-7)

@@ -15,10 +15,10 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 import yaml
+from pygeomag import GeoMag
 from px4_checks import (MAG_VALUE_EQUAL_COUNT, DataValidatorStale, GnssChecks, gyro_vibration_metric,
                         hil_sensor_channels)
-from test_px4_mavlink import (STRICT_LOCKSTEP_S, SteppingWorld, answer, connect, free_port, frd, quat_mul,
-                              rotate)
+from test_px4_mavlink import STRICT_LOCKSTEP_S, answer, free_port, frd, quat_mul, rotate, start_lockstep
 
 import rotors_sim as rs
 
@@ -59,9 +59,11 @@ class GpsInertialStandIn:
         self.origin = None
         self.t_us = None
         self.flying = False
+        self.home = None
 
     def on_gps(self, m):
         lat, lon = m.lat * 1e-7, m.lon * 1e-7
+        self.home = self.home or (lat, lon)
         if self.origin is None:
             self.origin = (lat, lon)
         east = math.radians(lon - self.origin[1]) * 6371000.0 * math.cos(math.radians(self.origin[0]))
@@ -77,7 +79,7 @@ class GpsInertialStandIn:
         if self.q is None:
             self.rest.append((gyro, f, frd([s.xmag, s.ymag, s.zmag]), s.pressure_alt))
             self.t_us = s.time_usec
-            if len(self.rest) < 250:
+            if len(self.rest) < 250 or self.home is None:
                 return [0.0] * 4
             self.initialise()
         dt = (s.time_usec - self.t_us) * 1e-6
@@ -109,7 +111,10 @@ class GpsInertialStandIn:
         # level on the ground: what the accelerometer reads beyond g is its bias
         self.accel_bias = f.mean(axis=0) - np.array([0, 0, 9.80665])
         m = mag.mean(axis=0)
-        yaw = math.atan2(2.1493e-5, 8.15e-7) - math.atan2(m[1], m[0])
+        # the field's horizontal angle in ENU from the World Magnetic Model at the home position, as
+        # PX4 takes its declination from its own WMM tables
+        wmm = GeoMag().calculate(glat=self.home[0], glon=self.home[1], alt=0.5, time=2026.9)
+        yaw = math.atan2(wmm.x, wmm.y) - math.atan2(m[1], m[0])
         self.yaw = yaw
         self.q = np.array([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
 
@@ -127,11 +132,8 @@ def px4_flight(tmp_path_factory):
     world.spawn_mav(defaults["mav_name"], enable_mavlink_interface=True, mavlink_tcp_port=port,
                     autopilot_profile=defaults["autopilot_profile"], random_seed=5,
                     mavlink_answer_timeout=STRICT_LOCKSTEP_S)
-    stepper = SteppingWorld(world)
-    stepper.run(1)
-    stepper.join()
-    link = connect(port)
-    stepper.run(int(FLIGHT_S / step))
+    # PX4 connects, takes the first HIL_SENSOR and answers it: from then on each step waits for its answer
+    stepper, link = start_lockstep(world, port, int(FLIGHT_S / step))
     controller = rs.LeePositionController(rs.paths.resource("lee_controller_iris.yaml"),
                                           px4_iris_controller_yaml(tmp_path_factory.mktemp("px4")))
     pilot = GpsInertialStandIn(controller)
@@ -155,7 +157,8 @@ def px4_flight(tmp_path_factory):
     wall = time.monotonic() - start
     stepper.join()
     link.close()
-    print(f"{len(sensors)} HIL_SENSOR and {len(fixes)} HIL_GPS in {wall:.1f} s of wall time")
+    print(f"{len(sensors)} HIL_SENSOR and {len(fixes)} HIL_GPS in {wall:.1f} s of wall time; initial yaw estimate "
+          f"{math.degrees(pilot.yaw):.2f} deg (the iris faces east: 0)")
     return world, sensors, fixes, np.array(truth), defaults
 
 

@@ -45,7 +45,11 @@ bool Readable(int fd, double timeout_s) {
 
 }  // namespace
 
-UdpSocket::UdpSocket(const std::string& bind_addr, int bind_port) {
+UdpSocket::UdpSocket(const std::string& bind_addr, int bind_port, const std::string& peer_addr, int peer_port) {
+  if (!peer_addr.empty()) {
+    peer_ = Address(peer_addr, peer_port);
+    has_peer_ = fixed_peer_ = true;
+  }
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   if (fd_ < 0) throw rotors_sim::SimError(std::string("cannot open a UDP socket: ") + std::strerror(errno));
   const sockaddr_in a = Address(bind_addr, bind_port);
@@ -69,7 +73,7 @@ bool UdpSocket::SendTo(const std::string& addr, int port, const void* data, size
   return ::sendto(fd_, data, n, 0, reinterpret_cast<const sockaddr*>(&a), sizeof(a)) == static_cast<ssize_t>(n);
 }
 
-bool UdpSocket::Reply(const void* data, size_t n) {
+bool UdpSocket::Send(const void* data, size_t n) {
   if (!has_peer_) return false;
   return ::sendto(fd_, data, n, 0, reinterpret_cast<const sockaddr*>(&peer_), sizeof(peer_)) == static_cast<ssize_t>(n);
 }
@@ -80,17 +84,21 @@ int UdpSocket::Receive(void* buf, size_t size, double timeout_s) {
   socklen_t len = sizeof(from);
   const ssize_t n = ::recvfrom(fd_, buf, size, MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), &len);
   if (n <= 0) return 0;  // an ICMP "port unreachable" of an earlier send, or nothing after all
-  peer_ = from;
-  has_peer_ = true;
+  if (!fixed_peer_) {    // the peer is whoever sent last
+    peer_ = from;
+    has_peer_ = true;
+  }
   return static_cast<int>(n);
 }
 
-int UdpSocket::LocalPort() const {
+int UdpSocket::Port() const {
   sockaddr_in a{};
   socklen_t len = sizeof(a);
   ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len);
   return ntohs(a.sin_port);
 }
+
+std::string UdpSocket::Describe() const { return "UDP port " + std::to_string(Port()) + " (peer " + Peer() + ")"; }
 
 std::string UdpSocket::Peer() const {
   if (!has_peer_) return "none";
@@ -118,11 +126,11 @@ TcpServer::TcpServer(const std::string& bind_addr, int port) : port_(port) {
 }
 
 TcpServer::~TcpServer() {
-  Drop();
+  Disconnect();
   if (listen_fd_ >= 0) ::close(listen_fd_);
 }
 
-bool TcpServer::Accept(double timeout_s) {
+bool TcpServer::Connect(double timeout_s) {
   if (client_ >= 0) return true;
   if (!Readable(listen_fd_, timeout_s)) return false;
   client_ = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
@@ -139,7 +147,7 @@ bool TcpServer::Send(const void* data, size_t n) {
     const ssize_t sent = ::send(client_, p, n, MSG_NOSIGNAL);
     if (sent < 0 && errno == EINTR) continue;
     if (sent <= 0) {
-      Drop();
+      Disconnect();
       return false;
     }
     p += sent;
@@ -154,11 +162,11 @@ int TcpServer::Receive(void* buf, size_t size, double timeout_s) {
   const ssize_t n = ::recv(client_, buf, size, MSG_DONTWAIT);
   if (n > 0) return static_cast<int>(n);
   if (n < 0 && (errno == EAGAIN || errno == EINTR)) return 0;
-  Drop();  // 0: an orderly close; < 0: reset
+  Disconnect();  // 0: an orderly close; < 0: reset
   return kLinkClosed;
 }
 
-void TcpServer::Drop() {
+void TcpServer::Disconnect() {
   if (client_ >= 0) ::close(client_);
   client_ = -1;
 }

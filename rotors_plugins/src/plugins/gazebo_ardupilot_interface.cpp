@@ -68,7 +68,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
       int non_finite = 0;
       last_json_ = ardupilot::StateJson(s, &non_finite);
       if (non_finite > 0) Error("nan", std::to_string(non_finite) + " state values not finite: sent as 0");
-      socket_->Reply(last_json_.data(), last_json_.size());
+      socket_->Send(last_json_.data(), last_json_.size());
       answer_due_ = false;
     }
     if (!session_.Waits(true)) {
@@ -106,7 +106,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
       switch (ardupilot::OrderOf(frame.frame_count, have_frame_, last_frame_count_)) {
         case ardupilot::FrameOrder::kRepeated:
           // SIM_JSON resends a frame it got no answer to: the same answer again, no step
-          if (!last_json_.empty()) socket_->Reply(last_json_.data(), last_json_.size());
+          if (!last_json_.empty()) socket_->Send(last_json_.data(), last_json_.size());
           continue;
         case ardupilot::FrameOrder::kBackwards:
           Info("servo frame_count went back from " + std::to_string(last_frame_count_) + " to " +

@@ -1,10 +1,15 @@
 // librotors_gazebo_magnetometer_plugin.so (rotors_reference.md 4.10): sensor_msgs/MagneticField
 // on <ns>/<magnetometerTopic> every physics step, B_B = R_WB^T m_W + b_B + n with covariance
 // diag(sigma^2). The reference field is given as north, east, down [T] and placed in the ENU
-// world correctly (RotorS used N, E, D as x, y, z).
+// world correctly (RotorS used N, E, D as x, y, z); with worldMagneticModel (a WMM .COF file) it is
+// the World Magnetic Model's field at the world's <spherical_coordinates> instead, at the date
+// worldMagneticModelYear (default: today), as PX4's Gazebo magnetometer takes it.
 #include <sensor_msgs/MagneticField.h>
 
+#include <chrono>
+
 #include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
+#include "rotors_gazebo_plugins/models/world_magnetic_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/link_sensor_plugin.h"
 #include "rotors_gazebo_plugins/seeded_model.h"
@@ -19,6 +24,15 @@ class GazeboMagnetometerPlugin : public LinkSensorPlugin<sensor_msgs::MagneticFi
     ReadParam(Params(), "refMagNorth", &p.reference_NED_T.x());
     ReadParam(Params(), "refMagEast", &p.reference_NED_T.y());
     ReadParam(Params(), "refMagDown", &p.reference_NED_T.z());
+    std::string wmm_file;
+    if (ReadParam(Params(), "worldMagneticModel", &wmm_file) && !wmm_file.empty()) {
+      const WorldMagneticModel wmm = WorldMagneticModel::FromFile(wmm_file);
+      double year =
+          DecimalYear(std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+      ReadParam(Params(), "worldMagneticModelYear", &year);
+      const auto& o = world_->Origin();
+      p.reference_NED_T = wmm.FieldNed_T(o.latitude_deg, o.longitude_deg, o.elevation_m, year);
+    }
     ReadVector(Params(), "noiseNormal", &p.noise_normal_T);
     ReadVector(Params(), "noiseUniformInitialBias", &p.noise_uniform_initial_bias_T);
     ThrowIfInvalid(p.Validate());

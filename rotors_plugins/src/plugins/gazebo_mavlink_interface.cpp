@@ -16,6 +16,7 @@
 // PX4 closing it does (the motors go to their disarmed values, and a restarted PX4 may connect
 // again; a running PX4's simulator module connects only once).
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <sstream>
 
@@ -77,20 +78,18 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     endpoint_ = std::make_unique<px4::MavlinkEndpoint>(static_cast<uint8_t>(system_id), 200);
     if (hil_mode_) lockstep_ = false;  // hardware in the loop runs on the autopilot's clock
     if (serial_enabled_) {
-      device_ = device;
-      baud_ = baud;
       lockstep_ = false;  // a real autopilot runs on its own clock
-      OpenSerial();
-      qgc_ = std::make_unique<UdpSocket>("0.0.0.0", 0);
-      qgc_addr_ = qgc_addr == "INADDR_ANY" ? "127.0.0.1" : qgc_addr;
-      qgc_port_ = qgc_port;
+      // a device that is not there (yet) is tried again every second
+      open_link_ = [device, baud]() -> std::unique_ptr<Transport> {
+        return std::make_unique<SerialPort>(device, baud);
+      };
+      OpenLink();
+      qgc_ = std::make_unique<UdpSocket>("0.0.0.0", 0, qgc_addr == "INADDR_ANY" ? "127.0.0.1" : qgc_addr, qgc_port);
     } else if (use_tcp) {
-      tcp_ = std::make_unique<TcpServer>(addr == "INADDR_ANY" ? "0.0.0.0" : addr, tcp_port);
-      Info("waiting for PX4 on TCP port " + std::to_string(tcp_port) + (lockstep_ ? " (lockstep)" : ""));
-    } else {
-      udp_ = std::make_unique<UdpSocket>("0.0.0.0", 0);
-      udp_addr_ = addr == "INADDR_ANY" ? "127.0.0.1" : addr;
-      udp_port_ = udp_port;
+      link_ = std::make_unique<TcpServer>(addr == "INADDR_ANY" ? "0.0.0.0" : addr, tcp_port);
+      Info("waiting for PX4 on " + link_->Describe() + (lockstep_ ? " (lockstep)" : ""));
+    } else {  // PX4's -u: it binds and waits for our first datagram
+      link_ = std::make_unique<UdpSocket>("0.0.0.0", 0, addr == "INADDR_ANY" ? "127.0.0.1" : addr, udp_port);
     }
   }
 
@@ -105,8 +104,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
 
   void Exchange(const VehicleSnapshot& s) override {
     Poll(0.0);
-    if (serial_enabled_ && !serial_) return;
-    if (tcp_ && !tcp_->Connected()) return;
+    if (!connected_) return;
     const bool imu_due =
         s.has_imu && s.imu_count != last_imu_count_ && s.time_s - last_sensor_time_s_ >= imu_interval_s_ - 1e-9;
     if (!imu_due) return;
@@ -139,13 +137,14 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     autopilot_system_id_ = -1;
     armed_ = false;
     session_.On(LinkEvent::kConnected);
-    Info("autopilot connected on TCP port " + std::to_string(tcp_->Port()));
+    Info("autopilot connected on " + link_->Describe());
   }
 
-  void OpenSerial() {
+  /// A link that can go away and come back (a serial device): opened again here.
+  void OpenLink() {
     try {
-      serial_ = std::make_unique<SerialPort>(device_, baud_);
-      Info("HITL on " + device_ + " at " + std::to_string(baud_) + " baud");
+      link_ = open_link_();
+      Info("HITL on " + link_->Describe());
     } catch (const rotors_sim::SimError& e) {
       Error("serial", std::string(e.what()) + "; retrying every second, the world runs on");
     }
@@ -181,35 +180,33 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   }
 
   void Write(const std::vector<uint8_t>& bytes) {
-    if (tcp_) tcp_->Send(bytes.data(), bytes.size());
-    else if (udp_) udp_->SendTo(udp_addr_, udp_port_, bytes.data(), bytes.size());
-    else if (serial_ && !serial_->Send(bytes.data(), bytes.size())) SerialLost();
+    // a TCP client gone is seen by the next Receive; a serial device gone is seen here too
+    if (connected_ && !link_->Send(bytes.data(), bytes.size()) && open_link_) ReopenableLinkLost();
   }
 
   /// Takes a new connection and reads what is there (waiting up to timeout_s for the first bytes);
   /// false when the link closed.
   bool Poll(double timeout_s) {
     uint8_t buffer[2048];
-    if (serial_enabled_ && !serial_) {
+    if (!link_) {
       const auto now = std::chrono::steady_clock::now();
-      if (now - last_serial_try_ > std::chrono::seconds(1)) {
-        last_serial_try_ = now;
-        OpenSerial();
+      if (now - last_open_try_ > std::chrono::seconds(1)) {
+        last_open_try_ = now;
+        OpenLink();
       }
-      if (!serial_) return false;
+      if (!link_) return false;
     }
-    if (tcp_ && !tcp_->Connected()) {
-      if (!tcp_->Accept(0.0)) return false;
+    if (!connected_) {
+      if (!link_->Connect(0.0)) return false;
+      connected_ = true;
       OnConnected();
     }
     int n;
     double wait = timeout_s;
     do {
-      n = tcp_   ? tcp_->Receive(buffer, sizeof(buffer), wait)
-          : udp_ ? udp_->Receive(buffer, sizeof(buffer), wait)
-                 : serial_->Receive(buffer, sizeof(buffer), wait);
+      n = link_->Receive(buffer, sizeof(buffer), wait);
       if (n == kLinkClosed) {
-        if (serial_) SerialLost();
+        if (open_link_) ReopenableLinkLost();
         else LinkLost("the autopilot closed the connection");
         return false;
       }
@@ -233,7 +230,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     if (qgc_) {  // HITL: the autopilot's traffic goes on to QGroundControl
       std::vector<uint8_t> bytes(MAVLINK_MAX_PACKET_LEN);
       bytes.resize(mavlink_msg_to_send_buffer(bytes.data(), &m));
-      qgc_->SendTo(qgc_addr_, qgc_port_, bytes.data(), bytes.size());
+      qgc_->Send(bytes.data(), bytes.size());
     }
     if (m.msgid == MAVLINK_MSG_ID_HEARTBEAT) {
       heard_heartbeat_ = true;
@@ -309,30 +306,30 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     uint8_t buffer[2048];
     int n;
     while ((n = qgc_->Receive(buffer, sizeof(buffer), 0.0)) > 0)
-      if (serial_) serial_->Send(buffer, static_cast<size_t>(n));
+      if (connected_) link_->Send(buffer, static_cast<size_t>(n));
   }
 
   void LinkLost(const std::string& why) {
     awaiting_answer_ = false;
     session_.On(LinkEvent::kClosed);
     armed_ = false;
-    if (tcp_) tcp_->Drop();
+    connected_ = false;
+    if (link_) link_->Disconnect();
     Error("lost", why + ": motors disarmed, the world runs on (a restarted PX4 may connect again)");
     ApplyDisarmed();
   }
 
-  void SerialLost() {
-    serial_.reset();
-    LinkLost("serial device " + device_ + " went away");
+  void ReopenableLinkLost() {
+    LinkLost(link_->Describe() + " went away");
+    link_.reset();
   }
 
-  // links
-  std::unique_ptr<TcpServer> tcp_;
-  std::unique_ptr<UdpSocket> udp_, qgc_;
-  std::unique_ptr<SerialPort> serial_;
-  std::string udp_addr_, qgc_addr_, device_;
-  int udp_port_ = 0, qgc_port_ = 0, baud_ = 0;
-  std::chrono::steady_clock::time_point last_serial_try_;
+  // links: the autopilot's (TCP, UDP or serial), and QGroundControl's in HITL
+  std::unique_ptr<Transport> link_;
+  std::function<std::unique_ptr<Transport>()> open_link_;  ///< set for a link that can come back
+  bool connected_ = false;
+  std::unique_ptr<UdpSocket> qgc_;
+  std::chrono::steady_clock::time_point last_open_try_;
   std::unique_ptr<px4::MavlinkEndpoint> endpoint_;
   /// PX4's IMU_INTEG_RATE in its SITL [Hz]
   static constexpr double kPx4ImuIntegrationRate_Hz = 250.0;

@@ -6,4 +6,5 @@ PYBIND11_MODULE(_engine, m) {
   m.doc() = "The rotors_simulator engine without ROS (see the rotors_sim package).";
   rotors_python::BindWorld(m);
   rotors_python::BindControllers(m);
+  rotors_python::BindFrames(m);
 }

@@ -14,7 +14,7 @@
 See docs/python.md.
 """
 
-from rotors_sim._engine import SimError, step_all
+from rotors_sim._engine import SimError, atmosphere, frames, step_all
 from rotors_sim.batch import Batch
 from rotors_sim.controllers import AttitudeLevelController, LeePositionController
 from rotors_sim.world import Odometry, World, known_vehicles
@@ -26,6 +26,8 @@ __all__ = [
     "Odometry",
     "SimError",
     "World",
+    "atmosphere",
+    "frames",
     "known_vehicles",
     "step_all",
 ]
