@@ -282,6 +282,15 @@ def quat_mul(a, b):
                      aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
 
 
+def integrate_gyro(q, w, dt):
+    """q (w, x, y, z) turned by the body rate w [rad/s] over dt: q (cos a/2, sin a/2 w/|w|), a = |w| dt."""
+    angle = np.linalg.norm(w) * dt
+    if angle == 0:
+        return q
+    q = quat_mul(q, [math.cos(angle / 2), *(math.sin(angle / 2) * np.asarray(w) / np.linalg.norm(w))])
+    return q / np.linalg.norm(q)
+
+
 def rotate(q, v):
     return quat_mul(quat_mul(q, [0.0, *v]), [q[0], -q[1], -q[2], -q[3]])[1:]
 
@@ -314,11 +323,7 @@ class HilSensorAutopilot:
         dt = (s.time_usec - self.t_us) * 1e-6
         self.t_us = s.time_usec
         w = gyro - self.gyro_bias
-        angle = np.linalg.norm(w) * dt
-        if angle > 0:
-            axis = w / np.linalg.norm(w)
-            self.q = quat_mul(self.q, [math.cos(angle / 2), *(math.sin(angle / 2) * axis)])
-            self.q /= np.linalg.norm(self.q)
+        self.q = integrate_gyro(self.q, w, dt)
         a_up = rotate(self.q, f)[2] - 9.80665
         self.vz += a_up * dt
         self.z += self.vz * dt

@@ -18,7 +18,7 @@ import yaml
 from pygeomag import GeoMag
 from px4_checks import (MAG_VALUE_EQUAL_COUNT, DataValidatorStale, GnssChecks, gyro_vibration_metric,
                         hil_sensor_channels)
-from test_px4_mavlink import STRICT_LOCKSTEP_S, answer, free_port, frd, quat_mul, rotate, start_lockstep
+from test_px4_mavlink import STRICT_LOCKSTEP_S, answer, free_port, frd, integrate_gyro, rotate, start_lockstep
 
 import rotors_sim as rs
 
@@ -85,11 +85,7 @@ class GpsInertialStandIn:
         dt = (s.time_usec - self.t_us) * 1e-6
         self.t_us = s.time_usec
         w = gyro - self.gyro_bias
-        angle = np.linalg.norm(w) * dt
-        if angle > 0:
-            axis = w / np.linalg.norm(w)
-            self.q = quat_mul(self.q, [math.cos(angle / 2), *(math.sin(angle / 2) * axis)])
-            self.q /= np.linalg.norm(self.q)
+        self.q = integrate_gyro(self.q, w, dt)
         a_W = rotate(self.q, f - self.accel_bias) - np.array([0, 0, 9.80665])
         self.v += a_W * dt
         self.p += self.v * dt
