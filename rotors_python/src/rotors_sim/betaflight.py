@@ -120,8 +120,9 @@ class BetaflightSitl:
 
     def wait_until_answering(self, world, namespace: str, answers: int = 200, step_s: float = 0.002,
                              silent_s: float = 10.0, starts: int = 3) -> None:
-        """Steps `world` paced (one physics step of step_s per step_s of wall time: the interface
-        does not wait for the firmware before its first answers) until the firmware has answered
+        """For Betaflight's own build (the lockstep build answers every state from the first and needs
+        none of this): steps `world` paced (one physics step of step_s per step_s of wall time: the
+        interface does not wait for the firmware before its first answers) until the firmware has answered
         `answers` state packets. A firmware silent for `silent_s` is started again (restart), at most
         `starts` times in all; then SimError."""
         for attempt in range(starts):
