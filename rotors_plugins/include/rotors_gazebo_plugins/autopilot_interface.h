@@ -45,6 +45,9 @@ class AutopilotInterface : public rotors_sim::ModelPlugin {
   void ApplyDisarmed();
   /// The channels' references to the vehicle: motors and servos, and a fixed wing's normalized channels.
   void Command(const std::vector<double>& references);
+  /// The snapshot with the ground truth's rates and specific force as its IMU reading when the vehicle
+  /// has no IMU plugin (ArduPilot's and Betaflight's state always carries an IMU; PX4 gets none).
+  static VehicleSnapshot WithTruthForMissingImu(VehicleSnapshot s);
   /// One line on stderr/rosconsole, at most once a second of wall time per kind of fault (`kind` and
   /// the line without its numbers).
   void Error(const std::string& kind, const std::string& line);

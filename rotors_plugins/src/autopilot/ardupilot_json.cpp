@@ -82,9 +82,8 @@ std::string StateJson(const VehicleSnapshot& s, int* non_finite) {
   const Eigen::Quaterniond q = frames::NedFrdFromEnuFlu(s.q_WB);
   std::ostringstream json;
   // "velocity" is written before any key it is a prefix of: ArduPilot matches keys by position
-  json << "\n{\"timestamp\":" << w.Number(s.time_s)
-       << ",\"imu\":{\"gyro\":" << w.Vector(frames::FrdFromFlu(s.has_imu ? s.gyro_B : s.omega_B))
-       << ",\"accel_body\":" << w.Vector(frames::FrdFromFlu(s.has_imu ? s.accel_B : s.specific_force_B)) << "}"
+  json << "\n{\"timestamp\":" << w.Number(s.time_s) << ",\"imu\":{\"gyro\":" << w.Vector(frames::FrdFromFlu(s.gyro_B))
+       << ",\"accel_body\":" << w.Vector(frames::FrdFromFlu(s.accel_B)) << "}"
        << ",\"position\":" << w.Vector(frames::NedFromEnu(s.p_W)) << ",\"quaternion\":[" << w.Number(q.w()) << ","
        << w.Number(q.x()) << "," << w.Number(q.y()) << "," << w.Number(q.z()) << "]"
        << ",\"velocity\":" << w.Vector(frames::NedFromEnu(s.v_W));

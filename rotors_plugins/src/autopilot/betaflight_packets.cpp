@@ -13,8 +13,8 @@ namespace betaflight {
 FdmPacket StatePacket(const VehicleSnapshot& s) {
   FdmPacket p{};
   p.timestamp = s.time_s;
-  const Eigen::Vector3d gyro_FRD = frames::FrdFromFlu(s.has_imu ? s.gyro_B : s.omega_B);
-  const Eigen::Vector3d minus_f_FLU = -(s.has_imu ? s.accel_B : s.specific_force_B);
+  const Eigen::Vector3d gyro_FRD = frames::FrdFromFlu(s.gyro_B);
+  const Eigen::Vector3d minus_f_FLU = -s.accel_B;
   const Eigen::Quaterniond q_NED_FRD = frames::NedFrdFromEnuFlu(s.q_WB);
   for (int i = 0; i < 3; ++i) {
     p.imu_angular_velocity_rpy[i] = gyro_FRD[i];

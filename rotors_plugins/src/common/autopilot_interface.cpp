@@ -101,6 +101,14 @@ bool AutopilotInterface::MakeDefaultChannels() {
 
 void AutopilotInterface::Reset() { OnReset(); }
 
+VehicleSnapshot AutopilotInterface::WithTruthForMissingImu(VehicleSnapshot s) {
+  if (!s.has_imu) {
+    s.gyro_B = s.omega_B;
+    s.accel_B = s.specific_force_B;
+  }
+  return s;
+}
+
 double AutopilotInterface::PhysicsStep_s() const { return world_->Physics().max_step_size_s; }
 
 double AutopilotInterface::SimTime_s() const { return world_->SimTime().Double(); }

@@ -66,7 +66,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
   void Exchange(const VehicleSnapshot& s) override {
     if (answer_due_) {  // the state after the last frame's step answers it
       int non_finite = 0;
-      last_json_ = ardupilot::StateJson(s, &non_finite);
+      last_json_ = ardupilot::StateJson(WithTruthForMissingImu(s), &non_finite);
       if (non_finite > 0) Error("nan", std::to_string(non_finite) + " state values not finite: sent as 0");
       socket_->Send(last_json_.data(), last_json_.size());
       answer_due_ = false;

@@ -86,7 +86,7 @@ class GazeboBetaflightInterface : public AutopilotInterface {
       ExchangeInLockstep(s);
       return;
     }
-    const betaflight::FdmPacket state = betaflight::StatePacket(s);
+    const betaflight::FdmPacket state = betaflight::StatePacket(WithTruthForMissingImu(s));
     states_->SendTo(addr_, state_port_, &state, sizeof(state));
     // RC only once the firmware answers steadily: its sitl.c hooks the UDP receiver up with the first
     // RC packet, and a packet that comes before the firmware's receiver is set up is lost for good
@@ -123,7 +123,7 @@ class GazeboBetaflightInterface : public AutopilotInterface {
       const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
       states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
     }
-    const betaflight::FdmPacket state = betaflight::StatePacket(s);
+    const betaflight::FdmPacket state = betaflight::StatePacket(WithTruthForMissingImu(s));
     states_->SendTo(addr_, state_port_, &state, sizeof(state));
     if (!session_.Waits(true)) return;
     answered_ = false;

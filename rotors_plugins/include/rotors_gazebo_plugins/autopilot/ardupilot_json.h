@@ -28,7 +28,7 @@ std::string ReadServoPacket(const void* data, int n, ServoFrame* frame);
 std::vector<uint8_t> WriteServoPacket(const ServoFrame& frame);
 
 /// The state line: timestamp [s]; imu.gyro [rad/s] and imu.accel_body [m/s^2] (specific force) in
-/// body FRD from the IMU plugin (ground truth without one); position [m] and velocity [m/s] NED from
+/// body FRD, the snapshot's IMU reading (the plugin fills it); position [m] and velocity [m/s] NED from
 /// the world origin; quaternion w x y z, NED <- FRD; rng_1 [m] with a range sensor (no return, or
 /// beyond its range: twice its maximum, which ArduPilot reads as "out of range high", as ArduPilot's
 /// Gazebo plugin sends it); airspeed [m/s] with an airspeed sensor, its wind-relative reading (ArduPilot

@@ -42,9 +42,8 @@ static_assert(sizeof(FdmPacket) == 144, "Betaflight's fdm_packet is 18 doubles")
 static_assert(sizeof(RcPacket) == 40, "Betaflight's rc_packet is a double and 16 uint16");
 static_assert(sizeof(ServoPacket) == 16, "Betaflight's servo_packet is 4 floats");
 
-/// The state packet of a snapshot: the IMU plugin's reading where the vehicle has one (else the
-/// ground truth), the barometer's pressure where it has one (else the standard atmosphere at the
-/// true altitude).
+/// The state packet of a snapshot: its IMU reading (the plugin fills it), the barometer's pressure
+/// where the vehicle has one (else the standard atmosphere at the true altitude).
 FdmPacket StatePacket(const VehicleSnapshot& s);
 
 /// An RC packet of up to 16 channels [us] (VehicleBus::SetRcChannels checked them); the rest 1000 us.
