@@ -208,3 +208,27 @@ def test_hitl_over_a_serial_pty_pair_exchanges_hil_sensor_and_actuator_controls(
     finally:
         socat.terminate()
         socat.wait()
+
+
+def test_a_new_heartbeat_system_id_is_followed(capfd):
+    """PX4 restarted with another MAV_SYS_ID on the same link: its heartbeat says so, and its answers
+    are taken from then on (as PX4's Gazebo plugin answers whatever system is on the link)."""
+    port = free_port()
+    world = make_world(port)
+    stepper, link = start_lockstep(world, port, 40)
+    run_until_sensor(link, 10)
+    other = mavutil.mavlink.MAVLink(None, srcSystem=7, srcComponent=1)
+    link.write(other.heartbeat_encode(2, 12, 0, 0, 0).pack(other))
+    before = world.autopilot_answers("firefly")
+    for _ in range(20):
+        next_sensor(link)
+        link.write(other.hil_actuator_controls_encode(0, [0.5] * 16, 129, 1).pack(other))
+    next_sensor(link)
+    captured = capfd.readouterr()
+    print(next(line for line in (captured.out + captured.err).splitlines() if "system id 7" in line))
+    assert world.autopilot_answers("firefly") - before == 20
+    link.write(other.hil_actuator_controls_encode(0, [0.5] * 16, 129, 1).pack(other))
+    while stepper.thread.is_alive():  # system 7 answers the remaining steps
+        if link.recv_match(type="HIL_SENSOR", blocking=True, timeout=1.0) is not None:
+            link.write(other.hil_actuator_controls_encode(0, [0.5] * 16, 129, 1).pack(other))
+    stepper.join()
