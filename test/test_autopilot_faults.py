@@ -217,13 +217,15 @@ def test_a_new_heartbeat_system_id_is_followed(capfd):
     world = make_world(port)
     stepper, link = start_lockstep(world, port, 40)
     run_until_sensor(link, 10)
+    next_sensor(link)  # the world waits for this one's answer: every earlier answer is applied
+    before = world.autopilot_answers("firefly")
     other = mavutil.mavlink.MAVLink(None, srcSystem=7, srcComponent=1)
     link.write(other.heartbeat_encode(2, 12, 0, 0, 0).pack(other))
-    before = world.autopilot_answers("firefly")
-    for _ in range(20):
-        next_sensor(link)
+    for i in range(20):
+        if i > 0:
+            next_sensor(link)
         link.write(other.hil_actuator_controls_encode(0, [0.5] * 16, 129, 1).pack(other))
-    next_sensor(link)
+    next_sensor(link)  # waiting again: the 20 answers of system 7 are in
     captured = capfd.readouterr()
     print(next(line for line in (captured.out + captured.err).splitlines() if "system id 7" in line))
     assert world.autopilot_answers("firefly") - before == 20
