@@ -86,29 +86,15 @@ class GazeboBetaflightInterface : public AutopilotInterface {
       ExchangeInLockstep(s);
       return;
     }
-    const betaflight::FdmPacket state = betaflight::StatePacket(WithTruthForMissingImu(s));
-    states_->SendTo(addr_, state_port_, &state, sizeof(state));
+    SendState(s);
     // RC only once the firmware answers steadily: its sitl.c hooks the UDP receiver up with the first
     // RC packet, and a packet that comes before the firmware's receiver is set up is lost for good
     // (RXLOSS until a restart)
-    if (!Bus().rc_channels_us.empty() && session_.State() == LinkState::kLockstep) {
-      const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
-      states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
-    }
+    if (!Bus().rc_channels_us.empty() && session_.State() == LinkState::kLockstep) SendRc(s);
     if (!session_.Waits(true)) return;
     // wait for the answer to this state, at most answer_timeout: Betaflight's clock follows the
     // state timestamps (its simRate), and a world that stalled on it would slow its clock to a crawl
-    answered_ = false;
-    const auto start = std::chrono::steady_clock::now();
-    while (!answered_) {
-      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (waited >= answer_timeout_s_) break;
-      ReadMotors(answer_timeout_s_ - waited);
-    }
-    if (answered_) {
-      last_answer_ = std::chrono::steady_clock::now();
-      return;
-    }
+    if (AwaitAnswer(answer_timeout_s_)) return;
     session_.On(LinkEvent::kLate);
     if (SilentFor_s() > link_timeout_s_) LoseLink(s.time_s);
   }
@@ -120,23 +106,33 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     const bool rc_due = rc_rate_hz_ <= 0.0 || s.time_s - last_rc_s_ >= 1.0 / rc_rate_hz_ - 1e-9;
     if (!Bus().rc_channels_us.empty() && rc_due) {
       last_rc_s_ = s.time_s;
-      const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
-      states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
+      SendRc(s);
     }
+    SendState(s);
+    if (session_.Waits(true) && !AwaitAnswer(link_timeout_s_)) LoseLink(s.time_s);
+  }
+
+  void SendState(const VehicleSnapshot& s) {
     const betaflight::FdmPacket state = betaflight::StatePacket(WithTruthForMissingImu(s));
     states_->SendTo(addr_, state_port_, &state, sizeof(state));
-    if (!session_.Waits(true)) return;
+  }
+
+  void SendRc(const VehicleSnapshot& s) {
+    const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
+    states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
+  }
+
+  /// Reads motor packets until the answer to the state just sent is in, at most limit_s of wall time.
+  bool AwaitAnswer(double limit_s) {
     answered_ = false;
     const auto start = std::chrono::steady_clock::now();
     while (!answered_) {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (waited >= link_timeout_s_) {
-        LoseLink(s.time_s);
-        return;
-      }
-      ReadMotors(std::min(0.05, link_timeout_s_ - waited));
+      if (waited >= limit_s) return false;
+      ReadMotors(std::min(0.05, limit_s - waited));
     }
     last_answer_ = std::chrono::steady_clock::now();
+    return true;
   }
 
   double SilentFor_s() const {
