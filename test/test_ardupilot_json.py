@@ -186,12 +186,17 @@ def test_a_packet_that_is_not_a_servo_packet_is_one_line_and_changes_nothing(cap
     assert any("13 bytes" in line for line in lines) and any("magic 1234" in line for line in lines)
 
 
-def fly(world: rs.World, ap: ArduPilotSide, steps: int, pwm=(1000, 1000, 1000, 1000)) -> dict:
-    """`steps` lockstep steps, one servo frame each (the first sent before the world waits for frames);
-    the last answer read."""
+def start_frames(world: rs.World, ap: ArduPilotSide, steps: int, pwm=(1000, 1000, 1000, 1000)) -> "SteppingWorld":
+    """The first servo frame, sent before the world waits for frames, and the world stepping `steps`
+    lockstep steps on its own thread."""
     world.step(2)
     ap.send_servos(pwm)
-    stepper = SteppingWorld(world, steps)
+    return SteppingWorld(world, steps)
+
+
+def fly(world: rs.World, ap: ArduPilotSide, steps: int, pwm=(1000, 1000, 1000, 1000)) -> dict:
+    """`steps` lockstep steps, one servo frame each; the last answer read."""
+    stepper = start_frames(world, ap, steps, pwm)
     for _ in range(steps - 1):
         state = ap.receive_state()
         ap.send_servos(pwm)
@@ -217,9 +222,7 @@ def test_a_repeated_frame_count_is_answered_again_without_a_step():
     port = free_udp_port()
     world = world_with_ardupilot(port)
     ap = ArduPilotSide(port)
-    world.step(2)
-    ap.send_servos([1500] * 4)
-    stepper = SteppingWorld(world, 12)
+    stepper = start_frames(world, ap, 12, [1500] * 4)
     for _ in range(10):
         first = ap.receive_state()
         ap.send_servos([1500] * 4)
@@ -241,9 +244,7 @@ def test_a_frame_count_that_goes_back_is_an_ardupilot_restart(capfd):
     port = free_udp_port()
     world = world_with_ardupilot(port)
     ap = ArduPilotSide(port)
-    world.step(2)
-    ap.send_servos([1500] * 4)
-    stepper = SteppingWorld(world, 30)
+    stepper = start_frames(world, ap, 30, [1500] * 4)
     for i in range(29):
         ap.receive_state()
         if i == 19:

@@ -30,9 +30,7 @@ def test_malformed_and_truncated_frames_are_dropped_with_one_line_and_the_link_s
     corrupt[20] ^= 0xFF  # a payload byte: the checksum no longer matches
     link.write(bytes(corrupt))
     link.write(good[:30])  # a truncated frame; the next frame's start resynchronises the parser
-    for _ in range(34):
-        next_sensor(link)
-        answer(link, [0.5] * 6, armed=True)
+    run_until_sensor(link, 34)
     stepper.join()
     err = capfd.readouterr().err
     lines = [line for line in err.splitlines() if "malformed MAVLink frame" in line]
@@ -54,9 +52,7 @@ def test_skipped_answers_never_end_the_session(capfd):
     for _ in range(50):
         next_sensor(link)  # read, never answered
     answers_before = world.autopilot_answers("firefly")
-    for _ in range(100):
-        next_sensor(link)
-        answer(link, [0.5] * 6, armed=True)
+    run_until_sensor(link, 100)
     stepper.join()
     err = capfd.readouterr().err
     late = [line for line in err.splitlines() if "no HIL_ACTUATOR_CONTROLS within" in line]

@@ -66,7 +66,8 @@ class GazeboMavlinkInterface : public AutopilotInterface {
                                  " must be >= 0 s of wall time (PX4's Gazebo plugin waits 0.01 s)");
     if (system_id < 1 || system_id > 255) throw rotors_sim::SimError("system_id must be 1..255");
     imu_interval_s_ = imu_rate_hz > 0.0 ? 1.0 / imu_rate_hz : 0.0;
-    if (hil_mode_ || serial_enabled_) lockstep_ = false;  // a real autopilot runs on its own clock
+    // hardware in the loop: a real autopilot runs on its own clock
+    if (hil_mode_ || serial_enabled_) lockstep_ = false;
     session_ = LinkSession({lockstep_, answer_timeout_s_, /*only_while_armed=*/true, 1});
     CheckImuRate(imu_rate_hz);
     // HIL_GPS carries UTC: the wall clock when the sim time was zero (PX4's plugin: the world's start time)
@@ -76,9 +77,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
         static_cast<int64_t>(SimTime_s() * 1e6));
     // component 200, as PX4's Gazebo plugins frame their messages
     endpoint_ = std::make_unique<px4::MavlinkEndpoint>(static_cast<uint8_t>(system_id), 200);
-    if (hil_mode_) lockstep_ = false;  // hardware in the loop runs on the autopilot's clock
     if (serial_enabled_) {
-      lockstep_ = false;  // a real autopilot runs on its own clock
       // a device that is not there (yet) is tried again every second
       open_link_ = [device, baud]() -> std::unique_ptr<Transport> {
         return std::make_unique<SerialPort>(device, baud);
