@@ -1,5 +1,6 @@
 #include "rotors_core/physics/model.h"
 
+#include <algorithm>
 #include <iostream>
 
 #include "rotors_core/event.h"
@@ -61,6 +62,40 @@ Vector3d Model::WorldLinearVel() const {
 Vector3d Model::WorldAngularVel() const {
   auto link = GetCanonicalLink();
   return link ? link->WorldAngularVel() : Vector3d::Zero;
+}
+
+std::vector<Model::BodyMassProperties> Model::BodyMasses() const {
+  std::vector<BodyMassProperties> out;
+  for (const auto& b : bodies_) {
+    dMass m;
+    dBodyGetMass(Ode(b.body), &m);
+    BodyMassProperties p;
+    p.mass_kg = m.mass;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) p.inertia_B_kg_m2(i, j) = m.I[i * 4 + j];
+    p.X_MB = b.X_MB;
+    out.push_back(p);
+  }
+  return out;
+}
+
+bool Model::CollisionBoundsW(Vector3d* lo_W, Vector3d* hi_W) const {
+  bool any = false;
+  for (const auto& g : geoms_) {
+    if (!g.second->link || g.second->link->IsStatic()) continue;
+    dReal aabb[6];
+    dGeomGetAABB(Ode(g.first), aabb);
+    const Vector3d lo(aabb[0], aabb[2], aabb[4]), hi(aabb[1], aabb[3], aabb[5]);
+    if (!any) {
+      *lo_W = lo;
+      *hi_W = hi;
+      any = true;
+    } else {
+      *lo_W = Vector3d(std::min(lo_W->X(), lo.X()), std::min(lo_W->Y(), lo.Y()), std::min(lo_W->Z(), lo.Z()));
+      *hi_W = Vector3d(std::max(hi_W->X(), hi.X()), std::max(hi_W->Y(), hi.Y()), std::max(hi_W->Z(), hi.Z()));
+    }
+  }
+  return any;
 }
 
 void Model::RecordBodiesBeforeStep(double dt_s) {

@@ -14,7 +14,11 @@
 
 #include "rotors_core/physics/physics_types.h"
 #include "rotors_core/sdf_params.h"
+#include "rotors_gazebo_plugins/models/imu_noise_model.h"
+#include "rotors_gazebo_plugins/models/odometry_model.h"
+#include "rotors_gazebo_plugins/models/rotor_model.h"
 #include "rotors_gazebo_plugins/models/tilt_servo_model.h"
+#include "rotors_gazebo_plugins/models/wind_model.h"
 
 namespace rotors_gazebo_plugins {
 
@@ -44,5 +48,21 @@ bool ReadGazeboPid(SdfParams& params, const std::string& name, bool require_all,
 
 /// Seed from <randomEngineSeed> if given, else from the clock; returns the seed used.
 uint64_t ReadSeed(SdfParams& params);
+
+// The models' parameters as their plugins read them, one reader each: the plugins and the batched
+// flight engine (rotors_sim.FlightBatch, which reads a spawned model's plugins) share them.
+
+/// A motor plugin's rotor (motorType velocity): turningDirection and the seven constants, all
+/// required (a missing constant would silently be another vehicle's), validated.
+RotorParams ReadRotorParams(SdfParams& params);
+/// rotorVelocitySlowdownSim (default 10, must be >= 1): the rotor joint turns this many times slower
+/// than the rotor, so that rviz shows it without aliasing.
+double ReadRotorSlowdown(SdfParams& params);
+/// The wind plugin's windSpeed*, windForce* and windGust* parameters (RotorS' defaults), validated.
+WindParams ReadWindParams(SdfParams& params);
+/// The odometry plugin's noiseNormal* and noiseUniform* sigmas and bounds, validated.
+OdometryNoiseParams ReadOdometryNoise(SdfParams& params);
+/// The IMU plugin's noise densities, random walks, correlation times and turn-on biases, validated.
+ImuNoiseParams ReadImuNoise(SdfParams& params);
 
 }  // namespace rotors_gazebo_plugins

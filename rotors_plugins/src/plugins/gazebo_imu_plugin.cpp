@@ -31,22 +31,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     RequireParam(Params(), "linkName", &link_name);
     ReadParam(Params(), "imuTopic", &topic);
     ReadParam(Params(), "biasTopic", &bias_topic);
-    ImuNoiseParams p;
-    ReadParam(Params(), "gyroscopeNoiseDensity", &p.gyroscope_noise_density);
-    const bool xacro_name = ReadParam(Params(), "gyroscopeRandomWalk", &p.gyroscope_random_walk);
-    double plugin_name_value = p.gyroscope_random_walk;
-    if (ReadParam(Params(), "gyroscopeBiasRandomWalk", &plugin_name_value)) {
-      if (xacro_name && plugin_name_value != p.gyroscope_random_walk)
-        throw rotors_sim::SimError("<gyroscopeRandomWalk> and <gyroscopeBiasRandomWalk> disagree; give one of them");
-      p.gyroscope_random_walk = plugin_name_value;
-    }
-    ReadParam(Params(), "gyroscopeBiasCorrelationTime", &p.gyroscope_bias_correlation_time_s);
-    ReadParam(Params(), "gyroscopeTurnOnBiasSigma", &p.gyroscope_turn_on_bias_sigma);
-    ReadParam(Params(), "accelerometerNoiseDensity", &p.accelerometer_noise_density);
-    ReadParam(Params(), "accelerometerRandomWalk", &p.accelerometer_random_walk);
-    ReadParam(Params(), "accelerometerBiasCorrelationTime", &p.accelerometer_bias_correlation_time_s);
-    ReadParam(Params(), "accelerometerTurnOnBiasSigma", &p.accelerometer_turn_on_bias_sigma);
-    ThrowIfInvalid(p.Validate());
+    const ImuNoiseParams p = ReadImuNoise(Params());
     const uint64_t seed = ReadSeed(Params());
     noise_.Emplace(p, seed);
 

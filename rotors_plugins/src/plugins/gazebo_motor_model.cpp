@@ -88,29 +88,11 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
 
  private:
   void LoadRotor(const rotors_sim::physics::ModelPtr& model) {
-    std::string link_name, direction, speed_topic = "motor_speed";
+    std::string link_name, speed_topic = "motor_speed";
     RequireParam(Params(), "linkName", &link_name);
-    // the rotor's physics has no defaults: a missing constant would silently be another vehicle's
-    RequireParam(Params(), "turningDirection", &direction);
     ReadParam(Params(), "motorSpeedPubTopic", &speed_topic);
-    RotorParams p;
-    RequireParam(Params(), "rotorDragCoefficient", &p.rotor_drag_coefficient);
-    RequireParam(Params(), "rollingMomentCoefficient", &p.rolling_moment_coefficient);
-    RequireParam(Params(), "maxRotVelocity", &p.max_rot_velocity);
-    RequireParam(Params(), "motorConstant", &p.motor_constant);
-    RequireParam(Params(), "momentConstant", &p.moment_constant);
-    RequireParam(Params(), "timeConstantUp", &p.time_constant_up_s);
-    RequireParam(Params(), "timeConstantDown", &p.time_constant_down_s);
-    ReadParam(Params(), "rotorVelocitySlowdownSim", &slowdown_);  // visual only
-    if (direction == "ccw") {
-      p.turning_direction = 1;
-    } else if (direction == "cw") {
-      p.turning_direction = -1;
-    } else {
-      throw rotors_sim::SimError("turningDirection = '" + direction + "' must be 'cw' or 'ccw'");
-    }
-    if (!(slowdown_ >= 1.0)) throw rotors_sim::SimError("rotorVelocitySlowdownSim must be >= 1");
-    ThrowIfInvalid(p.Validate());
+    const RotorParams p = ReadRotorParams(Params());
+    slowdown_ = ReadRotorSlowdown(Params());  // visual only
     rotor_ = std::make_unique<RotorModel>(p);
     link_ = RequireLink(model, link_name);
     parent_link_ = joint_->GetParent();

@@ -61,16 +61,7 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     if (divisor_ < 1) throw rotors_sim::SimError("measurementDivisor = " + std::to_string(divisor_) + " must be >= 1");
     if (delay_steps_ < 0)
       throw rotors_sim::SimError("measurementDelay = " + std::to_string(delay_steps_) + " must be >= 0");
-    OdometryNoiseParams noise;
-    ReadVector(Params(), "noiseNormalPosition", &noise.normal_position_m);
-    ReadVector(Params(), "noiseNormalQuaternion", &noise.normal_quaternion_rad);
-    ReadVector(Params(), "noiseNormalLinearVelocity", &noise.normal_linear_velocity_m_s);
-    ReadVector(Params(), "noiseNormalAngularVelocity", &noise.normal_angular_velocity_rad_s);
-    ReadVector(Params(), "noiseUniformPosition", &noise.uniform_position_m);
-    ReadVector(Params(), "noiseUniformQuaternion", &noise.uniform_quaternion_rad);
-    ReadVector(Params(), "noiseUniformLinearVelocity", &noise.uniform_linear_velocity_m_s);
-    ReadVector(Params(), "noiseUniformAngularVelocity", &noise.uniform_angular_velocity_rad_s);
-    ThrowIfInvalid(noise.Validate());
+    const OdometryNoiseParams noise = ReadOdometryNoise(Params());
     noise_.Emplace(noise, ReadSeed(Params()));
     std::string image;
     double scale = 1.0;

@@ -60,18 +60,7 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
     } catch (const std::runtime_error& e) {
       throw rotors_sim::SimError(e.what());
     }
-    WindParams p;
-    ReadParam(Params(), "windSpeedMean", &p.wind_speed_mean_m_s);
-    ReadParam(Params(), "windSpeedVariance", &p.wind_speed_variance);
-    ReadVector(Params(), "windDirection", &p.wind_direction);
-    ReadParam(Params(), "windForceMean", &p.wind_force_mean_n);
-    ReadParam(Params(), "windForceVariance", &p.wind_force_variance);
-    ReadParam(Params(), "windGustStart", &p.wind_gust_start_s);
-    ReadParam(Params(), "windGustDuration", &p.wind_gust_duration_s);
-    ReadParam(Params(), "windGustForceMean", &p.wind_gust_force_mean_n);
-    ReadParam(Params(), "windGustForceVariance", &p.wind_gust_force_variance);
-    ReadVector(Params(), "windGustDirection", &p.wind_gust_direction);
-    ThrowIfInvalid(p.Validate());
+    const WindParams p = ReadWindParams(Params());
     wind_.Emplace(p, ReadSeed(Params()));
     link_ = RequireLink(model, link_name);
     offset_L_ = {offset.x(), offset.y(), offset.z()};

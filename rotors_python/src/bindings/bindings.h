@@ -25,4 +25,5 @@ rotors_control::VehicleState StateFromOdometry(const Eigen::Vector3d& position_W
 void BindWorld(pybind11::module_& m);
 void BindControllers(pybind11::module_& m);
 void BindFrames(pybind11::module_& m);
+void BindFlightBatch(pybind11::module_& m);
 }  // namespace rotors_python

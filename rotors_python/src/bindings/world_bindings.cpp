@@ -17,6 +17,7 @@
 #include <nav_msgs/Odometry.h>
 
 #include "bindings.h"
+#include "flight_batch/vehicle_description.h"
 #include "rotors_core/error.h"
 #include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/model_builder.h"
@@ -422,6 +423,13 @@ void BindWorld(py::module_& m) {
       .def("attach_controller", &PyWorld::AttachController, py::arg("namespace"), py::arg("odometry_topic"),
            py::arg("controller"))
       .def("detach_controllers", &PyWorld::DetachControllers)
+      .def(
+          "describe_multirotor",
+          [](const PyWorld& w, const std::string& model, const std::string& odometry_topic) {
+            return rotors_flight_batch::DescribeVehicle(*w.Model(model), odometry_topic);
+          },
+          py::arg("model"), py::arg("odometry_topic"),
+          "What the batched flight engine reads from a spawned multirotor (its VehicleDescription).")
       .def("camera_image", &PyWorld::CameraImage, py::arg("model"), py::arg("sensor"), py::arg("index") = 0,
            py::arg("depth") = false)
       .def("laser_scan", &PyWorld::LaserScan, py::arg("model"), py::arg("sensor"))

@@ -59,6 +59,8 @@ class Joint {
   /// frame, as in URDF), axis_C the axis in the child frame, spin_inertia the child's inertia about
   /// the axis through its origin [kg m^2]. The child must already ride on the parent's body.
   void MakeKinematic(const Pose3d& X_PC0, const Vector3d& axis_C, double spin_inertia);
+  /// Kinematic: the child's inertia about the axis through its origin, J_a [kg m^2].
+  double SpinInertia() const { return spin_inertia_; }
   /// Kinematic: applies this step's spin moment to the body (before the solver step).
   void ApplySpinMoment(double dt_s);
   /// Kinematic: integrates the position over the step, moves the child and its geoms.

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
 #include <sdf/Element.hh>
 
 #include "rotors_core/physics/physics_types.h"
@@ -60,6 +61,17 @@ class Model {
     Quaterniond q_WB;
     double dt_s = 0.0;  ///< the step; 0: no step since spawn or reset
   };
+  /// A rigid body's mass properties as the solver has them: the body frame is at its CoG with the
+  /// model's axes at spawn (X_MB), the inertia is about the CoG in the body frame.
+  struct BodyMassProperties {
+    double mass_kg = 0.0;
+    Eigen::Matrix3d inertia_B_kg_m2 = Eigen::Matrix3d::Zero();
+    Pose3d X_MB;
+  };
+  std::vector<BodyMassProperties> BodyMasses() const;
+  /// The axis-aligned box [lo, hi] (world frame) around every collision geom on a body, now; false
+  /// when the model has none.
+  bool CollisionBoundsW(Vector3d* lo_W, Vector3d* hi_W) const;
   /// Called by the world right before each step.
   void RecordBodiesBeforeStep(double dt_s);
   /// nullptr when the body has not stepped since spawn or the last reset.

@@ -1,0 +1,178 @@
+// rotors_sim._engine.FlightBatch: the batched flight engine (flight_batch/), its arrays shared
+// with numpy (views on the engine's memory: no copy per step), its controllers' parameters read
+// by the same loaders as the ROS nodes from the numbers Python flattened out of the yaml files.
+#include <set>
+#include <string>
+#include <vector>
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "flight_batch/flight_batch.h"
+#include "rotors_control/parameter_loading.h"
+#include "rotors_core/error.h"
+#include "rotors_params/map_param_reader.h"
+
+namespace py = pybind11;
+
+namespace rotors_python {
+namespace {
+
+using rotors_flight_batch::CommandMode;
+using rotors_flight_batch::FlightBatch;
+using rotors_flight_batch::FlightBatchOptions;
+using rotors_flight_batch::VehicleDescription;
+using rotors_sim::SimError;
+
+/// A (rows x cols) view of engine memory, kept alive by `owner`.
+template <class T>
+py::array_t<T> View(T* data, py::ssize_t rows, py::ssize_t cols, py::handle owner, bool writeable) {
+  py::array_t<T> a({rows, cols}, {static_cast<py::ssize_t>(cols * sizeof(T)), static_cast<py::ssize_t>(sizeof(T))},
+                   data, owner);
+  if (!writeable) a.attr("flags").attr("writeable") = false;
+  return a;
+}
+
+std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, const std::string& mode,
+                                       const std::map<std::string, double>& numbers,
+                                       const std::vector<std::string>& others, const std::string& source,
+                                       int threads, bool imu, bool noise, const std::vector<uint64_t>& seeds,
+                                       double contact_stiffness_scale) {
+  FlightBatchOptions o;
+  o.count = count;
+  o.threads = threads;
+  o.mode = rotors_flight_batch::ParseCommandMode(mode);
+  o.imu = imu;
+  o.noise = noise;
+  o.seeds = seeds;
+  o.contact_stiffness_scale = contact_stiffness_scale;
+  if (!(contact_stiffness_scale > 0.0)) throw SimError("contact_stiffness_scale must be > 0");
+  if (o.mode != CommandMode::kRotorSpeeds && o.mode != CommandMode::kNormalizedThrust) {
+    rotors_params::MapParamReader reader(numbers, std::set<std::string>(others.begin(), others.end()), source);
+    std::string why;
+    if (o.mode == CommandMode::kLeePosition) {
+      why = rotors_control::LoadLeeParameters(reader, &o.lee);
+    } else {
+      why = rotors_control::LoadAttitudeGains(reader, &o.attitude.attitude);
+      if (why.empty()) why = rotors_control::LoadVehicleParameters(reader, &o.attitude.vehicle);
+    }
+    if (!why.empty()) throw SimError(why);
+  }
+  if (d.rotors.size() > 16) throw SimError("FlightBatch: more than 16 rotors");
+  return std::make_unique<FlightBatch>(d, o);
+}
+
+}  // namespace
+
+void BindFlightBatch(py::module_& m) {
+  py::class_<VehicleDescription>(m, "VehicleDescription",
+                                 "What the batched flight engine read from a spawned multirotor.")
+      .def_readonly("model_name", &VehicleDescription::model_name)
+      .def_readonly("robot_namespace", &VehicleDescription::robot_namespace)
+      .def_readonly("mass_kg", &VehicleDescription::mass_kg)
+      .def_readonly("inertia_B_kg_m2", &VehicleDescription::inertia_B_kg_m2)
+      .def_readonly("p_M_cog", &VehicleDescription::p_M_cog)
+      .def_readonly("gravity_W", &VehicleDescription::gravity_W)
+      .def_readonly("step_size", &VehicleDescription::step_s)
+      .def_readonly("left_out", &VehicleDescription::left_out)
+      .def_readonly("contact_points_B", &VehicleDescription::contact_points_B)
+      .def_property_readonly("has_imu", [](const VehicleDescription& d) { return d.imu.has_value(); })
+      .def_property_readonly("has_wind", [](const VehicleDescription& d) { return d.wind.has_value(); })
+      .def_property_readonly("odometry_divisor", [](const VehicleDescription& d) { return d.odometry->divisor; })
+      .def_property_readonly("rotors", [](const VehicleDescription& d) {
+        py::list rotors;
+        for (const auto& r : d.rotors) {
+          py::dict x;
+          x["motor_number"] = r.motor_number;
+          x["p_B"] = r.p_B_origin;
+          x["axis_B"] = r.axis_B;
+          x["motor_constant"] = r.params.motor_constant;
+          x["moment_constant"] = r.params.moment_constant;
+          x["max_rot_velocity"] = r.params.max_rot_velocity;
+          x["turning_direction"] = r.params.turning_direction;
+          x["spin_inertia_kg_m2"] = r.spin_inertia_kg_m2;
+          rotors.append(x);
+        }
+        return rotors;
+      });
+
+  py::class_<FlightBatch>(m, "FlightBatch", "N copies of one multirotor stepped together (see rotors_sim.FlightBatch).")
+      .def(py::init(&MakeBatch), py::arg("description"), py::arg("count"), py::arg("mode"), py::arg("numbers"),
+           py::arg("others"), py::arg("source"), py::arg("threads") = 0, py::arg("imu") = true,
+           py::arg("noise") = true, py::arg("seeds") = std::vector<uint64_t>(),
+           py::arg("contact_stiffness_scale") = 1.0)
+      .def(
+          "step", [](FlightBatch& b, long n) {
+            py::gil_scoped_release release;
+            b.Step(n);
+          },
+          py::arg("n") = 1)
+      .def(
+          "reset",
+          [](FlightBatch& b, const std::vector<int>& indices, const py::array_t<double, py::array::c_style | py::array::forcecast>& positions,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& yaws) {
+            const auto k = static_cast<py::ssize_t>(indices.size());
+            if (positions.ndim() != 2 || positions.shape(0) != k || positions.shape(1) != 3)
+              throw SimError("FlightBatch.reset: positions must have shape (" + std::to_string(k) + ", 3)");
+            if (yaws.ndim() != 1 || yaws.shape(0) != k)
+              throw SimError("FlightBatch.reset: yaws must have shape (" + std::to_string(k) + ",)");
+            b.Reset(indices, positions.data(), yaws.data());
+          },
+          py::arg("indices"), py::arg("positions"), py::arg("yaws"))
+      .def_property_readonly("count", &FlightBatch::Count)
+      .def_property_readonly("rotor_count", &FlightBatch::Rotors)
+      .def_property_readonly("threads", &FlightBatch::Threads)
+      .def_property_readonly("step_size", &FlightBatch::StepSize)
+      .def_property_readonly("command_columns", [](const FlightBatch& b) { return b.CommandColumns(); })
+      .def_property_readonly("state_bytes_per_vehicle", &FlightBatch::StateBytesPerVehicle)
+      .def_property_readonly("controller_bytes_per_vehicle", &FlightBatch::ControllerBytesPerVehicle)
+      .def_property_readonly("noise_bytes_per_vehicle", &FlightBatch::NoiseBytesPerVehicle)
+      .def_property_readonly("commands",
+                             [](py::object self) {
+                               FlightBatch& b = self.cast<FlightBatch&>();
+                               return View(b.Commands(), b.Count(), b.CommandColumns(), self, true);
+                             })
+      .def_property_readonly("odometry",
+                             [](py::object self) {
+                               FlightBatch& b = self.cast<FlightBatch&>();
+                               return View(b.Odometry(), b.Count(), 14, self, false);
+                             })
+      .def_property_readonly("odometry_count",
+                             [](py::object self) {
+                               FlightBatch& b = self.cast<FlightBatch&>();
+                               return View(b.OdometryCount(), b.Count(), 1, self, false);
+                             })
+      .def_property_readonly("imu",
+                             [](py::object self) {
+                               FlightBatch& b = self.cast<FlightBatch&>();
+                               return View(b.Imu(), b.Count(), 6, self, false);
+                             })
+      .def_property_readonly("rotor_speeds",
+                             [](py::object self) {
+                               FlightBatch& b = self.cast<FlightBatch&>();
+                               return View(b.RotorSpeeds(), b.Count(), b.Rotors(), self, false);
+                             })
+      .def_property_readonly("in_contact",
+                             [](py::object self) {
+                               FlightBatch& b = self.cast<FlightBatch&>();
+                               return View(b.InContact(), b.Count(), 1, self, false);
+                             })
+      .def_property_readonly("steps",
+                             [](py::object self) {
+                               FlightBatch& b = self.cast<FlightBatch&>();
+                               return View(const_cast<uint64_t*>(b.Steps()), b.Count(), 1, self, false);
+                             })
+      .def(
+          "truth",
+          [](py::object self) {
+            FlightBatch& b = self.cast<FlightBatch&>();
+            return View(b.Truth(), b.Count(), 13, self, false);
+          },
+          "Ground truth of the model frame, N x 13: position_W, orientation (x, y, z, w), velocity_W, "
+          "angular_velocity_B (computed at this call).");
+}
+
+}  // namespace rotors_python

@@ -1,0 +1,683 @@
+#include "flight_batch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/free_body_step.h"
+#include "rotors_gazebo_plugins/models/first_order_filter.h"
+
+namespace rotors_flight_batch {
+
+using rotors_sim::SimError;
+using rotors_sim::physics::FreeBodyInertia;
+using rotors_sim::physics::FreeBodyState;
+using rotors_sim::physics::RotationFromQuaternion;
+using rotors_sim::physics::StepFreeBody;
+namespace rgp = rotors_gazebo_plugins;
+
+namespace {
+
+const char* kModeNames[] = {"rotor_speeds",     "normalized_thrust", "lee_position", "roll_pitch_yawrate_thrust",
+                            "attitude_thrust", "rate_thrust"};
+
+inline void Cross(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+/// out = R v (R row-major)
+inline void Rotate(const double R[9], const Eigen::Vector3d& v, double out[3]) {
+  for (int k = 0; k < 3; ++k) out[k] = R[k * 3 + 0] * v[0] + R[k * 3 + 1] * v[1] + R[k * 3 + 2] * v[2];
+}
+/// out = R^T v
+inline void RotateBack(const double R[9], const double v[3], double out[3]) {
+  for (int k = 0; k < 3; ++k) out[k] = R[0 * 3 + k] * v[0] + R[1 * 3 + k] * v[1] + R[2 * 3 + k] * v[2];
+}
+
+/// The world's sim time after `steps` steps of dt: whole nanoseconds, read as seconds the way
+/// common::Time::Double() does (so that a gust starts at the same step in both engines).
+inline double SimTimeS(uint64_t steps, int64_t dt_ns) {
+  const int64_t t_ns = static_cast<int64_t>(steps) * dt_ns;
+  return static_cast<double>(t_ns / 1000000000) + static_cast<double>(t_ns % 1000000000) * 1e-9;
+}
+
+}  // namespace
+
+CommandMode ParseCommandMode(const std::string& name) {
+  for (int m = 0; m < 6; ++m)
+    if (name == kModeNames[m]) return static_cast<CommandMode>(m);
+  throw SimError("command mode '" + name +
+                 "' is not known; use rotor_speeds, normalized_thrust, lee_position, roll_pitch_yawrate_thrust, "
+                 "attitude_thrust or rate_thrust");
+}
+
+int CommandColumns(CommandMode mode, int rotors) {
+  switch (mode) {
+    case CommandMode::kRotorSpeeds:
+    case CommandMode::kNormalizedThrust: return rotors;
+    case CommandMode::kAttitudeThrust: return 5;
+    default: return 4;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+struct FlightBatch::Controller {
+  std::unique_ptr<rotors_control::LeeController> lee;
+  std::unique_ptr<rotors_control::AttitudeLevelController> attitude;
+};
+
+/// A vehicle's seeded models (the plugins' classes) and its odometry sensor's queue.
+struct FlightBatch::Sensors {
+  struct Pending {
+    uint64_t publish_at_step;
+    double stamp_s;
+    rgp::OdometryMeasurement truth;
+  };
+  std::unique_ptr<rgp::OdometryNoise> odometry_noise;  ///< none when every sigma and bound is 0
+  std::unique_ptr<rgp::ImuNoiseModel> imu_noise;
+  std::unique_ptr<rgp::WindModel> wind;
+  std::deque<Pending> queue;
+  uint64_t odometry_step = 0;
+};
+
+class FlightBatch::Pool {
+ public:
+  explicit Pool(int threads) {
+    for (int t = 1; t < threads; ++t) workers_.emplace_back([this, t] { Loop(t); });
+  }
+  ~Pool() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (auto& w : workers_) w.join();
+  }
+  /// task(t) for t = 0 .. threads - 1, task 0 on the calling thread; rethrows the first exception.
+  void Run(const std::function<void(int)>& task) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      task_ = &task;
+      pending_ = static_cast<int>(workers_.size());
+      error_ = nullptr;
+      ++generation_;
+    }
+    wake_.notify_all();
+    try {
+      task(0);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [this] { return pending_ == 0; });
+    task_ = nullptr;
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  void Loop(int t) {
+    uint64_t seen = 0;
+    for (;;) {
+      const std::function<void(int)>* task;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+        if (stop_) return;
+        seen = generation_;
+        task = task_;
+      }
+      std::exception_ptr error;
+      try {
+        (*task)(t);
+      } catch (...) {
+        error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (error && !error_) error_ = error;
+      if (--pending_ == 0) done_.notify_one();
+    }
+  }
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  const std::function<void(int)>* task_ = nullptr;
+  uint64_t generation_ = 0;
+  int pending_ = 0;
+  bool stop_ = false;
+  std::exception_ptr error_;
+};
+
+// ---------------------------------------------------------------------------------------------
+FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions options)
+    : d_(std::move(description)), options_(std::move(options)) {
+  n_ = options_.count;
+  if (n_ < 1) throw SimError("FlightBatch: count = " + std::to_string(n_) + " must be >= 1");
+  r_ = static_cast<int>(d_.rotors.size());
+  command_columns_ = rotors_flight_batch::CommandColumns(options_.mode, r_);
+  dt_ = d_.step_s;
+  if (!(dt_ > 0.0)) throw SimError("FlightBatch: the physics step must be > 0");
+  if (!options_.seeds.empty() && static_cast<int>(options_.seeds.size()) != n_)
+    throw SimError("FlightBatch: " + std::to_string(options_.seeds.size()) + " seeds for " + std::to_string(n_) +
+                   " vehicles; give one per vehicle or none");
+  const int cores = std::max(1u, std::thread::hardware_concurrency());
+  threads_ = std::clamp(options_.threads > 0 ? options_.threads : cores, 1, n_);
+
+  inv_mass_ = 1.0 / d_.mass_kg;
+  const Eigen::Matrix3d inv_I = d_.inertia_B_kg_m2.inverse();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      I_B_[i * 3 + j] = d_.inertia_B_kg_m2(i, j);
+      inv_I_B_[i * 3 + j] = inv_I(i, j);
+    }
+  for (const auto& rotor : d_.rotors) {
+    a_up_.push_back(std::exp(-dt_ / rotor.params.time_constant_up_s));
+    a_down_.push_back(std::exp(-dt_ / rotor.params.time_constant_down_s));
+  }
+  // Ground contact: a spring and damper at each corner below z = 0, stiff enough that the vehicle
+  // sinks g / w^2 (0.4 mm at 500 Hz), soft enough for the explicit step (w dt = 0.3).
+  const double w = 0.3 / dt_ * std::sqrt(options_.contact_stiffness_scale);
+  contact_k_ = d_.mass_kg * w * w / 4.0;
+  contact_c_ = d_.mass_kg * w / 2.0;
+
+  const size_t n = n_;
+  p_W_.assign(3 * n, 0.0);
+  v_W_.assign(3 * n, 0.0);
+  q_WB_.assign(4 * n, 0.0);
+  R_WB_.assign(9 * n, 0.0);
+  omega_W_.assign(3 * n, 0.0);
+  omega_rotor_.assign(r_ * n, 0.0);
+  qdot_applied_.assign(r_ * n, 0.0);
+  motor_command_.assign(r_ * n, 0.0);
+  wind_velocity_W_.assign(3 * n, 0.0);
+  steps_.assign(n, 0);
+  in_contact_.assign(n, 0);
+  commands_.assign(command_columns_ * n, 0.0);
+  if (options_.mode == CommandMode::kAttitudeThrust)
+    for (size_t i = 0; i < n; ++i) commands_[i * 5 + 3] = 1.0;  // identity attitude
+  odometry_out_.assign(14 * n, 0.0);
+  imu_out_.assign(6 * n, 0.0);
+  truth_out_.assign(13 * n, 0.0);
+  rotor_speed_out_.assign(r_ * n, 0.0);
+  odometry_count_.assign(n, 0);
+  controller_seen_.assign(n, 0);
+
+  if (options_.mode != CommandMode::kRotorSpeeds && options_.mode != CommandMode::kNormalizedThrust) {
+    const auto& vehicle =
+        options_.mode == CommandMode::kLeePosition ? options_.lee.vehicle : options_.attitude.vehicle;
+    if (static_cast<int>(vehicle.rotors.size()) != r_)
+      throw SimError("FlightBatch: the controller's vehicle parameters have " + std::to_string(vehicle.rotors.size()) +
+                     " rotors, the model '" + d_.model_name + "' has " + std::to_string(r_) +
+                     "; give the controller the vehicle's yaml");
+    for (size_t i = 0; i < n; ++i) {
+      auto c = std::make_unique<Controller>();
+      try {
+        if (options_.mode == CommandMode::kLeePosition) {
+          c->lee = std::make_unique<rotors_control::LeeController>(options_.lee);
+        } else {
+          c->attitude = std::make_unique<rotors_control::AttitudeLevelController>(options_.attitude);
+        }
+      } catch (const std::exception& e) {
+        throw SimError(std::string("FlightBatch: controller parameters: ") + e.what());
+      }
+      controllers_.push_back(std::move(c));
+    }
+  }
+  for (size_t i = 0; i < n; ++i) sensors_.push_back(std::make_unique<Sensors>());
+  std::vector<int> all(n);
+  std::vector<double> origin(3 * n, 0.0), yaw(n, 0.0);
+  for (size_t i = 0; i < n; ++i) all[i] = static_cast<int>(i);
+  Reset(all, origin.data(), yaw.data());
+  if (threads_ > 1) pool_ = std::make_unique<Pool>(threads_);
+}
+
+FlightBatch::~FlightBatch() = default;
+
+size_t FlightBatch::StateBytesPerVehicle() const {
+  const size_t doubles = (3 + 3 + 4 + 9 + 3) + 3 * r_ + 3 + command_columns_ + 14 + 6 + 13 + r_;
+  return doubles * sizeof(double) + 3 * sizeof(uint64_t) + 2 * sizeof(uint8_t);
+}
+
+size_t FlightBatch::ControllerBytesPerVehicle() const {
+  if (controllers_.empty()) return 0;
+  const auto& vehicle = options_.mode == CommandMode::kLeePosition ? options_.lee.vehicle : options_.attitude.vehicle;
+  // the object and its heap: rotor parameters, the allocation matrix and its inverse (4 x R each)
+  const size_t heap = vehicle.rotors.size() * (sizeof(rotors_control::RotorGeometry) + 2 * 4 * sizeof(double) + 2 * sizeof(double));
+  return sizeof(Controller) + heap +
+         (options_.mode == CommandMode::kLeePosition ? sizeof(rotors_control::LeeController)
+                                                     : sizeof(rotors_control::AttitudeLevelController));
+}
+
+size_t FlightBatch::NoiseBytesPerVehicle() const {
+  const Sensors& s = *sensors_.front();
+  return sizeof(Sensors) + (s.odometry_noise ? sizeof(rgp::OdometryNoise) : 0) +
+         (s.imu_noise ? sizeof(rgp::ImuNoiseModel) : 0) + (s.wind ? sizeof(rgp::WindModel) : 0);
+}
+
+void FlightBatch::Reset(const std::vector<int>& indices, const double* positions_M, const double* yaws) {
+  for (size_t k = 0; k < indices.size(); ++k) {
+    const int i = indices[k];
+    if (i < 0 || i >= n_)
+      throw SimError("FlightBatch.reset: vehicle " + std::to_string(i) + " is not in 0.." + std::to_string(n_ - 1));
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(positions_M[3 * k + c]))
+        throw SimError("FlightBatch.reset: vehicle " + std::to_string(i) + ": position must be finite");
+    if (!std::isfinite(yaws[k])) throw SimError("FlightBatch.reset: vehicle " + std::to_string(i) + ": yaw must be finite");
+  }
+  const size_t n = n_;
+  for (size_t k = 0; k < indices.size(); ++k) {
+    const size_t i = indices[k];
+    const double yaw = yaws[k];
+    const double q[4] = {std::cos(yaw / 2), 0.0, 0.0, std::sin(yaw / 2)};
+    double R[9];
+    RotationFromQuaternion(q, R);
+    double r_cog[3];
+    Rotate(R, d_.p_M_cog, r_cog);
+    for (int c = 0; c < 3; ++c) {
+      p_W_[c * n + i] = positions_M[3 * k + c] + r_cog[c];
+      v_W_[c * n + i] = 0.0;
+      omega_W_[c * n + i] = 0.0;
+      wind_velocity_W_[c * n + i] = 0.0;
+    }
+    for (int c = 0; c < 4; ++c) q_WB_[c * n + i] = q[c];
+    for (int c = 0; c < 9; ++c) R_WB_[c * n + i] = R[c];
+    for (int r = 0; r < r_; ++r) {
+      omega_rotor_[r * n + i] = 0.0;
+      qdot_applied_[r * n + i] = 0.0;
+      motor_command_[r * n + i] = 0.0;
+      rotor_speed_out_[i * r_ + r] = 0.0;
+    }
+    steps_[i] = 0;
+    in_contact_[i] = 0;
+    Sensors& s = *sensors_[i];
+    const uint64_t seed_odometry = options_.seeds.empty() ? d_.odometry->seed : options_.seeds[i];
+    s.queue.clear();
+    s.odometry_step = 0;
+    const auto& on = d_.odometry->noise;
+    const bool odometry_noisy = options_.noise && (on.normal_position_m.any() || on.normal_quaternion_rad.any() ||
+                                                   on.normal_linear_velocity_m_s.any() ||
+                                                   on.normal_angular_velocity_rad_s.any() || on.uniform_position_m.any() ||
+                                                   on.uniform_quaternion_rad.any() || on.uniform_linear_velocity_m_s.any() ||
+                                                   on.uniform_angular_velocity_rad_s.any());
+    s.odometry_noise = odometry_noisy ? std::make_unique<rgp::OdometryNoise>(on, seed_odometry) : nullptr;
+    if (d_.imu && options_.imu && options_.noise)
+      s.imu_noise =
+          std::make_unique<rgp::ImuNoiseModel>(d_.imu->noise, options_.seeds.empty() ? d_.imu->seed : options_.seeds[i]);
+    if (d_.wind) {
+      rgp::WindParams wp = d_.wind->params;
+      if (!options_.noise) wp.wind_speed_variance = wp.wind_force_variance = wp.wind_gust_force_variance = 0.0;
+      s.wind = std::make_unique<rgp::WindModel>(wp, options_.seeds.empty() ? d_.wind->seed : options_.seeds[i]);
+    }
+    // until the sensor's first message the odometry row holds the reset state, noise-free
+    double* o = &odometry_out_[i * 14];
+    const Mount& m = d_.odometry->mount;
+    double r_s[3];
+    Rotate(R, m.p_B, r_s);
+    const Eigen::Quaterniond q_WS = Eigen::Quaterniond(q[0], q[1], q[2], q[3]) * m.q_BS;
+    for (int c = 0; c < 3; ++c) o[c] = p_W_[c * n + i] + r_s[c];
+    o[3] = q_WS.x(), o[4] = q_WS.y(), o[5] = q_WS.z(), o[6] = q_WS.w();
+    for (int c = 7; c < 14; ++c) o[c] = 0.0;
+    controller_seen_[i] = odometry_count_[i];
+    for (int c = 0; c < 6; ++c) imu_out_[i * 6 + c] = 0.0;
+  }
+}
+
+void FlightBatch::CheckCommands() const {
+  const int cols = command_columns_;
+  for (int i = 0; i < n_; ++i) {
+    const double* c = &commands_[i * cols];
+    for (int k = 0; k < cols; ++k) {
+      std::string why;
+      if (!std::isfinite(c[k])) {
+        why = "is not finite";
+      } else if (options_.mode == CommandMode::kRotorSpeeds && c[k] < 0.0) {
+        why = "is a negative rotor speed";
+      } else if (options_.mode == CommandMode::kNormalizedThrust && (c[k] < 0.0 || c[k] > 1.0)) {
+        why = "is outside 0..1 (a fraction of the rotor's maximum thrust)";
+      } else if (k == cols - 1 && c[k] < 0.0 &&
+                 (options_.mode == CommandMode::kRollPitchYawrateThrust ||
+                  options_.mode == CommandMode::kAttitudeThrust || options_.mode == CommandMode::kRateThrust)) {
+        why = "is a negative thrust";
+      }
+      if (!why.empty()) {
+        std::ostringstream msg;
+        msg << "FlightBatch.step: commands[" << i << ", " << k << "] = " << c[k] << " " << why << " ("
+            << kModeNames[static_cast<int>(options_.mode)] << "); no vehicle was stepped";
+        throw SimError(msg.str());
+      }
+    }
+    if (options_.mode == CommandMode::kAttitudeThrust &&
+        c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3] < 1e-18)
+      throw SimError("FlightBatch.step: commands[" + std::to_string(i) +
+                     ", 0:4] is a zero quaternion (x, y, z, w); no vehicle was stepped");
+  }
+}
+
+void FlightBatch::Step(long steps) {
+  if (steps < 0) throw SimError("FlightBatch.step: n = " + std::to_string(steps) + " must be >= 0");
+  CheckCommands();
+  if (steps == 0) return;
+  if (!pool_) {
+    StepRange(0, n_, steps);
+    return;
+  }
+  const int threads = threads_;
+  pool_->Run([&](int t) { StepRange(n_ * t / threads, n_ * (t + 1) / threads, steps); });
+}
+
+void FlightBatch::StepRange(int begin, int end, long steps) {
+  // Blocks of vehicles stay in cache for all the steps.
+  constexpr int kBlock = 16;
+  for (int b = begin; b < end; b += kBlock) {
+    const int e = std::min(end, b + kBlock);
+    for (long s = 0; s < steps; ++s)
+      for (int i = b; i < e; ++i) StepVehicle(i);
+  }
+}
+
+void FlightBatch::ApplyCommand(int i) {
+  const size_t n = n_;
+  const double* c = &commands_[i * command_columns_];
+  switch (options_.mode) {
+    case CommandMode::kRotorSpeeds:
+      for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = c[r];
+      return;
+    case CommandMode::kNormalizedThrust:
+      // thrust = u T_max = u C_T omega_max^2  ->  omega = omega_max sqrt(u)
+      for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = d_.rotors[r].params.max_rot_velocity * std::sqrt(c[r]);
+      return;
+    default: break;
+  }
+  // a controller answers a new odometry message, as World.attach_controller (and the ROS node) does
+  if (odometry_count_[i] == controller_seen_[i]) return;
+  controller_seen_[i] = odometry_count_[i];
+  const double* o = &odometry_out_[i * 14];
+  rotors_control::VehicleState state;
+  state.position_W = {o[0], o[1], o[2]};
+  const Eigen::Quaterniond q(o[6], o[3], o[4], o[5]);  // as mav_msgs: normalised, identity when ~0
+  state.orientation_W_B = q.norm() >= 1.e-6 ? q.normalized() : Eigen::Quaterniond::Identity();
+  state.velocity_B = {o[7], o[8], o[9]};
+  state.angular_velocity_B = {o[10], o[11], o[12]};
+  Controller& ctrl = *controllers_[i];
+  Eigen::VectorXd speeds;
+  switch (options_.mode) {
+    case CommandMode::kLeePosition: {
+      rotors_control::TrajectoryPoint point;
+      point.position_W = {c[0], c[1], c[2]};
+      point.yaw_rad = c[3];
+      ctrl.lee->SetTrajectoryPoint(point);
+      speeds = ctrl.lee->RotorSpeeds(state);
+      break;
+    }
+    case CommandMode::kRollPitchYawrateThrust:
+      ctrl.attitude->SetRollPitchYawrateThrust(c[0], c[1], c[2], c[3]);
+      speeds = ctrl.attitude->RotorSpeeds(state);
+      break;
+    case CommandMode::kAttitudeThrust:
+      ctrl.attitude->SetAttitudeThrust(Eigen::Quaterniond(c[3], c[0], c[1], c[2]).normalized(), c[4]);
+      speeds = ctrl.attitude->RotorSpeeds(state);
+      break;
+    case CommandMode::kRateThrust:
+      ctrl.attitude->SetRateThrust(Eigen::Vector3d(c[0], c[1], c[2]), c[3]);
+      speeds = ctrl.attitude->RotorSpeeds(state);
+      break;
+    default: break;
+  }
+  for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = std::max(0.0, speeds[r]);
+}
+
+void FlightBatch::StepVehicle(int i) {
+  const size_t n = n_;
+  ApplyCommand(i);
+  FreeBodyState s;
+  for (int c = 0; c < 3; ++c) {
+    s.p_W[c] = p_W_[c * n + i];
+    s.v_W[c] = v_W_[c * n + i];
+    s.omega_W[c] = omega_W_[c * n + i];
+  }
+  for (int c = 0; c < 4; ++c) s.q_WB[c] = q_WB_[c * n + i];
+  for (int c = 0; c < 9; ++c) s.R_WB[c] = R_WB_[c * n + i];
+  const double* R = s.R_WB;
+  const double* w = s.omega_W;
+  const int64_t dt_ns = std::llround(dt_ * 1e9);
+  const double t_s = SimTimeS(steps_[i], dt_ns);
+  Sensors& sensors = *sensors_[i];
+  double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
+  double wind_v[3] = {wind_velocity_W_[0 * n + i], wind_velocity_W_[1 * n + i], wind_velocity_W_[2 * n + i]};
+
+  // The wind plugin: a force on its link and the wind speed the rotors see.
+  auto wind_update = [&] {
+    if (!d_.wind) return;
+    const WindDescription& wd = *d_.wind;
+    rgp::WindSample ws = sensors.wind->Sample(t_s);
+    if (wd.profile) ws.velocity_W = wd.profile->Velocity(t_s);
+    if (wd.field) {
+      double r_link[3];
+      Rotate(R, wd.p_B_link, r_link);
+      Eigen::Vector3d v_field;
+      if (wd.field->Velocity({s.p_W[0] + r_link[0], s.p_W[1] + r_link[1], s.p_W[2] + r_link[2]}, &v_field))
+        ws.velocity_W = v_field;
+    }
+    for (int c = 0; c < 3; ++c) wind_v[c] = ws.velocity_W[c];
+    if (!ws.force_W.isZero(0.0)) {
+      double r_f[3], torque[3];
+      Rotate(R, wd.p_B_force, r_f);
+      const double f[3] = {ws.force_W[0], ws.force_W[1], ws.force_W[2]};
+      Cross(r_f, f, torque);
+      for (int c = 0; c < 3; ++c) {
+        F[c] += f[c];
+        T[c] += torque[c];
+      }
+    }
+  };
+  if (d_.wind && d_.wind->before_motors) wind_update();
+
+  // The motor plugins: forces from the speed reached in the last step, then the speed dynamics.
+  double axis_W[16][3];
+  double qdot[16];
+  for (int r = 0; r < r_; ++r) {
+    const RotorMount& rotor = d_.rotors[r];
+    const rgp::RotorParams& p = rotor.params;
+    double* a = axis_W[r];
+    Rotate(R, rotor.axis_B, a);
+    double r_o[3], w_x_r[3];
+    Rotate(R, rotor.p_B_origin, r_o);
+    Cross(w, r_o, w_x_r);
+    double air[3];
+    for (int c = 0; c < 3; ++c) air[c] = s.v_W[c] + w_x_r[c] - wind_v[c];
+    const double omega = omega_rotor_[r * n + i];
+    // eq. 1: F_T = omega^2 C_T e_z;  eq. 5: v_perp = v - (v . e_z) e_z;  eq. 2: F_D = -omega C_D v_perp
+    const double thrust = omega * omega * p.motor_constant;
+    const double v_par = air[0] * a[0] + air[1] * a[1] + air[2] * a[2];
+    double f[3], v_perp[3];
+    for (int c = 0; c < 3; ++c) {
+      v_perp[c] = air[c] - v_par * a[c];
+      f[c] = thrust * a[c] - omega * p.rotor_drag_coefficient * v_perp[c];
+    }
+    double r_c[3], torque[3];
+    Rotate(R, rotor.p_B_cog, r_c);
+    Cross(r_c, f, torque);
+    // eq. 4: M_D = -epsilon C_M F_T;  eq. 3: M_R = omega C_R v_perp
+    const double reaction = -p.turning_direction * p.moment_constant * thrust;
+    for (int c = 0; c < 3; ++c) {
+      F[c] += f[c];
+      T[c] += torque[c] + reaction * a[c] + omega * p.rolling_moment_coefficient * v_perp[c];
+    }
+    const double u = std::clamp(motor_command_[r * n + i], 0.0, p.max_rot_velocity);
+    const double y = rgp::FirstOrderFilter::Step(omega, u, a_up_[r], a_down_[r]);
+    omega_rotor_[r * n + i] = y;
+    qdot[r] = p.turning_direction * y / rotor.slowdown;  // the kinematic joint's rate
+  }
+  if (d_.wind && !d_.wind->before_motors) wind_update();
+  for (int c = 0; c < 3; ++c) wind_velocity_W_[c * n + i] = wind_v[c];
+
+  // The rotors' spin moments (kinematic joints): M = -(omega_B x h) - J_a qddot a, h = J_a qdot a
+  const double inv_dt = 1.0 / dt_;
+  for (int r = 0; r < r_; ++r) {
+    const double J = d_.rotors[r].spin_inertia_kg_m2;
+    if (J > 0.0) {
+      const double* a = axis_W[r];
+      const double h[3] = {a[0] * (J * qdot[r]), a[1] * (J * qdot[r]), a[2] * (J * qdot[r])};
+      const double qddot = (qdot[r] - qdot_applied_[r * n + i]) * inv_dt;
+      double w_x_h[3];
+      Cross(w, h, w_x_h);
+      for (int c = 0; c < 3; ++c) T[c] += -w_x_h[c] - a[c] * (J * qddot);
+    }
+    qdot_applied_[r * n + i] = qdot[r];
+  }
+
+  // Ground contact: a spring and damper at each corner below the plane z = 0, Coulomb-limited friction.
+  uint8_t touching = 0;
+  for (const auto& corner_B : d_.contact_points_B) {
+    double r_k[3];
+    Rotate(R, corner_B, r_k);
+    const double depth = -(s.p_W[2] + r_k[2]);
+    if (depth <= 0.0) continue;
+    double w_x_r[3];
+    Cross(w, r_k, w_x_r);
+    const double v_k[3] = {s.v_W[0] + w_x_r[0], s.v_W[1] + w_x_r[1], s.v_W[2] + w_x_r[2]};
+    const double normal = contact_k_ * depth - contact_c_ * v_k[2];
+    if (normal <= 0.0) continue;
+    touching = 1;
+    double f[3] = {-contact_c_ * v_k[0], -contact_c_ * v_k[1], normal};
+    const double tangential = std::hypot(f[0], f[1]);
+    if (tangential > normal) {  // friction coefficient 1
+      f[0] *= normal / tangential;
+      f[1] *= normal / tangential;
+    }
+    double torque[3];
+    Cross(r_k, f, torque);
+    for (int c = 0; c < 3; ++c) {
+      F[c] += f[c];
+      T[c] += torque[c];
+    }
+  }
+  in_contact_[i] = touching;
+
+  // gravity, added by the solver after the plugins' forces
+  for (int c = 0; c < 3; ++c)
+    if (d_.gravity_W[c] != 0.0) F[c] += d_.mass_kg * d_.gravity_W[c];
+
+  const double v_before[3] = {s.v_W[0], s.v_W[1], s.v_W[2]};
+  const double w_before[3] = {s.omega_W[0], s.omega_W[1], s.omega_W[2]};
+  double R_before[9];
+  std::copy(s.R_WB, s.R_WB + 9, R_before);
+  const FreeBodyInertia body{inv_mass_,
+                             {I_B_[0], I_B_[1], I_B_[2], I_B_[3], I_B_[4], I_B_[5], I_B_[6], I_B_[7], I_B_[8]},
+                             {inv_I_B_[0], inv_I_B_[1], inv_I_B_[2], inv_I_B_[3], inv_I_B_[4], inv_I_B_[5],
+                              inv_I_B_[6], inv_I_B_[7], inv_I_B_[8]}};
+  StepFreeBody(dt_, body, F, T, s);
+  for (int c = 0; c < 3; ++c) {
+    p_W_[c * n + i] = s.p_W[c];
+    v_W_[c * n + i] = s.v_W[c];
+    omega_W_[c * n + i] = s.omega_W[c];
+  }
+  for (int c = 0; c < 4; ++c) q_WB_[c * n + i] = s.q_WB[c];
+  for (int c = 0; c < 9; ++c) R_WB_[c * n + i] = s.R_WB[c];
+  ++steps_[i];
+  Observe(i, v_before, w_before, R_before);
+}
+
+void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_before_W[3],
+                          const double R_before[9]) {
+  const size_t n = n_;
+  double p[3], v[3], w[3], R[9];
+  for (int c = 0; c < 3; ++c) {
+    p[c] = p_W_[c * n + i];
+    v[c] = v_W_[c * n + i];
+    w[c] = omega_W_[c * n + i];
+  }
+  for (int c = 0; c < 9; ++c) R[c] = R_WB_[c * n + i];
+  const Eigen::Quaterniond q_WB(q_WB_[0 * n + i], q_WB_[1 * n + i], q_WB_[2 * n + i], q_WB_[3 * n + i]);
+  for (int r = 0; r < r_; ++r)
+    rotor_speed_out_[i * r_ + r] = d_.rotors[r].params.turning_direction * omega_rotor_[r * n + i];
+  Sensors& sensors = *sensors_[i];
+  const double t_s = SimTimeS(steps_[i], std::llround(dt_ * 1e9));
+
+  // the IMU plugin: specific force from the velocity change of its point over the step
+  if (d_.imu && options_.imu) {
+    const Mount& m = d_.imu->mount;
+    double r_now[3], r_then[3], wxr_now[3], wxr_then[3];
+    Rotate(R, m.p_B, r_now);
+    Rotate(R_before, m.p_B, r_then);
+    Cross(w, r_now, wxr_now);
+    Cross(omega_before_W, r_then, wxr_then);
+    const Eigen::Matrix3d R_WI = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R) *
+                                 m.q_BS.toRotationMatrix();
+    Eigen::Vector3d a_W;
+    for (int c = 0; c < 3; ++c)
+      a_W[c] = ((v[c] + wxr_now[c]) - (v_before_W[c] + wxr_then[c])) / dt_;
+    rgp::ImuSample sample{R_WI.transpose() * Eigen::Vector3d(w[0], w[1], w[2]),
+                          R_WI.transpose() * (a_W - d_.gravity_W)};
+    if (sensors.imu_noise) sample = sensors.imu_noise->Corrupt(sample, dt_);
+    for (int c = 0; c < 3; ++c) {
+      imu_out_[i * 6 + c] = sample.angular_velocity_I[c];
+      imu_out_[i * 6 + 3 + c] = sample.linear_acceleration_I[c];
+    }
+  }
+
+  // the odometry plugin: every divisor-th step, published delay steps later
+  const OdometryDescription& od = *d_.odometry;
+  const uint64_t step = sensors.odometry_step++;
+  if (step % od.divisor == 0) {
+    rgp::OdometryMeasurement m;
+    double r_s[3], wxr[3], v_s[3], v_S[3], w_S[3];
+    Rotate(R, od.mount.p_B, r_s);
+    Cross(w, r_s, wxr);
+    for (int c = 0; c < 3; ++c) v_s[c] = v[c] + wxr[c];
+    m.q_WS = q_WB * od.mount.q_BS;
+    const Eigen::Matrix3d R_WS = m.q_WS.toRotationMatrix();
+    m.p_W = {p[0] + r_s[0], p[1] + r_s[1], p[2] + r_s[2]};
+    for (int c = 0; c < 3; ++c) {
+      v_S[c] = R_WS(0, c) * v_s[0] + R_WS(1, c) * v_s[1] + R_WS(2, c) * v_s[2];
+      w_S[c] = R_WS(0, c) * w[0] + R_WS(1, c) * w[1] + R_WS(2, c) * w[2];
+    }
+    m.v_S = {v_S[0], v_S[1], v_S[2]};
+    m.omega_S = {w_S[0], w_S[1], w_S[2]};
+    sensors.queue.push_back({step + od.delay_steps, t_s + od.unknown_delay_s, m});
+  }
+  while (!sensors.queue.empty() && sensors.queue.front().publish_at_step <= step) {
+    const Sensors::Pending& pending = sensors.queue.front();
+    const rgp::OdometryMeasurement m =
+        sensors.odometry_noise ? sensors.odometry_noise->Corrupt(pending.truth) : pending.truth;
+    double* o = &odometry_out_[i * 14];
+    o[0] = m.p_W.x(), o[1] = m.p_W.y(), o[2] = m.p_W.z();
+    o[3] = m.q_WS.x(), o[4] = m.q_WS.y(), o[5] = m.q_WS.z(), o[6] = m.q_WS.w();
+    o[7] = m.v_S.x(), o[8] = m.v_S.y(), o[9] = m.v_S.z();
+    o[10] = m.omega_S.x(), o[11] = m.omega_S.y(), o[12] = m.omega_S.z();
+    o[13] = pending.stamp_s;
+    ++odometry_count_[i];
+    sensors.queue.pop_front();
+  }
+}
+
+double* FlightBatch::Truth() {
+  const size_t n = n_;
+  for (size_t i = 0; i < n; ++i) {
+    double R[9], r_cog[3], w[3], wxr[3], w_B[3];
+    for (int c = 0; c < 9; ++c) R[c] = R_WB_[c * n + i];
+    for (int c = 0; c < 3; ++c) w[c] = omega_W_[c * n + i];
+    Rotate(R, d_.p_M_cog, r_cog);
+    const double r_m[3] = {-r_cog[0], -r_cog[1], -r_cog[2]};  // the model origin from the CoG
+    Cross(w, r_m, wxr);
+    RotateBack(R, w, w_B);
+    double* t = &truth_out_[i * 13];
+    for (int c = 0; c < 3; ++c) {
+      t[c] = p_W_[c * n + i] + r_m[c];
+      t[7 + c] = v_W_[c * n + i] + wxr[c];
+      t[10 + c] = w_B[c];
+    }
+    t[3] = q_WB_[1 * n + i], t[4] = q_WB_[2 * n + i], t[5] = q_WB_[3 * n + i], t[6] = q_WB_[0 * n + i];
+  }
+  return truth_out_.data();
+}
+
+}  // namespace rotors_flight_batch

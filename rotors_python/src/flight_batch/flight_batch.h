@@ -1,0 +1,126 @@
+// The batched flight engine: N copies of one multirotor, their state in structure of arrays, all
+// stepped by one call on a pool of threads. Per vehicle and physics step it does what the full
+// world does with the same models: the motor plugins' RotorModel forces (book eqs. 1-5) from the
+// rotor speeds of the last step, then their first-order speed dynamics; the wind plugin's WindModel
+// (and field or profile); the rotors' spin moments of the kinematic joints; gravity; the solver's
+// free-body step (free_body_step.h: ODE's, to rounding); then the odometry plugin (divisor, delay,
+// OdometryNoise) and the IMU plugin (ImuNoiseModel). A controller of rotors_control (Lee position,
+// roll-pitch-yawrate-thrust, attitude-thrust, rate-thrust) answers every new odometry message, as
+// World.attach_controller does. What it leaves out: collisions other than its corners on the
+// ground plane z = 0 (a penalty contact), cameras, lasers and the plugins that only measure.
+// No ROS, no engine: see vehicle_description.h for where its numbers come from.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rotors_control/attitude_controllers.h"
+#include "rotors_control/lee_controller.h"
+#include "vehicle_description.h"
+
+namespace rotors_flight_batch {
+
+/// What the `commands` array holds, one row per vehicle.
+enum class CommandMode {
+  kRotorSpeeds,             ///< rotor speeds [rad/s] (R columns), every step
+  kNormalizedThrust,        ///< thrust of each rotor as a fraction of its maximum, 0..1 (R columns)
+  kLeePosition,             ///< x, y, z [m], yaw [rad]: Lee's controller at every odometry
+  kRollPitchYawrateThrust,  ///< roll, pitch [rad], yaw rate [rad/s], thrust [N]
+  kAttitudeThrust,          ///< q_WD (x, y, z, w), thrust [N]
+  kRateThrust,              ///< body rates [rad/s] (3), thrust [N]
+};
+
+/// The mode of a name: rotor_speeds, normalized_thrust, lee_position, roll_pitch_yawrate_thrust,
+/// attitude_thrust, rate_thrust; SimError listing them for any other.
+CommandMode ParseCommandMode(const std::string& name);
+int CommandColumns(CommandMode mode, int rotors);
+
+struct FlightBatchOptions {
+  int count = 1;
+  int threads = 0;  ///< 0: one per core
+  CommandMode mode = CommandMode::kRotorSpeeds;
+  rotors_control::LeeControllerParameters lee;               ///< kLeePosition
+  rotors_control::AttitudeControllerParameters attitude;     ///< the attitude-level modes
+  bool imu = true;                ///< simulate the IMU (with its noise unless noise is false)
+  bool noise = true;              ///< sensor and wind noise as the description gives it
+  std::vector<uint64_t> seeds;    ///< per vehicle (the xacro's random_seed); empty: the description's
+  double contact_stiffness_scale = 1.0;  ///< of the ground contact's spring (see Contact())
+};
+
+class FlightBatch {
+ public:
+  FlightBatch(VehicleDescription description, FlightBatchOptions options);
+  ~FlightBatch();
+  FlightBatch(const FlightBatch&) = delete;
+  FlightBatch& operator=(const FlightBatch&) = delete;
+
+  int Count() const { return n_; }
+  int Rotors() const { return r_; }
+  CommandMode Mode() const { return options_.mode; }
+  int CommandColumns() const { return command_columns_; }
+  int Threads() const { return threads_; }
+  const VehicleDescription& Description() const { return d_; }
+  double StepSize() const { return dt_; }
+
+  /// Checks every command (finite, in range, a reference for the controllers), then advances every
+  /// vehicle `steps` physics steps. On a bad command: SimError naming the vehicle and the value,
+  /// and no vehicle moves.
+  void Step(long steps);
+  /// Vehicles `indices` back to rest at position_M (N x 3, the model frame's origin, as spawned) and
+  /// yaw, their time at 0, rotors stopped, sensor and wind noise at their seeds again.
+  void Reset(const std::vector<int>& indices, const double* positions_M, const double* yaws);
+
+  // --- arrays shared with Python (row per vehicle) ---
+  double* Commands() { return commands_.data(); }  ///< N x CommandColumns()
+  /// The last odometry message: position_W (3), orientation (x, y, z, w), velocity_B (3),
+  /// angular_velocity_B (3) and its stamp [s]: N x 14.
+  double* Odometry() { return odometry_out_.data(); }
+  uint64_t* OdometryCount() { return odometry_count_.data(); }
+  double* Imu() { return imu_out_.data(); }  ///< N x 6: angular_velocity_I, linear_acceleration_I
+  /// Ground truth of the model frame (base_link), N x 13: position_W, orientation (x, y, z, w),
+  /// velocity_W (3), angular_velocity_B (3); written by Truth().
+  double* Truth();
+  double* RotorSpeeds() { return rotor_speed_out_.data(); }  ///< N x R signed [rad/s]
+  const uint64_t* Steps() const { return steps_.data(); }
+  uint8_t* InContact() { return in_contact_.data(); }
+  /// Bytes of per-vehicle state (structure of arrays, the shared arrays included; not the
+  /// controllers' and noise models' objects, which ControllerBytes / NoiseBytes report).
+  size_t StateBytesPerVehicle() const;
+  size_t ControllerBytesPerVehicle() const;
+  size_t NoiseBytesPerVehicle() const;
+
+ private:
+  struct Controller;
+  struct Sensors;
+  class Pool;
+  void CheckCommands() const;
+  void StepRange(int begin, int end, long steps);
+  void StepVehicle(int i);
+  void ApplyCommand(int i);
+  void Observe(int i, const double v_before_W[3], const double omega_before_W[3], const double R_before[9]);
+
+  VehicleDescription d_;
+  FlightBatchOptions options_;
+  int n_, r_, command_columns_, threads_;
+  double dt_;
+  // constants
+  double inv_mass_, I_B_[9], inv_I_B_[9];
+  std::vector<double> a_up_, a_down_;  ///< per rotor: exp(-dt / tau_up), exp(-dt / tau_down)
+  double contact_k_ = 0, contact_c_ = 0;
+  // state, structure of arrays: component k of vehicle i at [k * n_ + i]
+  std::vector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;  ///< the body (CoG), as the solver keeps it
+  std::vector<double> omega_rotor_, qdot_applied_, motor_command_;  ///< R per vehicle
+  std::vector<double> wind_velocity_W_;                             ///< the wind speed the motors see
+  std::vector<uint64_t> steps_;                                      ///< steps since the vehicle's reset
+  std::vector<uint8_t> has_motor_command_, in_contact_;
+  // shared with Python
+  std::vector<double> commands_, odometry_out_, imu_out_, truth_out_, rotor_speed_out_;
+  std::vector<uint64_t> odometry_count_, controller_seen_;
+  std::vector<std::unique_ptr<Controller>> controllers_;
+  std::vector<std::unique_ptr<Sensors>> sensors_;
+  std::unique_ptr<Pool> pool_;
+};
+
+}  // namespace rotors_flight_batch

@@ -1,0 +1,213 @@
+#include "vehicle_description.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "rotors_core/error.h"
+#include "rotors_core/geometry/uri_resolver.h"
+#include "rotors_core/physics/joint.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/plugin.h"
+#include "rotors_gazebo_plugins/plugin_params.h"
+
+namespace rotors_flight_batch {
+
+using rotors_sim::SimError;
+namespace physics = rotors_sim::physics;
+namespace rgp = rotors_gazebo_plugins;
+
+namespace {
+
+Eigen::Vector3d ToEigen(const physics::Vector3d& v) { return {v.X(), v.Y(), v.Z()}; }
+Eigen::Quaterniond ToEigen(const physics::Quaterniond& q) { return {q.W(), q.X(), q.Y(), q.Z()}; }
+
+/// Plugins that only measure or record: the batch leaves them out and says so.
+const std::set<std::string> kMeasuringPlugins = {
+    "librotors_gazebo_multirotor_base_plugin.so", "librotors_gazebo_controller_interface.so",
+    "librotors_gazebo_gps_plugin.so",             "librotors_gazebo_magnetometer_plugin.so",
+    "librotors_gazebo_pressure_plugin.so",        "librotors_gazebo_airspeed_plugin.so",
+    "librotors_gazebo_bag_plugin.so",             "librotors_gazebo_octomap_plugin.so"};
+
+std::string Short(const std::string& filename) {
+  std::string s = filename;
+  if (s.rfind("lib", 0) == 0) s = s.substr(3);
+  if (s.size() > 3 && s.compare(s.size() - 3, 3, ".so") == 0) s.resize(s.size() - 3);
+  return s;
+}
+
+/// The pose of a link's frame in the body frame B (origin at the body's CoG).
+Mount MountOf(const physics::Link& link) {
+  const physics::Pose3d& X_BL = link.PoseInBody();
+  return {ToEigen(X_BL.Pos()), ToEigen(X_BL.Rot())};
+}
+
+std::string ResolvePath(const std::string& path) {
+  return path.rfind("package://", 0) == 0 ? rotors_sim::geometry::UriResolver::Resolve(path) : path;
+}
+
+}  // namespace
+
+VehicleDescription DescribeVehicle(const physics::Model& model, const std::string& odometry_topic) {
+  const std::string who = "FlightBatch: model '" + model.GetName() + "'";
+  VehicleDescription d;
+  d.model_name = model.GetName();
+  const auto bodies = model.BodyMasses();
+  if (bodies.size() != 1)
+    throw SimError(who + " has " + std::to_string(bodies.size()) +
+                   " rigid bodies; the batch flies one (rotors on kinematic joints, sensors welded)");
+  const auto& body = bodies.front();
+  d.mass_kg = body.mass_kg;
+  d.inertia_B_kg_m2 = body.inertia_B_kg_m2;
+  if (body.X_MB.Rot() != physics::Quaterniond::Identity)
+    throw SimError(who + ": its body frame is rotated against the model frame; the batch needs them aligned");
+  d.p_M_cog = ToEigen(body.X_MB.Pos());
+  physics::World* world = model.GetWorldRaw();
+  d.gravity_W = ToEigen(world->Gravity());
+  d.step_s = world->Physics().max_step_size_s;
+
+  for (const auto& sensor : model.Sensors())
+    throw SimError(who + " has the " + sensor->Type() + " sensor '" + sensor->Name() +
+                   "'; the batch renders and casts nothing (no cameras, depth cameras or lasers): fly it in a World");
+
+  bool motors_seen = false;
+  for (const auto& plugin : model.Plugins()) {
+    const std::string& file = plugin->GetFilename();
+    rgp::SdfParams& params = plugin->Params();
+    if (d.robot_namespace.empty() && params.Has("robotNamespace")) d.robot_namespace = rgp::ReadRobotNamespace(params);
+    if (file == "librotors_gazebo_motor_model.so") {
+      std::string type = "velocity", joint_name, link_name;
+      rgp::ReadParam(params, "motorType", &type);
+      if (type != "velocity")
+        throw SimError(who + ": motor with motorType '" + type +
+                       "' (a servo or a joint effort); the batch flies rotors only (motorType velocity)");
+      RotorMount r;
+      rgp::RequireParam(params, "motorNumber", &r.motor_number);
+      rgp::RequireParam(params, "jointName", &joint_name);
+      rgp::RequireParam(params, "linkName", &link_name);
+      r.params = rgp::ReadRotorParams(params);
+      r.slowdown = rgp::ReadRotorSlowdown(params);
+      const physics::JointPtr joint = model.GetJoint(joint_name);
+      const physics::LinkPtr link = model.GetLink(link_name);
+      if (!joint || !link) throw SimError(who + ": motor " + std::to_string(r.motor_number) + " has no joint or link");
+      if (!joint->IsKinematic())
+        throw SimError(who + ": rotor joint '" + joint_name +
+                       "' is a solver joint; the batch needs rotors on kinematic joints (<kinematic_joint>)");
+      if (joint->GetChild().get() != link.get())
+        throw SimError(who + ": rotor link '" + link_name + "' is not the child of its joint '" + joint_name + "'");
+      const Mount m = MountOf(*link);
+      r.p_B_origin = m.p_B;
+      r.p_B_cog = m.p_B + m.q_BS * link->GetInertial().CoG();
+      r.axis_B = m.q_BS * Eigen::Vector3d::UnitZ();
+      r.spin_inertia_kg_m2 = joint->SpinInertia();
+      // the spin moment uses the joint's axis; the rotor's thrust its link's z: RotorS mounts them alike
+      const Eigen::Vector3d joint_axis_B = m.q_BS * ToEigen(joint->LocalAxis(0));
+      if (r.spin_inertia_kg_m2 > 0.0 && (joint_axis_B - r.axis_B).norm() > 1e-9 &&
+          (joint_axis_B + r.axis_B).norm() > 1e-9)
+        throw SimError(who + ": rotor joint '" + joint_name + "' turns about another axis than its link's z");
+      for (const auto& other : d.rotors)
+        if (other.motor_number == r.motor_number)
+          throw SimError(who + ": two motors with motorNumber " + std::to_string(r.motor_number));
+      d.rotors.push_back(r);
+      motors_seen = true;
+    } else if (file == "librotors_gazebo_wind_plugin.so") {
+      WindDescription w;
+      std::string link_name = "base_link", field_path, profile_path, sub_topic;
+      bool custom_field = false;
+      Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+      rgp::ReadParam(params, "linkName", &link_name);
+      rgp::ReadVector(params, "xyzOffset", &offset);
+      rgp::ReadParam(params, "useCustomStaticWindField", &custom_field);
+      rgp::ReadParam(params, "customWindFieldPath", &field_path);
+      rgp::ReadParam(params, "windProfilePath", &profile_path);
+      rgp::ReadParam(params, "windSpeedSubTopic", &sub_topic);
+      if (!sub_topic.empty())
+        throw SimError(who + ": the wind plugin takes its speed from the topic '" + sub_topic +
+                       "'; the batch has no topics (use a wind profile or field)");
+      w.params = rgp::ReadWindParams(params);
+      w.seed = rgp::ReadSeed(params);
+      const physics::LinkPtr link = model.GetLink(link_name);
+      if (!link) throw SimError(who + ": wind plugin linkName '" + link_name + "' is not a link");
+      const Mount m = MountOf(*link);
+      w.p_B_link = m.p_B;
+      w.p_B_force = m.p_B + m.q_BS * offset;
+      w.before_motors = !motors_seen;
+      try {
+        if (custom_field)
+          w.field = std::make_shared<rgp::WindField>(rgp::WindField::Load(ResolvePath(field_path)));
+        if (!profile_path.empty())
+          w.profile = std::make_shared<rgp::WindProfile>(rgp::WindProfile::Load(ResolvePath(profile_path)));
+      } catch (const std::runtime_error& e) {
+        throw SimError(who + ": wind plugin: " + e.what());
+      }
+      d.wind = w;
+    } else if (file == "librotors_gazebo_odometry_plugin.so") {
+      std::string topic = "odometry", link_name = "odometry_sensor_link", image;
+      rgp::ReadParam(params, "odometryTopic", &topic);
+      if (topic != odometry_topic) {
+        d.left_out.push_back("odometry_plugin (" + topic + ")");
+        continue;
+      }
+      if (rgp::ReadParam(params, "covarianceImage", &image) && !image.empty())
+        throw SimError(who + ": odometry '" + topic + "' has an outage map; the batch has none");
+      OdometryDescription o;
+      o.topic = topic;
+      rgp::ReadParam(params, "linkName", &link_name);
+      rgp::ReadParam(params, "measurementDivisor", &o.divisor);
+      rgp::ReadParam(params, "measurementDelay", &o.delay_steps);
+      rgp::ReadParam(params, "unknownDelay", &o.unknown_delay_s);
+      o.noise = rgp::ReadOdometryNoise(params);
+      o.seed = rgp::ReadSeed(params);
+      const physics::LinkPtr link = model.GetLink(link_name);
+      if (!link) throw SimError(who + ": odometry linkName '" + link_name + "' is not a link");
+      o.mount = MountOf(*link);
+      d.odometry = o;
+    } else if (file == "librotors_gazebo_imu_plugin.so") {
+      std::string link_name;
+      rgp::RequireParam(params, "linkName", &link_name);
+      if (d.imu) {
+        d.left_out.push_back("imu_plugin (" + link_name + ")");
+        continue;
+      }
+      ImuDescription imu;
+      imu.noise = rgp::ReadImuNoise(params);
+      imu.seed = rgp::ReadSeed(params);
+      const physics::LinkPtr link = model.GetLink(link_name);
+      if (!link) throw SimError(who + ": IMU linkName '" + link_name + "' is not a link");
+      imu.mount = MountOf(*link);
+      d.imu = imu;
+    } else if (kMeasuringPlugins.count(file)) {
+      if (file != "librotors_gazebo_multirotor_base_plugin.so" && file != "librotors_gazebo_controller_interface.so")
+        d.left_out.push_back(Short(file));
+    } else {
+      throw SimError(who + " loads " + file + ", which the batch does not simulate; fly it in a World");
+    }
+  }
+  if (d.rotors.empty()) throw SimError(who + " has no rotors (motor_model plugins); the batch flies multirotors");
+  std::sort(d.rotors.begin(), d.rotors.end(),
+            [](const RotorMount& a, const RotorMount& b) { return a.motor_number < b.motor_number; });
+  for (size_t i = 0; i < d.rotors.size(); ++i)
+    if (d.rotors[i].motor_number != static_cast<int>(i))
+      throw SimError(who + ": motor numbers must be 0.." + std::to_string(d.rotors.size() - 1));
+  if (!d.odometry)
+    throw SimError(who + " has no odometry plugin publishing '" + odometry_topic + "' (the controllers' input)");
+
+  // ground contact: the corners of the collision bounding box, in the body frame
+  physics::Vector3d lo_W, hi_W;
+  if (model.CollisionBoundsW(&lo_W, &hi_W)) {
+    const physics::Pose3d X_WM = model.WorldPose();
+    const Eigen::Quaterniond q_WM = ToEigen(X_WM.Rot());
+    if (q_WM.angularDistance(Eigen::Quaterniond::Identity()) > 1e-9)
+      throw SimError(who + " must be described as spawned, upright and unrotated");
+    const Eigen::Vector3d p_W_cog = ToEigen(X_WM.Pos()) + d.p_M_cog;
+    for (int c = 0; c < 8; ++c)
+      d.contact_points_B.push_back(Eigen::Vector3d((c & 1) ? hi_W.X() : lo_W.X(), (c & 2) ? hi_W.Y() : lo_W.Y(),
+                                                   (c & 4) ? hi_W.Z() : lo_W.Z()) -
+                                   p_W_cog);
+  }
+  return d;
+}
+
+}  // namespace rotors_flight_batch
