@@ -40,7 +40,7 @@ std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, c
                                        const std::map<std::string, double>& numbers,
                                        const std::vector<std::string>& others, const std::string& source,
                                        int threads, bool imu, bool noise, const std::vector<uint64_t>& seeds,
-                                       double contact_stiffness_scale) {
+                                       uint64_t description_seed, double contact_stiffness_scale) {
   FlightBatchOptions o;
   o.count = count;
   o.threads = threads;
@@ -48,6 +48,7 @@ std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, c
   o.imu = imu;
   o.noise = noise;
   o.seeds = seeds;
+  o.description_seed = description_seed;
   o.contact_stiffness_scale = contact_stiffness_scale;
   if (!(contact_stiffness_scale > 0.0)) throw SimError("contact_stiffness_scale must be > 0");
   if (o.mode != CommandMode::kRotorSpeeds && o.mode != CommandMode::kNormalizedThrust) {
@@ -103,7 +104,7 @@ void BindFlightBatch(py::module_& m) {
       .def(py::init(&MakeBatch), py::arg("description"), py::arg("count"), py::arg("mode"), py::arg("numbers"),
            py::arg("others"), py::arg("source"), py::arg("threads") = 0, py::arg("imu") = true,
            py::arg("noise") = true, py::arg("seeds") = std::vector<uint64_t>(),
-           py::arg("contact_stiffness_scale") = 1.0)
+           py::arg("description_seed") = 0, py::arg("contact_stiffness_scale") = 1.0)
       .def(
           "step", [](FlightBatch& b, long n) {
             py::gil_scoped_release release;

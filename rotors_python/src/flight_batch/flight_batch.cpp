@@ -178,7 +178,11 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
       I_B_[i * 3 + j] = d_.inertia_B_kg_m2(i, j);
       inv_I_B_[i * 3 + j] = inv_I(i, j);
     }
+  dt_ns_ = std::llround(dt_ * 1e9);
+  for (const auto& corner : d_.contact_points_B) contact_reach_m_ = std::max(contact_reach_m_, corner.norm());
+  if (d_.imu) R_BI_ = d_.imu->mount.q_BS.toRotationMatrix();
   for (const auto& rotor : d_.rotors) {
+    rotor_cog_on_origin_.push_back(rotor.p_B_cog == rotor.p_B_origin);
     a_up_.push_back(std::exp(-dt_ / rotor.params.time_constant_up_s));
     a_down_.push_back(std::exp(-dt_ / rotor.params.time_constant_down_s));
   }
@@ -262,6 +266,10 @@ size_t FlightBatch::NoiseBytesPerVehicle() const {
          (s.imu_noise ? sizeof(rgp::ImuNoiseModel) : 0) + (s.wind ? sizeof(rgp::WindModel) : 0);
 }
 
+uint64_t FlightBatch::SeedFor(uint64_t plugin_seed, int i) const {
+  return options_.seeds.empty() ? plugin_seed : options_.seeds[i] + (plugin_seed - options_.description_seed);
+}
+
 void FlightBatch::Reset(const std::vector<int>& indices, const double* positions_M, const double* yaws) {
   for (size_t k = 0; k < indices.size(); ++k) {
     const int i = indices[k];
@@ -298,7 +306,7 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     steps_[i] = 0;
     in_contact_[i] = 0;
     Sensors& s = *sensors_[i];
-    const uint64_t seed_odometry = options_.seeds.empty() ? d_.odometry->seed : options_.seeds[i];
+    const uint64_t seed_odometry = SeedFor(d_.odometry->seed, i);
     s.queue.clear();
     s.odometry_step = 0;
     const auto& on = d_.odometry->noise;
@@ -310,11 +318,11 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     s.odometry_noise = odometry_noisy ? std::make_unique<rgp::OdometryNoise>(on, seed_odometry) : nullptr;
     if (d_.imu && options_.imu && options_.noise)
       s.imu_noise =
-          std::make_unique<rgp::ImuNoiseModel>(d_.imu->noise, options_.seeds.empty() ? d_.imu->seed : options_.seeds[i]);
+          std::make_unique<rgp::ImuNoiseModel>(d_.imu->noise, SeedFor(d_.imu->seed, i));
     if (d_.wind) {
       rgp::WindParams wp = d_.wind->params;
       if (!options_.noise) wp.wind_speed_variance = wp.wind_force_variance = wp.wind_gust_force_variance = 0.0;
-      s.wind = std::make_unique<rgp::WindModel>(wp, options_.seeds.empty() ? d_.wind->seed : options_.seeds[i]);
+      s.wind = std::make_unique<rgp::WindModel>(wp, SeedFor(d_.wind->seed, i));
     }
     // until the sensor's first message the odometry row holds the reset state, noise-free
     double* o = &odometry_out_[i * 14];
@@ -447,8 +455,7 @@ void FlightBatch::StepVehicle(int i) {
   for (int c = 0; c < 9; ++c) s.R_WB[c] = R_WB_[c * n + i];
   const double* R = s.R_WB;
   const double* w = s.omega_W;
-  const int64_t dt_ns = std::llround(dt_ * 1e9);
-  const double t_s = SimTimeS(steps_[i], dt_ns);
+  const double t_s = SimTimeS(steps_[i], dt_ns_);
   Sensors& sensors = *sensors_[i];
   double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
   double wind_v[3] = {wind_velocity_W_[0 * n + i], wind_velocity_W_[1 * n + i], wind_velocity_W_[2 * n + i]};
@@ -503,7 +510,11 @@ void FlightBatch::StepVehicle(int i) {
       f[c] = thrust * a[c] - omega * p.rotor_drag_coefficient * v_perp[c];
     }
     double r_c[3], torque[3];
-    Rotate(R, rotor.p_B_cog, r_c);
+    if (rotor_cog_on_origin_[r]) {
+      std::copy(r_o, r_o + 3, r_c);
+    } else {
+      Rotate(R, rotor.p_B_cog, r_c);
+    }
     Cross(r_c, f, torque);
     // eq. 4: M_D = -epsilon C_M F_T;  eq. 3: M_R = omega C_R v_perp
     const double reaction = -p.turning_direction * p.moment_constant * thrust;
@@ -536,7 +547,9 @@ void FlightBatch::StepVehicle(int i) {
 
   // Ground contact: a spring and damper at each corner below the plane z = 0, Coulomb-limited friction.
   uint8_t touching = 0;
+  const bool near_ground = s.p_W[2] <= contact_reach_m_;
   for (const auto& corner_B : d_.contact_points_B) {
+    if (!near_ground) break;
     double r_k[3];
     Rotate(R, corner_B, r_k);
     const double depth = -(s.p_W[2] + r_k[2]);
@@ -600,7 +613,7 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
   for (int r = 0; r < r_; ++r)
     rotor_speed_out_[i * r_ + r] = d_.rotors[r].params.turning_direction * omega_rotor_[r * n + i];
   Sensors& sensors = *sensors_[i];
-  const double t_s = SimTimeS(steps_[i], std::llround(dt_ * 1e9));
+  const double t_s = SimTimeS(steps_[i], dt_ns_);
 
   // the IMU plugin: specific force from the velocity change of its point over the step
   if (d_.imu && options_.imu) {
@@ -610,8 +623,7 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
     Rotate(R_before, m.p_B, r_then);
     Cross(w, r_now, wxr_now);
     Cross(omega_before_W, r_then, wxr_then);
-    const Eigen::Matrix3d R_WI = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R) *
-                                 m.q_BS.toRotationMatrix();
+    const Eigen::Matrix3d R_WI = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R) * R_BI_;
     Eigen::Vector3d a_W;
     for (int c = 0; c < 3; ++c)
       a_W[c] = ((v[c] + wxr_now[c]) - (v_before_W[c] + wxr_then[c])) / dt_;

@@ -45,7 +45,11 @@ struct FlightBatchOptions {
   rotors_control::AttitudeControllerParameters attitude;     ///< the attitude-level modes
   bool imu = true;                ///< simulate the IMU (with its noise unless noise is false)
   bool noise = true;              ///< sensor and wind noise as the description gives it
-  std::vector<uint64_t> seeds;    ///< per vehicle (the xacro's random_seed); empty: the description's
+  /// Per vehicle, as the xacro's random_seed: each plugin's seed keeps its offset from
+  /// `description_seed`, the random_seed the description was spawned with (the odometry draws from
+  /// random_seed + 1). Empty: every vehicle the description's seeds.
+  std::vector<uint64_t> seeds;
+  uint64_t description_seed = 0;
   double contact_stiffness_scale = 1.0;  ///< of the ground contact's spring (see Contact())
 };
 
@@ -96,6 +100,7 @@ class FlightBatch {
   struct Sensors;
   class Pool;
   void CheckCommands() const;
+  uint64_t SeedFor(uint64_t plugin_seed, int i) const;
   void StepRange(int begin, int end, long steps);
   void StepVehicle(int i);
   void ApplyCommand(int i);
@@ -108,7 +113,11 @@ class FlightBatch {
   // constants
   double inv_mass_, I_B_[9], inv_I_B_[9];
   std::vector<double> a_up_, a_down_;  ///< per rotor: exp(-dt / tau_up), exp(-dt / tau_down)
+  std::vector<bool> rotor_cog_on_origin_;
+  int64_t dt_ns_ = 0;
   double contact_k_ = 0, contact_c_ = 0;
+  double contact_reach_m_ = 0;  ///< no corner is farther from the CoG: above it, no contact
+  Eigen::Matrix3d R_BI_ = Eigen::Matrix3d::Identity();
   // state, structure of arrays: component k of vehicle i at [k * n_ + i]
   std::vector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;  ///< the body (CoG), as the solver keeps it
   std::vector<double> omega_rotor_, qdot_applied_, motor_command_;  ///< R per vehicle

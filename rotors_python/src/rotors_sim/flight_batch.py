@@ -70,6 +70,8 @@ class FlightBatch:
         seeds = [int(s) for s in (range(count) if seeds is None else seeds)]
         if len(seeds) != count:
             raise SimError(f"{len(seeds)} seeds for {count} vehicles; give one per vehicle")
+        if min(seeds) < 0:
+            raise SimError(f"seeds must be >= 0 (got {min(seeds)})")
         self.world = World(world, step_size=step_size)
         # the description is read from the vehicle as the full world spawns it, at rest in the air
         self.world.spawn_mav(mav_name, xyz=(0.0, 0.0, 1.0), random_seed=seeds[0], odometry_divisor=control_divisor,
@@ -80,7 +82,7 @@ class FlightBatch:
         yamls = controller_params if controller_params is not None else controller_yamls(mav_name, mode)
         numbers, others, source = load_yamls(yamls) if yamls else ({}, [], "")
         self._b = _engine.FlightBatch(self.description, count, mode, numbers, others, source, threads=threads,
-                                      imu=imu, noise=noise, seeds=seeds)
+                                      imu=imu, noise=noise, seeds=seeds, description_seed=seeds[0])
         self.commands: np.ndarray = self._b.commands
         """Writable view of the engine's command array (count x command_columns)."""
         start = np.zeros((count, 3)) if positions is None else np.asarray(positions, dtype=float)
@@ -153,8 +155,8 @@ class FlightBatch:
 
     def truth(self) -> np.ndarray:
         """Ground truth of the model frame (count x 13): position_W, orientation (x, y, z, w),
-        velocity_W, angular_velocity_B."""
-        return self._b.truth()
+        velocity_W, angular_velocity_B (a copy: computed from the state at this call)."""
+        return self._b.truth().copy()
 
     @property
     def left_out(self) -> list[str]:
