@@ -4,18 +4,22 @@
     RotorS/Waypoints-v0   fly through waypoints   (rotors_sim.envs.waypoints.WaypointsEnv)
 
 Both take action_type="motor" (one value per rotor) or "attitude" (roll, pitch, yaw rate, thrust).
-BatchedEnv runs many of them as one vector environment (one call steps every world on threads).
+FlightBatchEnv runs either task as a native vector environment on rotors_sim.FlightBatch (the
+batched flight engine; gym.make_vec(id, num_envs, vectorization_mode="vector_entry_point")).
+BatchedEnv runs many full worlds as one vector environment (one call steps every world on threads).
 Spaces and rewards: the module docstrings and docs/python.md."""
 
 import gymnasium as gym
 
+from rotors_sim.envs.batched import FlightBatchEnv
 from rotors_sim.envs.hover import HoverEnv
 from rotors_sim.envs.vector import BatchedEnv
 from rotors_sim.envs.waypoints import WaypointsEnv
 
-for _id, _entry in (("RotorS/Hover-v0", "rotors_sim.envs.hover:HoverEnv"),
-                    ("RotorS/Waypoints-v0", "rotors_sim.envs.waypoints:WaypointsEnv")):
+for _id, _entry, _vector in (
+        ("RotorS/Hover-v0", "rotors_sim.envs.hover:HoverEnv", "rotors_sim.envs.batched:hover_vector_env"),
+        ("RotorS/Waypoints-v0", "rotors_sim.envs.waypoints:WaypointsEnv", "rotors_sim.envs.batched:waypoints_vector_env")):
     if _id not in gym.registry:
-        gym.register(id=_id, entry_point=_entry)
+        gym.register(id=_id, entry_point=_entry, vector_entry_point=_vector)
 
-__all__ = ["BatchedEnv", "HoverEnv", "WaypointsEnv"]
+__all__ = ["BatchedEnv", "FlightBatchEnv", "HoverEnv", "WaypointsEnv"]

@@ -1,0 +1,227 @@
+"""The hover and waypoint tasks as native vector environments on rotors_sim.FlightBatch: one
+engine call steps every vehicle (threads, no GIL), observations and rewards are numpy over all of
+them. Same spaces, rewards, starts and ends as RotorS/Hover-v0 and RotorS/Waypoints-v0 (hover.py,
+waypoints.py); the vehicle is the full world's to rounding (docs/batched_flight.md).
+Autoreset in the same step (gymnasium AutoresetMode.SAME_STEP): an episode that ends returns the
+first observation of the next one, its last observation in infos["final_obs"].
+
+    envs = FlightBatchEnv("hover", num_envs=1024)
+    obs, info = envs.reset(seed=0)
+    obs, reward, terminated, truncated, info = envs.step(envs.action_space.sample())
+"""
+
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import gymnasium as gym
+import numpy as np
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from rotors_sim._engine import SimError
+from rotors_sim.envs import hover, waypoints
+from rotors_sim.flight_batch import FlightBatch
+
+TASKS = ("hover", "waypoints")
+ACTION_TYPES = ("motor", "attitude")
+
+
+def rotate_rows(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """R(q) v for rows of unit quaternions (x, y, z, w) and vectors."""
+    u, w = q_xyzw[:, :3], q_xyzw[:, 3:4]
+    t = 2.0 * np.cross(u, v)
+    return v + w * t + np.cross(u, t)
+
+
+class FlightBatchEnv(VectorEnv):
+    """`task` "hover" or "waypoints" for `num_envs` vehicles `mav_name`; `action_type` "motor" (a
+    value in [-1, 1] per rotor: 0 to its maximum speed) or "attitude" (roll and pitch up to
+    max_tilt_rad, yaw rate up to max_yaw_rate_rad_s, thrust 0 to twice the weight). Sensor noise
+    seeded per vehicle from sensor_seed + i."""
+
+    metadata = {"autoreset_mode": AutoresetMode.SAME_STEP}
+
+    def __init__(self, task: str = "hover", num_envs: int = 16, *, mav_name: str = "firefly",
+                 action_type: str = "motor", physics_hz: float = 500.0, control_hz: float = 100.0,
+                 episode_s: float | None = None, target: Sequence[float] = (0.0, 0.0, 1.0),
+                 waypoint_list: Sequence[Sequence[float]] = waypoints.SQUARE[1:],
+                 start: Sequence[float] = waypoints.SQUARE[0], reach_m: float = 0.3, sensor_seed: int = 0,
+                 threads: int = 0, max_tilt_rad: float = 0.6, max_yaw_rate_rad_s: float = 2.0,
+                 autoreset: bool = True):
+        if task not in TASKS:
+            raise SimError(f"task '{task}' is not known; use one of: {', '.join(TASKS)}")
+        if action_type not in ACTION_TYPES:
+            raise SimError(f"action_type '{action_type}' unknown (use one of: {', '.join(ACTION_TYPES)})")
+        if int(num_envs) < 1:
+            raise SimError(f"num_envs = {num_envs} must be >= 1")
+        self.task, self.num_envs, self.action_type = task, int(num_envs), action_type
+        self.autoreset = autoreset
+        step_size = 1.0 / physics_hz
+        self.substeps = max(1, round(1.0 / control_hz / step_size))
+        mode = "rotor_speeds" if action_type == "motor" else "roll_pitch_yawrate_thrust"
+        self.batch = FlightBatch(mav_name, self.num_envs, mode=mode, step_size=step_size,
+                                 control_divisor=self.substeps, threads=threads,
+                                 seeds=[sensor_seed + i for i in range(self.num_envs)])
+        d = self.batch.description
+        self.max_rot_velocity = np.array([r["max_rot_velocity"] for r in d.rotors])
+        self.hover_thrust_N = d.mass_kg * -d.gravity_W[2]
+        self.max_tilt_rad, self.max_yaw_rate_rad_s = max_tilt_rad, max_yaw_rate_rad_s
+        self.dt = self.substeps * step_size
+        self.target = np.asarray(target, dtype=np.float64)
+        self.waypoints = np.asarray(waypoint_list, dtype=np.float64).reshape(-1, 3)
+        self.start = np.asarray(start, dtype=np.float64)
+        self.reach_m = reach_m
+        episode_s = episode_s if episode_s is not None else (10.0 if task == "hover" else 20.0)
+        self.max_steps = int(round(episode_s / self.dt))
+        high = hover.OBSERVATION_HIGH if task == "hover" else waypoints.OBSERVATION_HIGH
+        action_size = self.batch.rotor_count if action_type == "motor" else 4
+        self.single_observation_space = gym.spaces.Box(-high, high, dtype=np.float32)
+        self.single_action_space = gym.spaces.Box(-1.0, 1.0, (action_size,), np.float32)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self._high = high
+        self._rngs = [np.random.default_rng(i) for i in range(self.num_envs)]
+        self.steps = np.zeros(self.num_envs, dtype=np.int64)
+        self.index = np.zeros(self.num_envs, dtype=np.int64)
+        self.distance = np.zeros(self.num_envs)
+
+    # --- Gymnasium ---
+    def reset(self, *, seed: int | list[int] | None = None, options: dict[str, Any] | None = None):
+        if seed is not None:
+            seeds = seed if isinstance(seed, list) else [seed + i for i in range(self.num_envs)]
+            if len(seeds) != self.num_envs:
+                raise SimError(f"reset got {len(seeds)} seeds for {self.num_envs} environments")
+            self._rngs = [np.random.default_rng(s) for s in seeds]
+        self._reset(np.arange(self.num_envs))
+        return self._observe(), {"time_s": self.batch.time.copy()}
+
+    def step(self, actions):
+        a = np.asarray(actions, dtype=np.float64)
+        if a.shape != self.action_space.shape:
+            raise SimError(f"actions have shape {a.shape}, this vector environment needs {self.action_space.shape}")
+        if not np.all(np.isfinite(a)):
+            bad = np.argwhere(~np.isfinite(a))[0]
+            raise SimError(f"actions[{bad[0]}, {bad[1]}] = {a[tuple(bad)]} is not finite")
+        a = np.clip(a, -1.0, 1.0)
+        if self.action_type == "motor":
+            self.batch.commands[:] = (a + 1.0) / 2.0 * self.max_rot_velocity
+        else:
+            self.batch.commands[:] = np.column_stack([a[:, 0] * self.max_tilt_rad, a[:, 1] * self.max_tilt_rad,
+                                                      a[:, 2] * self.max_yaw_rate_rad_s,
+                                                      (a[:, 3] + 1.0) * self.hover_thrust_N])
+        self.batch.step(self.substeps)
+        self.steps += 1
+        p = self.batch.odometry[:, 0:3]
+        collided = self.batch.in_contact
+        if self.task == "hover":
+            obs = self._observe()
+            terminated = collided | np.any(np.abs(obs[:, 0:3]) > hover.BOUND_M, axis=1)
+            reward = (-np.linalg.norm(obs[:, 0:3], axis=1) - 0.1 * np.linalg.norm(obs[:, 3:6], axis=1)
+                      - 0.05 * np.linalg.norm(obs[:, 10:13], axis=1))
+            reward = np.where(terminated, hover.TERMINATION_REWARD, reward)
+            success = np.zeros(self.num_envs, dtype=bool)
+        else:
+            last = len(self.waypoints) - 1
+            distance = np.linalg.norm(p - self.waypoints[np.minimum(self.index, last)], axis=1)
+            reward = 10.0 * (self.distance - distance) - 0.01 * np.linalg.norm(self.batch.odometry[:, 10:13], axis=1)
+            reached = distance < self.reach_m
+            reward += 5.0 * reached
+            self.index += reached
+            success = self.index >= len(self.waypoints)
+            moved_on = reached & ~success
+            distance[moved_on] = np.linalg.norm(p[moved_on] - self.waypoints[self.index[moved_on]], axis=1)
+            self.distance = distance
+            crashed = collided | (~success & (distance > 3.0))
+            reward = np.where(crashed, -10.0, reward)
+            terminated = success | crashed
+            obs = self._observe()
+        truncated = ~terminated & (self.steps >= self.max_steps)
+        done = terminated | truncated
+        infos: dict[str, Any] = {"time_s": self.batch.time.copy(), "collided": collided.copy()}
+        if self.task == "waypoints":
+            infos["success"] = success.copy()
+            infos["waypoint"] = np.minimum(self.index, len(self.waypoints))
+        final_obs = np.full(self.num_envs, None, dtype=object)
+        if self.autoreset and done.any():
+            ended = np.flatnonzero(done)
+            for i in ended:
+                final_obs[i] = obs[i].copy()
+            self._reset(ended)
+            obs[ended] = self._observe()[ended]
+        infos["final_obs"] = final_obs
+        infos["_final_obs"] = done.copy()
+        return obs, reward.astype(np.float64), terminated, truncated, infos
+
+    def close_extras(self, **kwargs: Any) -> None:
+        self.batch = None
+
+    # --- the tasks ---
+    def _reset(self, ended: np.ndarray) -> None:
+        k = len(ended)
+        positions = np.empty((k, 3))
+        yaws = np.zeros(k)
+        for j, i in enumerate(ended):
+            rng = self._rngs[i]
+            if self.task == "hover":
+                positions[j] = self.target + rng.uniform(-0.5, 0.5, 3)
+                positions[j, 2] = max(positions[j, 2], 0.3)
+                yaws[j] = rng.uniform(-np.pi, np.pi)
+            else:
+                positions[j] = self.start + rng.uniform(-0.2, 0.2, 3)
+        self.batch.reset(ended, positions=positions, yaws=yaws)
+        # the sensor's first message is the end of the first step; until then, the reset state
+        self.batch.commands[ended] = 0.0
+        self.steps[ended] = 0
+        self.index[ended] = 0
+        self.distance[ended] = np.linalg.norm(self.batch.odometry[ended, 0:3] - self.waypoints[0], axis=1)
+
+    def _observe(self) -> np.ndarray:
+        o = self.batch.odometry
+        p, q = o[:, 0:3], o[:, 3:7]
+        v_W = rotate_rows(q, o[:, 7:10])
+        if self.task == "hover":
+            obs = np.hstack([p - self.target, v_W, q, o[:, 10:13]])
+        else:
+            last = len(self.waypoints) - 1
+            current = self.waypoints[np.minimum(self.index, last)]
+            following = self.waypoints[np.minimum(self.index + 1, last)]
+            obs = np.hstack([p - current, p - following, v_W, q, o[:, 10:13]])
+        return np.clip(obs, -self._high, self._high).astype(np.float32)
+
+
+def hover_vector_env(num_envs: int = 16, **kwargs: Any) -> FlightBatchEnv:
+    """RotorS/Hover-v0's vector entry point: gym.make_vec("RotorS/Hover-v0", num_envs,
+    vectorization_mode="vector_entry_point")."""
+    kwargs.pop("render_mode", None)
+    return FlightBatchEnv("hover", num_envs, **kwargs)
+
+
+def waypoints_vector_env(num_envs: int = 16, **kwargs: Any) -> FlightBatchEnv:
+    """RotorS/Waypoints-v0's vector entry point (see hover_vector_env)."""
+    kwargs.pop("render_mode", None)
+    if "waypoints" in kwargs:
+        kwargs["waypoint_list"] = kwargs.pop("waypoints")
+    return FlightBatchEnv("waypoints", num_envs, **kwargs)
+
+
+class SingleVehicleEnv(gym.Env):
+    """One vehicle of FlightBatchEnv as a plain gymnasium.Env (no autoreset), e.g. for
+    gymnasium.utils.env_checker.check_env; keywords as FlightBatchEnv's."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, task: str = "hover", **kwargs: Any):
+        self.vector = FlightBatchEnv(task, 1, autoreset=False, **kwargs)
+        self.observation_space = self.vector.single_observation_space
+        self.action_space = self.vector.single_action_space
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        obs, info = self.vector.reset(seed=seed, options=options)
+        return obs[0], {"time_s": float(info["time_s"][0])}
+
+    def step(self, action):
+        obs, reward, terminated, truncated, info = self.vector.step(np.asarray(action)[None, :])
+        return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), {
+            "time_s": float(info["time_s"][0]), "collided": bool(info["collided"][0])}
