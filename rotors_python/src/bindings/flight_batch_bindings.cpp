@@ -38,8 +38,8 @@ py::array_t<T> View(T* data, py::ssize_t rows, py::ssize_t cols, py::handle owne
 
 std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, const std::string& mode,
                                        const std::map<std::string, double>& numbers,
-                                       const std::vector<std::string>& others, const std::string& source,
-                                       int threads, bool imu, bool noise, const std::vector<uint64_t>& seeds,
+                                       const std::vector<std::string>& others, const std::string& source, int threads,
+                                       bool imu, bool noise, const std::vector<uint64_t>& seeds,
                                        uint64_t description_seed, double contact_stiffness_scale) {
   FlightBatchOptions o;
   o.count = count;
@@ -102,18 +102,20 @@ void BindFlightBatch(py::module_& m) {
 
   py::class_<FlightBatch>(m, "FlightBatch", "N copies of one multirotor stepped together (see rotors_sim.FlightBatch).")
       .def(py::init(&MakeBatch), py::arg("description"), py::arg("count"), py::arg("mode"), py::arg("numbers"),
-           py::arg("others"), py::arg("source"), py::arg("threads") = 0, py::arg("imu") = true,
-           py::arg("noise") = true, py::arg("seeds") = std::vector<uint64_t>(),
-           py::arg("description_seed") = 0, py::arg("contact_stiffness_scale") = 1.0)
+           py::arg("others"), py::arg("source"), py::arg("threads") = 0, py::arg("imu") = true, py::arg("noise") = true,
+           py::arg("seeds") = std::vector<uint64_t>(), py::arg("description_seed") = 0,
+           py::arg("contact_stiffness_scale") = 1.0)
       .def(
-          "step", [](FlightBatch& b, long n) {
+          "step",
+          [](FlightBatch& b, long n) {
             py::gil_scoped_release release;
             b.Step(n);
           },
           py::arg("n") = 1)
       .def(
           "reset",
-          [](FlightBatch& b, const std::vector<int>& indices, const py::array_t<double, py::array::c_style | py::array::forcecast>& positions,
+          [](FlightBatch& b, const std::vector<int>& indices,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& positions,
              const py::array_t<double, py::array::c_style | py::array::forcecast>& yaws) {
             const auto k = static_cast<py::ssize_t>(indices.size());
             if (positions.ndim() != 2 || positions.shape(0) != k || positions.shape(1) != 3)

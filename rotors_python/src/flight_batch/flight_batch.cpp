@@ -25,7 +25,7 @@ namespace rgp = rotors_gazebo_plugins;
 
 namespace {
 
-const char* kModeNames[] = {"rotor_speeds",     "normalized_thrust", "lee_position", "roll_pitch_yawrate_thrust",
+const char* kModeNames[] = {"rotor_speeds",    "normalized_thrust", "lee_position", "roll_pitch_yawrate_thrust",
                             "attitude_thrust", "rate_thrust"};
 
 inline void Cross(const double a[3], const double b[3], double out[3]) {
@@ -215,8 +215,7 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   controller_seen_.assign(n, 0);
 
   if (options_.mode != CommandMode::kRotorSpeeds && options_.mode != CommandMode::kNormalizedThrust) {
-    const auto& vehicle =
-        options_.mode == CommandMode::kLeePosition ? options_.lee.vehicle : options_.attitude.vehicle;
+    const auto& vehicle = options_.mode == CommandMode::kLeePosition ? options_.lee.vehicle : options_.attitude.vehicle;
     if (static_cast<int>(vehicle.rotors.size()) != r_)
       throw SimError("FlightBatch: the controller's vehicle parameters have " + std::to_string(vehicle.rotors.size()) +
                      " rotors, the model '" + d_.model_name + "' has " + std::to_string(r_) +
@@ -254,7 +253,8 @@ size_t FlightBatch::ControllerBytesPerVehicle() const {
   if (controllers_.empty()) return 0;
   const auto& vehicle = options_.mode == CommandMode::kLeePosition ? options_.lee.vehicle : options_.attitude.vehicle;
   // the object and its heap: rotor parameters, the allocation matrix and its inverse (4 x R each)
-  const size_t heap = vehicle.rotors.size() * (sizeof(rotors_control::RotorGeometry) + 2 * 4 * sizeof(double) + 2 * sizeof(double));
+  const size_t heap =
+      vehicle.rotors.size() * (sizeof(rotors_control::RotorGeometry) + 2 * 4 * sizeof(double) + 2 * sizeof(double));
   return sizeof(Controller) + heap +
          (options_.mode == CommandMode::kLeePosition ? sizeof(rotors_control::LeeController)
                                                      : sizeof(rotors_control::AttitudeLevelController));
@@ -278,7 +278,8 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     for (int c = 0; c < 3; ++c)
       if (!std::isfinite(positions_M[3 * k + c]))
         throw SimError("FlightBatch.reset: vehicle " + std::to_string(i) + ": position must be finite");
-    if (!std::isfinite(yaws[k])) throw SimError("FlightBatch.reset: vehicle " + std::to_string(i) + ": yaw must be finite");
+    if (!std::isfinite(yaws[k]))
+      throw SimError("FlightBatch.reset: vehicle " + std::to_string(i) + ": yaw must be finite");
   }
   const size_t n = n_;
   for (size_t k = 0; k < indices.size(); ++k) {
@@ -310,15 +311,14 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     s.queue.clear();
     s.odometry_step = 0;
     const auto& on = d_.odometry->noise;
-    const bool odometry_noisy = options_.noise && (on.normal_position_m.any() || on.normal_quaternion_rad.any() ||
-                                                   on.normal_linear_velocity_m_s.any() ||
-                                                   on.normal_angular_velocity_rad_s.any() || on.uniform_position_m.any() ||
-                                                   on.uniform_quaternion_rad.any() || on.uniform_linear_velocity_m_s.any() ||
-                                                   on.uniform_angular_velocity_rad_s.any());
+    const bool odometry_noisy =
+        options_.noise &&
+        (on.normal_position_m.any() || on.normal_quaternion_rad.any() || on.normal_linear_velocity_m_s.any() ||
+         on.normal_angular_velocity_rad_s.any() || on.uniform_position_m.any() || on.uniform_quaternion_rad.any() ||
+         on.uniform_linear_velocity_m_s.any() || on.uniform_angular_velocity_rad_s.any());
     s.odometry_noise = odometry_noisy ? std::make_unique<rgp::OdometryNoise>(on, seed_odometry) : nullptr;
     if (d_.imu && options_.imu && options_.noise)
-      s.imu_noise =
-          std::make_unique<rgp::ImuNoiseModel>(d_.imu->noise, SeedFor(d_.imu->seed, i));
+      s.imu_noise = std::make_unique<rgp::ImuNoiseModel>(d_.imu->noise, SeedFor(d_.imu->seed, i));
     if (d_.wind) {
       rgp::WindParams wp = d_.wind->params;
       if (!options_.noise) wp.wind_speed_variance = wp.wind_force_variance = wp.wind_gust_force_variance = 0.0;
@@ -362,8 +362,7 @@ void FlightBatch::CheckCommands() const {
         throw SimError(msg.str());
       }
     }
-    if (options_.mode == CommandMode::kAttitudeThrust &&
-        c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3] < 1e-18)
+    if (options_.mode == CommandMode::kAttitudeThrust && c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3] < 1e-18)
       throw SimError("FlightBatch.step: commands[" + std::to_string(i) +
                      ", 0:4] is a zero quaternion (x, y, z, w); no vehicle was stepped");
   }
@@ -585,8 +584,8 @@ void FlightBatch::StepVehicle(int i) {
   std::copy(s.R_WB, s.R_WB + 9, R_before);
   const FreeBodyInertia body{inv_mass_,
                              {I_B_[0], I_B_[1], I_B_[2], I_B_[3], I_B_[4], I_B_[5], I_B_[6], I_B_[7], I_B_[8]},
-                             {inv_I_B_[0], inv_I_B_[1], inv_I_B_[2], inv_I_B_[3], inv_I_B_[4], inv_I_B_[5],
-                              inv_I_B_[6], inv_I_B_[7], inv_I_B_[8]}};
+                             {inv_I_B_[0], inv_I_B_[1], inv_I_B_[2], inv_I_B_[3], inv_I_B_[4], inv_I_B_[5], inv_I_B_[6],
+                              inv_I_B_[7], inv_I_B_[8]}};
   StepFreeBody(dt_, body, F, T, s);
   for (int c = 0; c < 3; ++c) {
     p_W_[c * n + i] = s.p_W[c];
@@ -599,8 +598,7 @@ void FlightBatch::StepVehicle(int i) {
   Observe(i, v_before, w_before, R_before);
 }
 
-void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_before_W[3],
-                          const double R_before[9]) {
+void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_before_W[3], const double R_before[9]) {
   const size_t n = n_;
   double p[3], v[3], w[3], R[9];
   for (int c = 0; c < 3; ++c) {
@@ -625,8 +623,7 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
     Cross(omega_before_W, r_then, wxr_then);
     const Eigen::Matrix3d R_WI = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R) * R_BI_;
     Eigen::Vector3d a_W;
-    for (int c = 0; c < 3; ++c)
-      a_W[c] = ((v[c] + wxr_now[c]) - (v_before_W[c] + wxr_then[c])) / dt_;
+    for (int c = 0; c < 3; ++c) a_W[c] = ((v[c] + wxr_now[c]) - (v_before_W[c] + wxr_then[c])) / dt_;
     rgp::ImuSample sample{R_WI.transpose() * Eigen::Vector3d(w[0], w[1], w[2]),
                           R_WI.transpose() * (a_W - d_.gravity_W)};
     if (sensors.imu_noise) sample = sensors.imu_noise->Corrupt(sample, dt_);

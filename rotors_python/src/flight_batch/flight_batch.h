@@ -41,10 +41,10 @@ struct FlightBatchOptions {
   int count = 1;
   int threads = 0;  ///< 0: one per core
   CommandMode mode = CommandMode::kRotorSpeeds;
-  rotors_control::LeeControllerParameters lee;               ///< kLeePosition
-  rotors_control::AttitudeControllerParameters attitude;     ///< the attitude-level modes
-  bool imu = true;                ///< simulate the IMU (with its noise unless noise is false)
-  bool noise = true;              ///< sensor and wind noise as the description gives it
+  rotors_control::LeeControllerParameters lee;            ///< kLeePosition
+  rotors_control::AttitudeControllerParameters attitude;  ///< the attitude-level modes
+  bool imu = true;                                        ///< simulate the IMU (with its noise unless noise is false)
+  bool noise = true;                                      ///< sensor and wind noise as the description gives it
   /// Per vehicle, as the xacro's random_seed: each plugin's seed keeps its offset from
   /// `description_seed`, the random_seed the description was spawned with (the odometry draws from
   /// random_seed + 1). Empty: every vehicle the description's seeds.
@@ -119,10 +119,10 @@ class FlightBatch {
   double contact_reach_m_ = 0;  ///< no corner is farther from the CoG: above it, no contact
   Eigen::Matrix3d R_BI_ = Eigen::Matrix3d::Identity();
   // state, structure of arrays: component k of vehicle i at [k * n_ + i]
-  std::vector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;  ///< the body (CoG), as the solver keeps it
+  std::vector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;           ///< the body (CoG), as the solver keeps it
   std::vector<double> omega_rotor_, qdot_applied_, motor_command_;  ///< R per vehicle
   std::vector<double> wind_velocity_W_;                             ///< the wind speed the motors see
-  std::vector<uint64_t> steps_;                                      ///< steps since the vehicle's reset
+  std::vector<uint64_t> steps_;                                     ///< steps since the vehicle's reset
   std::vector<uint8_t> has_motor_command_, in_contact_;
   // shared with Python
   std::vector<double> commands_, odometry_out_, imu_out_, truth_out_, rotor_speed_out_;

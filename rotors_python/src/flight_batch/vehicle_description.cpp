@@ -25,11 +25,14 @@ Eigen::Vector3d ToEigen(const physics::Vector3d& v) { return {v.X(), v.Y(), v.Z(
 Eigen::Quaterniond ToEigen(const physics::Quaterniond& q) { return {q.W(), q.X(), q.Y(), q.Z()}; }
 
 /// Plugins that only measure or record: the batch leaves them out and says so.
-const std::set<std::string> kMeasuringPlugins = {
-    "librotors_gazebo_multirotor_base_plugin.so", "librotors_gazebo_controller_interface.so",
-    "librotors_gazebo_gps_plugin.so",             "librotors_gazebo_magnetometer_plugin.so",
-    "librotors_gazebo_pressure_plugin.so",        "librotors_gazebo_airspeed_plugin.so",
-    "librotors_gazebo_bag_plugin.so",             "librotors_gazebo_octomap_plugin.so"};
+const std::set<std::string> kMeasuringPlugins = {"librotors_gazebo_multirotor_base_plugin.so",
+                                                 "librotors_gazebo_controller_interface.so",
+                                                 "librotors_gazebo_gps_plugin.so",
+                                                 "librotors_gazebo_magnetometer_plugin.so",
+                                                 "librotors_gazebo_pressure_plugin.so",
+                                                 "librotors_gazebo_airspeed_plugin.so",
+                                                 "librotors_gazebo_bag_plugin.so",
+                                                 "librotors_gazebo_octomap_plugin.so"};
 
 std::string Short(const std::string& filename) {
   std::string s = filename;
@@ -135,8 +138,7 @@ VehicleDescription DescribeVehicle(const physics::Model& model, const std::strin
       w.p_B_force = m.p_B + m.q_BS * offset;
       w.before_motors = !motors_seen;
       try {
-        if (custom_field)
-          w.field = std::make_shared<rgp::WindField>(rgp::WindField::Load(ResolvePath(field_path)));
+        if (custom_field) w.field = std::make_shared<rgp::WindField>(rgp::WindField::Load(ResolvePath(field_path)));
         if (!profile_path.empty())
           w.profile = std::make_shared<rgp::WindProfile>(rgp::WindProfile::Load(ResolvePath(profile_path)));
       } catch (const std::runtime_error& e) {
@@ -203,9 +205,9 @@ VehicleDescription DescribeVehicle(const physics::Model& model, const std::strin
       throw SimError(who + " must be described as spawned, upright and unrotated");
     const Eigen::Vector3d p_W_cog = ToEigen(X_WM.Pos()) + d.p_M_cog;
     for (int c = 0; c < 8; ++c)
-      d.contact_points_B.push_back(Eigen::Vector3d((c & 1) ? hi_W.X() : lo_W.X(), (c & 2) ? hi_W.Y() : lo_W.Y(),
-                                                   (c & 4) ? hi_W.Z() : lo_W.Z()) -
-                                   p_W_cog);
+      d.contact_points_B.push_back(
+          Eigen::Vector3d((c & 1) ? hi_W.X() : lo_W.X(), (c & 2) ? hi_W.Y() : lo_W.Y(), (c & 4) ? hi_W.Z() : lo_W.Z()) -
+          p_W_cog);
   }
   return d;
 }

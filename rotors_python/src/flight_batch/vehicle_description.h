@@ -24,7 +24,7 @@ namespace rotors_flight_batch {
 
 /// A point of the vehicle in the body frame B (origin at the CoG, axes of the model frame).
 struct Mount {
-  Eigen::Vector3d p_B = Eigen::Vector3d::Zero();                 ///< [m]
+  Eigen::Vector3d p_B = Eigen::Vector3d::Zero();             ///< [m]
   Eigen::Quaterniond q_BS = Eigen::Quaterniond::Identity();  ///< the frame mounted there
 };
 
@@ -35,8 +35,8 @@ struct RotorMount {
   Eigen::Vector3d p_B_origin = Eigen::Vector3d::Zero();  ///< rotor link origin (its airspeed) [m]
   Eigen::Vector3d p_B_cog = Eigen::Vector3d::Zero();     ///< rotor link CoG (where its force acts) [m]
   Eigen::Vector3d axis_B = Eigen::Vector3d::UnitZ();     ///< the rotor frame's z (thrust direction)
-  double spin_inertia_kg_m2 = 0.0;  ///< J_a of the rotor about its axis (the kinematic joint's)
-  double slowdown = 10.0;           ///< rotorVelocitySlowdownSim: the joint turns omega / slowdown
+  double spin_inertia_kg_m2 = 0.0;                       ///< J_a of the rotor about its axis (the kinematic joint's)
+  double slowdown = 10.0;                                ///< rotorVelocitySlowdownSim: the joint turns omega / slowdown
 };
 
 struct OdometryDescription {
@@ -68,8 +68,8 @@ struct VehicleDescription {
   std::string model_name, robot_namespace;
   double mass_kg = 0.0;
   Eigen::Matrix3d inertia_B_kg_m2 = Eigen::Matrix3d::Identity();  ///< about the CoG, body frame
-  Eigen::Vector3d p_M_cog = Eigen::Vector3d::Zero();  ///< the CoG (body origin) in the model frame
-  std::vector<RotorMount> rotors;                     ///< by motor number
+  Eigen::Vector3d p_M_cog = Eigen::Vector3d::Zero();              ///< the CoG (body origin) in the model frame
+  std::vector<RotorMount> rotors;                                 ///< by motor number
   std::optional<OdometryDescription> odometry;
   std::optional<ImuDescription> imu;
   std::optional<WindDescription> wind;

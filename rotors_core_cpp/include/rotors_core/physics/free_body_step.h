@@ -79,7 +79,8 @@ inline void StepFreeBody(double h, const FreeBodyInertia& body, const double F_W
     double M[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
-        M[i * 3 + j] = I_W[i * 3 + 0] * inv[0 * 3 + j] + I_W[i * 3 + 1] * inv[1 * 3 + j] + I_W[i * 3 + 2] * inv[2 * 3 + j];
+        M[i * 3 + j] =
+            I_W[i * 3 + 0] * inv[0 * 3 + j] + I_W[i * 3 + 1] * inv[1 * 3 + j] + I_W[i * 3 + 2] * inv[2 * 3 + j];
     M[0] -= 1;
     M[4] -= 1;
     M[8] -= 1;
@@ -97,8 +98,9 @@ inline void StepFreeBody(double h, const FreeBodyInertia& body, const double F_W
   // p += h v (the new v);  q += h/2 (0, w) q (the new w, world frame), normalised;  R from q
   for (int i = 0; i < 3; ++i) s.p_W[i] += h * s.v_W[i];
   double* q = s.q_WB;
-  const double dq[4] = {0.5 * (-w[0] * q[1] - w[1] * q[2] - w[2] * q[3]), 0.5 * (w[0] * q[0] + w[1] * q[3] - w[2] * q[2]),
-                        0.5 * (-w[0] * q[3] + w[1] * q[0] + w[2] * q[1]), 0.5 * (w[0] * q[2] - w[1] * q[1] + w[2] * q[0])};
+  const double dq[4] = {
+      0.5 * (-w[0] * q[1] - w[1] * q[2] - w[2] * q[3]), 0.5 * (w[0] * q[0] + w[1] * q[3] - w[2] * q[2]),
+      0.5 * (-w[0] * q[3] + w[1] * q[0] + w[2] * q[1]), 0.5 * (w[0] * q[2] - w[1] * q[1] + w[2] * q[0])};
   for (int j = 0; j < 4; ++j) q[j] += h * dq[j];
   double l = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
   if (l > 0) {
