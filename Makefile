@@ -35,7 +35,7 @@ demo-msf: build
 	@bash scripts/demo.sh msf
 
 bench: build
-	@bash scripts/bench.sh
+	@bash scripts/bench.sh $(if $(ONLY),--only $(ONLY))
 
 clean:
 	rm -rf build/ws

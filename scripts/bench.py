@@ -335,6 +335,7 @@ def soak_rows(k: Dict) -> List:
 PEER_VENVS = {
     "pyflyt": ["pyflyt==0.29.0"],
     "crazyflow": ["crazyflow==0.0.2", "mujoco==3.3.7", "mujoco-mjx==3.3.7", "jax[cpu]==0.7.0", "numpy<2"],
+    "crazyflow040": ["crazyflow==0.4.0"],  # its current release, with what it pulls in
     # what its CtrlAviary and DSL PID controller import (its pyproject also asks for stable-baselines3,
     # control, matplotlib and pytest, for learning, examples and tests); itself from a clone, below
     "gym_pybullet_drones": ["pybullet==3.2.7", "gymnasium==1.4.0", "numpy>=2.2,<3", "scipy>=1.15", "pillow",
@@ -375,7 +376,7 @@ def hover_drone_s_per_s(peer: str, worlds: int, seconds: float, rates_hz=(), mod
     """One closed-loop hover run of a peer script (scripts/peers/<peer>_hover.py): its JSON line.
     rates_hz: (physics, control) where the script takes them (gym-pybullet-drones), else 500 / 100;
     mode: "loop" or "one_call" for the scripts that have both (PEER_MODES)."""
-    if peer == "rotors_sim":
+    if peer in ("rotors_sim", "rotors_batch"):
         python = sys.executable
     elif peer == "rotorpy":
         python = str(rotorpy_python())
@@ -453,6 +454,89 @@ def python_peer_rows(t: Dict) -> List:
     return rows
 
 
+# --- batched_flight: the batched flight engine against today's worlds and the peers ---------------
+BATCH_COUNTS = (1, 64, 1024, 4096)
+# (key in the JSON line, peer script, vehicle counts it runs, drone-seconds a run flies at most)
+BATCH_PEERS = (("rotors_batch", "rotors_batch", BATCH_COUNTS, 20000.0),
+               ("rotors_world", "rotors_sim", (1, 64), 100.0),
+               ("crazyflow==0.0.2", "crazyflow", BATCH_COUNTS, 4000.0),
+               ("crazyflow==0.4.0", "crazyflow040", BATCH_COUNTS, 4000.0),
+               ("gym_pybullet_drones", "gym_pybullet_drones", (1, 64), 40.0),
+               ("PyFlyt", "pyflyt", (1, 64), 40.0),
+               ("rotorpy", "rotorpy", (1,), 5.0))
+BATCH_NOT_RUN = {"rotors_world": "a World per vehicle (xacro and 12 plugins each): 1,024 take minutes to build",
+                 "gym_pybullet_drones": "one aviary of N drones, slower than real time at 64",
+                 "PyFlyt": "one aviary of N drones, slower than real time at 64",
+                 "rotorpy": "no batch of worlds"}
+
+
+def batch_profile() -> List[str]:
+    """Where a one-vehicle batch spends its time: perf's self time per function (top 8)."""
+    data = OUT / "batch_perf.data"
+    script = ROOT / "scripts" / "peers" / "rotors_batch_hover.py"
+    rec = subprocess.run(["perf", "record", "-o", str(data), "-q", sys.executable, str(script), "1", "20000", "1"],
+                         capture_output=True, text=True)
+    if rec.returncode != 0:
+        return [f"no profile: perf record failed ({(rec.stderr or rec.stdout).strip()[-200:]})"]
+    rep = subprocess.run(["perf", "report", "-i", str(data), "--no-children", "--stdio", "--percent-limit", "2",
+                          "--sort", "symbol"], capture_output=True, text=True)
+    lines = [line.strip() for line in rep.stdout.splitlines() if line.strip() and line.strip()[0].isdigit()]
+    return lines[:8]
+
+
+def batched_flight() -> Dict:
+    """Hover, 500 Hz physics, 100 Hz control: drone-seconds per second of each simulator at each
+    vehicle count (best of 3 runs), ours also on one thread and with the IMU, and a profile."""
+    table: Dict = {}
+    for key, script, counts, drone_s in BATCH_PEERS:
+        if not peer_available(script):
+            continue
+        for n in counts:
+            sim_s = max(drone_s / n, 2.0 if n > 1 else drone_s)
+            runs = [hover_drone_s_per_s(script, n, sim_s, mode="one_call" if script == "rotors_sim" else "")
+                    for _ in range(3)]
+            table.setdefault(key, {})[str(n)] = max(r["drone_s_per_s"] for r in runs)
+    extra = {}
+    for label, args in (("one_thread_1024", ["1024", "20", "1"]), ("imu_1", ["1", "20000", "0", "imu"]),
+                        ("imu_64", ["64", "300", "0", "imu"])):
+        runs = [hover_drone_s_per_s("rotors_batch", int(args[0]), float(args[1]), rates_hz=args[2:]) for _ in range(3)]
+        extra[label] = max(r["drone_s_per_s"] for r in runs)
+    memory = hover_drone_s_per_s("rotors_batch", 1, 1.0)["memory_bytes_per_vehicle"]
+    return {"table": table, "extra": extra, "memory": memory, "profile": batch_profile()}
+
+
+def batched_flight_rows(b: Dict) -> List:
+    t, x = b["table"], b["extra"]
+    rows = []
+    for key, _, counts, _ in BATCH_PEERS:
+        if key not in t:
+            rows += [(f"hover, 500 Hz physics, 100 Hz control: {key}", "not measured (not installed)", "")]
+            continue
+        figures = ", ".join(f"{n}: {t[key][str(n)]:,.0f}" for n in BATCH_COUNTS if str(n) in t[key])
+        missing = [str(n) for n in BATCH_COUNTS if n not in counts]
+        note = f"; {', '.join(missing)}: not run ({BATCH_NOT_RUN[key]})" if missing else ""
+        rows += [(f"hover, 500 Hz physics, 100 Hz control, drone-s/s by vehicles: {key}", figures + note, "")]
+    ours, yard = t.get("rotors_batch", {}), t.get("crazyflow==0.0.2", {})
+    if ours and yard:
+        fastest = {n: max(t[k][n] for k in ("crazyflow==0.0.2", "crazyflow==0.4.0") if k in t and n in t[k])
+                   for n in ("1", "64")}
+        rows += [("  rotors_batch / crazyflow's faster release, 1 vehicle", f"{ours['1'] / fastest['1']:.1f} x", ">= 10 x"),
+                 ("  rotors_batch / crazyflow's faster release, 64 vehicles", f"{ours['64'] / fastest['64']:.1f} x", ">= 5 x")]
+    if ours:
+        ns = {n: 0.002e9 / (ours[n] / int(n)) for n in ours}  # wall ns per vehicle-step over the threads
+        rows += [("  rotors_batch: wall time per vehicle-step, 64 / 1,024 / 4,096 vehicles (2 threads)",
+                  " / ".join(f"{ns[n]:.0f} ns" for n in ("64", "1024", "4096") if n in ns), "flat"),
+                 ("  rotors_batch: 1,024 vehicles, 2 threads / 1 thread", f"{ours['1024'] / x['one_thread_1024']:.2f} x",
+                  "near 2 x"),
+                 ("  rotors_batch with the IMU and its noise (RotorS' vehicle as it flies), 1 / 64 vehicles",
+                  f"{x['imu_1']:,.0f} / {x['imu_64']:,.0f} drone-s/s", "")]
+    m = b["memory"]
+    rows += [("  rotors_batch memory per vehicle: state arrays / Lee controller object / noise models",
+              f"{m['state']} / {m['controller']} / {m['noise']} bytes", "state < 1 KB")]
+    rows += [("  where one vehicle's step goes (perf, self time)", line, "") for line in b["profile"]]
+    return rows
+
+
 def betaflight_loop_rtf(lockstep: bool, sim_s: float = 10.0) -> float:
     """Betaflight's SITL answering the iris' states with nothing else in the loop (world.step, the
     interface's exchange, the firmware): x real time. lockstep: our lockstep build (16 gyro/PID loops
@@ -496,7 +580,7 @@ GYM_PYBULLET_DRONES_MISSING = (
     "ROTORS_BENCH_GYM_PYBULLET_DRONES at a clone) and the bench installs it into a venv of its own")
 
 SECTIONS = ("engine", "peers", "python_peers", "closed_loop", "swarm", "startup", "estimator", "waypoints", "cameras", "vi_sensor",
-            "lasers", "planning", "autopilots", "sweep", "soak")
+            "lasers", "planning", "autopilots", "sweep", "soak", "batched_flight")
 
 
 def median_of(runs: int, measure) -> Dict:
@@ -596,6 +680,11 @@ def main() -> int:
                  ("pymavlink controller on HIL_SENSOR through the MAVLink interface, firefly, 4 ms step, lockstep "
                   "(TCP, one round trip a step)", f"{min(a['px4_pymavlink_steps_per_s']):,.0f}-"
                   f"{max(a['px4_pymavlink_steps_per_s']):,.0f} steps/s", "")]
+    if "batched_flight" in only:
+        b = batched_flight()
+        res["batched_flight"] = b["table"]
+        res["batched_flight_details"] = {k: v for k, v in b.items() if k != "table"}
+        rows += batched_flight_rows(b)
     if "python_peers" in only:
         res["python_peers"] = python_peers()
         rows += python_peer_rows(res["python_peers"])
@@ -694,7 +783,10 @@ def main() -> int:
         print(f"{r[0].ljust(w[0])}  {r[1].ljust(w[1])}  {r[2]}")
     for line in res["not_measured"]:
         print(line)
-    print(json.dumps(res))
+    if only == {"batched_flight"}:  # the section alone ends with its own line
+        print(json.dumps({"batched_flight": res["batched_flight"]}))
+    else:
+        print(json.dumps(res))
     return 0
 
 

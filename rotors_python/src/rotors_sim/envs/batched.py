@@ -38,7 +38,9 @@ class FlightBatchEnv(VectorEnv):
     """`task` "hover" or "waypoints" for `num_envs` vehicles `mav_name`; `action_type` "motor" (a
     value in [-1, 1] per rotor: 0 to its maximum speed) or "attitude" (roll and pitch up to
     max_tilt_rad, yaw rate up to max_yaw_rate_rad_s, thrust 0 to twice the weight). Sensor noise
-    seeded per vehicle from sensor_seed + i."""
+    seeded per vehicle from sensor_seed + i. `alive_bonus` (hover, default 0 as RotorS/Hover-v0)
+    is added to the reward of every step that does not end in a crash: without it a policy that
+    crashes at once scores better than one that hovers with a small error."""
 
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP}
 
@@ -48,7 +50,7 @@ class FlightBatchEnv(VectorEnv):
                  waypoint_list: Sequence[Sequence[float]] = waypoints.SQUARE[1:],
                  start: Sequence[float] = waypoints.SQUARE[0], reach_m: float = 0.3, sensor_seed: int = 0,
                  threads: int = 0, max_tilt_rad: float = 0.6, max_yaw_rate_rad_s: float = 2.0,
-                 autoreset: bool = True):
+                 autoreset: bool = True, alive_bonus: float = 0.0):
         if task not in TASKS:
             raise SimError(f"task '{task}' is not known; use one of: {', '.join(TASKS)}")
         if action_type not in ACTION_TYPES:
@@ -57,6 +59,7 @@ class FlightBatchEnv(VectorEnv):
             raise SimError(f"num_envs = {num_envs} must be >= 1")
         self.task, self.num_envs, self.action_type = task, int(num_envs), action_type
         self.autoreset = autoreset
+        self.alive_bonus = float(alive_bonus)
         step_size = 1.0 / physics_hz
         self.substeps = max(1, round(1.0 / control_hz / step_size))
         mode = "rotor_speeds" if action_type == "motor" else "roll_pitch_yawrate_thrust"
@@ -119,7 +122,7 @@ class FlightBatchEnv(VectorEnv):
             terminated = collided | np.any(np.abs(obs[:, 0:3]) > hover.BOUND_M, axis=1)
             reward = (-np.linalg.norm(obs[:, 0:3], axis=1) - 0.1 * np.linalg.norm(obs[:, 3:6], axis=1)
                       - 0.05 * np.linalg.norm(obs[:, 10:13], axis=1))
-            reward = np.where(terminated, hover.TERMINATION_REWARD, reward)
+            reward = np.where(terminated, hover.TERMINATION_REWARD, reward + self.alive_bonus)
             success = np.zeros(self.num_envs, dtype=bool)
         else:
             last = len(self.waypoints) - 1
