@@ -12,7 +12,7 @@
 
 #include "rotors_core/error.h"
 #include "rotors_core/physics/free_body_step.h"
-#include "rotors_gazebo_plugins/models/first_order_filter.h"
+#include "flight_kernel.h"
 
 namespace rotors_flight_batch {
 
@@ -192,7 +192,8 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   contact_k_ = d_.mass_kg * w * w / 4.0;
   contact_c_ = d_.mass_kg * w / 2.0;
 
-  const size_t n = n_;
+  n_pad_ = (n_ + kLanes - 1) / kLanes * kLanes;
+  const size_t n = n_pad_;
   p_W_.assign(3 * n, 0.0);
   v_W_.assign(3 * n, 0.0);
   q_WB_.assign(4 * n, 0.0);
@@ -202,17 +203,23 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   qdot_applied_.assign(r_ * n, 0.0);
   motor_command_.assign(r_ * n, 0.0);
   wind_velocity_W_.assign(3 * n, 0.0);
-  steps_.assign(n, 0);
-  in_contact_.assign(n, 0);
-  commands_.assign(command_columns_ * n, 0.0);
+  const size_t count = n_;
+  steps_.assign(count, 0);
+  in_contact_.assign(count, 0);
+  commands_.assign(command_columns_ * count, 0.0);
   if (options_.mode == CommandMode::kAttitudeThrust)
-    for (size_t i = 0; i < n; ++i) commands_[i * 5 + 3] = 1.0;  // identity attitude
-  odometry_out_.assign(14 * n, 0.0);
-  imu_out_.assign(6 * n, 0.0);
-  truth_out_.assign(13 * n, 0.0);
-  rotor_speed_out_.assign(r_ * n, 0.0);
-  odometry_count_.assign(n, 0);
-  controller_seen_.assign(n, 0);
+    for (size_t i = 0; i < count; ++i) commands_[i * 5 + 3] = 1.0;  // identity attitude
+  odometry_out_.assign(14 * count, 0.0);
+  imu_out_.assign(6 * count, 0.0);
+  truth_out_.assign(13 * count, 0.0);
+  rotor_speed_out_.assign(r_ * count, 0.0);
+  odometry_count_.assign(count, 0);
+  controller_seen_.assign(count, 0);
+  BuildKernelModel();
+  kernel_arrays_ = {n_pad_,          p_W_.data(),          v_W_.data(),           q_WB_.data(),
+                    R_WB_.data(),    omega_W_.data(),      omega_rotor_.data(),   qdot_applied_.data(),
+                    motor_command_.data(), wind_velocity_W_.data()};
+  kernel_ = FourLaneKernel();
 
   if (options_.mode != CommandMode::kRotorSpeeds && options_.mode != CommandMode::kNormalizedThrust) {
     const auto& vehicle = options_.mode == CommandMode::kLeePosition ? options_.lee.vehicle : options_.attitude.vehicle;
@@ -220,7 +227,7 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
       throw SimError("FlightBatch: the controller's vehicle parameters have " + std::to_string(vehicle.rotors.size()) +
                      " rotors, the model '" + d_.model_name + "' has " + std::to_string(r_) +
                      "; give the controller the vehicle's yaml");
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = 0; i < count; ++i) {
       auto c = std::make_unique<Controller>();
       try {
         if (options_.mode == CommandMode::kLeePosition) {
@@ -234,11 +241,12 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
       controllers_.push_back(std::move(c));
     }
   }
-  for (size_t i = 0; i < n; ++i) sensors_.push_back(std::make_unique<Sensors>());
-  std::vector<int> all(n);
-  std::vector<double> origin(3 * n, 0.0), yaw(n, 0.0);
-  for (size_t i = 0; i < n; ++i) all[i] = static_cast<int>(i);
+  for (size_t i = 0; i < count; ++i) sensors_.push_back(std::make_unique<Sensors>());
+  std::vector<int> all(count);
+  std::vector<double> origin(3 * count, 0.0), yaw(count, 0.0);
+  for (size_t i = 0; i < count; ++i) all[i] = static_cast<int>(i);
   Reset(all, origin.data(), yaw.data());
+  ParkPaddingLanes();
   if (threads_ > 1) pool_ = std::make_unique<Pool>(threads_);
 }
 
@@ -281,7 +289,7 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     if (!std::isfinite(yaws[k]))
       throw SimError("FlightBatch.reset: vehicle " + std::to_string(i) + ": yaw must be finite");
   }
-  const size_t n = n_;
+  const size_t n = n_pad_;
   for (size_t k = 0; k < indices.size(); ++k) {
     const size_t i = indices[k];
     const double yaw = yaws[k];
@@ -372,26 +380,142 @@ void FlightBatch::Step(long steps) {
   if (steps < 0) throw SimError("FlightBatch.step: n = " + std::to_string(steps) + " must be >= 0");
   CheckCommands();
   if (steps == 0) return;
+  ParkPaddingLanes();
   if (!pool_) {
     StepRange(0, n_, steps);
     return;
   }
-  const int threads = threads_;
-  pool_->Run([&](int t) { StepRange(n_ * t / threads, n_ * (t + 1) / threads, steps); });
+  // whole groups of four lanes per thread
+  const int threads = threads_, groups = static_cast<int>(n_pad_ / kLanes);
+  pool_->Run([&](int t) {
+    StepRange(groups * t / threads * kLanes, std::min(n_, groups * (t + 1) / threads * kLanes), steps);
+  });
+}
+
+void FlightBatch::BuildKernelModel() {
+  KernelModel& k = kernel_model_;
+  k.rotors = r_;
+  for (int r = 0; r < r_; ++r) {
+    const RotorMount& rotor = d_.rotors[r];
+    KernelModel::Rotor& kr = k.rotor[r];
+    for (int c = 0; c < 3; ++c) {
+      kr.p_origin_B[c] = rotor.p_B_origin[c];
+      kr.p_cog_B[c] = rotor.p_B_cog[c];
+      kr.axis_B[c] = rotor.axis_B[c];
+    }
+    kr.cog_on_origin = rotor.p_B_cog == rotor.p_B_origin;
+    kr.motor_constant = rotor.params.motor_constant;
+    kr.rotor_drag_coefficient = rotor.params.rotor_drag_coefficient;
+    kr.rolling_moment_coefficient = rotor.params.rolling_moment_coefficient;
+    kr.reaction_factor = -rotor.params.turning_direction * rotor.params.moment_constant;
+    kr.max_rot_velocity = rotor.params.max_rot_velocity;
+    kr.a_up = a_up_[r];
+    kr.a_down = a_down_[r];
+    kr.spin_inertia = rotor.spin_inertia_kg_m2;
+    kr.direction = rotor.params.turning_direction;
+    kr.slowdown = rotor.slowdown;
+  }
+  k.contacts = static_cast<int>(std::min<size_t>(d_.contact_points_B.size(), kMaxContacts));
+  for (int c = 0; c < k.contacts; ++c)
+    for (int j = 0; j < 3; ++j) k.corner_B[c][j] = d_.contact_points_B[c][j];
+  k.contact_k = contact_k_;
+  k.contact_c = contact_c_;
+  k.contact_reach_m = contact_reach_m_;
+  k.dt = dt_;
+  k.inv_dt = 1.0 / dt_;
+  k.mass = d_.mass_kg;
+  for (int c = 0; c < 3; ++c) k.gravity_W[c] = d_.gravity_W[c];
+  k.body.inv_mass_kg = inv_mass_;
+  std::copy(I_B_, I_B_ + 9, k.body.I_B);
+  std::copy(inv_I_B_, inv_I_B_ + 9, k.body.inv_I_B);
+  k.wind_before_motors = d_.wind && d_.wind->before_motors;
+}
+
+void FlightBatch::ParkPaddingLanes() {
+  // lanes past the last vehicle fill the last group of four: at rest far above the ground, unpowered
+  const size_t n = n_pad_;
+  for (size_t i = n_; i < n; ++i) {
+    const double q[4] = {1.0, 0.0, 0.0, 0.0};
+    double R[9];
+    RotationFromQuaternion(q, R);
+    for (int c = 0; c < 3; ++c) {
+      p_W_[c * n + i] = c == 2 ? 1e6 : 0.0;
+      v_W_[c * n + i] = omega_W_[c * n + i] = wind_velocity_W_[c * n + i] = 0.0;
+    }
+    for (int c = 0; c < 4; ++c) q_WB_[c * n + i] = q[c];
+    for (int c = 0; c < 9; ++c) R_WB_[c * n + i] = R[c];
+    for (int r = 0; r < r_; ++r) omega_rotor_[r * n + i] = qdot_applied_[r * n + i] = motor_command_[r * n + i] = 0.0;
+  }
 }
 
 void FlightBatch::StepRange(int begin, int end, long steps) {
-  // Blocks of vehicles stay in cache for all the steps.
-  constexpr int kBlock = 16;
+  // groups of four lanes; blocks of groups stay in cache for all the steps
+  constexpr int kBlock = 4 * kLanes;
   for (int b = begin; b < end; b += kBlock) {
     const int e = std::min(end, b + kBlock);
     for (long s = 0; s < steps; ++s)
-      for (int i = b; i < e; ++i) StepVehicle(i);
+      for (int i0 = b; i0 < e; i0 += kLanes) StepGroup(i0);
+  }
+}
+
+void FlightBatch::StepGroup(int i0) {
+  const size_t n = n_pad_;
+  const int lanes = std::min(kLanes, n_ - i0);  // vehicles in this group (the rest are padding)
+  double wind_force[3 * kLanes] = {}, wind_moment[3 * kLanes] = {}, wind_velocity[3 * kLanes] = {};
+  double v_before[3 * kLanes], w_before[3 * kLanes], R_before[9 * kLanes];
+  for (int l = 0; l < lanes; ++l) {
+    const int i = i0 + l;
+    ApplyCommand(i);
+    if (!d_.wind) continue;
+    // the wind plugin: a force on its link and the wind speed the rotors see (this step's sample)
+    const WindDescription& wd = *d_.wind;
+    double R[9], p[3];
+    for (int c = 0; c < 9; ++c) R[c] = R_WB_[c * n + i];
+    for (int c = 0; c < 3; ++c) p[c] = p_W_[c * n + i];
+    const double t_s = SimTimeS(steps_[i], dt_ns_);
+    rgp::WindSample ws = sensors_[i]->wind->Sample(t_s);
+    if (wd.profile) ws.velocity_W = wd.profile->Velocity(t_s);
+    if (wd.field) {
+      double r_link[3];
+      Rotate(R, wd.p_B_link, r_link);
+      Eigen::Vector3d v_field;
+      if (wd.field->Velocity({p[0] + r_link[0], p[1] + r_link[1], p[2] + r_link[2]}, &v_field))
+        ws.velocity_W = v_field;
+    }
+    double r_f[3], moment[3];
+    Rotate(R, wd.p_B_force, r_f);
+    const double f[3] = {ws.force_W[0], ws.force_W[1], ws.force_W[2]};
+    Cross(r_f, f, moment);
+    for (int c = 0; c < 3; ++c) {
+      wind_force[c * kLanes + l] = f[c];
+      wind_moment[c * kLanes + l] = moment[c];
+      wind_velocity[c * kLanes + l] = ws.velocity_W[c];
+    }
+  }
+  const KernelWind wind{wind_force, wind_moment, wind_velocity};
+  const KernelBefore before{v_before, w_before, R_before};
+  unsigned touching = 0;
+  if (lanes == kLanes) {
+    touching = kernel_(kernel_model_, kernel_arrays_, i0, wind, before);
+  } else {  // a last group of fewer vehicles: each alone (the same step as a lane's, bit for bit)
+    for (int l = 0; l < lanes; ++l) touching |= StepOneOfFour(kernel_model_, kernel_arrays_, i0 + l, l, wind, before);
+  }
+  for (int l = 0; l < lanes; ++l) {
+    const int i = i0 + l;
+    in_contact_[i] = (touching >> l) & 1u;
+    ++steps_[i];
+    double v[3], w[3], R[9];
+    for (int c = 0; c < 3; ++c) {
+      v[c] = v_before[c * kLanes + l];
+      w[c] = w_before[c * kLanes + l];
+    }
+    for (int c = 0; c < 9; ++c) R[c] = R_before[c * kLanes + l];
+    Observe(i, v, w, R);
   }
 }
 
 void FlightBatch::ApplyCommand(int i) {
-  const size_t n = n_;
+  const size_t n = n_pad_;
   const double* c = &commands_[i * command_columns_];
   switch (options_.mode) {
     case CommandMode::kRotorSpeeds:
@@ -441,165 +565,8 @@ void FlightBatch::ApplyCommand(int i) {
   for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = std::max(0.0, speeds[r]);
 }
 
-void FlightBatch::StepVehicle(int i) {
-  const size_t n = n_;
-  ApplyCommand(i);
-  FreeBodyState s;
-  for (int c = 0; c < 3; ++c) {
-    s.p_W[c] = p_W_[c * n + i];
-    s.v_W[c] = v_W_[c * n + i];
-    s.omega_W[c] = omega_W_[c * n + i];
-  }
-  for (int c = 0; c < 4; ++c) s.q_WB[c] = q_WB_[c * n + i];
-  for (int c = 0; c < 9; ++c) s.R_WB[c] = R_WB_[c * n + i];
-  const double* R = s.R_WB;
-  const double* w = s.omega_W;
-  const double t_s = SimTimeS(steps_[i], dt_ns_);
-  Sensors& sensors = *sensors_[i];
-  double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
-  double wind_v[3] = {wind_velocity_W_[0 * n + i], wind_velocity_W_[1 * n + i], wind_velocity_W_[2 * n + i]};
-
-  // The wind plugin: a force on its link and the wind speed the rotors see.
-  auto wind_update = [&] {
-    if (!d_.wind) return;
-    const WindDescription& wd = *d_.wind;
-    rgp::WindSample ws = sensors.wind->Sample(t_s);
-    if (wd.profile) ws.velocity_W = wd.profile->Velocity(t_s);
-    if (wd.field) {
-      double r_link[3];
-      Rotate(R, wd.p_B_link, r_link);
-      Eigen::Vector3d v_field;
-      if (wd.field->Velocity({s.p_W[0] + r_link[0], s.p_W[1] + r_link[1], s.p_W[2] + r_link[2]}, &v_field))
-        ws.velocity_W = v_field;
-    }
-    for (int c = 0; c < 3; ++c) wind_v[c] = ws.velocity_W[c];
-    if (!ws.force_W.isZero(0.0)) {
-      double r_f[3], torque[3];
-      Rotate(R, wd.p_B_force, r_f);
-      const double f[3] = {ws.force_W[0], ws.force_W[1], ws.force_W[2]};
-      Cross(r_f, f, torque);
-      for (int c = 0; c < 3; ++c) {
-        F[c] += f[c];
-        T[c] += torque[c];
-      }
-    }
-  };
-  if (d_.wind && d_.wind->before_motors) wind_update();
-
-  // The motor plugins: forces from the speed reached in the last step, then the speed dynamics.
-  double axis_W[16][3];
-  double qdot[16];
-  for (int r = 0; r < r_; ++r) {
-    const RotorMount& rotor = d_.rotors[r];
-    const rgp::RotorParams& p = rotor.params;
-    double* a = axis_W[r];
-    Rotate(R, rotor.axis_B, a);
-    double r_o[3], w_x_r[3];
-    Rotate(R, rotor.p_B_origin, r_o);
-    Cross(w, r_o, w_x_r);
-    double air[3];
-    for (int c = 0; c < 3; ++c) air[c] = s.v_W[c] + w_x_r[c] - wind_v[c];
-    const double omega = omega_rotor_[r * n + i];
-    // eq. 1: F_T = omega^2 C_T e_z;  eq. 5: v_perp = v - (v . e_z) e_z;  eq. 2: F_D = -omega C_D v_perp
-    const double thrust = omega * omega * p.motor_constant;
-    const double v_par = air[0] * a[0] + air[1] * a[1] + air[2] * a[2];
-    double f[3], v_perp[3];
-    for (int c = 0; c < 3; ++c) {
-      v_perp[c] = air[c] - v_par * a[c];
-      f[c] = thrust * a[c] - omega * p.rotor_drag_coefficient * v_perp[c];
-    }
-    double r_c[3], torque[3];
-    if (rotor_cog_on_origin_[r]) {
-      std::copy(r_o, r_o + 3, r_c);
-    } else {
-      Rotate(R, rotor.p_B_cog, r_c);
-    }
-    Cross(r_c, f, torque);
-    // eq. 4: M_D = -epsilon C_M F_T;  eq. 3: M_R = omega C_R v_perp
-    const double reaction = -p.turning_direction * p.moment_constant * thrust;
-    for (int c = 0; c < 3; ++c) {
-      F[c] += f[c];
-      T[c] += torque[c] + reaction * a[c] + omega * p.rolling_moment_coefficient * v_perp[c];
-    }
-    const double u = std::clamp(motor_command_[r * n + i], 0.0, p.max_rot_velocity);
-    const double y = rgp::FirstOrderFilter::Step(omega, u, a_up_[r], a_down_[r]);
-    omega_rotor_[r * n + i] = y;
-    qdot[r] = p.turning_direction * y / rotor.slowdown;  // the kinematic joint's rate
-  }
-  if (d_.wind && !d_.wind->before_motors) wind_update();
-  for (int c = 0; c < 3; ++c) wind_velocity_W_[c * n + i] = wind_v[c];
-
-  // The rotors' spin moments (kinematic joints): M = -(omega_B x h) - J_a qddot a, h = J_a qdot a
-  const double inv_dt = 1.0 / dt_;
-  for (int r = 0; r < r_; ++r) {
-    const double J = d_.rotors[r].spin_inertia_kg_m2;
-    if (J > 0.0) {
-      const double* a = axis_W[r];
-      const double h[3] = {a[0] * (J * qdot[r]), a[1] * (J * qdot[r]), a[2] * (J * qdot[r])};
-      const double qddot = (qdot[r] - qdot_applied_[r * n + i]) * inv_dt;
-      double w_x_h[3];
-      Cross(w, h, w_x_h);
-      for (int c = 0; c < 3; ++c) T[c] += -w_x_h[c] - a[c] * (J * qddot);
-    }
-    qdot_applied_[r * n + i] = qdot[r];
-  }
-
-  // Ground contact: a spring and damper at each corner below the plane z = 0, Coulomb-limited friction.
-  uint8_t touching = 0;
-  const bool near_ground = s.p_W[2] <= contact_reach_m_;
-  for (const auto& corner_B : d_.contact_points_B) {
-    if (!near_ground) break;
-    double r_k[3];
-    Rotate(R, corner_B, r_k);
-    const double depth = -(s.p_W[2] + r_k[2]);
-    if (depth <= 0.0) continue;
-    double w_x_r[3];
-    Cross(w, r_k, w_x_r);
-    const double v_k[3] = {s.v_W[0] + w_x_r[0], s.v_W[1] + w_x_r[1], s.v_W[2] + w_x_r[2]};
-    const double normal = contact_k_ * depth - contact_c_ * v_k[2];
-    if (normal <= 0.0) continue;
-    touching = 1;
-    double f[3] = {-contact_c_ * v_k[0], -contact_c_ * v_k[1], normal};
-    const double tangential = std::hypot(f[0], f[1]);
-    if (tangential > normal) {  // friction coefficient 1
-      f[0] *= normal / tangential;
-      f[1] *= normal / tangential;
-    }
-    double torque[3];
-    Cross(r_k, f, torque);
-    for (int c = 0; c < 3; ++c) {
-      F[c] += f[c];
-      T[c] += torque[c];
-    }
-  }
-  in_contact_[i] = touching;
-
-  // gravity, added by the solver after the plugins' forces
-  for (int c = 0; c < 3; ++c)
-    if (d_.gravity_W[c] != 0.0) F[c] += d_.mass_kg * d_.gravity_W[c];
-
-  const double v_before[3] = {s.v_W[0], s.v_W[1], s.v_W[2]};
-  const double w_before[3] = {s.omega_W[0], s.omega_W[1], s.omega_W[2]};
-  double R_before[9];
-  std::copy(s.R_WB, s.R_WB + 9, R_before);
-  const FreeBodyInertia body{inv_mass_,
-                             {I_B_[0], I_B_[1], I_B_[2], I_B_[3], I_B_[4], I_B_[5], I_B_[6], I_B_[7], I_B_[8]},
-                             {inv_I_B_[0], inv_I_B_[1], inv_I_B_[2], inv_I_B_[3], inv_I_B_[4], inv_I_B_[5], inv_I_B_[6],
-                              inv_I_B_[7], inv_I_B_[8]}};
-  StepFreeBody(dt_, body, F, T, s);
-  for (int c = 0; c < 3; ++c) {
-    p_W_[c * n + i] = s.p_W[c];
-    v_W_[c * n + i] = s.v_W[c];
-    omega_W_[c * n + i] = s.omega_W[c];
-  }
-  for (int c = 0; c < 4; ++c) q_WB_[c * n + i] = s.q_WB[c];
-  for (int c = 0; c < 9; ++c) R_WB_[c * n + i] = s.R_WB[c];
-  ++steps_[i];
-  Observe(i, v_before, w_before, R_before);
-}
-
 void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_before_W[3], const double R_before[9]) {
-  const size_t n = n_;
+  const size_t n = n_pad_;
   double p[3], v[3], w[3], R[9];
   for (int c = 0; c < 3; ++c) {
     p[c] = p_W_[c * n + i];
@@ -607,11 +574,7 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
     w[c] = omega_W_[c * n + i];
   }
   for (int c = 0; c < 9; ++c) R[c] = R_WB_[c * n + i];
-  const Eigen::Quaterniond q_WB(q_WB_[0 * n + i], q_WB_[1 * n + i], q_WB_[2 * n + i], q_WB_[3 * n + i]);
-  for (int r = 0; r < r_; ++r)
-    rotor_speed_out_[i * r_ + r] = d_.rotors[r].params.turning_direction * omega_rotor_[r * n + i];
   Sensors& sensors = *sensors_[i];
-  const double t_s = SimTimeS(steps_[i], dt_ns_);
 
   // the IMU plugin: specific force from the velocity change of its point over the step
   if (d_.imu && options_.imu) {
@@ -637,6 +600,8 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
   const OdometryDescription& od = *d_.odometry;
   const uint64_t step = sensors.odometry_step++;
   if (step % od.divisor == 0) {
+    const Eigen::Quaterniond q_WB(q_WB_[0 * n + i], q_WB_[1 * n + i], q_WB_[2 * n + i], q_WB_[3 * n + i]);
+    const double t_s = SimTimeS(steps_[i], dt_ns_);
     rgp::OdometryMeasurement m;
     double r_s[3], wxr[3], v_s[3], v_S[3], w_S[3];
     Rotate(R, od.mount.p_B, r_s);
@@ -668,9 +633,17 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
   }
 }
 
+double* FlightBatch::RotorSpeeds() {
+  const size_t n = n_pad_;
+  for (int i = 0; i < n_; ++i)
+    for (int r = 0; r < r_; ++r)
+      rotor_speed_out_[i * r_ + r] = d_.rotors[r].params.turning_direction * omega_rotor_[r * n + i];
+  return rotor_speed_out_.data();
+}
+
 double* FlightBatch::Truth() {
-  const size_t n = n_;
-  for (size_t i = 0; i < n; ++i) {
+  const size_t n = n_pad_;
+  for (size_t i = 0; i < static_cast<size_t>(n_); ++i) {
     double R[9], r_cog[3], w[3], wxr[3], w_B[3];
     for (int c = 0; c < 9; ++c) R[c] = R_WB_[c * n + i];
     for (int c = 0; c < 3; ++c) w[c] = omega_W_[c * n + i];

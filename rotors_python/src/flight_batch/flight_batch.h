@@ -18,6 +18,7 @@
 
 #include "rotors_control/attitude_controllers.h"
 #include "rotors_control/lee_controller.h"
+#include "flight_kernel.h"
 #include "vehicle_description.h"
 
 namespace rotors_flight_batch {
@@ -86,7 +87,7 @@ class FlightBatch {
   /// Ground truth of the model frame (base_link), N x 13: position_W, orientation (x, y, z, w),
   /// velocity_W (3), angular_velocity_B (3); written by Truth().
   double* Truth();
-  double* RotorSpeeds() { return rotor_speed_out_.data(); }  ///< N x R signed [rad/s]
+  double* RotorSpeeds();  ///< N x R signed [rad/s], written at this call
   const uint64_t* Steps() const { return steps_.data(); }
   uint8_t* InContact() { return in_contact_.data(); }
   /// Bytes of per-vehicle state (structure of arrays, the shared arrays included; not the
@@ -101,14 +102,21 @@ class FlightBatch {
   class Pool;
   void CheckCommands() const;
   uint64_t SeedFor(uint64_t plugin_seed, int i) const;
+  static constexpr int kLanes = 4;  ///< vehicles stepped together by the kernel
+  void BuildKernelModel();
+  void ParkPaddingLanes();
   void StepRange(int begin, int end, long steps);
-  void StepVehicle(int i);
+  void StepGroup(int i0);
   void ApplyCommand(int i);
   void Observe(int i, const double v_before_W[3], const double omega_before_W[3], const double R_before[9]);
 
   VehicleDescription d_;
   FlightBatchOptions options_;
   int n_, r_, command_columns_, threads_;
+  size_t n_pad_ = 0;  ///< n_ rounded up to whole groups of lanes (the structure of arrays' stride)
+  KernelModel kernel_model_;
+  KernelArrays kernel_arrays_{};
+  StepFourLanes kernel_ = nullptr;
   double dt_;
   // constants
   double inv_mass_, I_B_[9], inv_I_B_[9];

@@ -141,8 +141,8 @@ class FlightBatch:
 
     @property
     def rotor_speeds(self) -> np.ndarray:
-        """Signed rotor speeds [rad/s] (count x rotors), as RotorS publishes on motor_speed."""
-        return self._b.rotor_speeds
+        """Signed rotor speeds [rad/s] (count x rotors), as RotorS publishes on motor_speed (a copy)."""
+        return self._b.rotor_speeds.copy()
 
     @property
     def in_contact(self) -> np.ndarray:

@@ -4,11 +4,14 @@
 // gyroscopic term of Lacoursiere (2006), ODE's default for every body, and ODE's first-order
 // quaternion update. The same operations in the same order, so that a body stepped here and one
 // stepped by the world agree to rounding (test_physics.cpp checks it against ODE itself).
-// Plain arrays of doubles: callers keep their state in whatever layout suits them (the batched
-// flight engine keeps it as structure of arrays).
+// Plain arrays of T: double, or a GCC vector of doubles that steps that many bodies at once, lane
+// by lane with the same operations (so a lane equals the scalar step bit for bit); callers keep their
+// state in whatever layout suits them (the batched flight engine keeps it as structure of arrays).
 #pragma once
 
 #include <cmath>
+#include <cstddef>
+#include <type_traits>
 
 namespace rotors_sim {
 namespace physics {
@@ -16,9 +19,11 @@ namespace physics {
 /// A free body's state: position of its CoG and linear velocity [m, m/s], orientation q_WB
 /// (w, x, y, z) with its rotation matrix R_WB (row-major, kept in step with q as ODE does) and the
 /// angular velocity in the world frame [rad/s] (ODE's avel).
-struct FreeBodyState {
-  double p_W[3], v_W[3], q_WB[4], R_WB[9], omega_W[3];
+template <class T>
+struct FreeBodyStateT {
+  T p_W[3], v_W[3], q_WB[4], R_WB[9], omega_W[3];
 };
+using FreeBodyState = FreeBodyStateT<double>;
 
 /// The body's constants: 1 / mass [1/kg], the inertia about the CoG and its inverse in the body
 /// frame (row-major) [kg m^2, 1/(kg m^2)].
@@ -27,22 +32,24 @@ struct FreeBodyInertia {
 };
 
 /// R_WB from q_WB (w, x, y, z), ODE's dRfromQ.
-inline void RotationFromQuaternion(const double q[4], double R[9]) {
-  const double qq1 = 2 * q[1] * q[1], qq2 = 2 * q[2] * q[2], qq3 = 2 * q[3] * q[3];
-  R[0] = 1 - qq2 - qq3;
-  R[1] = 2 * (q[1] * q[2] - q[0] * q[3]);
-  R[2] = 2 * (q[1] * q[3] + q[0] * q[2]);
-  R[3] = 2 * (q[1] * q[2] + q[0] * q[3]);
-  R[4] = 1 - qq1 - qq3;
-  R[5] = 2 * (q[2] * q[3] - q[0] * q[1]);
-  R[6] = 2 * (q[1] * q[3] - q[0] * q[2]);
-  R[7] = 2 * (q[2] * q[3] + q[0] * q[1]);
-  R[8] = 1 - qq1 - qq2;
+template <class T>
+inline void RotationFromQuaternion(const T q[4], T R[9]) {
+  const T qq1 = 2.0 * q[1] * q[1], qq2 = 2.0 * q[2] * q[2], qq3 = 2.0 * q[3] * q[3];
+  R[0] = 1.0 - qq2 - qq3;
+  R[1] = 2.0 * (q[1] * q[2] - q[0] * q[3]);
+  R[2] = 2.0 * (q[1] * q[3] + q[0] * q[2]);
+  R[3] = 2.0 * (q[1] * q[2] + q[0] * q[3]);
+  R[4] = 1.0 - qq1 - qq3;
+  R[5] = 2.0 * (q[2] * q[3] - q[0] * q[1]);
+  R[6] = 2.0 * (q[1] * q[3] - q[0] * q[2]);
+  R[7] = 2.0 * (q[2] * q[3] + q[0] * q[1]);
+  R[8] = 1.0 - qq1 - qq2;
 }
 
 /// A_W = R A_B R^T for a body-frame tensor A_B, in ODE's order (dMultiply2_333, then dMultiply0_333).
-inline void TensorToWorld(const double R[9], const double A_B[9], double A_W[9]) {
-  double tmp[9];  // tmp = A_B R^T
+template <class T>
+inline void TensorToWorld(const T R[9], const double A_B[9], T A_W[9]) {
+  T tmp[9];  // tmp = A_B R^T
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       tmp[i * 3 + j] = R[j * 3 + 0] * A_B[i * 3 + 0] + R[j * 3 + 1] * A_B[i * 3 + 1] + R[j * 3 + 2] * A_B[i * 3 + 2];
@@ -51,64 +58,79 @@ inline void TensorToWorld(const double R[9], const double A_B[9], double A_W[9])
       A_W[i * 3 + j] = tmp[0 * 3 + j] * R[i * 3 + 0] + tmp[1 * 3 + j] * R[i * 3 + 1] + tmp[2 * 3 + j] * R[i * 3 + 2];
 }
 
+inline bool AnyNonZero(double x) { return x != 0; }
+template <class T>
+inline bool AnyNonZero(const T&) {
+  return true;
+}
+
 /// Advances `s` by h under the force F_W (gravity included) and torque T_W about the CoG.
-inline void StepFreeBody(double h, const FreeBodyInertia& body, const double F_W[3], const double T_W_in[3],
-                         FreeBodyState& s) {
-  double T_W[3] = {T_W_in[0], T_W_in[1], T_W_in[2]};
-  double inv_I_W[9], I_W[9];
+template <class T>
+inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], const T T_W_in[3],
+                         FreeBodyStateT<T>& s) {
+  constexpr bool kScalar = std::is_same_v<T, double>;
+  T T_W[3] = {T_W_in[0], T_W_in[1], T_W_in[2]};
+  T inv_I_W[9], I_W[9];
   TensorToWorld(s.R_WB, body.inv_I_B, inv_I_W);
   TensorToWorld(s.R_WB, body.I_B, I_W);
-  const double* w = s.omega_W;
+  const T* w = s.omega_W;
 
   // Implicit gyroscopic moment: with L = I_W w and I~ = I_W - h [L]x,
   //   tau_gyro = (I_W I~^-1 - 1) L / h,  so that  w_next = I~^-1 I_W w + h I_W^-1 T_ext.
-  double L[3];
+  T L[3];
   for (int i = 0; i < 3; ++i) L[i] = I_W[i * 3 + 0] * w[0] + I_W[i * 3 + 1] * w[1] + I_W[i * 3 + 2] * w[2];
-  const double m0 = I_W[0], m1 = I_W[1] + h * L[2], m2 = I_W[2] - h * L[1];
-  const double m4 = I_W[3] - h * L[2], m5 = I_W[4], m6 = I_W[5] + h * L[0];
-  const double m8 = I_W[6] + h * L[1], m9 = I_W[7] - h * L[0], m10 = I_W[8];
+  const T m0 = I_W[0], m1 = I_W[1] + h * L[2], m2 = I_W[2] - h * L[1];
+  const T m4 = I_W[3] - h * L[2], m5 = I_W[4], m6 = I_W[5] + h * L[0];
+  const T m8 = I_W[6] + h * L[1], m9 = I_W[7] - h * L[0], m10 = I_W[8];
   // (ODE builds I~ as (-[L]x) h + I_W entry by entry; the diagonal's 0 h + I_W is I_W.)
   const double inv_h = 1.0 / h;
-  for (double& l : L) l *= inv_h;
-  const double det = m0 * (m5 * m10 - m9 * m6) - m1 * (m4 * m10 - m8 * m6) + m2 * (m4 * m9 - m8 * m5);
-  if (det != 0) {
-    const double d = 1.0 / det;
-    const double inv[9] = {(m5 * m10 - m6 * m9) * d, (m9 * m2 - m1 * m10) * d, (m1 * m6 - m5 * m2) * d,
+  for (T& l : L) l *= inv_h;
+  const T det = m0 * (m5 * m10 - m9 * m6) - m1 * (m4 * m10 - m8 * m6) + m2 * (m4 * m9 - m8 * m5);
+  // det(I_W - h [L]x) >= det(I_W) > 0 for an inertia (positive definite) and any L: ODE's test for
+  // 0 never fails for a body with mass, so the lanes skip it
+  if (!kScalar || AnyNonZero(det)) {
+    const T d = 1.0 / det;
+    const T inv[9] = {(m5 * m10 - m6 * m9) * d, (m9 * m2 - m1 * m10) * d, (m1 * m6 - m5 * m2) * d,
                            (m6 * m8 - m4 * m10) * d, (m0 * m10 - m8 * m2) * d, (m4 * m2 - m0 * m6) * d,
                            (m4 * m9 - m8 * m5) * d,  (m8 * m1 - m0 * m9) * d,  (m0 * m5 - m1 * m4) * d};
-    double M[9];
+    T M[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         M[i * 3 + j] =
             I_W[i * 3 + 0] * inv[0 * 3 + j] + I_W[i * 3 + 1] * inv[1 * 3 + j] + I_W[i * 3 + 2] * inv[2 * 3 + j];
-    M[0] -= 1;
-    M[4] -= 1;
-    M[8] -= 1;
+    M[0] -= 1.0;
+    M[4] -= 1.0;
+    M[8] -= 1.0;
     for (int i = 0; i < 3; ++i) T_W[i] = T_W[i] + (M[i * 3 + 0] * L[0] + M[i * 3 + 1] * L[1] + M[i * 3 + 2] * L[2]);
   }
 
   // v += h/m F;  w += I_W^-1 (h T)
   const double s_lin = h * body.inv_mass_kg;
   for (int i = 0; i < 3; ++i) s.v_W[i] = s.v_W[i] + s_lin * F_W[i];
-  const double a[3] = {T_W[0] * h, T_W[1] * h, T_W[2] * h};
-  double dw[3];
+  const T a[3] = {T_W[0] * h, T_W[1] * h, T_W[2] * h};
+  T dw[3];
   for (int i = 0; i < 3; ++i) dw[i] = inv_I_W[i * 3 + 0] * a[0] + inv_I_W[i * 3 + 1] * a[1] + inv_I_W[i * 3 + 2] * a[2];
   for (int i = 0; i < 3; ++i) s.omega_W[i] = s.omega_W[i] + dw[i];
 
   // p += h v (the new v);  q += h/2 (0, w) q (the new w, world frame), normalised;  R from q
   for (int i = 0; i < 3; ++i) s.p_W[i] += h * s.v_W[i];
-  double* q = s.q_WB;
-  const double dq[4] = {
+  T* q = s.q_WB;
+  const T dq[4] = {
       0.5 * (-w[0] * q[1] - w[1] * q[2] - w[2] * q[3]), 0.5 * (w[0] * q[0] + w[1] * q[3] - w[2] * q[2]),
       0.5 * (-w[0] * q[3] + w[1] * q[0] + w[2] * q[1]), 0.5 * (w[0] * q[2] - w[1] * q[1] + w[2] * q[0])};
   for (int j = 0; j < 4; ++j) q[j] += h * dq[j];
-  double l = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-  if (l > 0) {
-    l = 1.0 / std::sqrt(l);
+  T l = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  if constexpr (kScalar) {
+    if (l > 0) {
+      l = 1.0 / std::sqrt(l);
+      for (int j = 0; j < 4; ++j) q[j] *= l;
+    } else {
+      q[0] = 1;
+      q[1] = q[2] = q[3] = 0;
+    }
+  } else {  // a unit quaternion advanced by a step: never 0
+    for (size_t k = 0; k < sizeof(T) / sizeof(double); ++k) l[k] = 1.0 / std::sqrt(l[k]);
     for (int j = 0; j < 4; ++j) q[j] *= l;
-  } else {
-    q[0] = 1;
-    q[1] = q[2] = q[3] = 0;
   }
   RotationFromQuaternion(q, s.R_WB);
 }

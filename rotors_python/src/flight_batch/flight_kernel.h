@@ -1,0 +1,262 @@
+// The physics of one step of the batched flight engine for L vehicles at once: V is a GCC vector of
+// L doubles (one lane per vehicle, loaded straight from the structure of arrays), or double for one.
+// The same operations in the same order as the full world's plugins and solver (flight_batch.h),
+// lane by lane, with no fused multiply-add: every lane equals the scalar step bit for bit. What is
+// not the same for every vehicle (controllers, wind draws, sensors) runs in scalar code around it.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
+#include "rotors_core/physics/free_body_step.h"
+
+namespace rotors_flight_batch {
+
+constexpr int kMaxRotors = 16;
+constexpr int kMaxContacts = 8;
+
+/// The model's constants, flattened for the kernel.
+struct KernelModel {
+  struct Rotor {
+    double p_origin_B[3], p_cog_B[3], axis_B[3];
+    bool cog_on_origin;
+    double motor_constant, rotor_drag_coefficient, rolling_moment_coefficient;
+    double reaction_factor;  ///< -epsilon C_M
+    double max_rot_velocity, a_up, a_down;
+    double spin_inertia, direction, slowdown;  ///< J_a; epsilon; the joint turns epsilon omega / slowdown
+  };
+  int rotors = 0, contacts = 0;
+  Rotor rotor[kMaxRotors];
+  double corner_B[kMaxContacts][3];
+  double contact_k = 0, contact_c = 0, contact_reach_m = 0;
+  double dt = 0, inv_dt = 0, mass = 0, gravity_W[3] = {0, 0, 0};
+  rotors_sim::physics::FreeBodyInertia body;
+  bool wind_before_motors = false;
+};
+
+/// The batch's arrays, component k of vehicle i at [k * n + i] (n a multiple of the lane count).
+struct KernelArrays {
+  size_t n;
+  double *p_W, *v_W, *q_WB, *R_WB, *omega_W;
+  double *omega_rotor, *qdot_applied, *motor_command;
+  double* wind_velocity_W;  ///< what the motors see (the wind plugin's last sample)
+};
+
+/// This step's wind of each lane (the scalar pass drew it): force and moment about the CoG, and the
+/// new wind speed, [3][L] each.
+struct KernelWind {
+  const double *force_W, *moment_W, *velocity_W;
+};
+
+/// The state before the step, [3][L] / [9][L], for the IMU.
+struct KernelBefore {
+  double *v_W, *omega_W, *R_WB;
+};
+
+namespace kernel_detail {
+template <class V>
+inline V Load(const double* p) {
+  V v;
+  std::memcpy(&v, p, sizeof(V));
+  return v;
+}
+template <class V>
+inline void Store(double* p, const V& v) {
+  std::memcpy(p, &v, sizeof(V));
+}
+template <class V>
+inline V Splat(double x) {
+  V v = {};
+  return v + x;
+}
+template <class V>
+inline void Cross(const V a[3], const V b[3], V out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+/// out = R v for a constant body-frame vector
+template <class V>
+inline void Rotate(const V R[9], const double v[3], V out[3]) {
+  for (int k = 0; k < 3; ++k) out[k] = R[k * 3 + 0] * v[0] + R[k * 3 + 1] * v[1] + R[k * 3 + 2] * v[2];
+}
+inline bool Any(bool m) { return m; }
+template <class M>
+inline bool Any(const M& m) {
+  for (size_t k = 0; k < sizeof(M) / sizeof(m[0]); ++k)
+    if (m[k]) return true;
+  return false;
+}
+inline bool Lane(bool m, size_t) { return m; }
+inline bool Lane(int m, size_t) { return m != 0; }
+template <class M>
+inline bool Lane(const M& m, size_t l) {
+  return m[l] != 0;
+}
+inline double Hypot(double x, double y) { return std::hypot(x, y); }
+template <class V>
+inline V Hypot(const V& x, const V& y) {
+  V r;
+  for (size_t k = 0; k < sizeof(V) / sizeof(double); ++k) r[k] = std::hypot(x[k], y[k]);
+  return r;
+}
+}  // namespace kernel_detail
+
+/// One physics step of lanes i0 .. i0 + L - 1; returns a contact mask bit per lane. The wind and
+/// state-before buffers hold rows of Stride lanes (this call's first).
+template <class V, size_t Stride>
+inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                                 const KernelBefore& before) {
+  using namespace kernel_detail;
+  constexpr size_t L = sizeof(V) / sizeof(double);
+  static_assert(Stride >= L, "a row holds at least the call's lanes");
+  const size_t n = a.n;
+  rotors_sim::physics::FreeBodyStateT<V> s;
+  for (int c = 0; c < 3; ++c) {
+    s.p_W[c] = Load<V>(&a.p_W[c * n + i0]);
+    s.v_W[c] = Load<V>(&a.v_W[c * n + i0]);
+    s.omega_W[c] = Load<V>(&a.omega_W[c * n + i0]);
+  }
+  for (int c = 0; c < 4; ++c) s.q_WB[c] = Load<V>(&a.q_WB[c * n + i0]);
+  for (int c = 0; c < 9; ++c) s.R_WB[c] = Load<V>(&a.R_WB[c * n + i0]);
+  const V* R = s.R_WB;
+  const V* w = s.omega_W;
+  V F[3] = {}, T[3] = {};
+  V wind_v[3];
+  for (int c = 0; c < 3; ++c)
+    wind_v[c] = m.wind_before_motors ? Load<V>(&wind.velocity_W[c * Stride]) : Load<V>(&a.wind_velocity_W[c * n + i0]);
+  auto add_wind = [&] {
+    for (int c = 0; c < 3; ++c) {
+      F[c] += Load<V>(&wind.force_W[c * Stride]);
+      T[c] += Load<V>(&wind.moment_W[c * Stride]);
+    }
+  };
+  if (m.wind_before_motors) add_wind();
+
+  // the motor plugins: eqs. 1-5 from the speed of the last step, then the speed dynamics
+  V axis_W[kMaxRotors][3], qdot[kMaxRotors];
+  for (int r = 0; r < m.rotors; ++r) {
+    const KernelModel::Rotor& p = m.rotor[r];
+    V* ax = axis_W[r];
+    Rotate(R, p.axis_B, ax);
+    V r_o[3], w_x_r[3];
+    Rotate(R, p.p_origin_B, r_o);
+    Cross(w, r_o, w_x_r);
+    V air[3];
+    for (int c = 0; c < 3; ++c) air[c] = s.v_W[c] + w_x_r[c] - wind_v[c];
+    const V omega = Load<V>(&a.omega_rotor[r * n + i0]);
+    const V thrust = omega * omega * p.motor_constant;
+    const V v_par = air[0] * ax[0] + air[1] * ax[1] + air[2] * ax[2];
+    V f[3], v_perp[3];
+    for (int c = 0; c < 3; ++c) {
+      v_perp[c] = air[c] - v_par * ax[c];
+      f[c] = thrust * ax[c] - omega * p.rotor_drag_coefficient * v_perp[c];
+    }
+    V r_c[3], torque[3];
+    if (p.cog_on_origin) {
+      for (int c = 0; c < 3; ++c) r_c[c] = r_o[c];
+    } else {
+      Rotate(R, p.p_cog_B, r_c);
+    }
+    Cross(r_c, f, torque);
+    const V reaction = p.reaction_factor * thrust;
+    for (int c = 0; c < 3; ++c) {
+      F[c] += f[c];
+      T[c] += torque[c] + reaction * ax[c] + omega * p.rolling_moment_coefficient * v_perp[c];
+    }
+    // u = clamp(command, 0, max);  y = a y + (1 - a) u, a = exp(-dt / tau_up or tau_down)
+    const V cmd = Load<V>(&a.motor_command[r * n + i0]);
+    const V zero = {}, max = Splat<V>(p.max_rot_velocity);
+    const V u = cmd < zero ? zero : (max < cmd ? max : cmd);
+    const V k = u > omega ? Splat<V>(p.a_up) : Splat<V>(p.a_down);
+    const V y = k * omega + (1.0 - k) * u;
+    Store(&a.omega_rotor[r * n + i0], y);
+    qdot[r] = p.direction * y / p.slowdown;
+  }
+  if (!m.wind_before_motors) add_wind();
+  for (int c = 0; c < 3; ++c) Store(&a.wind_velocity_W[c * n + i0], Load<V>(&wind.velocity_W[c * Stride]));
+
+  // the rotors' spin moments (kinematic joints): M = -(omega x h) - J_a qddot a,  h = J_a qdot a
+  for (int r = 0; r < m.rotors; ++r) {
+    const double J = m.rotor[r].spin_inertia;
+    const V qdot_before = Load<V>(&a.qdot_applied[r * n + i0]);
+    if (J > 0.0) {
+      const V* ax = axis_W[r];
+      const V h[3] = {ax[0] * (J * qdot[r]), ax[1] * (J * qdot[r]), ax[2] * (J * qdot[r])};
+      const V qddot = (qdot[r] - qdot_before) * m.inv_dt;
+      V w_x_h[3];
+      Cross(w, h, w_x_h);
+      for (int c = 0; c < 3; ++c) T[c] += -w_x_h[c] - ax[c] * (J * qddot);
+    }
+    Store(&a.qdot_applied[r * n + i0], qdot[r]);
+  }
+
+  // ground contact: a spring and damper at each corner below z = 0, friction limited to the normal force
+  unsigned touching = 0;
+  if (Any(s.p_W[2] <= Splat<V>(m.contact_reach_m))) {
+    const V zero = {};
+    for (int k = 0; k < m.contacts; ++k) {
+      V r_k[3];
+      Rotate(R, m.corner_B[k], r_k);
+      const V depth = -(s.p_W[2] + r_k[2]);
+      if (!Any(depth > zero)) continue;
+      V w_x_r[3];
+      Cross(w, r_k, w_x_r);
+      const V v_k[3] = {s.v_W[0] + w_x_r[0], s.v_W[1] + w_x_r[1], s.v_W[2] + w_x_r[2]};
+      const V normal = m.contact_k * depth - m.contact_c * v_k[2];
+      const auto on = (depth > zero) & (normal > zero);
+      V f[3] = {-m.contact_c * v_k[0], -m.contact_c * v_k[1], normal};
+      const V tangential = Hypot(f[0], f[1]);
+      const auto slip = tangential > normal;
+      for (int c = 0; c < 2; ++c) f[c] = slip ? f[c] * (normal / tangential) : f[c];
+      for (int c = 0; c < 3; ++c) f[c] = on ? f[c] : zero;
+      V torque[3];
+      Cross(r_k, f, torque);
+      for (int c = 0; c < 3; ++c) {
+        F[c] += f[c];
+        T[c] += torque[c];
+      }
+      for (size_t l = 0; l < L; ++l)
+        if (Lane(on, l)) touching |= 1u << l;
+    }
+  }
+
+  // gravity, added by the solver after the plugins' forces
+  for (int c = 0; c < 3; ++c)
+    if (m.gravity_W[c] != 0.0) F[c] += m.mass * m.gravity_W[c];
+
+  for (int c = 0; c < 3; ++c) {
+    Store(&before.v_W[c * Stride], s.v_W[c]);
+    Store(&before.omega_W[c * Stride], s.omega_W[c]);
+  }
+  for (int c = 0; c < 9; ++c) Store(&before.R_WB[c * Stride], s.R_WB[c]);
+  rotors_sim::physics::StepFreeBody(m.dt, m.body, F, T, s);
+  for (int c = 0; c < 3; ++c) {
+    Store(&a.p_W[c * n + i0], s.p_W[c]);
+    Store(&a.v_W[c * n + i0], s.v_W[c]);
+    Store(&a.omega_W[c * n + i0], s.omega_W[c]);
+  }
+  for (int c = 0; c < 4; ++c) Store(&a.q_WB[c * n + i0], s.q_WB[c]);
+  for (int c = 0; c < 9; ++c) Store(&a.R_WB[c * n + i0], s.R_WB[c]);
+  return touching;
+}
+
+template <class V>
+inline unsigned StepLanes(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                          const KernelBefore& before) {
+  return StepLanesStrided<V, sizeof(V) / sizeof(double)>(m, a, i0, wind, before);
+}
+
+/// One vehicle (the last group's vehicles when there are fewer than four) with rows of 4 lanes.
+unsigned StepOneOfFour(const KernelModel& m, const KernelArrays& a, size_t i, size_t lane, const KernelWind& wind,
+                       const KernelBefore& before);
+
+/// StepLanes over 4 vehicles, as compiled for this CPU: AVX2 lanes where it has them (its own
+/// translation unit), else two SSE2 pairs.
+using StepFourLanes = unsigned (*)(const KernelModel&, const KernelArrays&, size_t, const KernelWind&,
+                                   const KernelBefore&);
+StepFourLanes FourLaneKernel();
+
+}  // namespace rotors_flight_batch

@@ -1,0 +1,14 @@
+// The kernel as four AVX2 lanes (compiled with -mavx2 -mfma -ffp-contract=off: no fused multiply-add,
+// so that each lane equals the scalar step). Called only where the CPU has AVX2 (FourLaneKernel).
+#include "flight_kernel.h"
+
+namespace rotors_flight_batch {
+
+typedef double Avx2Lanes __attribute__((vector_size(32)));
+
+unsigned StepFourAvx2(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                      const KernelBefore& before) {
+  return StepLanes<Avx2Lanes>(m, a, i0, wind, before);
+}
+
+}  // namespace rotors_flight_batch
