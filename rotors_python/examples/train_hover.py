@@ -4,7 +4,7 @@ in one FlightBatchEnv (hover task, attitude actions: roll, pitch, yaw rate, thru
 rotors_control's roll-pitch-yawrate-thrust controller), and plots the mean episode return against
 the environment steps. `make train-example` installs PyTorch (the CPU build) and Stable-Baselines3
 into build/rl-site and runs it.
-    python train_hover.py [--steps 8000000] [--plot hover_training.png]"""
+    python train_hover.py [--steps 8000000] [--plot docs/hover_training.png]"""
 import argparse
 import json
 import time

@@ -10,6 +10,9 @@
 
 namespace rotors_control {
 
+/// One value per rotor, kept on the stack (no allocation per control step) up to 16 rotors.
+using RotorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 16, 1>;
+
 /// A (4 x N): [tau_x; tau_y; tau_z; T] = A * omega^2, with columns
 /// (sin(theta) l k_F, -cos(theta) l k_F, -d k_F k_M, k_F).
 Eigen::Matrix4Xd AllocationMatrix(const MultirotorParameters& vehicle);
@@ -30,12 +33,12 @@ class MotorMixer {
   const Eigen::Matrix4Xd& Allocation() const { return A_; }
   /// The yaw input nearest to `yaw` with without_yaw + per_yaw * yaw >= 0 everywhere (`yaw` itself
   /// when no value achieves that).
-  static double FeasibleYaw(const Eigen::VectorXd& without_yaw, const Eigen::VectorXd& per_yaw, double yaw);
+  static double FeasibleYaw(const RotorVector& without_yaw, const RotorVector& per_yaw, double yaw);
 
  private:
   Eigen::Matrix4Xd A_;
-  Eigen::MatrixX4d A_pinv_J_;          ///< A^T (A A^T)^-1 blockdiag(J, 1)
-  Eigen::VectorXd omega_max_squared_;  ///< empty when any rotor has no max_rot_velocity
+  Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::ColMajor, 16, 4> A_pinv_J_;  ///< A^T (A A^T)^-1 blockdiag(J, 1)
+  RotorVector omega_max_squared_;  ///< empty when any rotor has no max_rot_velocity
 };
 
 }  // namespace rotors_control

@@ -23,6 +23,9 @@ Eigen::Matrix4Xd AllocationMatrix(const MultirotorParameters& vehicle) {
 }
 
 MotorMixer::MotorMixer(const MultirotorParameters& vehicle) : A_(AllocationMatrix(vehicle)) {
+  if (vehicle.rotors.size() > static_cast<size_t>(RotorVector::MaxRowsAtCompileTime))
+    throw std::invalid_argument("rotor_configuration has " + std::to_string(vehicle.rotors.size()) +
+                                " rotors; the mixer takes at most 16");
   Eigen::FullPivLU<Eigen::MatrixXd> lu(A_);
   lu.setThreshold(1e-9);
   if (lu.rank() < 4) {
@@ -43,15 +46,15 @@ MotorMixer::MotorMixer(const MultirotorParameters& vehicle) : A_(AllocationMatri
 double MotorMixer::FeasibleThrust(const Eigen::Vector3d& alpha_B, double thrust_N) const {
   if (omega_max_squared_.size() == 0) return thrust_N;
   // omega^2 = M_alpha alpha + c T, with c the thrust column of A^T (A A^T)^-1 blockdiag(J, 1)
-  const Eigen::VectorXd torque_part = A_pinv_J_.leftCols<3>() * alpha_B;
-  const Eigen::VectorXd c = A_pinv_J_.col(3);
+  const RotorVector torque_part = A_pinv_J_.leftCols<3>() * alpha_B;
+  const RotorVector c = A_pinv_J_.col(3);
   double feasible = thrust_N;
   for (Eigen::Index i = 0; i < c.size(); ++i)
     if (c[i] > 0.0) feasible = std::min(feasible, (omega_max_squared_[i] - torque_part[i]) / c[i]);
   return std::max(feasible, 0.0);
 }
 
-double MotorMixer::FeasibleYaw(const Eigen::VectorXd& without_yaw, const Eigen::VectorXd& per_yaw, double yaw) {
+double MotorMixer::FeasibleYaw(const RotorVector& without_yaw, const RotorVector& per_yaw, double yaw) {
   // omega_i^2 = without_yaw_i + per_yaw_i y >= 0 for every i bounds y to [lo, hi]
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < per_yaw.size(); ++i) {
@@ -63,16 +66,16 @@ double MotorMixer::FeasibleYaw(const Eigen::VectorXd& without_yaw, const Eigen::
 
 Eigen::VectorXd MotorMixer::RotorSpeeds(const Eigen::Vector3d& alpha_B, double thrust_N) const {
   // omega^2 = A^T (A A^T)^-1 blockdiag(J, 1) [alpha; T] = without_yaw + per_yaw alpha_z
-  const Eigen::VectorXd per_yaw = A_pinv_J_.col(2);
+  const RotorVector per_yaw = A_pinv_J_.col(2);
   const auto without_yaw = [&](double thrust) {
-    return Eigen::VectorXd(A_pinv_J_.leftCols<2>() * alpha_B.head<2>() + A_pinv_J_.col(3) * thrust);
+    return RotorVector(A_pinv_J_.leftCols<2>() * alpha_B.head<2>() + A_pinv_J_.col(3) * thrust);
   };
   // A rotor cannot push downwards: when one would have to, the yaw acceleration gives way (moves to
   // the nearest feasible value), so roll, pitch and thrust stay exact. A hexacopter with a failed
   // rotor gives up yaw this way and keeps its position. The thrust limit then uses that yaw.
   double alpha_z = FeasibleYaw(without_yaw(thrust_N), per_yaw, alpha_B.z());
   const double thrust = FeasibleThrust({alpha_B.x(), alpha_B.y(), alpha_z}, thrust_N);
-  const Eigen::VectorXd base = without_yaw(thrust);
+  const RotorVector base = without_yaw(thrust);
   alpha_z = FeasibleYaw(base, per_yaw, alpha_z);
   return (base + per_yaw * alpha_z).cwiseMax(0.0).cwiseSqrt();
 }

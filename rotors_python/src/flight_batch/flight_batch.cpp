@@ -567,6 +567,12 @@ void FlightBatch::ApplyCommand(int i) {
 
 void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_before_W[3], const double R_before[9]) {
   const size_t n = n_pad_;
+  Sensors& sensors = *sensors_[i];
+  const OdometryDescription& od = *d_.odometry;
+  const uint64_t step = sensors.odometry_step++;
+  const bool odometry_due = step % od.divisor == 0;
+  const bool imu = d_.imu && options_.imu;
+  if (!imu && !odometry_due && sensors.queue.empty()) return;  // most steps: nothing to measure
   double p[3], v[3], w[3], R[9];
   for (int c = 0; c < 3; ++c) {
     p[c] = p_W_[c * n + i];
@@ -574,10 +580,9 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
     w[c] = omega_W_[c * n + i];
   }
   for (int c = 0; c < 9; ++c) R[c] = R_WB_[c * n + i];
-  Sensors& sensors = *sensors_[i];
 
   // the IMU plugin: specific force from the velocity change of its point over the step
-  if (d_.imu && options_.imu) {
+  if (imu) {
     const Mount& m = d_.imu->mount;
     double r_now[3], r_then[3], wxr_now[3], wxr_then[3];
     Rotate(R, m.p_B, r_now);
@@ -597,9 +602,7 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
   }
 
   // the odometry plugin: every divisor-th step, published delay steps later
-  const OdometryDescription& od = *d_.odometry;
-  const uint64_t step = sensors.odometry_step++;
-  if (step % od.divisor == 0) {
+  if (odometry_due) {
     const Eigen::Quaterniond q_WB(q_WB_[0 * n + i], q_WB_[1 * n + i], q_WB_[2 * n + i], q_WB_[3 * n + i]);
     const double t_s = SimTimeS(steps_[i], dt_ns_);
     rgp::OdometryMeasurement m;
