@@ -204,3 +204,45 @@ def test_a_disturbance_sweep_may_set_every_option_of_the_evaluation_scripts(tmp_
     (tmp_path / "bad.yaml").write_text(text.replace("disturbance_time: 8", "disturbance_tme: 8"))
     with pytest.raises(Exception, match="eval_options 'disturbance_tme' is unknown"):
         sweep_spec.load(tmp_path / "bad.yaml")
+
+
+BATCH = SMALL.replace("inject_failure: {flight: 3, at_sim_s: 3}\n", "engine: batch\n").replace(
+    "repetitions: 2", "repetitions: 3")
+
+
+def test_batch_engine_sweep_scores_the_physics_and_resumes(tmp_path: Path):
+    """The same sweep on the batched flight engine (engine: batch): 12 flights in one call per
+    vehicle, each scored by the same evaluation; the offsets are F / k_p again."""
+    (tmp_path / "batch.yaml").write_text(BATCH)
+    out = tmp_path / "out"
+    res = sweep(str(tmp_path / "batch.yaml"), "-o", str(out), "--workers", "2")
+    assert res.returncode == 0, res.stdout + res.stderr
+    table = rows(out)
+    assert len(table) == 12 and {r["status"] for r in table} == {"ok"} and {r["engine"] for r in table} == {"batch"}
+    for r in table:
+        k_p, force = float(r["controller.position_gain.x"]), float(r["model.wind_force_mean"])
+        expected = math.hypot(force / k_p, Z_OFFSET_M)
+        rms = float(r["hovering_position_rms_m"])
+        print(f"batch: k_p {k_p:g}, F {force:g} N, seed {r['seed']}: position RMS {rms:.4f} m, expected {expected:.4f} m")
+        assert abs(rms - expected) < 0.05 * expected + 0.002
+    res = sweep(str(tmp_path / "batch.yaml"), "-o", str(out))
+    assert res.returncode == 0 and "12 flights, 12 finished before, 0 to fly" in res.stderr, res.stderr
+
+
+@pytest.mark.parametrize("edit, says", [
+    ("evaluation: [hovering, estimator]", "'estimator' needs the world"),
+    ("launch: rotors_gazebo/mav_hovering_example_msf.launch", "needs the world"),
+    ("fixed: {launch.enable_lidar: vlp16, ", "'launch.enable_lidar' needs the world"),
+    ("engine: batches", "engine 'batches' is unknown"),
+])
+def test_batch_engine_refuses_what_needs_the_world(tmp_path: Path, edit: str, says: str):
+    text = BATCH
+    key = edit.split(":")[0]
+    if key == "fixed":
+        text = text.replace("fixed: {", edit)
+    else:
+        text = "\n".join(edit if line.startswith(key + ":") else line for line in text.splitlines())
+    (tmp_path / "bad.yaml").write_text(text)
+    res = sweep(str(tmp_path / "bad.yaml"), "-o", str(tmp_path / "out"))
+    lines = res.stderr.strip().splitlines()
+    assert res.returncode == 2 and len(lines) == 1 and says in lines[0], res.stderr

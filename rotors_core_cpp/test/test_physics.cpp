@@ -360,7 +360,8 @@ TEST(Physics, FreeBodyStepIsOdesStepForABodyAlone) {
     // the step adds gravity after the applied forces, as ODE does
     const double F_g[3] = {F[0], F[1], F[2] + mass_kg * -9.8};
     physics::StepFreeBody(dt, inertia, F_g, T, s);
-    const Lanes F_l[3] = {splat(F_g[0]), splat(F_g[1]), splat(F_g[2])}, T_l[3] = {splat(T[0]), splat(T[1]), splat(T[2])};
+    const Lanes F_l[3] = {splat(F_g[0]), splat(F_g[1]), splat(F_g[2])},
+                T_l[3] = {splat(T[0]), splat(T[1]), splat(T[2])};
     physics::StepFreeBody(dt, inertia, F_l, T_l, lanes);
   }
   const dReal* p = dBodyGetPosition(body);

@@ -40,7 +40,8 @@ std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, c
                                        const std::map<std::string, double>& numbers,
                                        const std::vector<std::string>& others, const std::string& source, int threads,
                                        bool imu, bool noise, const std::vector<uint64_t>& seeds,
-                                       uint64_t description_seed, double contact_stiffness_scale) {
+                                       uint64_t description_seed, double contact_stiffness_scale,
+                                       const std::vector<std::map<std::string, double>>& numbers_each) {
   FlightBatchOptions o;
   o.count = count;
   o.threads = threads;
@@ -56,6 +57,12 @@ std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, c
     std::string why;
     if (o.mode == CommandMode::kLeePosition) {
       why = rotors_control::LoadLeeParameters(reader, &o.lee);
+      for (size_t i = 0; why.empty() && i < numbers_each.size(); ++i) {
+        rotors_params::MapParamReader each(numbers_each[i], std::set<std::string>(others.begin(), others.end()),
+                                           source + " (vehicle " + std::to_string(i) + ")");
+        o.lee_each.emplace_back();
+        why = rotors_control::LoadLeeParameters(each, &o.lee_each.back());
+      }
     } else {
       why = rotors_control::LoadAttitudeGains(reader, &o.attitude.attitude);
       if (why.empty()) why = rotors_control::LoadVehicleParameters(reader, &o.attitude.vehicle);
@@ -104,7 +111,8 @@ void BindFlightBatch(py::module_& m) {
       .def(py::init(&MakeBatch), py::arg("description"), py::arg("count"), py::arg("mode"), py::arg("numbers"),
            py::arg("others"), py::arg("source"), py::arg("threads") = 0, py::arg("imu") = true, py::arg("noise") = true,
            py::arg("seeds") = std::vector<uint64_t>(), py::arg("description_seed") = 0,
-           py::arg("contact_stiffness_scale") = 1.0)
+           py::arg("contact_stiffness_scale") = 1.0,
+           py::arg("numbers_each") = std::vector<std::map<std::string, double>>())
       .def(
           "step",
           [](FlightBatch& b, long n) {

@@ -216,11 +216,14 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   odometry_count_.assign(count, 0);
   controller_seen_.assign(count, 0);
   BuildKernelModel();
-  kernel_arrays_ = {n_pad_,          p_W_.data(),          v_W_.data(),           q_WB_.data(),
-                    R_WB_.data(),    omega_W_.data(),      omega_rotor_.data(),   qdot_applied_.data(),
-                    motor_command_.data(), wind_velocity_W_.data()};
+  kernel_arrays_ = {
+      n_pad_,          p_W_.data(),         v_W_.data(),          q_WB_.data(),          R_WB_.data(),
+      omega_W_.data(), omega_rotor_.data(), qdot_applied_.data(), motor_command_.data(), wind_velocity_W_.data()};
   kernel_ = FourLaneKernel();
 
+  if (!options_.lee_each.empty() && static_cast<int>(options_.lee_each.size()) != n_)
+    throw SimError("FlightBatch: " + std::to_string(options_.lee_each.size()) + " controller parameter sets for " +
+                   std::to_string(n_) + " vehicles; give one per vehicle or one for all");
   if (options_.mode != CommandMode::kRotorSpeeds && options_.mode != CommandMode::kNormalizedThrust) {
     const auto& vehicle = options_.mode == CommandMode::kLeePosition ? options_.lee.vehicle : options_.attitude.vehicle;
     if (static_cast<int>(vehicle.rotors.size()) != r_)
@@ -231,7 +234,8 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
       auto c = std::make_unique<Controller>();
       try {
         if (options_.mode == CommandMode::kLeePosition) {
-          c->lee = std::make_unique<rotors_control::LeeController>(options_.lee);
+          c->lee = std::make_unique<rotors_control::LeeController>(options_.lee_each.empty() ? options_.lee
+                                                                                             : options_.lee_each[i]);
         } else {
           c->attitude = std::make_unique<rotors_control::AttitudeLevelController>(options_.attitude);
         }
@@ -350,6 +354,9 @@ void FlightBatch::CheckCommands() const {
   const int cols = command_columns_;
   for (int i = 0; i < n_; ++i) {
     const double* c = &commands_[i * cols];
+    if (options_.mode == CommandMode::kLeePosition && std::isnan(c[0]) && std::isnan(c[1]) && std::isnan(c[2]) &&
+        std::isnan(c[3]))
+      continue;  // no set point yet
     for (int k = 0; k < cols; ++k) {
       std::string why;
       if (!std::isfinite(c[k])) {
@@ -479,8 +486,7 @@ void FlightBatch::StepGroup(int i0) {
       double r_link[3];
       Rotate(R, wd.p_B_link, r_link);
       Eigen::Vector3d v_field;
-      if (wd.field->Velocity({p[0] + r_link[0], p[1] + r_link[1], p[2] + r_link[2]}, &v_field))
-        ws.velocity_W = v_field;
+      if (wd.field->Velocity({p[0] + r_link[0], p[1] + r_link[1], p[2] + r_link[2]}, &v_field)) ws.velocity_W = v_field;
     }
     double r_f[3], moment[3];
     Rotate(R, wd.p_B_force, r_f);
@@ -541,10 +547,12 @@ void FlightBatch::ApplyCommand(int i) {
   Eigen::VectorXd speeds;
   switch (options_.mode) {
     case CommandMode::kLeePosition: {
-      rotors_control::TrajectoryPoint point;
-      point.position_W = {c[0], c[1], c[2]};
-      point.yaw_rad = c[3];
-      ctrl.lee->SetTrajectoryPoint(point);
+      if (!std::isnan(c[0])) {  // a row of NaN: no set point yet, or the last one kept
+        rotors_control::TrajectoryPoint point;
+        point.position_W = {c[0], c[1], c[2]};
+        point.yaw_rad = c[3];
+        ctrl.lee->SetTrajectoryPoint(point);
+      }
       speeds = ctrl.lee->RotorSpeeds(state);
       break;
     }

@@ -27,7 +27,8 @@ namespace rotors_flight_batch {
 enum class CommandMode {
   kRotorSpeeds,             ///< rotor speeds [rad/s] (R columns), every step
   kNormalizedThrust,        ///< thrust of each rotor as a fraction of its maximum, 0..1 (R columns)
-  kLeePosition,             ///< x, y, z [m], yaw [rad]: Lee's controller at every odometry
+  kLeePosition,             ///< x, y, z [m], yaw [rad]: Lee's controller at every odometry; a row of
+                            ///< NaN: no set point yet (rotors stopped until the first, as the node)
   kRollPitchYawrateThrust,  ///< roll, pitch [rad], yaw rate [rad/s], thrust [N]
   kAttitudeThrust,          ///< q_WD (x, y, z, w), thrust [N]
   kRateThrust,              ///< body rates [rad/s] (3), thrust [N]
@@ -42,10 +43,11 @@ struct FlightBatchOptions {
   int count = 1;
   int threads = 0;  ///< 0: one per core
   CommandMode mode = CommandMode::kRotorSpeeds;
-  rotors_control::LeeControllerParameters lee;            ///< kLeePosition
-  rotors_control::AttitudeControllerParameters attitude;  ///< the attitude-level modes
-  bool imu = true;                                        ///< simulate the IMU (with its noise unless noise is false)
-  bool noise = true;                                      ///< sensor and wind noise as the description gives it
+  rotors_control::LeeControllerParameters lee;                    ///< kLeePosition
+  std::vector<rotors_control::LeeControllerParameters> lee_each;  ///< per vehicle instead (sweeps)
+  rotors_control::AttitudeControllerParameters attitude;          ///< the attitude-level modes
+  bool imu = true;    ///< simulate the IMU (with its noise unless noise is false)
+  bool noise = true;  ///< sensor and wind noise as the description gives it
   /// Per vehicle, as the xacro's random_seed: each plugin's seed keeps its offset from
   /// `description_seed`, the random_seed the description was spawned with (the odometry draws from
   /// random_seed + 1). Empty: every vehicle the description's seeds.

@@ -51,17 +51,20 @@ class FlightBatch:
       rotor's maximum thrust.
 
     The controllers answer each odometry message (every `control_divisor` physics steps of
-    `step_size` s), as the ROS nodes and World.attach_controller do. `seeds` (one per vehicle) seed
+    `step_size` s; None: the world file's step), as the ROS nodes and World.attach_controller do.
+    In "lee_position" a row of NaN means no set point yet: the rotors stay stopped until the first
+    (as the ROS node before its first trajectory). `controller_overrides` (one dict per vehicle)
+    changes Lee's yaml values per vehicle, e.g. {"position_gain/x": 4.0}, for sweeps. `seeds` (one per vehicle) seed
     the sensor and wind noise as spawn_mav's random_seed does; `noise=False` turns it off,
     `imu=False` skips the IMU. `controller_params` replaces the controller's yaml files.
     Further keywords go to the xacro (enable_wind=True, ...).
     """
 
     def __init__(self, mav_name: str = "firefly", count: int = 1, *, mode: str = "lee_position",
-                 world: str = "basic", step_size: float = 0.002, control_divisor: int = 5, threads: int = 0,
+                 world: str = "basic", step_size: float | None = 0.002, control_divisor: int = 5, threads: int = 0,
                  seeds: Sequence[int] | None = None, noise: bool = True, imu: bool = True,
                  positions: Any = None, yaws: Any = None, controller_params: Sequence[str | Path] | None = None,
-                 **xacro_args: Any):
+                 controller_overrides: Sequence[dict[str, float]] | None = None, **xacro_args: Any):
         if mode not in COMMAND_MODES:
             raise SimError(f"mode '{mode}' is not known; use one of: {', '.join(COMMAND_MODES)}")
         if int(count) < 1:
@@ -81,8 +84,13 @@ class FlightBatch:
         self.mode = mode
         yamls = controller_params if controller_params is not None else controller_yamls(mav_name, mode)
         numbers, others, source = load_yamls(yamls) if yamls else ({}, [], "")
+        each = []
+        if controller_overrides is not None:
+            if mode != "lee_position" or len(controller_overrides) != count:
+                raise SimError(f"controller_overrides: one dict per vehicle ({count}) for mode lee_position")
+            each = [{**numbers, **{k.replace(".", "/"): float(v) for k, v in o.items()}} for o in controller_overrides]
         self._b = _engine.FlightBatch(self.description, count, mode, numbers, others, source, threads=threads,
-                                      imu=imu, noise=noise, seeds=seeds, description_seed=seeds[0])
+                                      imu=imu, noise=noise, seeds=seeds, description_seed=seeds[0], numbers_each=each)
         self.commands: np.ndarray = self._b.commands
         """Writable view of the engine's command array (count x command_columns)."""
         start = np.zeros((count, 3)) if positions is None else np.asarray(positions, dtype=float)

@@ -91,8 +91,8 @@ inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], 
   if (!kScalar || AnyNonZero(det)) {
     const T d = 1.0 / det;
     const T inv[9] = {(m5 * m10 - m6 * m9) * d, (m9 * m2 - m1 * m10) * d, (m1 * m6 - m5 * m2) * d,
-                           (m6 * m8 - m4 * m10) * d, (m0 * m10 - m8 * m2) * d, (m4 * m2 - m0 * m6) * d,
-                           (m4 * m9 - m8 * m5) * d,  (m8 * m1 - m0 * m9) * d,  (m0 * m5 - m1 * m4) * d};
+                      (m6 * m8 - m4 * m10) * d, (m0 * m10 - m8 * m2) * d, (m4 * m2 - m0 * m6) * d,
+                      (m4 * m9 - m8 * m5) * d,  (m8 * m1 - m0 * m9) * d,  (m0 * m5 - m1 * m4) * d};
     T M[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
@@ -115,9 +115,8 @@ inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], 
   // p += h v (the new v);  q += h/2 (0, w) q (the new w, world frame), normalised;  R from q
   for (int i = 0; i < 3; ++i) s.p_W[i] += h * s.v_W[i];
   T* q = s.q_WB;
-  const T dq[4] = {
-      0.5 * (-w[0] * q[1] - w[1] * q[2] - w[2] * q[3]), 0.5 * (w[0] * q[0] + w[1] * q[3] - w[2] * q[2]),
-      0.5 * (-w[0] * q[3] + w[1] * q[0] + w[2] * q[1]), 0.5 * (w[0] * q[2] - w[1] * q[1] + w[2] * q[0])};
+  const T dq[4] = {0.5 * (-w[0] * q[1] - w[1] * q[2] - w[2] * q[3]), 0.5 * (w[0] * q[0] + w[1] * q[3] - w[2] * q[2]),
+                   0.5 * (-w[0] * q[3] + w[1] * q[0] + w[2] * q[1]), 0.5 * (w[0] * q[2] - w[1] * q[1] + w[2] * q[0])};
   for (int j = 0; j < 4; ++j) q[j] += h * dq[j];
   T l = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
   if constexpr (kScalar) {

@@ -82,29 +82,39 @@ def run_sweep(spec: SweepSpec, out_dir: Path, address: Optional[str] = None, wor
             parallel = int(ray.cluster_resources().get("CPU", 1))
             if address and workers:
                 parallel = min(parallel, workers)
-            remote = ray.remote(num_cpus=1, max_retries=0)(run_flight)
             progress = Progress(len(spec.flights), len(spec.flights) - len(todo), parallel, stream)
             sweep_json = spec.to_json()
-            waiting = list(todo)
+            if spec.engine == "batch":  # one task per vehicle: its flights in one FlightBatch
+                from rotors_evaluation.sweep_batch import fly_group, groups
+                remote = ray.remote(num_cpus=1, max_retries=0)(fly_group)
+                waiting = groups(sweep_json, [f.__dict__ for f in todo])
+            else:  # one task per flight
+                remote = ray.remote(num_cpus=1, max_retries=0)(run_flight)
+                waiting = [f.__dict__ for f in todo]
             pending: Dict[Any, Any] = {}
             log = open(out_dir / RESULTS_LOG, "a")
             while waiting or pending:
                 while waiting and len(pending) < parallel:  # at most `parallel` in flight: limits with --workers
-                    f = waiting.pop(0)
-                    pending[remote.remote(sweep_json, f.__dict__, str(out_dir.resolve()))] = f
+                    task = waiting.pop(0)
+                    ref = (remote.remote(sweep_json, task) if spec.engine == "batch" else
+                           remote.remote(sweep_json, task, str(out_dir.resolve())))
+                    pending[ref] = task
                 ready, _ = ray.wait(list(pending), num_returns=1)
                 for ref in ready:
-                    f = pending.pop(ref)
+                    task = pending.pop(ref)
+                    flights = task if spec.engine == "batch" else [task]
                     try:
-                        row = ray.get(ref)
+                        result = ray.get(ref)
+                        got = result if spec.engine == "batch" else [result]
                     except Exception as e:  # the worker itself died: recorded like any failed flight
-                        row = failed_row(f.__dict__, f"Ray task failed: {str(e).splitlines()[0]}")
-                    log.write(json.dumps(row, default=str) + "\n")
-                    log.flush()
-                    rows[f.id] = row
-                    progress.update(row)
-                    if on_row:
-                        on_row(row)
+                        got = [failed_row(f, f"Ray task failed: {str(e).splitlines()[0]}") for f in flights]
+                    for row in got:
+                        log.write(json.dumps(row, default=str) + "\n")
+                        log.flush()
+                        rows[row["id"]] = row
+                        progress.update(row)
+                        if on_row:
+                            on_row(row)
             progress.close()
             log.close()
         finally:

@@ -40,7 +40,10 @@ EVALUATIONS = ("hovering", "waypoints", "disturbance", "estimator")
 EVAL_OPTIONS = TUNABLE  # the evaluation scripts' numeric options (options.EvalOptions)
 KINDS = ("launch", "model", "controller", "estimator")
 TOP_LEVEL = ("name", "launch", "sim_time_s", "wall_limit_s", "real_time_factor", "repetitions", "seed", "evaluation", "eval_options",
-             "keep_bags", "fixed", "vary", "inject_failure")
+             "keep_bags", "fixed", "vary", "inject_failure", "engine")
+# world: each flight a roslaunch in the full world (bag, evaluation); batch: the flights that share a
+# vehicle in one rotors_sim.FlightBatch (no ROS, no rendering; see sweep_batch.py for what it flies)
+ENGINES = ("world", "batch")
 # what every flight of a sweep sets (when the launch file declares it)
 FORCED_ARGS = {"lockstep": "true", "real_time_factor": "0", "gui": "false", "enable_logging": "true"}
 # the launch argument each parameter kind travels through
@@ -82,6 +85,7 @@ class SweepSpec:
     inject_failure: Optional[Dict[str, float]] = None
     real_time_factor: float = 0.0
     flights: List[Flight] = field(default_factory=list)
+    engine: str = "world"
 
     @property
     def mav_name(self) -> str:
@@ -93,7 +97,7 @@ class SweepSpec:
                 "launch_args": self.launch_args, "sim_time_s": self.sim_time_s, "wall_limit_s": self.wall_limit_s,
                 "evaluations": self.evaluations, "eval_options": self.eval_options, "keep_bags": self.keep_bags,
                 "fixed": self.fixed, "mav_name": self.mav_name, "inject_failure": self.inject_failure,
-                "real_time_factor": self.real_time_factor}
+                "real_time_factor": self.real_time_factor, "engine": self.engine}
 
 
 def _fail(source: Path, message: str) -> SweepError:
@@ -297,6 +301,17 @@ def load(path: Path) -> SweepSpec:
         raise _fail(path, "vary entry 'launch.mav_name': controller parameters are checked against one vehicle; "
                           "sweep one vehicle per file")
 
+    engine = str(raw.get("engine", "world"))
+    if engine not in ENGINES:
+        raise _fail(path, f"engine '{engine}' is unknown (known: {', '.join(ENGINES)})")
+    if engine == "batch":
+        from rotors_evaluation.sweep_batch import unsupported
+        why = unsupported(launch_file, list(evaluations), [str(n) for n in {**fixed, **vary_raw}])
+        if why:
+            raise _fail(path, why)
+        if raw.get("inject_failure") is not None:
+            raise _fail(path, "inject_failure kills a flight's simulator process; engine batch has none (engine: world)")
+
     # an evaluation needs what it reads to be in the bag
     if "estimator" in evaluations and "msf_core/odometry" not in _recorded_topics(fixed, launch_args):
         raise _fail(path, f"evaluation 'estimator': {launch_file.name} records no msf_core/odometry (its bag holds "
@@ -312,7 +327,7 @@ def load(path: Path) -> SweepSpec:
     spec = SweepSpec(str(raw.get("name") or path.stem), path, package, launch_file, launch_args, sim_time_s,
                      wall_limit_s, repetitions, seed, list(evaluations), {k: float(v) for k, v in eval_options.items()},
                      bool(raw.get("keep_bags", False)), {str(k): v for k, v in fixed.items()}, vary, inject,
-                     real_time_factor)
+                     real_time_factor, engine=engine)
     spec.flights = expand(spec)
     if inject is not None and not 0 <= inject["flight"] < len(spec.flights):
         raise _fail(path, f"inject_failure: flight {inject['flight']} does not exist (0 to {len(spec.flights) - 1})")
@@ -331,6 +346,7 @@ def expand(spec: SweepSpec) -> List[Flight]:
             params = dict(zip(names, combo))
             flight = Flight(len(flights), params, r, spec.seed + r)
             identity = json.dumps({"launch": str(spec.launch_file), "fixed": spec.fixed, "params": params,
+                                   **({"engine": spec.engine} if spec.engine != "world" else {}),
                                    "real_time_factor": spec.real_time_factor,
                                    "seed": flight.seed, "sim_time_s": spec.sim_time_s,
                                    "evaluations": spec.evaluations, "eval_options": spec.eval_options,
