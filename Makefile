@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test test-long test-all test-sanitize lint demo demo-msf bench clean
+.PHONY: setup build test test-long test-all test-sanitize lint demo demo-msf bench clean train-example
 
 setup:
 	@bash scripts/setup.sh
@@ -9,10 +9,10 @@ build: setup
 	@bash scripts/build.sh
 
 # make test: the quick tier (every test but those marked long; under 25 min from a fresh clone, setup
-# and build included: 23.5 min on the last run); make test-long: only the long tier; make test-all:
-# both in one run. .ci/run runs lint, test and test-long (51 min on CI's last run).
+# and build included); make test-long: only the long tier; make test-all: both in one run.
+# make test T=test/test_x.py K=expr: that file only (-k expr), after building what changed.
 test: build
-	@ROTORS_TEST_TIER=quick bash scripts/run_tests.sh
+	@ROTORS_TEST_TIER=quick bash scripts/run_tests.sh $(if $(T),$(T) $(if $(K),-k "$(K)"))
 
 test-long: build
 	@ROTORS_TEST_TIER=long bash scripts/run_tests.sh
@@ -39,3 +39,11 @@ bench: build
 
 clean:
 	rm -rf build/ws
+
+# PPO (Stable-Baselines3) on the batched flight engine: PyTorch's CPU build and SB3 into build/rl-site
+# (not part of setup: about 900 MB), then rotors_python/examples/train_hover.py (docs/batched_flight.md)
+train-example: build
+	@test -f build/rl-site/.installed || (build/venv/bin/pip install -q --disable-pip-version-check --target build/rl-site --no-deps \
+	  torch==2.13.0 stable-baselines3==2.9.2 cloudpickle sympy mpmath networkx jinja2 markupsafe fsspec filelock typing-extensions \
+	  && touch build/rl-site/.installed)
+	@bash -c 'source scripts/env.bash && PYTHONPATH=$$PWD/build/rl-site:$$PYTHONPATH python3 rotors_python/examples/train_hover.py'

@@ -6,8 +6,14 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 export PATH="$root/build/venv/bin:$PATH"
-(cd "$root/build/ws" && catkin_make tests -j"$(nproc)" >/dev/null) || {
-  echo "building the tests failed; rerun: cd build/ws && catkin_make tests" >&2; exit 1; }
+# the gtest binaries are built when the run includes test_cpp_units.py (which runs them): every run
+# but one naming other test files (make test T=test/test_x.py)
+needs_gtests=1
+if [ $# -gt 0 ] && ! printf '%s\n' "$@" | grep -qE '(^test/?$|test_cpp_units|rotors_evaluation/test)'; then needs_gtests=0; fi
+if [ "$needs_gtests" = 1 ]; then
+  (cd "$root/build/ws" && catkin_make tests -j"$(nproc)" >/dev/null) || {
+    echo "building the tests failed; rerun: cd build/ws && catkin_make tests" >&2; exit 1; }
+fi
 # shellcheck disable=SC1091
 set +u
 source "$root/scripts/env.bash"
