@@ -25,7 +25,7 @@ test-all: build
 test-sanitize: build
 	@bash scripts/test_sanitize.sh
 
-lint: setup
+lint: build
 	@bash scripts/lint.sh
 
 demo: build

@@ -15,7 +15,7 @@ while IFS= read -r manifest; do
   ln -sfn "$dir" "$ws/src/$name"
 done < <(find "$root" -path "$root/build" -prune -o -name package.xml -print | sort)
 cd "$ws"
-args=(-DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON -DPYTHON_EXECUTABLE="$root/build/venv/bin/python3")
+args=(-DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DPYTHON_EXECUTABLE="$root/build/venv/bin/python3")
 # ROTORS_WERROR=ON (set by .ci/run) turns every compiler warning into an error; unset, the
 # workspace keeps what it was configured with (a change recompiles everything)
 if [ -n "${ROTORS_WERROR:-}" ]; then args+=(-DROTORS_WERROR="$ROTORS_WERROR"); fi

@@ -15,7 +15,7 @@ apt_packages=(
   python3-std-srvs imagemagick libstb-dev libassimp-dev libtinyxml2-dev libompl-dev libvisualization-msgs-dev python3-visualization-msgs
   libnodeletlib-dev libnodeletlib-tools libnodelet-dev python3-nodelet pluginlib-dev
   libstereo-msgs-dev python3-stereo-msgs libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  python3-evdev python3-sensor-msgs clang-format libembree-dev pybind11-dev python3-pybind11 python3-rospkg
+  python3-evdev python3-sensor-msgs clang-format clang-tidy libembree-dev pybind11-dev python3-pybind11 python3-rospkg
   libopencv-video-dev python3-opencv
   openssl socat
 )

@@ -1,5 +1,6 @@
-"""Shared fixtures: an isolated ROS master per test and a way to run rospy code in a child process
-(rospy can be initialised once per process, so the test process itself never calls init_node)."""
+"""Shared fixtures: an isolated ROS master per test and a way to run rospy client code (the functions
+of the package clients/) in a child process (rospy can be initialised once per process, so the test
+process itself never calls init_node)."""
 import json
 import os
 import signal
@@ -15,6 +16,7 @@ from rotors_evaluation.processes import kill_graph_leftovers, restore_sigint, st
 from rotors_evaluation.ros_master import start_own_master
 
 REPO = Path(__file__).resolve().parents[1]
+TESTS = Path(__file__).resolve().parent  # holds the package clients/
 
 
 def pytest_configure(config):
@@ -23,26 +25,6 @@ def pytest_configure(config):
                                        "not by make test")
 # make test-sanitize points ROTORS_WS at a sanitizer's workspace (scripts/test_sanitize.sh)
 WS = Path(os.environ.get("ROTORS_WS", REPO / "build" / "ws"))
-
-
-# Process helpers for rospy client code (RosGraph.rospy): a node's pid from the master, whether a
-# pid lives (not a zombie), its CPU seconds.
-NODE_PROCESS_HELPERS = """
-import os, rosgraph, xmlrpc.client
-def node_pid(name):
-    uri = rosgraph.Master('/pytest_client').lookupNode(name)
-    return xmlrpc.client.ServerProxy(uri).getPid('/pytest_client')[2]
-def _stat_fields(pid):
-    return open('/proc/%d/stat' % pid).read().rsplit(')', 1)[1].split()
-def alive(pid):
-    try:
-        return _stat_fields(pid)[0] != 'Z'
-    except OSError:
-        return False
-def cpu_seconds(pid):
-    fields = _stat_fields(pid)
-    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
-"""
 
 
 class RosGraph:
@@ -75,7 +57,8 @@ class RosGraph:
         return res
 
     def rospy(self, code: str, timeout: float = 120) -> Dict:
-        """Runs `code` after rospy.init_node in a child process; it fills the dict `result`."""
+        """Runs `code` after rospy.init_node in a child process; it fills the dict `result`. Tests call
+        run_client, which runs a function of test/clients/ this way."""
         script = "import json, sys, time, rospy\nrospy.init_node('pytest_client', anonymous=True)\nresult = {}\n"
         script += textwrap.dedent(code) + "\nprint('RESULT=' + json.dumps(result))\n"
         res = subprocess.run([sys.executable, "-c", script], env=self.env, capture_output=True, text=True,
@@ -84,6 +67,15 @@ class RosGraph:
             if line.startswith("RESULT="):
                 return json.loads(line[len("RESULT="):])
         raise AssertionError(f"rospy client failed ({res.returncode}):\n{res.stdout}\n{res.stderr}")
+
+    def run_client(self, function: str, timeout: float = 120, **kwargs) -> Dict:
+        """Runs the client function `function` ("clients.module:name", a module of test/clients/) in a
+        child process after rospy.init_node, called with `kwargs` (sent as JSON: str, numbers, bools,
+        lists, dicts); returns what it returned (a JSON-serialisable dict; none gives {})."""
+        code = (f"sys.path.insert(0, {str(TESTS)!r})\n"
+                "from clients import call\n"
+                f"result = call({function!r}, json.loads({json.dumps(kwargs)!r}))\n")
+        return self.rospy(code, timeout=timeout)
 
     @staticmethod
     def wait_for(predicate, timeout: float, period: float = 0.2) -> bool:
@@ -135,36 +127,14 @@ def launch(ros: RosGraph, package: str, launch_file: str, *args: str, name: str 
 
 def wait_sim_time(ros: RosGraph, t_s: float, timeout_s: float = 300.0) -> float:
     """Blocks until /clock reaches t_s; returns the sim time seen."""
-    return ros.rospy(f"""
-        from rosgraph_msgs.msg import Clock
-        deadline = time.monotonic() + {timeout_s}
-        t = 0.0
-        while t < {t_s}:
-            if time.monotonic() > deadline:
-                raise SystemExit('sim time stuck at %.2f s' % t)
-            try:
-                t = rospy.wait_for_message('/clock', Clock, timeout=5).clock.to_sec()
-            except rospy.ROSException:
-                pass
-        result['t'] = t
-    """, timeout=timeout_s + 60)["t"]
+    return ros.run_client("clients.sim:wait_sim_time", timeout=timeout_s + 60, t_s=t_s, timeout_s=timeout_s)["t"]
 
 
-def send_hover_pose(ros: RosGraph, then: str = "") -> Dict:
+def send_hover_pose(ros: RosGraph, then: str = "", **kwargs) -> Dict:
     """Sends the set point (0, 0, 1) latched on /firefly/command/pose once the controller listens,
-    then runs the rospy code `then` in the same client (the latched message lives as long as it);
-    returns the `result` that code filled."""
-    return ros.rospy(textwrap.dedent("""
-        from geometry_msgs.msg import PoseStamped
-        pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
-        while pub.get_num_connections() == 0:  # the controller is up and listens to poses
-            time.sleep(0.05)
-        cmd = PoseStamped()
-        cmd.pose.position.z = 1.0
-        cmd.pose.orientation.w = 1.0
-        pub.publish(cmd)
-        time.sleep(1.0)
-    """) + textwrap.dedent(then))
+    then calls the client function `then` ("clients.module:name") with `kwargs` in the same client
+    (the latched message lives as long as it); returns what that function returned ({} without one)."""
+    return ros.run_client("clients.sim:send_hover_pose", then=then, then_kwargs=kwargs)
 
 
 def stop_launch(proc: subprocess.Popen, timeout: float = 30.0) -> None:

@@ -110,7 +110,7 @@ def frd(v):
     return np.array([v[0], -v[1], -v[2]])
 
 
-def test_each_servo_frame_is_answered_with_the_imu_and_ground_truth_in_ardupilots_frames():
+def test_servo_frames_answered_with_imu_truth_ardupilot_frames():
     port = free_udp_port()
     world = world_with_ardupilot(port)
     ap = ArduPilotSide(port)
@@ -147,7 +147,7 @@ def test_each_servo_frame_is_answered_with_the_imu_and_ground_truth_in_ardupilot
     assert last["imu"]["accel_body"][2] < -9.0  # FRD: at rest the specific force points up (-z)
 
 
-def test_lockstep_one_step_per_servo_frame_and_pwm_drives_the_motors():
+def test_lockstep_one_step_per_servo_frame_pwm_drives_motors():
     port = free_udp_port()
     world = world_with_ardupilot(port)
     ap = ArduPilotSide(port)
@@ -171,7 +171,7 @@ def test_lockstep_one_step_per_servo_frame_and_pwm_drives_the_motors():
     np.testing.assert_allclose(speeds, np.array([0.5, 0.6, 0.7, 0.8]) * 838, rtol=3e-3)
 
 
-def test_a_packet_that_is_not_a_servo_packet_is_one_line_and_changes_nothing(capfd):
+def test_non_servo_packet_is_one_line_and_changes_nothing(capfd):
     port = free_udp_port()
     world = world_with_ardupilot(port)
     ap = ArduPilotSide(port)
@@ -285,7 +285,7 @@ def test_a_rangefinder_without_return_reads_out_of_range_high():
     assert ap.read["rng_1"] == pytest.approx(2 * r.max_range, rel=1e-6) and ap.read["rng_1"] > r.max_range
 
 
-def test_the_launch_command_line_loads_an_x_quad_with_home_at_the_world_origin(tmp_path):
+def test_launch_command_line_loads_x_quad_home_at_world_origin(tmp_path):
     """scripts/ardupilot_sitl as mav_ardupilot_sitl.launch runs it: the SITL binary with ArduPilot's
     gazebo-iris defaults and ours last (AP_Param loads --defaults files in order, a later file's value
     wins; a line is `NAME VALUE` or `NAME,VALUE`, '#' starts a comment). AP_Motors_Class.h: FRAME_CLASS

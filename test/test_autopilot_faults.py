@@ -20,7 +20,7 @@ def run_until_sensor(link, n=1):
         answer(link, [0.5] * 6, armed=True)
 
 
-def test_malformed_and_truncated_frames_are_dropped_with_one_line_and_the_link_stays_up(capfd):
+def test_malformed_frames_dropped_with_one_line_link_stays_up(capfd):
     port = free_port()
     world = make_world(port, mavlink_answer_timeout=0.01)  # PX4's plugin's wait: the lost answer costs 10 ms
     stepper, link = start_lockstep(world, port, 40)
@@ -85,7 +85,7 @@ def test_a_disarmed_autopilot_is_not_waited_for():
     assert world.time == pytest.approx(502 * DT) and time.monotonic() - start < 20.0
 
 
-def test_a_message_from_another_system_id_is_ignored_with_one_line(capfd):
+def test_message_from_other_system_id_ignored_with_one_line(capfd):
     port = free_port()
     world = make_world(port)
     stepper, link = start_lockstep(world, port, 20)
@@ -104,7 +104,7 @@ def test_a_message_from_another_system_id_is_ignored_with_one_line(capfd):
     assert "system id 1" in line and "ignored" in line
 
 
-def test_nan_and_out_of_range_outputs_keep_the_last_valid_ones_or_are_clamped(capfd):
+def test_nan_outputs_keep_last_valid_and_out_of_range_clamped(capfd):
     port = free_port()
     world = make_world(port)
     stepper, link = start_lockstep(world, port, 300)
@@ -126,7 +126,7 @@ def test_nan_and_out_of_range_outputs_keep_the_last_valid_ones_or_are_clamped(ca
     assert world.time == pytest.approx(302 * DT)  # every answer counted: lockstep went on
 
 
-def test_an_autopilot_that_disconnects_mid_flight_disarms_the_motors_and_can_reconnect(capfd):
+def test_autopilot_disconnect_disarms_motors_and_can_reconnect(capfd):
     port = free_port()
     world = make_world(port)
     stepper, link = start_lockstep(world, port, 400)
@@ -167,7 +167,7 @@ def test_a_port_in_use_is_refused_at_spawn_with_one_line():
     world.step(10)
 
 
-def test_a_missing_serial_device_is_one_line_and_the_world_runs_on(capfd):
+def test_missing_serial_device_is_one_line_and_world_runs_on(capfd):
     world = rs.World("basic", step_size=DT)
     world.spawn_mav("firefly", enable_mavlink_interface=True, mavlink_serial_enabled=True,
                     mavlink_serial_device="/dev/ttyACM_not_there")
@@ -178,7 +178,7 @@ def test_a_missing_serial_device_is_one_line_and_the_world_runs_on(capfd):
     assert "No such file" in line and "retrying" in line
 
 
-def test_hitl_over_a_serial_pty_pair_exchanges_hil_sensor_and_actuator_controls(tmp_path):
+def test_hitl_over_serial_pty_exchanges_sensor_and_controls(tmp_path):
     a, b = tmp_path / "sim", tmp_path / "fc"
     socat = subprocess.Popen(["socat", f"pty,raw,echo=0,link={a}", f"pty,raw,echo=0,link={b}"])
     try:

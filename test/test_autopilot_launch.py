@@ -17,7 +17,7 @@ from test_px4_mavlink import answer
 pytestmark = pytest.mark.xdist_group("betaflight_ports")
 
 
-def test_mav_px4_sitl_launch_listens_on_4560_plus_instance_and_steps_in_lockstep(ros):
+def test_px4_sitl_launch_listens_on_4560_plus_instance_lockstep(ros):
     instance = 23
     # the launch's real_time_factor 1: PX4 has 4 ms of wall time per step (test_autopilot_faults.py
     # checks the waiting itself in process)
@@ -48,44 +48,19 @@ def test_mav_px4_sitl_launch_listens_on_4560_plus_instance_and_steps_in_lockstep
     link.close()
 
 
-def test_mav_betaflight_sitl_launch_starts_the_firmware_and_flies_on_rc_from_the_topic(ros, tmp_path):
+def test_betaflight_sitl_launch_runs_firmware_flies_on_rc_topic(ros, tmp_path):
     """The lockstep firmware, started by the launch file, answers and flies on RC from /iris/rc (the
     sticks are held for spans of sim time, the firmware's clock). No retry: the lockstep build has no
     start-up race (docs/autopilots.md)."""
     proc = launch(ros, "rotors_gazebo", "mav_betaflight_sitl.launch", f"betaflight_workdir:={tmp_path / 'bf'}",
                   "random_seed:=3")
-    result = ros.rospy(f"""
-        from geometry_msgs.msg import Pose
-        from sensor_msgs.msg import Joy
-        # the launch unpauses the world once the firmware is up (at most 60 s wall)
-        deadline = time.monotonic() + 60
-        while "Betaflight answers" not in open({str(proc.log_path)!r}, errors="replace").read():
-            if time.monotonic() > deadline:
-                break
-            time.sleep(0.2)
-        pub = rospy.Publisher('/iris/rc', Joy, queue_size=1)
-        z = {{'max': 0.0}}
-        def on_pose(msg):
-            z['max'] = max(z['max'], msg.position.z)
-        rospy.Subscriber('/iris/ground_truth/pose', Pose, on_pose)
-        def sticks(throttle, armed, seconds):  # for `seconds` of sim time: the firmware's clock
-            end = rospy.get_time() + seconds
-            wall_deadline = time.monotonic() + 10 * seconds + 30
-            while rospy.get_time() < end and time.monotonic() < wall_deadline:
-                pub.publish(Joy(axes=[0.0, 0.0, throttle, 0.0, 1.0 if armed else -1.0, 0.6]))
-                time.sleep(0.02)
-        sticks(-1.0, False, 7.0)    # the firmware calibrates its gyro and leaves its boot grace (sim time)
-        sticks(-1.0, True, 2.0)     # armed at idle
-        sticks(0.7, True, 2.0)      # 1850 us: climb
-        result['z_max'] = z['max']
-        sticks(-1.0, False, 1.0)
-    """, timeout=300)
+    result = ros.run_client("clients.autopilot_launch:betaflight_rc_climb", timeout=300, log_path=str(proc.log_path))
     answered = "Betaflight answers" in proc.log_path.read_text(errors="replace")
     print(f"firmware answered: {answered}; climbed to {result['z_max']:.2f} m on RC from /iris/rc")
     assert answered and result["z_max"] > 1.0
 
 
-def test_mav_ardupilot_sitl_launch_takes_servo_frames_on_9002_plus_10_instance(ros):
+def test_ardupilot_sitl_launch_servo_port_9002_plus_10_instance(ros):
     """A stand-in for ArduPilot's SIM_JSON (ArduPilot is not on these machines), instance 3."""
     import json
     import socket

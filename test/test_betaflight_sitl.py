@@ -102,7 +102,7 @@ def speeds(samples):
     return np.abs(samples[:, 6:10])
 
 
-def test_disarmed_betaflight_keeps_the_motors_stopped_on_the_ground(flight):
+def test_disarmed_betaflight_keeps_motors_stopped_on_ground(flight):
     s = flight["disarmed"]
     assert speeds(s).max() < 1.0
     assert np.all(col(s, "z") < 0.11)  # spawned at 0.1 m, it settles on its legs
@@ -114,7 +114,7 @@ def test_armed_over_rc_the_motors_idle_without_lifting_off(flight):
     assert np.all(col(flight["idle"], "z") < 0.1)
 
 
-def test_it_takes_off_in_angle_mode_and_holds_the_altitude_band_level(flight):
+def test_takes_off_in_angle_mode_and_holds_altitude_band_level(flight):
     assert col(flight["takeoff"], "z").max() > 1.2
     hold = flight["hold"]
     print(f"hold: z {col(hold, 'z').min():.2f}..{col(hold, 'z').max():.2f} m, "
@@ -124,7 +124,7 @@ def test_it_takes_off_in_angle_mode_and_holds_the_altitude_band_level(flight):
     assert np.ptp(col(hold, "x")) < 0.5 and np.ptp(col(hold, "y")) < 0.5
 
 
-def test_a_roll_and_a_pitch_command_are_held_and_move_it_the_right_way(flight):
+def test_roll_and_pitch_commands_held_and_move_it_right_way(flight):
     roll, pitch = flight["roll"], flight["pitch"]
     # the last second of each 2 s command: the firmware's clock follows the state packets' rate, so
     # on a loaded machine its RC smoothing and angle loop settle later in sim time than on a quiet one
@@ -179,7 +179,7 @@ def lockstep_flight(workdir, duration_s=11.0, lockstep=True):
     return np.array(log), wall
 
 
-def test_two_lockstep_flights_with_the_same_rc_are_equal_bit_for_bit(tmp_path):
+def test_two_lockstep_flights_same_rc_equal_bit_for_bit(tmp_path):
     first, wall = lockstep_flight(tmp_path / "first")
     second, _ = lockstep_flight(tmp_path / "second")
     differing = np.flatnonzero(np.any(first != second, axis=1))

@@ -75,7 +75,7 @@ LENSES = {
 
 
 @pytest.mark.parametrize("name", list(LENSES))
-def test_distorted_images_put_squares_where_opencvs_project_points_does(name):
+def test_distorted_images_put_squares_where_opencv_projects(name):
     k1, k2, k3, p1, p2, center = LENSES[name]
     K = intrinsics(center)
     D = np.array([k1, k2, p1, p2, k3])  # plumb_bob / OpenCV order
@@ -116,7 +116,7 @@ def test_distorted_images_put_squares_where_opencvs_project_points_does(name):
     assert errors.max() < 0.5
 
 
-def test_a_lens_out_of_range_is_one_clear_error_and_the_process_keeps_working():
+def test_lens_out_of_range_is_one_error_process_keeps_working():
     folding = "<distortion><k1>-0.9</k1><k2>0</k2><k3>0</k3><p1>0</p1><p2>0</p2></distortion>"
     with pytest.raises(rs.SimError, match=r"camera 'cam': distortion k1 -0\.9.*coefficients out of range") as e:
         rs.World(sdf=world_sdf(folding, [(0.0, 0.0)]))

@@ -31,13 +31,10 @@ def last_times(bag: Path):
 
 
 def sim_time(ros: RosGraph) -> float:
-    return ros.rospy("""
-        from rosgraph_msgs.msg import Clock
-        result['t'] = rospy.wait_for_message('/clock', Clock, timeout=10).clock.to_sec()
-    """)["t"]
+    return ros.run_client("clients.sim:clock_now", timeout_s=10)["t"]
 
 
-def test_ctrl_c_ends_the_bag_with_the_flight_and_the_default_evaluation_sees_no_collision(ros: RosGraph):
+def test_ctrl_c_ends_bag_with_flight_and_eval_sees_no_collision(ros: RosGraph):
     # as a user would: the hovering example in lockstep, Ctrl-C after 22 s of sim time. Paced at 10x real
     # time: as fast as possible (40-70x over ROS) the flight ran up to 50 s of sim time on past 22 s in the
     # second or so the Ctrl-C takes to land (test client exit, signal, shutdown), beyond the bound below
@@ -68,20 +65,7 @@ def fly_determinism_launch(ros: RosGraph, tag: str, controller_delay_s: float) -
     try:
         assert ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         # the set point is latched and the simulation unpaused at once: a late controller must hold the clock
-        ros.rospy("""
-            from geometry_msgs.msg import PoseStamped
-            from rosgraph_msgs.msg import Clock
-            from std_srvs.srv import Empty
-            pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
-            cmd = PoseStamped()
-            cmd.pose.position.z = 1.0
-            cmd.pose.orientation.w = 1.0
-            pub.publish(cmd)
-            rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-            # the latched set point lives as long as this client: until the flight is done
-            while rospy.wait_for_message('/clock', Clock).clock.to_sec() < 6.0:
-                pass
-        """, timeout=180)
+        ros.run_client("clients.clean_runs:hover_set_point_then_unpause", timeout=180, until_s=6.0)
         wait_sim_time(ros, 6.0)
         log = Path(proc.log_path).read_text()
         if controller_delay_s > 0:
@@ -100,7 +84,7 @@ def poses(bag: Path, until_s: float):
         b.close()
 
 
-def test_a_controller_that_starts_5_s_late_gives_the_same_trajectory(ros: RosGraph):
+def test_controller_starting_5_s_late_gives_same_trajectory(ros: RosGraph):
     on_time = poses(fly_determinism_launch(ros, "on_time", 0), 5.5)
     late = poses(fly_determinism_launch(ros, "late", 5), 5.5)
     assert len(on_time) > 500 and len(on_time) == len(late)
@@ -110,7 +94,7 @@ def test_a_controller_that_starts_5_s_late_gives_the_same_trajectory(ros: RosGra
     assert not diff, f"{len(diff)} poses differ, first at t = {on_time[diff[0]][0] * 1e-9:.2f} s"
 
 
-def test_a_killed_controller_pauses_lockstep_and_its_restart_resumes_the_flight(ros: RosGraph):
+def test_killed_controller_pauses_lockstep_restart_resumes(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true",
                   "real_time_factor:=0")
     restarted = None

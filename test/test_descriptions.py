@@ -35,7 +35,7 @@ BODY_MESH = {"firefly": "firefly.ply", "pelican": "pelican.dae"}
 
 
 @pytest.mark.parametrize("mav", VEHICLES)
-def test_vehicle_visuals_are_its_body_and_propellers_scaled_by_radius_rotor(mav: str):
+def test_vehicle_visuals_are_body_and_props_scaled_by_radius(mav: str):
     urdf = ET.fromstring(subprocess.run(
         ["xacro", str(package_path("rotors_description") / "urdf" / f"{mav}_base.xacro"), f"namespace:={mav}"],
         capture_output=True, text=True, check=True).stdout)
@@ -64,7 +64,7 @@ def test_vehicle_visuals_are_its_body_and_propellers_scaled_by_radius_rotor(mav:
 
 
 @pytest.mark.parametrize("mav_name", VEHICLES)
-def test_every_multirotor_takes_each_autopilot_interface_before_the_sensors_it_reads(mav_name):
+def test_multirotors_take_autopilot_interface_before_its_sensors(mav_name):
     for flag, filename in (("enable_mavlink_interface", "librotors_gazebo_mavlink_interface.so"),
                            ("enable_ardupilot_interface", "librotors_gazebo_ardupilot_interface.so"),
                            ("enable_betaflight_interface", "librotors_gazebo_betaflight_interface.so")):
@@ -84,7 +84,7 @@ def test_every_multirotor_takes_each_autopilot_interface_before_the_sensors_it_r
 
 
 
-def test_every_launch_file_with_a_lee_or_attitude_controller_offers_in_process():
+def test_launch_files_with_lee_or_attitude_offer_in_process():
     """README: in_process:=true on every launch file that starts lee_position_controller_node or
     roll_pitch_yawrate_thrust_controller_node (they can run as nodelets in the simulator)."""
     nodelet_nodes = {"lee_position_controller_node", "roll_pitch_yawrate_thrust_controller_node"}

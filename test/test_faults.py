@@ -15,91 +15,19 @@ hover holds 4 cm high because of the deliberate mass and gravity mismatch):
 (Deleting and re-spawning a MAV, also with another rotor count: test_respawn.py.)"""
 import json
 import subprocess
-import textwrap
 from pathlib import Path
 
 import pytest
-from conftest import NODE_PROCESS_HELPERS, RosGraph, launch, stop_launch, wait_sim_time
-
-# rospy helpers shared by the scenarios (run in the client process after rospy.init_node)
-CLIENT = """
-import math, os, signal, subprocess, time
-from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Clock
-from std_srvs.srv import Empty
-from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
-from geometry_msgs.msg import Transform, Quaternion, Vector3
-state = {'t': -1.0, 'p': None, 'clock': -1.0}
-def on_odom(m):
-    p = m.pose.pose.position
-    state.update(t=m.header.stamp.to_sec(), p=(p.x, p.y, p.z))
-rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, on_odom, queue_size=1)
-rospy.Subscriber('/clock', Clock, lambda m: state.update(clock=m.clock.to_sec()), queue_size=1)
-from mav_msgs.msg import Actuators
-rospy.Subscriber('/firefly/command/motor_speed', Actuators,
-                 lambda m: state.update(command=state['clock']), queue_size=1)
-def wait_clock(t_s, limit_s=120):
-    deadline = time.monotonic() + limit_s
-    while state['clock'] < t_s or state['p'] is None:
-        if time.monotonic() > deadline:
-            raise SystemExit('sim time stuck at %.2f s (waiting for %.2f s)' % (state['clock'], t_s))
-        time.sleep(0.01)
-    return state['clock']
-def restart_controller():
-    return subprocess.Popen(['rosrun', 'rotors_control', 'lee_position_controller_node', '__ns:=/firefly',
-                             '__name:=lee_position_controller_node', 'odometry:=odometry_sensor1/odometry'],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
-set_point = rospy.Publisher('/firefly/command/trajectory', MultiDOFJointTrajectory, queue_size=1, latch=True)
-def send_set_point():
-    # a restarted controller has no reference: send (0, 0, 1) again, as a ground station would
-    point = MultiDOFJointTrajectoryPoint(transforms=[Transform(translation=Vector3(0, 0, 1),
-                                                               rotation=Quaternion(0, 0, 0, 1))])
-    msg = MultiDOFJointTrajectory(points=[point])
-    msg.header.stamp = rospy.Time.now()
-    set_point.publish(msg)
-def distance(a, b):
-    return math.dist(a, b)
-"""
-
-
-def client(ros: RosGraph, scenario: str, timeout: float = 240) -> dict:
-    return ros.rospy(NODE_PROCESS_HELPERS + CLIENT + textwrap.dedent(scenario), timeout=timeout)
+from conftest import RosGraph, launch, stop_launch, wait_sim_time
 
 
 @pytest.mark.long  # the long tier (about 40 s): make test under 25 min
-def test_controller_killed_without_lockstep_recovers_if_back_soon_else_the_fall_is_reported(ros: RosGraph,
-                                                                                            tmp_path: Path):
+def test_controller_killed_no_lockstep_recovers_or_reports_fall(ros: RosGraph, tmp_path: Path):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "real_time_factor:=1", "enable_logging:=true",
                   f"log_file:={tmp_path / 'faults'}")
     try:
         wait_sim_time(ros, 12.0)
-        r = client(ros, """
-            wait_clock(12.0)
-            p_before = state['p']
-            os.kill(node_pid('/firefly/lee_position_controller_node'), signal.SIGKILL)
-            t_kill = state['clock']
-            time.sleep(0.2)  # the controller interface holds the last command meanwhile
-            controller = restart_controller()
-            send_set_point()
-            while state.get('command', 0.0) <= t_kill + 0.2:
-                time.sleep(0.01)
-            result['gap'] = state['command'] - t_kill
-            worst, t_end = 0.0, state['clock'] + 8.0
-            while state['clock'] < t_end:
-                worst = max(worst, distance(state['p'], p_before))
-                time.sleep(0.02)
-            result['worst_after_short_outage'] = worst
-            result['error_after'] = distance(state['p'], p_before)
-            # now the controller goes away for good: after commandTimeout the motors stop
-            os.kill(controller.pid, signal.SIGKILL)
-            result['t_killed_for_good'] = state['clock']
-            lowest, t_end = 10.0, state['clock'] + 12.0
-            while state['clock'] < t_end and lowest > 0.15:
-                lowest = min(lowest, state['p'][2])
-                time.sleep(0.02)
-            wait_clock(state['clock'] + 1.0)
-            result['lowest'] = lowest
-        """)
+        r = ros.run_client("clients.faults:controller_killed_without_lockstep", timeout=240)
     finally:
         stop_launch(proc)
     bag = next(tmp_path.glob("faults*.bag"))  # the bag plugin appends the date
@@ -118,21 +46,12 @@ def test_controller_killed_without_lockstep_recovers_if_back_soon_else_the_fall_
     assert t_collision > r["t_killed_for_good"], collisions
 
 
-def test_simulator_killed_leaves_nodes_idle_and_the_bag_recoverable(ros: RosGraph, tmp_path: Path):
+def test_simulator_killed_leaves_nodes_idle_bag_recoverable(ros: RosGraph, tmp_path: Path):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=0",
                   "enable_logging:=true", f"log_file:={tmp_path / 'killed'}")
     try:
         wait_sim_time(ros, 20.0)
-        r = client(ros, """
-            wait_clock(20.0)
-            lee = node_pid('/firefly/lee_position_controller_node')
-            os.kill(node_pid('/gazebo'), signal.SIGKILL)
-            time.sleep(2.0)
-            cpu0 = cpu_seconds(lee)
-            time.sleep(5.0)
-            result['lee_cpu_s_in_5_s'] = cpu_seconds(lee) - cpu0
-            result['lee_alive'] = alive(lee)
-        """)
+        r = ros.run_client("clients.faults:simulator_killed", timeout=240)
     finally:
         stop_launch(proc)
     print(f"simulator killed: controller alive {r['lee_alive']}, CPU {r['lee_cpu_s_in_5_s']:.3f} s in 5 s")
@@ -158,21 +77,7 @@ def test_reset_world_and_reset_simulation_mid_flight(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=1")
     try:
         wait_sim_time(ros, 12.0)
-        r = client(ros, """
-            wait_clock(12.0)
-            p_hover = state['p']
-            rospy.ServiceProxy('/gazebo/reset_world', Empty)()
-            time.sleep(0.3)
-            result['z_after_reset_world'] = state['p'][2]
-            t = wait_clock(state['clock'] + 8.0)
-            result['error_8_s_after_reset_world'] = distance(state['p'], p_hover)
-            rospy.ServiceProxy('/gazebo/reset_simulation', Empty)()
-            time.sleep(0.3)
-            result['clock_after_reset_simulation'] = state['clock']
-            result['z_after_reset_simulation'] = state['p'][2]
-            wait_clock(8.0)
-            result['error_8_s_after_reset_simulation'] = distance(state['p'], p_hover)
-        """)
+        r = ros.run_client("clients.faults:reset_world_and_simulation", timeout=240)
     finally:
         stop_launch(proc)
     print(f"reset_world: z {r['z_after_reset_world']:.2f} m, back within {r['error_8_s_after_reset_world'] * 1000:.1f} "
@@ -188,22 +93,7 @@ def test_pause_for_10_s_and_resume(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "real_time_factor:=1")
     try:
         wait_sim_time(ros, 12.0)
-        r = client(ros, """
-            wait_clock(12.0)
-            rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
-            time.sleep(0.5)
-            t0, p0 = state['clock'], state['p']
-            time.sleep(10.0)
-            result['clock_advanced_while_paused'] = state['clock'] - t0
-            result['moved_while_paused'] = distance(state['p'], p0)
-            rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-            worst, t_end = 0.0, t0 + 5.0
-            wait_clock(t0 + 0.1)
-            while state['clock'] < t_end:
-                worst = max(worst, distance(state['p'], p0))
-                time.sleep(0.02)
-            result['worst_after_resume'] = worst
-        """)
+        r = ros.run_client("clients.faults:pause_and_resume", timeout=240)
     finally:
         stop_launch(proc)
     print(f"paused 10 s: clock advanced {r['clock_advanced_while_paused']:.3f} s, MAV moved "
@@ -214,31 +104,14 @@ def test_pause_for_10_s_and_resume(ros: RosGraph):
 
 
 @pytest.mark.long  # the long tier (about 20-25 s): make test under 25 min
-def test_a_controller_stopped_as_in_a_debugger_never_freezes_the_simulator(ros: RosGraph):
+def test_controller_stopped_in_debugger_never_freezes_simulator(ros: RosGraph):
     # lockstep: SIGSTOP the controller (a debugger's breakpoint). Its node still accepts connections
     # but answers nothing; the simulator pings it from a worker thread with a deadline, so services
     # keep answering at once, the participant is declared gone, and SIGCONT resumes the flight
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=1")
     try:
         wait_sim_time(ros, 8.0)
-        r = client(ros, """
-            from gazebo_msgs.srv import GetModelState
-            model_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
-            wait_clock(8.0)
-            pid = node_pid('/firefly/lee_position_controller_node')
-            os.kill(pid, signal.SIGSTOP)
-            t_stop = state['clock']
-            slowest, t_end = 0.0, time.monotonic() + 8.0
-            while time.monotonic() < t_end:
-                t0 = time.monotonic()
-                assert model_state(model_name='firefly').success
-                slowest = max(slowest, time.monotonic() - t0)
-                time.sleep(0.05)
-            result['slowest_service_call_s'] = slowest
-            result['clock_while_stopped'] = state['clock'] - t_stop
-            os.kill(pid, signal.SIGCONT)
-            result['resumed_to'] = wait_clock(t_stop + 2.0, limit_s=60) - t_stop
-        """)
+        r = ros.run_client("clients.faults:controller_stopped_as_in_a_debugger", timeout=240)
     finally:
         stop_launch(proc)
     log = Path(proc.log_path).read_text()

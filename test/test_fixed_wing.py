@@ -79,7 +79,7 @@ def test_lift_equals_weight_at_trim_within_2_percent(trimmed):
     assert 0.0 < throttle < 1.0 and abs(elevator) < SURFACE_MAX
 
 
-def test_trimmed_level_flight_holds_altitude_and_airspeed_for_20_s(trimmed):
+def test_trimmed_level_flight_holds_altitude_airspeed_20_s(trimmed):
     _, _, (alpha, elevator, throttle) = trimmed
     world = rs.World("basic")
     world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1)
@@ -97,7 +97,7 @@ def test_trimmed_level_flight_holds_altitude_and_airspeed_for_20_s(trimmed):
     assert p[0] > 250.0  # it flew forward at about 15 m/s
 
 
-def test_an_aileron_step_rolls_right_wing_down_at_the_predicted_rate(trimmed):
+def test_aileron_step_rolls_right_wing_down_at_predicted_rate(trimmed):
     _, _, (alpha, elevator, throttle) = trimmed
     world = rs.World("basic")
     world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1)
@@ -121,7 +121,7 @@ def test_an_aileron_step_rolls_right_wing_down_at_the_predicted_rate(trimmed):
     assert abs(p_B - p_predicted) < 0.1 * p_predicted
 
 
-def test_fixed_wing_with_joy_launches_the_techpod_and_it_flies_on_joystick_commands(ros):
+def test_fixed_wing_with_joy_flies_techpod_on_joystick_commands(ros):
     # the RotorS command with joystick:=none (no gamepad, no keyboard here): the launcher sets the
     # techpod flying at 15 m/s at 60 m and unpauses. The trimmed stick command (roll 0, pitch = the
     # elevator's normalized trim, thrust = the trim throttle) reaches the plugin some wall time after
@@ -133,39 +133,9 @@ def test_fixed_wing_with_joy_launches_the_techpod_and_it_flies_on_joystick_comma
     proc = launch(ros, "rotors_gazebo", "fixed_wing_with_joy.launch", "gui:=false", "joystick:=none",
                   "world_name:=basic", "real_time_factor:=5", "enable_logging:=true")
     try:
-        got = ros.rospy(f"""
-            from gazebo_msgs.msg import ModelState
-            from gazebo_msgs.srv import SetModelState
-            from mav_msgs.msg import RollPitchYawrateThrust
-            from nav_msgs.msg import Odometry
-            pub = rospy.Publisher('/techpod/command/roll_pitch_yawrate_thrust', RollPitchYawrateThrust, queue_size=1,
-                                  latch=True)
-            cmd = RollPitchYawrateThrust()
-            cmd.pitch, cmd.thrust.x = {elevator / SURFACE_MAX!r}, {throttle!r}
-            pub.publish(cmd)
-            def odometry():
-                return rospy.wait_for_message('/techpod/ground_truth/odometry', Odometry, timeout=120)
-            m = odometry()
-            while m.twist.twist.linear.x < 10.0:  # launched
-                m = odometry()
-            launched = m
-            while pub.get_num_connections() == 0 or m.header.stamp.to_sec() < launched.header.stamp.to_sec() + 1.0:
-                m = odometry()
-            state = ModelState(model_name='techpod')
-            state.pose.position.z = 60.0
-            state.pose.orientation.y, state.pose.orientation.w = {math.sin(-alpha / 2)!r}, {math.cos(alpha / 2)!r}
-            state.twist.linear.x = {V_TRIM!r}
-            rospy.wait_for_service('/gazebo/set_model_state', timeout=30)
-            reply = rospy.ServiceProxy('/gazebo/set_model_state', SetModelState)(state)
-            first = odometry()
-            while first.pose.pose.position.x > 5.0:  # the first message after the reset
-                first = odometry()
-            m = first
-            while m.header.stamp.to_sec() < first.header.stamp.to_sec() + 10.0:
-                m = odometry()
-            result.update(launched_vx=launched.twist.twist.linear.x, reset=reply.success, z0=first.pose.pose.position.z,
-                          z=m.pose.pose.position.z, x=m.pose.pose.position.x, vx=m.twist.twist.linear.x)
-        """, timeout=240)
+        got = ros.run_client("clients.fixed_wing:joystick_flight_from_trim", timeout=240,
+                             pitch=float(elevator / SURFACE_MAX), thrust=float(throttle),
+                             qy=math.sin(-alpha / 2), qw=math.cos(alpha / 2), v_trim=V_TRIM)
     finally:
         stop_launch(proc)
     print(f"fixed_wing_with_joy: launched at {got['launched_vx']:.1f} m/s; 10 s from trim: flown {got['x']:.0f} m, "
@@ -186,7 +156,7 @@ def test_fixed_wing_with_joy_launches_the_techpod_and_it_flies_on_joystick_comma
 
 
 @pytest.mark.parametrize("wind_direction, wind_speed", [("-1 0 0", 5.0), ("0 0 1", 1.0)])
-def test_wind_changes_airspeed_and_angle_of_attack_as_the_model_says(trimmed, wind_direction, wind_speed):
+def test_wind_changes_airspeed_and_aoa_as_the_model_says(trimmed, wind_direction, wind_speed):
     # trimmed at 15 m/s over the ground, in a 5 m/s headwind (airspeed 20 m/s) or a 1 m/s updraft (angle
     # of attack up by atan(1 / 15)): the plugin's first acceleration is the model's force at
     # v_air = v - wind, divided by the mass (the wind plugin's speed reaches the plugin over the bus)
@@ -219,7 +189,7 @@ def test_wind_changes_airspeed_and_angle_of_attack_as_the_model_says(trimmed, wi
     assert np.allclose(a_W, a_model, rtol=0.02, atol=0.2)
 
 
-def test_a_deflection_out_of_range_is_one_line_and_changes_nothing(trimmed):
+def test_deflection_out_of_range_is_one_line_changes_nothing(trimmed):
     _, _, (alpha, elevator, throttle) = trimmed
     world = rs.World("basic")
     world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1)

@@ -62,23 +62,7 @@ def test_gimbal_pitch_command_over_ros(ros: RosGraph):
                   "enable_gimbal:=true")
     try:
         wait_sim_time(ros, 7.0)
-        got = ros.rospy("""
-            from std_msgs.msg import Float64
-            pub = rospy.Publisher('/firefly/gimbal_pitch_cmd', Float64, queue_size=1, latch=True)
-            while pub.get_num_connections() == 0:
-                time.sleep(0.05)
-            pub.publish(Float64(3.0))  # beyond the pitch joint's 90 deg: clamped
-            roll = rospy.Publisher('/firefly/gimbal_roll_cmd', Float64, queue_size=1, latch=True)
-            while roll.get_num_connections() == 0:
-                time.sleep(0.05)
-            roll.publish(Float64(3.0))  # beyond the roll joint's 45 deg: clamped
-            time.sleep(3.0)
-            from nav_msgs.msg import Odometry
-            for axis in ('yaw', 'roll', 'pitch'):
-                result[axis] = rospy.wait_for_message(f'/firefly/gimbal_{axis}_status', Float64, timeout=30).data
-            q = rospy.wait_for_message('/firefly/ground_truth/odometry', Odometry, timeout=30).pose.pose.orientation
-            result['q_WB'] = [q.x, q.y, q.z, q.w]
-        """, timeout=120)
+        got = ros.run_client("clients.gimbal:pitch_and_roll_beyond_the_joints", timeout=120)
     finally:
         stop_launch(proc)
 

@@ -31,7 +31,7 @@ def lee_action(env, lee: rs.LeePositionController) -> np.ndarray:
     return (2.0 * speeds / env.flight.max_rot_velocity - 1.0).astype(np.float32)
 
 
-def test_a_scripted_policy_holds_the_hover_and_a_random_one_crashes():
+def test_scripted_policy_holds_hover_and_random_one_crashes():
     env = HoverEnv(action_type="motor")
     lee = rs.LeePositionController.for_mav("firefly")
     obs, _ = env.reset(seed=0)
@@ -80,7 +80,7 @@ def test_a_scripted_policy_reaches_every_waypoint():
     (np.zeros(5, np.float32), r"action has shape \(5,\).*needs \(6,\)"),
     (np.full(6, np.nan, np.float32), "has NaN or inf"),
 ])
-def test_bad_actions_raise_one_clear_exception_and_the_env_keeps_working(action, match):
+def test_bad_actions_raise_one_exception_and_env_keeps_working(action, match):
     env = HoverEnv()
     env.reset(seed=0)
     with pytest.raises(rs.SimError, match=match):
@@ -95,7 +95,7 @@ def test_bad_actions_raise_one_clear_exception_and_the_env_keeps_working(action,
         HoverEnv(mav_name="neo9", action_type="attitude")
 
 
-def test_the_vector_environment_steps_every_world_in_one_call_with_autoreset():
+def test_vector_env_steps_every_world_in_one_call_with_autoreset():
     envs = BatchedEnv(lambda i: HoverEnv(sensor_seed=i, episode_s=0.5), num_envs=8)
     obs, _ = envs.reset(seed=10)
     assert obs.shape == (8, 13) and len({tuple(o) for o in obs}) == 8  # per-world start states

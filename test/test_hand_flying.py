@@ -196,7 +196,7 @@ def plot_wing_flight(odom, cmd, t_climb: float, t_bank: float, out: Path) -> Non
 
 
 @pytest.mark.long  # the long tier (about 20-25 s): make test under 25 min
-def test_keyboard_flight_of_the_fixed_wing_climbs_banks_and_turns(ros: RosGraph, tmp_path: Path):
+def test_keyboard_fixed_wing_flight_climbs_banks_and_turns(ros: RosGraph, tmp_path: Path):
     # fixed_wing_with_joy.launch joystick:=keyboard in a pseudo-terminal: the launcher sets the techpod
     # flying at 15 m/s; W x 30 opens the throttle to 0.5 (thrust axis -1 + 30 * 0.05, about the
     # trim); then W x 6 (0.8) and a tap of the down arrow (elevator trailing edge up for 0.5 s): it

@@ -42,7 +42,7 @@ class AutopilotStandIn:
         return self.of_type(kind)
 
 
-def test_fixed_wing_hil_launch_exchanges_hil_messages_with_an_autopilot(ros):
+def test_fixed_wing_hil_launch_exchanges_hil_with_autopilot(ros):
     port = free_udp_port()
     autopilot = AutopilotStandIn(port)
     launch(ros, "rotors_gazebo", "fixed_wing_hil.launch", f"mavlink_url:=udpout:127.0.0.1:{port}")
@@ -64,13 +64,7 @@ def test_fixed_wing_hil_launch_exchanges_hil_messages_with_an_autopilot(ros):
     assert gps and gps[-1].fix_type == 3 and abs(gps[-1].lat) > 0
     # the autopilot's controls: mav_msgs/Actuators, normalized, on command/motor_speed
     results = {}
-    listener = threading.Thread(target=lambda: results.update(ros.rospy("""
-        from mav_msgs.msg import Actuators
-        got = []
-        rospy.Subscriber('/techpod/command/motor_speed', Actuators, lambda m: got.append(list(m.normalized)))
-        time.sleep(4.0)
-        result['normalized'] = got[-1] if got else None
-    """)))
+    listener = threading.Thread(target=lambda: results.update(ros.run_client("clients.hil_interface:normalized_controls")))
     listener.start()
     end = time.monotonic() + 5.0
     while listener.is_alive() and time.monotonic() < end:  # the autopilot answers on its link

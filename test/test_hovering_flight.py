@@ -29,16 +29,7 @@ def fly(ros: RosGraph, *args: str, until_s: float = 21.0):
     try:
         wait_sim_time(ros, until_s)
         topics = ros.run(["rostopic", "list"]).stdout.split()
-        imu = ros.rospy("""
-            from sensor_msgs.msg import Imu
-            m = rospy.wait_for_message('/firefly/ground_truth/imu', Imu, timeout=10)
-            result['gt_acc'] = [m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z]
-            from sensor_msgs.msg import JointState
-            from mav_msgs.msg import Actuators
-            js = rospy.wait_for_message('/firefly/joint_states', JointState, timeout=10)
-            result['joints'] = dict(zip(js.name, js.velocity))
-            result['omega'] = list(rospy.wait_for_message('/firefly/motor_speed', Actuators, timeout=10).angular_velocities)
-        """)
+        imu = ros.run_client("clients.hovering_flight:imu_joints_and_rotor_speeds")
     finally:
         stop_launch(proc)
     bags = sorted(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
@@ -102,7 +93,7 @@ def test_matched_controller_parameters_remove_the_offset(ros: RosGraph, tmp_path
     assert abs(window.values[-1, 2] - 1.0) < 1e-3
 
 
-def test_a_rosbag_record_of_the_hovering_example_evaluates_unchanged(ros: RosGraph, tmp_path: Path):
+def test_rosbag_record_of_hovering_example_evaluates_unchanged(ros: RosGraph, tmp_path: Path):
     """As a new user does: the hovering example without the bag plugin, `rosbag record -a` beside it,
     then hovering_eval.py and waypoints_eval.py on that bag. rosbag record holds no
     ground_truth/twist (only the bag plugin writes it) and ground_truth/pose is an unstamped

@@ -22,46 +22,8 @@ def test_vlp16_cloud_in_the_power_plant_lies_on_the_plant(ros: RosGraph, tmp_pat
                   "real_time_factor:=0")
     try:
         wait_sim_time(ros, 1.0)
-        result = ros.rospy(f"""
-            import numpy as np
-            from nav_msgs.msg import Odometry
-            from sensor_msgs.msg import PointCloud2, PointField
-            from sensor_msgs import point_cloud2
-            def rotation(q):  # unit quaternion -> R_WB
-                w, x, y, z = q.w, q.x, q.y, q.z
-                return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                                 [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                                 [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
-            poses = []
-            rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, lambda m: poses.append(m), queue_size=1000)
-            clouds = []
-            rospy.Subscriber('/firefly/velodyne_points', PointCloud2, lambda m: clouds.append(m), queue_size=100)
-            deadline = time.monotonic() + 120
-            while len(clouds) < 40 and time.monotonic() < deadline:
-                time.sleep(0.05)
-            c = clouds[-1]
-            result['fields'] = [(f.name, f.offset, f.datatype, f.count) for f in c.fields]
-            result['point_step'] = c.point_step
-            result['frame'] = c.header.frame_id
-            stamps = [m.header.stamp.to_sec() for m in clouds]
-            result['period'] = float(np.median(np.diff(stamps)))
-            rows = []
-            rings, times = set(), []
-            for cloud in clouds[-5:]:
-                t = cloud.header.stamp.to_sec()
-                odom = min(poses, key=lambda m: abs(m.header.stamp.to_sec() - t))
-                p, q = odom.pose.pose.position, odom.pose.pose.orientation
-                R = rotation(q)
-                pts = np.array(list(point_cloud2.read_points(cloud, ('x', 'y', 'z', 'ring', 'time'))))
-                rings.update(int(r) for r in pts[:, 3])
-                times.extend([float(pts[:, 4].min()), float(pts[:, 4].max())])
-                sensor = np.array([p.x, p.y, p.z]) + R @ np.array([0, 0, {LIDAR_ABOVE_BASE_M}])
-                rows.append(pts[:, :3] @ R.T + sensor)
-            result['points_per_cloud'] = len(rows[-1])
-            result['rings'] = sorted(rings)
-            result['time_span'] = [min(times), max(times)]
-            np.savetxt('{points_file}', np.vstack(rows), fmt='%.5f')
-        """, timeout=200)
+        result = ros.run_client("clients.laser_flight:vlp16_clouds", timeout=200, lidar_above_base_m=LIDAR_ABOVE_BASE_M,
+                                points_file=str(points_file))
     finally:
         stop_launch(proc)
     # velodyne_pointcloud's PointXYZIRT: x y z float32, intensity float32 at 16, ring uint16 at 20, time at 24
@@ -92,40 +54,14 @@ def test_vlp16_cloud_in_the_power_plant_lies_on_the_plant(ros: RosGraph, tmp_pat
     assert int(figures["without an occupied cell within 1.0 m"]) == 0
 
 
-def test_rangefinder_reads_the_height_and_the_hokuyo_publishes_laser_scans(ros: RosGraph):
+def test_rangefinder_reads_height_and_hokuyo_publishes_scans(ros: RosGraph):
     results = {}
     for lidar in ("rangefinder", "hokuyo"):
         proc = launch(ros, "rotors_gazebo", "mav_hovering_example_with_lidar.launch", "lockstep:=true",
                       "real_time_factor:=0", "world_name:=basic", f"enable_lidar:={lidar}", name=lidar)
         try:
             wait_sim_time(ros, 8.0)  # hovering at 1 m since 5 s
-            results[lidar] = ros.rospy("""
-                from nav_msgs.msg import Odometry
-                from sensor_msgs.msg import LaserScan, Range
-                if rospy.has_param('/firefly/robot_description') and 'hokuyo' in rospy.get_param(
-                        '/firefly/robot_description'):
-                    scans = []
-                    rospy.Subscriber('/firefly/scan', LaserScan, lambda m: scans.append(m))
-                    while len(scans) < 5:
-                        time.sleep(0.05)
-                    s = scans[-1]
-                    result['scan'] = [s.angle_min, s.angle_max, s.angle_increment, len(s.ranges), s.range_min,
-                                      s.range_max, s.header.frame_id]
-                    result['finite'] = sum(1 for r in s.ranges if r == r and abs(r) != float('inf'))
-                    # the mean over four periods (40 Hz on 10 ms steps: 30 and 20 ms alternate)
-                    result['period'] = (scans[-1].header.stamp - scans[-5].header.stamp).to_sec() / 4
-                else:
-                    readings = []
-                    rospy.Subscriber('/firefly/lidar', Range, lambda m: readings.append(m))
-                    while len(readings) < 20:
-                        time.sleep(0.05)
-                    z = rospy.wait_for_message('/firefly/ground_truth/odometry', Odometry).pose.pose.position.z
-                    r = readings[-20:]
-                    result['ranges'] = [m.range for m in r]
-                    result['limits'] = [r[-1].min_range, r[-1].max_range, r[-1].radiation_type]
-                    result['z'] = z
-                    result['period'] = (r[-1].header.stamp - r[-2].header.stamp).to_sec()
-            """)
+            results[lidar] = ros.run_client("clients.laser_flight:rangefinder_or_hokuyo")
         finally:
             stop_launch(proc)
     rf = results["rangefinder"]

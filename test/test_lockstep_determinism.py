@@ -21,10 +21,7 @@ def fly_once(ros: RosGraph, tag: str, *launch_args: str) -> Path:
     try:
         ready = ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         assert ready, Path(proc.log_path).read_text()[-2000:]
-        send_hover_pose(ros, then="""
-            from std_srvs.srv import Empty
-            rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()  # the set point was delivered while paused
-        """)
+        send_hover_pose(ros, then="clients.sim:unpause_physics")  # the set point was delivered while paused
         wait_sim_time(ros, 6.0)
         ros.run(["rosservice", "call", "/gazebo/pause_physics"])
     finally:
@@ -92,7 +89,7 @@ def fly_hovering_example(ros: RosGraph, tag: str, cpu_hog: bool) -> Path:
 # the long tier, which runs one test at a time: in the quick tier's two workers its busy processes
 # would compete with the other worker's tests, some of which assert on wall-clock behaviour
 @pytest.mark.long
-def test_the_hovering_example_repeats_bit_for_bit_beside_a_cpu_hog(ros: RosGraph):
+def test_hovering_example_repeats_bit_for_bit_beside_cpu_hog(ros: RosGraph):
     quiet, loaded = fly_hovering_example(ros, "quiet", False), fly_hovering_example(ros, "loaded", True)
     for bag in (quiet, loaded):  # lockstep waited for every step
         b = FlightBag(bag)
@@ -111,7 +108,7 @@ def test_the_hovering_example_repeats_bit_for_bit_beside_a_cpu_hog(ros: RosGraph
     assert max(h for t, h in z if t < 4.9) < 0.2 and max(h for t, h in z if 6.0 < t < 7.5) > 0.5
 
 
-def test_the_python_module_flies_the_hovering_example_bit_for_bit_as_ros_in_lockstep(ros: RosGraph):
+def test_python_module_hover_bit_for_bit_as_ros_in_lockstep(ros: RosGraph):
     # the same seed, world, vehicle, controller yaml and waypoint timing, once as ROS nodes in
     # lockstep and once in one Python loop (rotors_sim, no ROS master): the plugins' IMU, odometry
     # and rotor-speed messages are the same bytes, every motor command the same numbers, and the

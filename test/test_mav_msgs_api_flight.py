@@ -6,7 +6,7 @@ from books_hover import assert_hovers_like_the_book
 from conftest import RosGraph, stop_launch, wait_sim_time
 
 
-def test_user_controller_on_the_mav_msgs_api_hovers_within_the_books_figure(ros: RosGraph):
+def test_mav_msgs_api_controller_hovers_within_books_figure(ros: RosGraph):
     proc = ros.start(["roslaunch", "-p", str(ros.port), "mav_msgs_api_user", "user_controller_hovering.launch"],
                      "launch")
     try:

@@ -23,14 +23,7 @@ def test_hexacopter_keeps_flying_with_one_motor_out(ros: RosGraph):
                   "real_time_factor:=20", "log_file:=motor_failure")
     try:
         # one client, as soon as the MAV is spawned: the calls take milliseconds, well before 40 s
-        got = ros.rospy("""
-            from rotors_comm.srv import SetMotorFailure
-            rospy.wait_for_service('/firefly/set_motor_failure', timeout=60)
-            fail = rospy.ServiceProxy('/firefly/set_motor_failure', SetMotorFailure)
-            result['calls'] = [[r.success, r.message] for r in (fail(6, 0.0, 0.0, 0.0), fail(1, 1.5, 0.0, 0.0),
-                                                                fail(1, 0.0, 40.0, 0.2))]
-            result['t'] = rospy.Time.now().to_sec()
-        """)
+        got = ros.run_client("clients.motor_failure:failure_requests")
         calls = got["calls"]
         assert got["t"] < 39.0, got
         assert calls[0] == [False, "motor_number 6 is not a motor of firefly (0..5)"]

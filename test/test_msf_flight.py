@@ -36,7 +36,7 @@ def fly_msf(ros: RosGraph, until_s: float, *args: str, during=None):
 
 
 @pytest.mark.long  # the long tier (about 40 s): make test under 25 min
-def test_firefly_hovers_on_the_estimate_and_the_filter_is_consistent(ros: RosGraph, tmp_path: Path):
+def test_firefly_hovers_on_estimate_and_filter_is_consistent(ros: RosGraph, tmp_path: Path):
     bag, topics, info, log, _ = fly_msf(ros, 46.0)
     # MSF's outputs (its inputs are remapped to imu and odometry_sensor1/pose_with_covariance)
     for t in ("/firefly/msf_core/odometry", "/firefly/msf_core/pose", "/firefly/msf_core/pose_after_update",
@@ -128,19 +128,7 @@ def test_estimator_survives_a_pose_outage_and_reconverges(ros: RosGraph, tmp_pat
 
     def fly_through_band():
         # after hovering at the origin: into the band, hold, and out again (command/pose, sim time)
-        return ros.rospy("""
-            from geometry_msgs.msg import PoseStamped
-            pub = rospy.Publisher('/firefly/command/pose', PoseStamped, queue_size=1, latch=True)
-            def go(x, at):
-                while rospy.Time.now().to_sec() < at:
-                    rospy.sleep(0.05)
-                m = PoseStamped()
-                m.header.stamp = rospy.Time.now()
-                m.pose.position.x, m.pose.position.z, m.pose.orientation.w = x, 1.0, 1.0
-                pub.publish(m)
-                return m.header.stamp.to_sec()
-            result['sent'] = [go(1.0, 30.0), go(2.2, 32.5)]
-        """, timeout=300)
+        return ros.run_client("clients.msf_flight:fly_through_band", timeout=300)
 
     bag, _, _, log, sent = fly_msf(ros, 47.0, f"pose_sensor_map:={pgm}", during=fly_through_band)
     assert 30.0 <= sent["sent"][0] < 30.5 and 32.5 <= sent["sent"][1] < 33.0, sent  # on time in sim time
@@ -172,46 +160,7 @@ def test_estimator_refuses_what_it_does_not_do_and_names_typos(ros: RosGraph):
     assert "pose_sensor/pose_fixed_scale: false: estimating scale online is not supported" in res.stdout + res.stderr
     # RotorS' msf_simulator.yaml typo is reported, not silently ignored; NaN input is dropped, node lives on
     node = ros.start(["rosrun", "msf_updates", "pose_sensor", "__name:=msf", "_core/fixed_bias:=0"], "msf_node")
-    out = ros.rospy("""
-        from geometry_msgs.msg import PoseStamped
-        from nav_msgs.msg import Odometry
-        from sensor_msgs.msg import Imu
-        from sensor_fusion_comm.srv import InitHeight, InitScale
-        rospy.wait_for_service('/msf/pose_sensor/initialize_msf_scale', timeout=20)
-        imu_pub = rospy.Publisher('/msf_core/imu_state_input', Imu, queue_size=10)
-        pose_pub = rospy.Publisher('/msf_updates/pose_input', PoseStamped, queue_size=10)
-        time.sleep(1.0)
-        def imu(t, az):
-            m = Imu()
-            m.header.stamp = rospy.Time(t)
-            m.linear_acceleration.z = az
-            imu_pub.publish(m)
-        imu(1.0, float('nan'))
-        time.sleep(0.5)
-        init = rospy.ServiceProxy('/msf/pose_sensor/initialize_msf_scale', InitScale)
-        height = rospy.ServiceProxy('/msf/pose_sensor/initialize_msf_height', InitHeight)
-        result['init'] = init(1.0).result
-        # a PoseStamped on pose_input (no covariance: pose_noise_meas_p/q), then initialise
-        imu(1.0, 9.81)
-        pose = PoseStamped()
-        pose.header.stamp = rospy.Time(1.0)
-        pose.pose.position.x, pose.pose.position.y, pose.pose.position.z = 1.0, 2.0, 0.5
-        pose.pose.orientation.w = 1.0
-        pose_pub.publish(pose)
-        time.sleep(0.5)
-        result['height'] = height(0.001).result
-        result['init_after_pose'] = init(1.0).result
-        sub_msgs = []
-        sub = rospy.Subscriber('/msf_core/odometry', Odometry, sub_msgs.append)
-        time.sleep(0.5)
-        imu(1.01, 9.81)
-        deadline = time.monotonic() + 5
-        while not sub_msgs and time.monotonic() < deadline:
-            time.sleep(0.05)
-        o = sub_msgs[0]
-        result['odom'] = [o.header.frame_id, o.child_frame_id, o.header.stamp.to_sec(), o.pose.pose.position.x,
-                          o.pose.pose.position.y, o.pose.pose.position.z]
-    """)
+    out = ros.run_client("clients.msf_flight:refusals_and_nan_input")
     assert out["init"] == "Not initialized: no pose measurement received yet"
     assert out["height"] == "Not initialized: height 0.001 m is below the minimum of 0.01 m"
     assert out["init_after_pose"] == "Initialized scale"

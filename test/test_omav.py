@@ -43,36 +43,7 @@ def test_omav_hovers_then_holds_position_while_rolled_20_degrees(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "omav_hovering_example.launch", "lockstep:=true", "real_time_factor:=10")
     try:
         wait_sim_time(ros, 12.0)  # hovering_example's (0, 0, 1) is due at 8.6 s
-        got = ros.rospy("""
-            from geometry_msgs.msg import PoseStamped
-            from nav_msgs.msg import Odometry
-            from std_msgs.msg import Float32
-            def sample(seconds):
-                m = rospy.wait_for_message('/omav/ground_truth/odometry', Odometry, timeout=30)
-                t0, rows = m.header.stamp.to_sec(), []
-                while m.header.stamp.to_sec() < t0 + seconds:
-                    p, q = m.pose.pose.position, m.pose.pose.orientation
-                    roll = math.atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x * q.x + q.y * q.y))
-                    pitch = math.asin(max(-1.0, min(1.0, 2 * (q.w * q.y - q.z * q.x))))
-                    rows.append([p.x, p.y, p.z, math.degrees(roll), math.degrees(pitch)])
-                    m = rospy.wait_for_message('/omav/ground_truth/odometry', Odometry, timeout=30)
-                return rows
-            import math
-            result['hover'] = sample(2.0)
-            pub = rospy.Publisher('/omav/command/pose', PoseStamped, queue_size=1, latch=True)
-            while pub.get_num_connections() == 0:
-                time.sleep(0.05)
-            cmd = PoseStamped()
-            cmd.pose.position.z = 1.0
-            cmd.pose.orientation.x, cmd.pose.orientation.w = math.sin(math.radians(10)), math.cos(math.radians(10))
-            pub.publish(cmd)
-            t = rospy.wait_for_message('/omav/ground_truth/odometry', Odometry, timeout=30).header.stamp.to_sec()
-            while rospy.wait_for_message('/omav/ground_truth/odometry', Odometry, timeout=30).header.stamp.to_sec() < t + 5:
-                pass
-            result['tilted'] = sample(5.0)
-            result['arms'] = [rospy.wait_for_message(f'/omav/tilt_motor_{i}/position', Float32, timeout=30).data
-                              for i in range(6)]
-        """, timeout=240)
+        got = ros.run_client("clients.omav:hover_then_roll_20_degrees", timeout=240)
     finally:
         stop_launch(proc)
     hover, tilted = np.array(got["hover"]), np.array(got["tilted"])

@@ -104,7 +104,7 @@ def fly_and_measure(world_name: str, start, corners, facing=None, every_s: float
     return figures
 
 
-def test_the_warehouse_loads_with_rotors_models_nested_models_and_the_stand_ins():
+def test_warehouse_loads_rotors_models_nested_and_stand_ins():
     models = rs.World("warehouse").models()
     # RotorS' world: 12 shelves, pallets with boxes (nested models built as models of their own),
     # the stand-ins, the asphalt and the ground
@@ -117,7 +117,7 @@ def test_the_warehouse_loads_with_rotors_models_nested_models_and_the_stand_ins(
 # power plant flight stays in the quick tier
 @pytest.mark.parametrize("world_name", [pytest.param("warehouse", marks=pytest.mark.long),
                                         pytest.param("powerplant", marks=pytest.mark.long)])
-def test_a_vi_sensor_flight_gives_corners_tracks_and_stereo_depth(world_name):
+def test_vi_sensor_flight_gives_corners_tracks_stereo_depth(world_name):
     start, corners, facing = {"warehouse": (WAREHOUSE_START, WAREHOUSE_LOOP, WAREHOUSE_FACING),
                               "powerplant": (POWERPLANT_START, POWERPLANT_PATH, POWERPLANT_FACING)}[world_name]
     figures = fly_and_measure(world_name, start, corners, facing)

@@ -35,7 +35,7 @@ def reached(position: np.ndarray, goal: np.ndarray, tolerance_m: float) -> np.nd
 
 
 @pytest.mark.long  # about 45 s here: the long tier keeps make test under 25 min (the bad goals below stay quick)
-def test_the_power_plant_example_with_the_planner_reaches_every_waypoint_without_collision(ros: RosGraph, tmp_path: Path):
+def test_power_plant_planner_reaches_every_waypoint_no_collision(ros: RosGraph, tmp_path: Path):
     # 5 s until the planner starts, then a leg per waypoint, each at least its 110 s wait time; the
     # last (25 m home from (25, 0, 5)) starts at about 335 s and takes about 65 s
     bag, data = fly_logged(ros, "mav_powerplant_with_planner.launch", 450.0, "gui:=false")
@@ -63,7 +63,7 @@ def test_the_power_plant_example_with_the_planner_reaches_every_waypoint_without
 
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
-def test_a_goal_behind_the_wall_is_reached_with_a_map_built_in_flight_only(ros: RosGraph):
+def test_goal_behind_wall_reached_with_map_built_in_flight(ros: RosGraph):
     # no prior map: the VLP-16's map grows as the MAV flies; the straight line to the goal crosses
     # the wall at x = 2.0-2.2 (y -3..3, up to 3 m)
     proc = launch(ros, "rotors_gazebo", "mav_obstacle_course_into_the_unknown.launch", "gui:=false",
@@ -89,22 +89,11 @@ def test_a_goal_behind_the_wall_is_reached_with_a_map_built_in_flight_only(ros: 
 
 
 def send_goal(ros: RosGraph, x: float, y: float, z: float) -> None:
-    ros.rospy(f"""
-        from geometry_msgs.msg import PoseStamped
-        pub = rospy.Publisher('/firefly/goal', PoseStamped, queue_size=1, latch=True)
-        goal = PoseStamped()
-        goal.header.frame_id = 'world'
-        goal.pose.position.x, goal.pose.position.y, goal.pose.position.z = {x}, {y}, {z}
-        goal.pose.orientation.w = 1.0
-        while pub.get_num_connections() == 0:
-            time.sleep(0.05)
-        pub.publish(goal)
-        time.sleep(0.5)
-    """)
+    ros.run_client("clients.planner_flight:send_goal", x=x, y=y, z=z)
 
 
 @pytest.mark.long  # the long tier (about 20-25 s): make test under 25 min
-def test_goals_that_cannot_be_flown_are_one_line_each_and_the_mav_keeps_hovering(ros: RosGraph):
+def test_unflyable_goals_one_line_each_and_mav_keeps_hovering(ros: RosGraph):
     # the box ends 3.3 m high and 3.3 m to the sides: the wall (3 m high, y -3..3) plus the
     # clearance (0.57 m; over its top edge sqrt(0.3^2 + 0.3^2) = 0.42 m) closes it, so nothing behind
     # the wall can be reached
@@ -135,7 +124,7 @@ def test_goals_that_cannot_be_flown_are_one_line_each_and_the_mav_keeps_hovering
     assert abs(before["y"] - 1.0) < 0.05 and moved < 0.02
 
 
-def test_a_map_file_that_does_not_exist_is_one_line_and_goals_are_refused(ros: RosGraph):
+def test_missing_map_file_is_one_line_and_goals_are_refused(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_with_planner.launch", "gui:=false", "map_source:=file",
                   "map_file:=/nonexistent/map.bt", "lockstep:=true", "real_time_factor:=5")
     try:
@@ -152,21 +141,15 @@ def test_a_map_file_that_does_not_exist_is_one_line_and_goals_are_refused(ros: R
 
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
-def test_a_map_built_with_the_vi_sensors_depth_camera_matches_the_power_plant(ros: RosGraph, tmp_path: Path):
+def test_map_from_vi_sensor_depth_camera_matches_power_plant(ros: RosGraph, tmp_path: Path):
     built, truth = tmp_path / "built.bt", tmp_path / "truth.bt"
     proc = launch(ros, "rotors_gazebo", "mav_powerplant_with_planner.launch", "gui:=false", "mapping:=true",
                   f"map_save_path:={built}", "lockstep:=true", "real_time_factor:=0")
     try:
         wait_sim_time(ros, 120.0, timeout_s=900.0)  # the first leg (5-74 s) and a hover at the waypoint
         # the truth at the map's resolution, ground included, in the box the MAV flew in
-        ros.rospy(f"""
-            from geometry_msgs.msg import Point
-            from rotors_comm.srv import Octomap
-            rospy.wait_for_service('/world/get_octomap', timeout=60)
-            rospy.ServiceProxy('/world/get_octomap', Octomap)(
-                bounding_box_origin=Point(10.0, -10.0, 14.75), bounding_box_lengths=Point(50.0, 50.0, 30.5),
-                leaf_size=0.25, publish_octomap=False, filename='{truth}')
-        """, timeout=300)
+        ros.run_client("clients.octomap:get_octomap", timeout=300, origin=[10.0, -10.0, 14.75],
+                       lengths=[50.0, 50.0, 30.5], leaf_size=0.25, filename=str(truth))
     finally:
         stop_launch(proc)
     log = Path(proc.log_path).read_text()
@@ -190,7 +173,7 @@ def box_distance(p: np.ndarray, lo, hi) -> np.ndarray:
 
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
-def test_reactive_avoidance_steers_around_the_wall_to_the_goal_with_a_2d_laser(ros: RosGraph):
+def test_reactive_avoidance_steers_around_wall_with_2d_laser(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_reactive_avoidance.launch", "gui:=false", "enable_logging:=true",
                   "lockstep:=true", "real_time_factor:=2")
     try:

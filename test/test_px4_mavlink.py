@@ -141,7 +141,7 @@ def exchange():
     return records, world
 
 
-def test_every_hil_sensor_carries_the_imu_magnetometer_and_barometer_readings_in_px4_units_and_frames(exchange):
+def test_hil_sensor_carries_imu_mag_baro_in_px4_units(exchange):
     records, _ = exchange
     for r in records[1:]:
         s, imu = r["sensor"], r["imu"]
@@ -167,7 +167,7 @@ def test_every_hil_sensor_carries_the_imu_magnetometer_and_barometer_readings_in
     assert s.pressure_alt == pytest.approx(500.0, abs=2.0) and s.temperature == pytest.approx(15.0 - 6.5 * 0.5, abs=0.1)
 
 
-def test_hil_gps_carries_the_gps_plugins_fix_in_1e7_deg_mm_and_cm_per_s_ned(exchange):
+def test_hil_gps_carries_gps_fix_in_1e7_deg_mm_cm_per_s_ned(exchange):
     records, _ = exchange
     gps = [(m, r) for r in records for m in r["others"] if m.get_type() == "HIL_GPS"]
     print(f"{len(gps)} HIL_GPS in {records[-1]['time']:.2f} s")
@@ -199,7 +199,7 @@ def test_hil_state_quaternion_is_the_ground_truth_in_ned_and_frd(exchange):
     assert abs(m.vx) <= 1 and abs(m.vy) <= 1 and abs(m.vz) <= 1
 
 
-def test_lockstep_the_world_does_not_step_past_an_unanswered_hil_sensor_and_loses_no_answer():
+def test_lockstep_waits_on_unanswered_hil_sensor_loses_no_answer():
     port = free_port()
     world = make_world(port)
     stepper, link = start_lockstep(world, port, 60)
@@ -248,7 +248,7 @@ def settle_on(link, controls, armed, steps):
         answer(link, controls, armed=armed)
 
 
-def test_control_channels_map_the_outputs_to_motor_speeds_as_rotors_and_disarmed_values_apply():
+def test_control_channels_map_as_rotors_disarmed_values_apply():
     port = free_port()
     world = make_world(port, urdf=channels_urdf(port))
     stepper, link = start_lockstep(world, port, 600)
@@ -264,7 +264,7 @@ def test_control_channels_map_the_outputs_to_motor_speeds_as_rotors_and_disarmed
     np.testing.assert_allclose(disarmed, [10 * i for i in range(6)], atol=0.5)
 
 
-def test_without_control_channels_output_i_drives_motor_i_up_to_its_max_speed(exchange):
+def test_no_control_channels_output_i_drives_motor_i_to_max(exchange):
     port = free_port()
     world = make_world(port)
     stepper, link = start_lockstep(world, port, 300)
@@ -358,7 +358,7 @@ class HilSensorAutopilot:
         self.q_level_xyzw = [0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)]
 
 
-def test_a_controller_on_the_autopilot_side_flies_the_firefly_on_hil_sensor_alone_to_2_m_and_holds_it():
+def test_autopilot_side_controller_flies_on_hil_sensor_to_2_m():
     port = free_port()
     world = make_world(port, seed=21)
     stepper, link = start_lockstep(world, port, int(12.0 / DT))
@@ -395,7 +395,7 @@ def test_a_controller_on_the_autopilot_side_flies_the_firefly_on_hil_sensor_alon
     assert tilt.max() < 3.0 and np.abs(yaw).max() < 3.0
 
 
-def test_distance_sensor_carries_the_downward_rangefinders_reading_in_cm():
+def test_distance_sensor_carries_rangefinder_reading_in_cm():
     port = free_port()
     world = make_world(port, enable_lidar="rangefinder")
     world.set_model_state("firefly", [0.0, 0.0, 3.0])  # falling from 3 m: in the rangefinder's range
@@ -418,7 +418,7 @@ def test_distance_sensor_carries_the_downward_rangefinders_reading_in_cm():
     assert m.max_distance == round(r.max_range * 100) and m.orientation == 25  # MAV_SENSOR_ROTATION_PITCH_270: down
 
 
-def test_two_vehicles_one_port_each_step_in_lockstep_with_both_autopilots():
+def test_two_vehicles_own_ports_step_in_lockstep_with_autopilots():
     ports = free_port(), free_port()
     world = rs.World("basic", step_size=DT)
     for i, port in enumerate(ports):
@@ -506,7 +506,7 @@ def techpod_flight(throttle: float, armed: bool) -> float:
     return float(world.link_state("techpod")[2][0])
 
 
-def test_a_fixed_wings_normalized_channels_take_the_autopilots_outputs():
+def test_fixed_wing_normalized_channels_take_autopilot_outputs():
     full, idle = techpod_flight(1.0, armed=True), techpod_flight(1.0, armed=False)
     print(f"techpod after 2 s from 15 m/s: {full:.2f} m/s at full throttle, {idle:.2f} m/s disarmed")
     assert full > idle + 1.0  # the throttle channel drives the propeller; disarmed it is at zero

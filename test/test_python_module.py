@@ -13,7 +13,7 @@ from rotors_sim.examples import hovering_example
 from rotors_sim.world import message_class
 
 
-def test_the_hovering_example_from_python_hovers_with_the_ros_examples_offset():
+def test_python_hovering_example_hovers_at_ros_offset():
     # the ROS example settles 0.040 m above its set point (the Lee controller's steady state with
     # the yaml's rounded constants); the same libraries from Python give the same offset
     flight = hovering_example(random_seed=1, duration_s=15.0)
@@ -29,7 +29,7 @@ def fly(seed: int, world: rs.World | None = None, duration_s: float = 6.0):
     return hovering_example(random_seed=seed, duration_s=duration_s, due_s=1.0, world=world)
 
 
-def test_a_batch_of_16_worlds_with_different_seeds_flies_16_different_repeatable_flights():
+def test_batch_of_16_seeded_worlds_flies_16_distinct_repeatable():
     batch = rs.Batch(lambda i: rs.World("basic"), 16)
     for i, world in enumerate(batch.worlds):
         world.spawn_mav("firefly", random_seed=100 + i, odometry_noise_position="0.01 0.01 0.01")
@@ -114,7 +114,7 @@ def spawn_windy_firefly(world: rs.World, gust_start_s: float) -> None:
                     odometry_noise_position="0.01 0.01 0.01", odometry_noise_attitude="0.02 0.02 0.02")
 
 
-def test_reset_repeats_the_flight_bit_for_bit_with_wind_and_navigation_sensors():
+def test_reset_repeats_flight_bit_for_bit_with_wind_and_nav():
     """World.reset() (Gazebo's reset_simulation, also the server's /gazebo/reset_simulation): every
     message of every topic of a second flight is byte for byte the first one's."""
     world = rs.World("basic")
@@ -217,7 +217,7 @@ def test_a_depth_camera_and_a_lidar_read_as_numpy_arrays():
         world.camera_image("firefly", "firefly_vi_sensor_stereo_camera", 2)
 
 
-def test_the_controllers_read_the_vehicle_yaml_and_name_a_missing_parameter(tmp_path):
+def test_controllers_read_vehicle_yaml_name_missing_param(tmp_path):
     lee = rs.LeePositionController.for_mav("firefly")
     assert len(lee.vehicle["rotors"]) == 6 and abs(lee.vehicle["mass_kg"] - 1.56779) < 1e-9
     attitude = rs.AttitudeLevelController.for_mav("hummingbird")
@@ -256,7 +256,7 @@ SPHERE = """<?xml version="1.0"?><sdf version="1.6"><model name="s"><link name="
     (lambda w: w.spawn(BOX.format("1 nan 1"), "b"), r"does not parse: Error reading element <size>"),  # sdformat
     (lambda w: w.spawn(SPHERE.format("-0.5"), "s"), r"sphere <radius> -0\.500000 must be finite and > 0"),
 ])
-def test_bad_input_is_one_clear_exception_and_the_world_keeps_working(bad, match):
+def test_bad_input_is_one_exception_and_world_keeps_working(bad, match):
     world = rs.World("basic")
     world.spawn_mav("firefly", random_seed=4)
     world.set_motor_speeds("firefly", [100.0] * 6)
@@ -269,7 +269,7 @@ def test_bad_input_is_one_clear_exception_and_the_world_keeps_working(bad, match
     assert world.rotor_speeds("firefly")[0] > 50.0  # the last valid command stays in force
 
 
-def test_a_controller_attached_in_the_engine_flies_the_python_loops_flight_bit_for_bit():
+def test_engine_controller_flies_python_loop_flight_bit_for_bit():
     loop = hovering_example(random_seed=5, duration_s=8.0)
     attached = hovering_example(random_seed=5, duration_s=8.0, attached=True)
     assert np.array_equal(loop.position_W, attached.position_W)
@@ -288,7 +288,7 @@ def test_listen_keeps_only_the_topics_asked_for():
     assert world.message("/firefly/imu")[1] == 5
 
 
-def test_an_sdf_model_spawns_from_text_and_falls_as_a_body_should():
+def test_sdf_model_spawns_from_text_and_falls_as_a_body():
     sdf = """<?xml version="1.0"?><sdf version="1.6"><model name="crate"><link name="body">
       <inertial><mass>2.0</mass><inertia><ixx>0.1</ixx><iyy>0.1</iyy><izz>0.1</izz></inertia></inertial>
       <collision name="c"><geometry><box><size>0.4 0.4 0.4</size></box></geometry></collision>
@@ -302,7 +302,7 @@ def test_an_sdf_model_spawns_from_text_and_falls_as_a_body_should():
     assert abs(z - (10.0 - g * (n * dt) ** 2 / 2)) < g * dt * n * dt  # the continuous fall, within one step's error
 
 
-def test_set_model_state_moves_a_static_model_with_its_collision_as_gazebo_does():
+def test_set_model_state_moves_static_model_and_its_collision():
     """A static 1 m table moved from x 5 to the origin: its pose follows, and a crate dropped on the
     origin comes to rest on its top (z 1.2) instead of the ground; reset puts the table back."""
     table = """<?xml version="1.0"?><sdf version="1.6"><model name="table"><static>true</static><link name="top">
@@ -324,7 +324,7 @@ def test_set_model_state_moves_a_static_model_with_its_collision_as_gazebo_does(
     assert np.allclose(world.link_state("table")[0], [5.0, 0.0, 0.5])
 
 
-def test_a_world_given_twice_to_step_all_or_a_batch_is_one_clear_error():
+def test_world_given_twice_to_step_all_or_batch_is_one_error():
     """step_all steps each world on a thread: a world given twice would be stepped by two threads at
     once. It is refused, naming the two positions, and nothing is stepped."""
     world = rs.World("basic")

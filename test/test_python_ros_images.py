@@ -16,14 +16,7 @@ def test_python_images_equal_the_ros_images_of_the_same_step(ros: RosGraph, tmp_
     raw = tmp_path / "left.raw"
     try:
         wait_sim_time(ros, 0.5)
-        got = ros.rospy(f"""
-            from sensor_msgs.msg import Image
-            m = rospy.wait_for_message('/firefly/vi_sensor/left/image_raw', Image, timeout=60)
-            while m.header.stamp.to_sec() < 1.5:
-                m = rospy.wait_for_message('/firefly/vi_sensor/left/image_raw', Image, timeout=60)
-            open({str(raw)!r}, 'wb').write(bytes(m.data))
-            result.update(stamp=m.header.stamp.to_sec(), height=m.height, width=m.width, encoding=m.encoding)
-        """)
+        got = ros.run_client("clients.python_ros_images:vi_left_image", raw_path=str(raw))
     finally:
         stop_launch(proc)
     ros_image = np.frombuffer(raw.read_bytes(), np.uint8).reshape(got["height"], got["width"], -1)

@@ -1,27 +1,13 @@
 """A MAV deleted and re-spawned under the same namespace starts clean: the in-memory vehicle bus
-(motor command, rotor count, faults) belongs to the vehicle's plugins and goes with them. Before,
-a 4-rotor model re-spawned where a 6-rotor one had been had every motor command rejected."""
+(motor command, rotor count, faults) belongs to the vehicle's plugins and goes with them. Checked
+where a bus left over from the old vehicle would show: a 6-rotor firefly spins up its six rotors
+on a 6-speed command; a 4-rotor hummingbird re-spawned in its place must spin up its four on a
+4-speed command, which the firefly's rotor count would reject, and the simulator's log must hold
+no rejected motor command."""
 from pathlib import Path
 
 from conftest import REPO, RosGraph
 from test_sim_server import start_server
-
-SPIN = """
-    from mav_msgs.msg import Actuators
-    pub = rospy.Publisher('/mav/command/motor_speed', Actuators, queue_size=1)
-    while pub.get_num_connections() == 0:
-        time.sleep(0.05)
-    speeds = []
-    deadline = time.monotonic() + 20
-    while time.monotonic() < deadline:
-        pub.publish(Actuators(angular_velocities=[300.0] * {n}))
-        m = rospy.wait_for_message('/mav/motor_speed', Actuators, timeout=10)
-        speeds = [abs(w) for w in m.angular_velocities]
-        if speeds and min(speeds) > 299.0:
-            break
-    result['speeds'] = speeds
-"""
-
 
 def spawn(ros: RosGraph, tmp_path: Path, vehicle: str) -> None:
     urdf = ros.run([str(REPO / "rotors_description/scripts/rotors_xacro"),
@@ -36,12 +22,12 @@ def spawn(ros: RosGraph, tmp_path: Path, vehicle: str) -> None:
 def test_respawn_with_another_rotor_count_starts_on_a_fresh_bus(ros: RosGraph, tmp_path: Path):
     server = start_server(ros, "--rtf", "1")
     spawn(ros, tmp_path, "firefly")
-    six = ros.rospy(SPIN.replace("{n}", "6"))["speeds"]
+    six = ros.run_client("clients.respawn:spin_motors", n=6)["speeds"]
     assert len(six) == 6 and min(six) > 299.0, six
     deleted = ros.run(["rosservice", "call", "/gazebo/delete_model", "mav"]).stdout
     assert "success: True" in deleted, deleted
     spawn(ros, tmp_path, "hummingbird")
-    four = ros.rospy(SPIN.replace("{n}", "4"))["speeds"]
+    four = ros.run_client("clients.respawn:spin_motors", n=4)["speeds"]
     log = Path(server.log_path).read_text()
     assert "rejected motor command" not in log, log[-2000:]
     assert len(four) == 4 and min(four) > 299.0, four

@@ -20,7 +20,7 @@ if (WS / "devel" / "lib" / "rotors_control_api_user" / "upstream_lee_position_co
 
 
 @pytest.mark.parametrize("node", NODES)
-def test_a_node_on_rotors_control_api_hovers_within_the_books_figure(ros: RosGraph, node: str):
+def test_rotors_control_api_node_hovers_within_books_figure(ros: RosGraph, node: str):
     proc = ros.start(["roslaunch", "-p", str(ros.port), "rotors_control_api_user", "user_lee_hovering.launch",
                       f"node:={node}"], "launch")
     try:

@@ -36,39 +36,13 @@ CAMERA_TOPICS = {  # topic -> (type, rate [Hz] or None, (width, height) of an im
     "/probe/camera/depth/image_raw": ("sensor_msgs/Image", 10.0, (160, 120)),
 }
 
-COLLECT = r"""
-import importlib
-import numpy as np
-stamps = {t: [] for t in TOPICS}
-sizes, depth = {}, {}
-def subscriber(topic, type_name):
-    pkg, name = type_name.split('/')
-    cls = getattr(importlib.import_module(pkg + '.msg'), name)
-    def cb(m):
-        stamps[topic].append(m.header.stamp.to_sec())
-        if hasattr(m, 'encoding'):
-            sizes[topic] = (m.width, m.height, m.encoding)
-        if topic in ('/tof/rgbd/camera_depth/depth/image_raw', '/probe/camera/depth/image_raw'):
-            d = np.frombuffer(m.data, dtype=np.float32)
-            v = d[np.isfinite(d)]
-            depth[topic] = dict(valid=int(v.size), nan=int(np.isnan(d).sum()),
-                                min=float(v.min()) if v.size else 0.0, max=float(v.max()) if v.size else 0.0)
-    return rospy.Subscriber(topic, cls, cb, queue_size=50)
-subs = [subscriber(t, k) for t, k in TOPICS.items()]
-deadline = time.monotonic() + 150
-while time.monotonic() < deadline and min(len(v) for v in stamps.values()) < 12:
-    time.sleep(0.2)
-result.update(stamps=stamps, sizes=sizes, depth=depth, types=dict(rospy.get_published_topics()))
-"""
-
-
-def test_rotors_sensor_files_publish_their_topics_types_sizes_and_rates(ros: RosGraph):
+def test_rotors_sensor_files_publish_topics_types_sizes_rates(ros: RosGraph):
     """Rates in sim time, from the header stamps of consecutive messages."""
     launch = ros.start(["roslaunch", "-p", str(ros.port), str(HERE / "launch/rotors_sensor_files.launch")], "launch")
     try:
         wait_sim_time(ros, 0.5)
         types = {t: k for t, (k, _, _) in CAMERA_TOPICS.items()}
-        got = ros.rospy(f"TOPICS = {types!r}\n" + COLLECT, timeout=240)
+        got = ros.run_client("clients.sensor_files:collect", timeout=240, topics=types)
     finally:
         stop_launch(launch)
     for topic, (kind, rate_hz, size) in CAMERA_TOPICS.items():

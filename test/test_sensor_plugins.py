@@ -39,18 +39,7 @@ def test_outage_map_suppresses_odometry_over_black_pixels(ros: RosGraph, tmp_pat
         f.write_text(sensor_box(name))
         ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(f), "-model", name, "-x", str(x),
                  "-y", str(y), "-z", "0.1"])
-    result = ros.rospy("""
-        from nav_msgs.msg import Odometry
-        from sensor_msgs.msg import Imu
-        counts = {'white': 0, 'black': 0}
-        subs = [rospy.Subscriber(f'/{n}/odometry', Odometry, lambda m, n=n: counts.__setitem__(n, counts[n] + 1))
-                for n in counts]
-        imu = []
-        sub_imu = rospy.Subscriber('/white/imu', Imu, lambda m: imu.append(m.linear_acceleration.z))
-        time.sleep(2.0)
-        result.update(counts)
-        result['imu_z'] = sum(imu[-50:]) / max(len(imu[-50:]), 1)
-    """)
+    result = ros.run_client("clients.sensor_plugins:odometry_counts_and_imu")
     assert result["white"] > 50  # 100 Hz where the map is white
     assert result["black"] == 0  # nothing over the black blob
     assert abs(result["imu_z"] - 9.8) < 0.05  # at rest: +g (gyro/accel noise left at ADIS defaults is small)
@@ -67,22 +56,7 @@ def test_wind_force_accelerates_a_free_body_as_f_over_m(ros: RosGraph, tmp_path:
         <windDirection>0 1 0</windDirection><windForceMean>2.0</windForceMean><windSpeedMean>3.0</windSpeedMean>
       </plugin></gazebo></robot>""")
     ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(urdf), "-model", "kite", "-z", "100"])
-    result = ros.rospy("""
-        from gazebo_msgs.msg import ModelStates
-        from rotors_comm.msg import WindSpeed
-        from std_srvs.srv import Empty
-        from rosgraph_msgs.msg import Clock
-        rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-        speed = rospy.wait_for_message('/kite/wind_speed', WindSpeed, timeout=10)
-        result['wind_y'] = speed.velocity.y
-        while rospy.wait_for_message('/clock', Clock).clock.to_sec() < 1.0:
-            pass
-        rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
-        t = rospy.wait_for_message('/clock', Clock).clock.to_sec()
-        m = rospy.wait_for_message('/gazebo/model_states', ModelStates)
-        result['t'] = t
-        result['y'] = m.pose[m.name.index('kite')].position.y
-    """)
+    result = ros.run_client("clients.sensor_plugins:wind_on_a_falling_kite")
     assert result["wind_y"] == 3.0
     t = result["t"]
     # semi-implicit Euler: y_N = a dt^2 N (N+1) / 2 with a = 2 m/s^2
@@ -118,23 +92,7 @@ def test_depth_cameras_exact_and_kinect_noisy(ros: RosGraph, tmp_path: Path):
     f = tmp_path / "rig.urdf"
     f.write_text(depth_rig("rig"))
     ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(f), "-model", "rig", "-z", "2.0"])
-    result = ros.rospy("""
-        import numpy as np
-        from sensor_msgs.msg import Image, PointCloud2
-        def centre(topic, n):
-            out = []
-            for _ in range(n):
-                m = rospy.wait_for_message(topic, Image, timeout=30)
-                d = np.frombuffer(m.data, dtype=np.float32).reshape(m.height, m.width)
-                out.append(d[50:70, 70:90].ravel())
-            return np.concatenate(out), m
-        exact, m = centre('/rig/exact/depth/image_raw', 1)
-        noisy, _ = centre('/rig/kinect/depth/image_raw', 8)
-        result.update(exact_min=float(exact.min()), exact_max=float(exact.max()), encoding=m.encoding,
-                      frame=m.header.frame_id, noisy_mean=float(noisy.mean()), noisy_std=float(noisy.std()))
-        cloud = rospy.wait_for_message('/rig/kinect/points', PointCloud2, timeout=30)
-        result['cloud'] = [cloud.width, cloud.height]
-    """)
+    result = ros.run_client("clients.sensor_plugins:depth_cameras")
     print(result)
     assert result["encoding"] == "32FC1" and result["frame"] == "rig/optical"
     # depth is the distance along the optical axis: 2 m at every pixel of a camera facing the plane

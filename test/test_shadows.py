@@ -41,7 +41,7 @@ def ground_row(world: rs.World) -> tuple:
     return image[:, (W - 1) // 2, 0], x
 
 
-def test_a_cube_casts_a_shadow_as_long_as_it_is_high_at_45_degrees():
+def test_cube_casts_shadow_as_long_as_its_height_at_45_degrees():
     grey, x = ground_row(rs.World(sdf=world_sdf()))
     lit = 255 * ALBEDO * (AMBIENT + SUN * np.cos(np.pi / 4))
     shadow = 255 * ALBEDO * AMBIENT

@@ -25,35 +25,7 @@ def test_pause_unpause_reset_and_spawn(ros: RosGraph, tmp_path: Path):
     urdf = tmp_path / "box.urdf"
     urdf.write_text(BOX_URDF)
     ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(urdf), "-model", "box", "-z", "5"])
-    result = ros.rospy("""
-        from rosgraph_msgs.msg import Clock
-        from gazebo_msgs.msg import ModelStates
-        from std_srvs.srv import Empty
-        clock = lambda: rospy.wait_for_message('/clock', Clock, timeout=10).clock.to_sec()
-        def box_z():
-            m = rospy.wait_for_message('/gazebo/model_states', ModelStates, timeout=10)
-            return m.pose[m.name.index('box')].position.z
-        result['paused_t0'] = clock(); time.sleep(0.5); result['paused_t1'] = clock()
-        from gazebo_msgs.srv import GetModelState
-        get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
-        s = get_state('box', ''); result['state_z'] = (s.success, s.pose.position.z, s.header.frame_id)
-        s = get_state('box', 'box'); result['state_self'] = (s.success, s.pose.position.z, s.pose.orientation.w)
-        s = get_state('nope', ''); result['state_nope'] = (s.success, s.status_message)
-        s = get_state('box', 'nope'); result['state_rel_nope'] = (s.success, s.status_message)
-        rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-        time.sleep(1.0)
-        result['running_t'] = clock()
-        rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
-        time.sleep(0.3)
-        result['z_fallen'] = box_z()
-        result['pause_t0'] = clock(); time.sleep(0.5); result['pause_t1'] = clock()
-        rospy.ServiceProxy('/gazebo/reset_world', Empty)()
-        result['z_reset'] = box_z()
-        result['t_after_reset_world'] = clock()
-        rospy.ServiceProxy('/gazebo/reset_simulation', Empty)()
-        time.sleep(0.3)
-        result['t_after_reset_sim'] = clock()
-    """)
+    result = ros.run_client("clients.sim_server:pause_unpause_reset")
     assert result["paused_t0"] == result["paused_t1"] == 0.0  # started paused (-u)
     # gazebo_msgs/GetModelState: world pose, pose relative to a model, unknown names
     assert result["state_z"] == [True, 5.0, "world"]
@@ -76,17 +48,7 @@ def test_runtime_spawn_delete_and_tf(ros: RosGraph, tmp_path: Path):
     res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-param", "/box_description", "-model", "box",
                    "-x", "1", "-y", "2", "-z", "0.1"])
     assert "Successfully spawned entity 'box'" in res.stdout
-    result = ros.rospy("""
-        import tf2_ros
-        buf = tf2_ros.Buffer(); listener = tf2_ros.TransformListener(buf)
-        t = buf.lookup_transform('world', 'box/base_link', rospy.Time(0), rospy.Duration(10))
-        result['x'] = t.transform.translation.x; result['y'] = t.transform.translation.y
-        from gazebo_msgs.srv import DeleteModel
-        r = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)('box')
-        result['deleted'] = r.success
-        r = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)('box')
-        result['deleted_again'] = r.success; result['msg'] = r.status_message
-    """)
+    result = ros.run_client("clients.sim_server:box_tf_and_delete")
     assert abs(result["x"] - 1.0) < 2e-3 and abs(result["y"] - 2.0) < 2e-3  # resting on the ground
     assert result["deleted"] and not result["deleted_again"]
     assert "no model named 'box'" in result["msg"]
@@ -108,18 +70,14 @@ PROBE_SDF = """<?xml version="1.0"?>
 </plugin></model></sdf>"""
 
 
-def test_an_sdf_vehicle_with_rotors_plugins_spawns_through_spawn_sdf_model(ros: RosGraph, tmp_path: Path):
+def test_sdf_vehicle_with_rotors_plugins_spawns_via_spawn_sdf(ros: RosGraph, tmp_path: Path):
     # the format is the root element's: an SDF model whose plugins carry <robotNamespace> is no URDF
     start_server(ros, "--rtf", "1")
     sdf = tmp_path / "probe.sdf"
     sdf.write_text(PROBE_SDF)
     res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-sdf", "-file", str(sdf), "-model", "probe", "-z", "2"])
     assert "Successfully spawned entity 'probe'" in res.stdout, res.stdout + res.stderr
-    result = ros.rospy("""
-        from sensor_msgs.msg import FluidPressure, Range
-        result['pressure'] = rospy.wait_for_message('/probe/air_pressure', FluidPressure, timeout=20).fluid_pressure
-        result['range'] = rospy.wait_for_message('/probe/lidar', Range, timeout=20).range
-    """)
+    result = ros.run_client("clients.sim_server:probe_readings")
     # 2 m over the ground of basic.world (elevation 500 m), the beam starts 0.15 m below the link
     assert abs(result["range"] - 1.85) < 1e-4
     assert 90000 < result["pressure"] < 96000
@@ -181,18 +139,7 @@ def test_spawn_normalises_the_quaternion_as_set_model_state_does(ros: RosGraph, 
     start_server(ros, "--rtf", "0")
     urdf = tmp_path / "box.urdf"
     urdf.write_text(BOX_URDF)
-    result = ros.rospy(f"""
-        from gazebo_msgs.srv import GetModelState, SpawnModel
-        from geometry_msgs.msg import Pose, Quaternion, Point
-        rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=30)
-        spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
-        xml = open({str(urdf)!r}).read()
-        a = spawn('turned', xml, '', Pose(position=Point(0, 0, 1), orientation=Quaternion(0, 0, 0.7, 0.7)), 'world')
-        b = spawn('plain', xml, '', Pose(position=Point(2, 0, 1)), 'world')
-        get = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
-        q, p = get('turned', 'world').pose.orientation, get('plain', 'world').pose.orientation
-        result.update(ok=[a.success, b.success], turned=[q.x, q.y, q.z, q.w], plain=[p.x, p.y, p.z, p.w])
-    """)
+    result = ros.run_client("clients.sim_server:spawn_turned_and_plain", urdf_path=str(urdf))
     print(result)
     assert result["ok"] == [True, True]
     assert sum(c * c for c in result["turned"]) == pytest.approx(1.0, abs=1e-9)

@@ -21,12 +21,7 @@ def simulated_mass(ros: RosGraph, mav: str) -> float:
 
 
 def ground_truth(ros: RosGraph, ns: str) -> dict:
-    return ros.rospy(f"""
-        from nav_msgs.msg import Odometry
-        m = rospy.wait_for_message('/{ns}/ground_truth/odometry', Odometry, timeout=20)
-        p, q = m.pose.pose.position, m.pose.pose.orientation
-        result.update(x=p.x, y=p.y, z=p.z, qx=q.x, qy=q.y, qz=q.z, qw=q.w)
-    """)
+    return ros.run_client("clients.sim:ground_truth", ns=ns)
 
 
 @pytest.mark.parametrize("mav", ["hummingbird", "pelican", "iris", pytest.param("neo11", marks=pytest.mark.long),
@@ -54,7 +49,7 @@ def test_vehicle_hovers_at_the_offset_its_parameters_predict(ros: RosGraph, mav:
     assert math.hypot(s["qx"], s["qy"]) < 0.05, s
 
 
-def test_waypoint_publisher_moves_the_mav_and_bad_commands_are_rejected(ros: RosGraph):
+def test_waypoint_publisher_moves_mav_and_rejects_bad_commands(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=10")
     try:
         wait_sim_time(ros, 10.0)
@@ -72,24 +67,11 @@ def test_waypoint_publisher_moves_the_mav_and_bad_commands_are_rejected(ros: Ros
     assert usage.returncode != 0 and "Usage: waypoint_publisher <x> <y> <z> <yaw_deg> [<delay>]" in usage.stderr
 
 
-def test_controller_interface_rejects_bad_commands_and_keeps_the_last_valid_one(ros: RosGraph):
+def test_controller_interface_rejects_bad_keeps_last_valid(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav.launch", "real_time_factor:=1")
     try:
         wait_sim_time(ros, 1.0)
-        result = ros.rospy("""
-            from mav_msgs.msg import Actuators
-            from nav_msgs.msg import Odometry
-            pub = rospy.Publisher('/firefly/command/motor_speed', Actuators, queue_size=10)
-            while pub.get_num_connections() == 0:
-                time.sleep(0.05)
-            z = lambda: rospy.wait_for_message('/firefly/ground_truth/odometry', Odometry).pose.pose.position.z
-            pub.publish(Actuators(angular_velocities=[600.0] * 6))    # valid: take off
-            rospy.sleep(1.0)
-            for bad in ([1.0, 2.0, 3.0], [600.0] * 5 + [float('nan')], [600.0] * 5 + [-1.0]):
-                pub.publish(Actuators(angular_velocities=bad))
-                rospy.sleep(0.2)
-            z0 = z(); rospy.sleep(1.0); result['climb'] = z() - z0   # still climbing on the valid command
-        """)
+        result = ros.run_client("clients.vehicles_flight:bad_motor_commands")
         assert proc.poll() is None
     finally:
         stop_launch(proc)
@@ -108,10 +90,7 @@ def test_swarm_launch_flies_all_nine_fireflies(ros: RosGraph):
     try:
         wait_sim_time(ros, 10.0)
         # the last waypoints go out 10 s after each publisher starts; give them time to arrive
-        t0 = ros.rospy("""
-            from rosgraph_msgs.msg import Clock
-            result['t'] = rospy.wait_for_message('/clock', Clock).clock.to_sec()
-        """)["t"]
+        t0 = ros.run_client("clients.sim:clock_now")["t"]
         wait_sim_time(ros, t0 + 25.0)
         states = [ground_truth(ros, f"firefly{i + 1}") for i in range(9)]
     finally:

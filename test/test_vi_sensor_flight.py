@@ -27,7 +27,7 @@ def stamps(bag: FlightBag, topic: str):
 
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
-def test_vi_sensor_flight_records_synchronised_stereo_and_exports_euroc(ros: RosGraph, tmp_path: Path):
+def test_vi_sensor_flight_records_synced_stereo_exports_euroc(ros: RosGraph, tmp_path: Path):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example_with_vi_sensor.launch", "enable_logging:=true",
                   "lockstep:=true", "real_time_factor:=0", "gui:=false")
     try:

@@ -142,30 +142,7 @@ def fly_and_export(ros: RosGraph, tmp_path: Path):
         points.write_text(json.dumps([dict(p=path.p_W[i].tolist(), v=path.v_W[i].tolist(), a=path.a_W[i].tolist(),
                                            yaw=float(path.yaw[i]), rate=float(path.yaw_rate[i]), t=float(path.t_s[i]))
                                       for i in range(len(path.t_s))]))
-        ros.rospy(f"""
-            import math
-            from geometry_msgs.msg import Transform, Twist
-            from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
-            pub = rospy.Publisher('/firefly/command/trajectory', MultiDOFJointTrajectory, queue_size=1, latch=True)
-            while pub.get_num_connections() < 2:  # the controller and the hovering example's latch
-                time.sleep(0.05)
-            msg = MultiDOFJointTrajectory()
-            msg.header.stamp = rospy.Time.from_sec({TRAJECTORY_DUE_S})
-            for q in json.loads(open({str(points)!r}).read()):
-                point = MultiDOFJointTrajectoryPoint()
-                tf = Transform()
-                tf.translation.x, tf.translation.y, tf.translation.z = q['p']
-                tf.rotation.z, tf.rotation.w = math.sin(q['yaw'] / 2), math.cos(q['yaw'] / 2)
-                velocity, acceleration = Twist(), Twist()
-                velocity.linear.x, velocity.linear.y, velocity.linear.z = q['v']
-                velocity.angular.z = q['rate']
-                acceleration.linear.x, acceleration.linear.y, acceleration.linear.z = q['a']
-                point.transforms, point.velocities, point.accelerations = [tf], [velocity], [acceleration]
-                point.time_from_start = rospy.Duration.from_sec(q['t'])
-                msg.points.append(point)
-            pub.publish(msg)
-            time.sleep(2.0)
-        """)
+        ros.run_client("clients.visual_odometry:send_trajectory", points_file=str(points), due_s=TRAJECTORY_DUE_S)
         wait_sim_time(ros, TRAJECTORY_DUE_S + path.duration_s, timeout_s=1500)
     finally:
         stop_launch(proc)
@@ -180,7 +157,7 @@ def fly_and_export(ros: RosGraph, tmp_path: Path):
 
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
-def test_stereo_visual_odometry_on_the_euroc_export_of_a_warehouse_flight(ros: RosGraph, tmp_path: Path):
+def test_stereo_vo_on_euroc_export_of_warehouse_flight(ros: RosGraph, tmp_path: Path):
     mav0, loop_begins_s = fly_and_export(ros, tmp_path)
     data = EuRoC(mav0)
     # the right camera b metres along the left camera's x axis, the pair rectified (T_BS of both)

@@ -19,21 +19,7 @@ def test_waypoint_file_is_flown_and_bad_trajectories_are_ignored(ros: RosGraph, 
         # the publisher waits for the simulation and 30 s of sim time; point 0 holds 4 s, then point 1
         wait_sim_time(ros, 48.0)
         s = ground_truth(ros, "firefly")
-        ros.rospy("""
-            from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
-            from geometry_msgs.msg import Transform
-            pub = rospy.Publisher('/firefly/command/trajectory', MultiDOFJointTrajectory, queue_size=10)
-            while pub.get_num_connections() == 0:
-                time.sleep(0.05)
-            pub.publish(MultiDOFJointTrajectory())                      # no points
-            time.sleep(0.3)  # the controller keeps only the latest command (queue 1)
-            t = Transform(); t.translation.x = float('nan'); t.rotation.w = 1.0
-            pub.publish(MultiDOFJointTrajectory(points=[MultiDOFJointTrajectoryPoint(transforms=[t])]))
-            time.sleep(0.3)
-            t = Transform(); t.translation.x = 5.0; t.rotation.w = 2.0  # not a unit quaternion
-            pub.publish(MultiDOFJointTrajectory(points=[MultiDOFJointTrajectoryPoint(transforms=[t])]))
-            time.sleep(1.0)
-        """)
+        ros.run_client("clients.waypoint_file_flight:bad_trajectories")
         wait_sim_time(ros, 55.0)
         after = ground_truth(ros, "firefly")
     finally:

@@ -53,16 +53,7 @@ def test_custom_static_wind_field_and_wind_from_a_topic(ros: RosGraph, tmp_path:
                xacro_args=f"enable_wind:=true use_custom_static_wind_field:=true custom_wind_field_path:={field}")
     try:
         wait_sim_time(ros, 12.0)
-        got = ros.rospy("""
-            from nav_msgs.msg import Odometry
-            from rotors_comm.msg import WindSpeed
-            pairs = []
-            for _ in range(20):
-                w = rospy.wait_for_message('/firefly/wind_speed', WindSpeed, timeout=10)
-                o = rospy.wait_for_message('/firefly/ground_truth/odometry', Odometry, timeout=10)
-                pairs.append([w.velocity.x, w.velocity.y, w.velocity.z, o.pose.pose.position.z])
-            result['pairs'] = pairs
-        """)["pairs"]
+        got = ros.run_client("clients.wind:speed_pairs", count=20)["pairs"]
     finally:
         stop_launch(proc)
     # the shear layer: u(z) = 5 (z / 60)^0.2 at levels 0, 3, 12, 30, 60 m, linear in between
@@ -78,66 +69,21 @@ def test_wind_speed_from_a_topic(ros: RosGraph, tmp_path: Path):
                xacro_args="enable_wind:=true wind_speed_sub_topic:=wind_input")
     try:
         wait_sim_time(ros, 8.0)
-        got = ros.rospy("""
-            from rotors_comm.msg import WindSpeed
-            pub = rospy.Publisher('/firefly/wind_input', WindSpeed, queue_size=1, latch=True)
-            msg = WindSpeed()
-            msg.velocity.x, msg.velocity.y = 3.0, -1.0
-            time.sleep(0.5)
-            pub.publish(msg)
-            time.sleep(1.0)
-            w = rospy.wait_for_message('/firefly/wind_speed', WindSpeed, timeout=10)
-            bad = WindSpeed()
-            bad.velocity.x = float('nan')
-            pub.publish(bad)
-            time.sleep(1.0)
-            w2 = rospy.wait_for_message('/firefly/wind_speed', WindSpeed, timeout=10)
-            result['w'] = [w.velocity.x, w.velocity.y, w2.velocity.x, w2.velocity.y]
-        """)["w"]
+        got = ros.run_client("clients.wind:wind_from_a_topic")["w"]
     finally:
         stop_launch(proc)
     assert got == [3.0, -1.0, 3.0, -1.0]  # NaN input ignored: the last valid wind stays
     assert "ignoring a wind speed with NaN or inf" in Path(proc.log_path).read_text()
 
 
-def test_the_airspeed_sensor_reads_the_wind_plugins_wind_minus_the_velocity(ros: RosGraph, tmp_path: Path):
+def test_airspeed_sensor_reads_plugin_wind_minus_velocity(ros: RosGraph, tmp_path: Path):
     """The book's wind sensor (section 4, eq. 19): with the wind plugin blowing 3 m/s along x on a
     hovering MAV, air_speed is R_WB^T (v_wind - v) of the plugin's published wind and the ground truth."""
     proc = fly(ros, tmp_path, "mav_hovering_example.launch", real_time_factor="0",
                xacro_args="enable_wind:=true wind_speed_mean:=3 enable_airspeed:=true random_seed:=1")
     try:
         wait_sim_time(ros, 6.0)
-        result = ros.rospy("""
-            import numpy as np
-            from geometry_msgs.msg import Vector3Stamped
-            from nav_msgs.msg import Odometry
-            from rotors_comm.msg import WindSpeed
-            got = {'air': {}, 'odom': {}, 'wind': {}}
-            stamp = lambda m: m.header.stamp.to_nsec()
-            rospy.Subscriber('/firefly/air_speed', Vector3Stamped, lambda m: got['air'].__setitem__(stamp(m), m))
-            rospy.Subscriber('/firefly/ground_truth/odometry', Odometry, lambda m: got['odom'].__setitem__(stamp(m), m))
-            rospy.Subscriber('/firefly/wind_speed', WindSpeed, lambda m: got['wind'].__setitem__(stamp(m), m))
-            time.sleep(3.0)
-            worst, n = 0.0, 0
-            for t, air in list(got['air'].items()):
-                if t not in got['odom'] or t not in got['wind']:
-                    continue
-                o, w = got['odom'][t].pose.pose, got['wind'][t].velocity
-                q = o.orientation
-                R = np.array([[1 - 2 * (q.y**2 + q.z**2), 2 * (q.x * q.y - q.w * q.z), 2 * (q.x * q.z + q.w * q.y)],
-                              [2 * (q.x * q.y + q.w * q.z), 1 - 2 * (q.x**2 + q.z**2), 2 * (q.y * q.z - q.w * q.x)],
-                              [2 * (q.x * q.z - q.w * q.y), 2 * (q.y * q.z + q.w * q.x), 1 - 2 * (q.x**2 + q.y**2)]])
-                # odometry's twist is in the body frame (RotorS' odometry); the world velocity is R v_B
-                tw = got['odom'][t].twist.twist.linear
-                v_W = R @ np.array([tw.x, tw.y, tw.z])
-                expected = R.T @ (np.array([w.x, w.y, w.z]) - v_W)
-                worst = max(worst, float(np.abs(expected - np.array([air.vector.x, air.vector.y, air.vector.z])).max()))
-                n += 1
-            result['n'] = n
-            result['worst'] = worst
-            last = got['air'][max(got['air'])].vector
-            result['last'] = [last.x, last.y, last.z]
-        """)
+        result = ros.run_client("clients.wind:airspeed_against_wind_and_velocity")
     finally:
         stop_launch(proc)
     print(f"air_speed against R^T (v_wind - v) of the wind plugin and ground truth: {result['n']} stamps, largest "

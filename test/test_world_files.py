@@ -68,7 +68,7 @@ def test_the_firefly_hovers_in_yosemite():
     assert np.linalg.norm(p - [0.0, 0.0, 1.1]) < 0.1, p
 
 
-def test_the_hemicyl_ridge_stands_along_y_and_its_wind_field_blows_where_the_firefly_hovers():
+def test_hemicyl_ridge_along_y_wind_field_blows_at_the_hover():
     world = rs.World("hemicyl")
     image = MODELS / "hemicyl/materials/textures/hemicyl257.png"
     top = terrain_height_m(image, 4000, 202.3346, 0.0, 0.0, 500.0)
@@ -85,7 +85,7 @@ def test_the_hemicyl_ridge_stands_along_y_and_its_wind_field_blows_where_the_fir
     assert count > 0 and speed > 0.5 and np.linalg.norm(p - [-1000.0, 0.0, 1.1]) < 0.3
 
 
-def test_the_occupancy_grid_room_has_rotors_ceiling_and_the_firefly_hovers_inside():
+def test_occupancy_grid_room_has_rotors_ceiling_firefly_hovers():
     world = rs.World("waypoint")
     p = hover(world, (0.0, 0.0, 0.1))
     assert np.linalg.norm(p - [0.0, 0.0, 1.1]) < 0.1, p

@@ -54,7 +54,7 @@ def evaluate(script: str, bag: Path, *args: str) -> str:
     return res.stdout
 
 
-def test_a_mav_sent_through_the_wall_stops_at_it_and_the_evaluation_counts_the_collision(ros: RosGraph):
+def test_mav_sent_through_wall_stops_and_eval_counts_collision(ros: RosGraph):
     # the hovering example's private parameters: the waypoint (4, 0, 1) lies behind the wall
     ros.run(["rosparam", "set", "/firefly/hovering_example/x", "4.0"])
     bag, data = fly_logged(ros, "mav_hovering_example.launch", 20.0, "world_name:=obstacle_course")
@@ -70,7 +70,7 @@ def test_a_mav_sent_through_the_wall_stops_at_it_and_the_evaluation_counts_the_c
     assert any(abs(first - t) < 1e-3 for t in hits)  # the evaluation counts a recorded contact
 
 
-def test_the_power_plant_example_is_in_collision_as_the_book_says_and_is_counted(ros: RosGraph):
+def test_power_plant_example_collides_as_book_says_and_counted(ros: RosGraph):
     # seed section 3: "the straight line solution is in collision, and the MAV is going to crash into
     # the wall without a planner"
     bag, data = fly_logged(ros, "mav_powerplant_with_waypoint_publisher.launch", 45.0, "gui:=false")
@@ -83,7 +83,7 @@ def test_the_power_plant_example_is_in_collision_as_the_book_says_and_is_counted
     assert "One or more collisions occurred - no points are awarded!" in evaluate("waypoints_eval.py", bag)
 
 
-def test_get_octomap_of_the_power_plant_world_agrees_with_rotors_octree(ros: RosGraph, tmp_path: Path):
+def test_get_octomap_of_power_plant_agrees_with_rotors_octree(ros: RosGraph, tmp_path: Path):
     world = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "worlds" / "powerplant.world"
     reference = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource" / "power_plant.bt"
     proc = launch(ros, "gazebo_ros", "empty_world.launch", f"world_name:={world}", "paused:=true", "gui:=false",
@@ -91,17 +91,8 @@ def test_get_octomap_of_the_power_plant_world_agrees_with_rotors_octree(ros: Ros
     out = tmp_path / "powerplant_from_service.bt"
     try:
         # power_plant.bt spans x -15..35, y -35..15, z 0..50; the world holds it 0.25 m lower
-        result = ros.rospy(f"""
-            from geometry_msgs.msg import Point
-            from rotors_comm.srv import Octomap
-            rospy.wait_for_service('/world/get_octomap', timeout=60)
-            res = rospy.ServiceProxy('/world/get_octomap', Octomap)(
-                bounding_box_origin=Point(10.0, -10.0, 24.75), bounding_box_lengths=Point(50.0, 50.0, 50.0),
-                leaf_size=0.25, publish_octomap=False, filename='{out}')
-            result['resolution'] = res.map.resolution
-            result['bytes'] = len(res.map.data)
-            result['latitude'] = res.origin_latitude
-        """, timeout=300)
+        result = ros.run_client("clients.octomap:get_octomap", timeout=300, origin=[10.0, -10.0, 24.75],
+                                lengths=[50.0, 50.0, 50.0], leaf_size=0.25, filename=str(out))
     finally:
         stop_launch(proc)
     assert result["resolution"] == 0.25 and result["bytes"] > 0
@@ -112,7 +103,7 @@ def test_get_octomap_of_the_power_plant_world_agrees_with_rotors_octree(ros: Ros
     assert iou >= 0.9999, res.stdout  # measured: 1.0000 (2228.828 m^3 occupied in both)
 
 
-def test_a_mav_sent_into_a_hillside_of_the_heightmap_world_stops_on_its_surface(ros: RosGraph):
+def test_mav_sent_into_heightmap_hillside_stops_on_its_surface(ros: RosGraph):
     sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "models" / "hills"))
     from make_hills import height_m  # the terrain the heightmap image was made from
 

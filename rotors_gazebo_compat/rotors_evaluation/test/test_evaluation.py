@@ -103,7 +103,7 @@ def test_compare_tabulates_several_bags(tmp_path: Path):
     assert lines[3].split()[:3] == ["b.bag", "0.000", "0.000"]
 
 
-def test_wrong_mav_name_names_the_missing_topic_and_lists_the_bag(tmp_path: Path):
+def test_wrong_mav_name_names_missing_topic_and_lists_bag(tmp_path: Path):
     bag = hover_bag(tmp_path)
     res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "pelican")
     assert res.returncode == 1
@@ -170,7 +170,7 @@ def test_a_topic_of_a_type_the_evaluation_cannot_use_is_one_line(tmp_path: Path)
     assert "twist topic 'motors' has type mav_msgs/msg/MotorSpeed" in res.stderr
 
 
-def test_mapping_eval_scores_a_map_against_itself_and_names_bad_files(tmp_path: Path):
+def test_mapping_eval_scores_map_vs_itself_names_bad_files(tmp_path: Path):
     plant = Path(__file__).resolve().parents[2] / "rotors_gazebo" / "resource" / "power_plant.bt"
     res = run("mapping_eval.py", "-m", str(plant), "-t", str(plant), "--save_plots", "True", "--plot_dir", str(tmp_path))
     print(res.stdout, res.stderr)

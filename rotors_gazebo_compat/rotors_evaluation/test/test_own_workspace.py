@@ -13,7 +13,7 @@ from synthetic_bags import write_flight
 PACKAGE = Path(__file__).resolve().parents[1]
 
 
-def test_the_readme_recipe_builds_a_workspace_whose_rosrun_evaluates_a_bag(tmp_path: Path):
+def test_readme_recipe_workspace_rosrun_evaluates_a_bag(tmp_path: Path):
     venv_python = Path(sys.executable)  # build/venv/bin/python: --system-site-packages, requirements.txt
     ws = tmp_path / "catkin_ws"
     (ws / "src").mkdir(parents=True)

@@ -1,0 +1,186 @@
+"""The fault scenarios of test_faults.py on the book's hovering example (firefly, set point
+(0, 0, 1)): each watches the flight through Watch and returns its figures."""
+
+import math
+import os
+import signal
+import subprocess
+import time
+
+import rospy
+from gazebo_msgs.srv import GetModelState
+from geometry_msgs.msg import Quaternion, Transform, Vector3
+from mav_msgs.msg import Actuators
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Empty
+from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
+
+from clients.nodes import alive, cpu_seconds, node_pid
+
+
+class Watch:
+    """The flight as the scenarios see it: state['p'] the ground-truth position at sim time
+    state['t'], state['clock'] the sim time, state['command'] the sim time of the last motor command;
+    and the latched set point on command/trajectory."""
+
+    def __init__(self):
+        self.state = {"t": -1.0, "p": None, "clock": -1.0}
+        rospy.Subscriber("/firefly/ground_truth/odometry", Odometry, self.on_odom, queue_size=1)
+        rospy.Subscriber("/clock", Clock, lambda m: self.state.update(clock=m.clock.to_sec()), queue_size=1)
+        rospy.Subscriber("/firefly/command/motor_speed", Actuators, lambda m: self.state.update(command=self.state["clock"]), queue_size=1)
+        self.set_point = rospy.Publisher("/firefly/command/trajectory", MultiDOFJointTrajectory, queue_size=1, latch=True)
+
+    def on_odom(self, m):
+        p = m.pose.pose.position
+        self.state.update(t=m.header.stamp.to_sec(), p=(p.x, p.y, p.z))
+
+    def wait_clock(self, t_s, limit_s=120):
+        deadline = time.monotonic() + limit_s
+        while self.state["clock"] < t_s or self.state["p"] is None:
+            if time.monotonic() > deadline:
+                raise SystemExit("sim time stuck at %.2f s (waiting for %.2f s)" % (self.state["clock"], t_s))
+            time.sleep(0.01)
+        return self.state["clock"]
+
+    def send_set_point(self):
+        # a restarted controller has no reference: send (0, 0, 1) again, as a ground station would
+        point = MultiDOFJointTrajectoryPoint(transforms=[Transform(translation=Vector3(0, 0, 1), rotation=Quaternion(0, 0, 0, 1))])
+        msg = MultiDOFJointTrajectory(points=[point])
+        msg.header.stamp = rospy.Time.now()
+        self.set_point.publish(msg)
+
+
+def restart_controller():
+    return subprocess.Popen(
+        [
+            "rosrun",
+            "rotors_control",
+            "lee_position_controller_node",
+            "__ns:=/firefly",
+            "__name:=lee_position_controller_node",
+            "odometry:=odometry_sensor1/odometry",
+        ],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
+
+
+def distance(a, b):
+    return math.dist(a, b)
+
+
+def controller_killed_without_lockstep() -> dict:
+    """The controller killed at 12 s and restarted 0.2 s later (the set point sent again): the gap in
+    the motor commands and the offsets in the 8 s after; then killed for good: the lowest height
+    within 12 s."""
+    watch = Watch()
+    state, result = watch.state, {}
+    watch.wait_clock(12.0)
+    p_before = state["p"]
+    os.kill(node_pid("/firefly/lee_position_controller_node"), signal.SIGKILL)
+    t_kill = state["clock"]
+    time.sleep(0.2)  # the controller interface holds the last command meanwhile
+    controller = restart_controller()
+    watch.send_set_point()
+    while state.get("command", 0.0) <= t_kill + 0.2:
+        time.sleep(0.01)
+    result["gap"] = state["command"] - t_kill
+    worst, t_end = 0.0, state["clock"] + 8.0
+    while state["clock"] < t_end:
+        worst = max(worst, distance(state["p"], p_before))
+        time.sleep(0.02)
+    result["worst_after_short_outage"] = worst
+    result["error_after"] = distance(state["p"], p_before)
+    # now the controller goes away for good: after commandTimeout the motors stop
+    os.kill(controller.pid, signal.SIGKILL)
+    result["t_killed_for_good"] = state["clock"]
+    lowest, t_end = 10.0, state["clock"] + 12.0
+    while state["clock"] < t_end and lowest > 0.15:
+        lowest = min(lowest, state["p"][2])
+        time.sleep(0.02)
+    watch.wait_clock(state["clock"] + 1.0)
+    result["lowest"] = lowest
+    return result
+
+
+def simulator_killed() -> dict:
+    """The simulator killed at 20 s: whether the controller lives on, and its CPU seconds in 5 s."""
+    watch = Watch()
+    result = {}
+    watch.wait_clock(20.0)
+    lee = node_pid("/firefly/lee_position_controller_node")
+    os.kill(node_pid("/gazebo"), signal.SIGKILL)
+    time.sleep(2.0)
+    cpu0 = cpu_seconds(lee)
+    time.sleep(5.0)
+    result["lee_cpu_s_in_5_s"] = cpu_seconds(lee) - cpu0
+    result["lee_alive"] = alive(lee)
+    return result
+
+
+def reset_world_and_simulation() -> dict:
+    """reset_world at 12 s, reset_simulation 8 s later: the height and the clock after each, and the
+    distance to the hover position 8 s after each."""
+    watch = Watch()
+    state, result = watch.state, {}
+    watch.wait_clock(12.0)
+    p_hover = state["p"]
+    rospy.ServiceProxy("/gazebo/reset_world", Empty)()
+    time.sleep(0.3)
+    result["z_after_reset_world"] = state["p"][2]
+    watch.wait_clock(state["clock"] + 8.0)
+    result["error_8_s_after_reset_world"] = distance(state["p"], p_hover)
+    rospy.ServiceProxy("/gazebo/reset_simulation", Empty)()
+    time.sleep(0.3)
+    result["clock_after_reset_simulation"] = state["clock"]
+    result["z_after_reset_simulation"] = state["p"][2]
+    watch.wait_clock(8.0)
+    result["error_8_s_after_reset_simulation"] = distance(state["p"], p_hover)
+    return result
+
+
+def pause_and_resume() -> dict:
+    """The physics paused at 12 s for 10 s of wall time: how far the clock and the MAV moved
+    meanwhile, and the largest offset in the 5 s after resuming."""
+    watch = Watch()
+    state, result = watch.state, {}
+    watch.wait_clock(12.0)
+    rospy.ServiceProxy("/gazebo/pause_physics", Empty)()
+    time.sleep(0.5)
+    t0, p0 = state["clock"], state["p"]
+    time.sleep(10.0)
+    result["clock_advanced_while_paused"] = state["clock"] - t0
+    result["moved_while_paused"] = distance(state["p"], p0)
+    rospy.ServiceProxy("/gazebo/unpause_physics", Empty)()
+    worst, t_end = 0.0, t0 + 5.0
+    watch.wait_clock(t0 + 0.1)
+    while state["clock"] < t_end:
+        worst = max(worst, distance(state["p"], p0))
+        time.sleep(0.02)
+    result["worst_after_resume"] = worst
+    return result
+
+
+def controller_stopped_as_in_a_debugger() -> dict:
+    """The controller SIGSTOPped at 8 s for 8 s of wall time: the slowest get_model_state call and the
+    sim time passed meanwhile; after SIGCONT, the sim time reached (from the stop) within 60 s."""
+    watch = Watch()
+    state, result = watch.state, {}
+    model_state = rospy.ServiceProxy("/gazebo/get_model_state", GetModelState)
+    watch.wait_clock(8.0)
+    pid = node_pid("/firefly/lee_position_controller_node")
+    os.kill(pid, signal.SIGSTOP)
+    t_stop = state["clock"]
+    slowest, t_end = 0.0, time.monotonic() + 8.0
+    while time.monotonic() < t_end:
+        t0 = time.monotonic()
+        assert model_state(model_name="firefly").success
+        slowest = max(slowest, time.monotonic() - t0)
+        time.sleep(0.05)
+    result["slowest_service_call_s"] = slowest
+    result["clock_while_stopped"] = state["clock"] - t_stop
+    os.kill(pid, signal.SIGCONT)
+    result["resumed_to"] = watch.wait_clock(t_stop + 2.0, limit_s=60) - t_stop
+    return result

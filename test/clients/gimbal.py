@@ -1,0 +1,27 @@
+"""Client functions of test_gimbal.py."""
+
+import time
+
+import rospy
+from nav_msgs.msg import Odometry
+from std_msgs.msg import Float64
+
+
+def pitch_and_roll_beyond_the_joints() -> dict:
+    """Latches 3.0 rad on the gimbal's pitch and roll commands (beyond both joints' limits); 3 s
+    later, the gimbal's yaw, roll and pitch status and the body's orientation q_WB."""
+    pub = rospy.Publisher("/firefly/gimbal_pitch_cmd", Float64, queue_size=1, latch=True)
+    while pub.get_num_connections() == 0:
+        time.sleep(0.05)
+    pub.publish(Float64(3.0))  # beyond the pitch joint's 90 deg: clamped
+    roll = rospy.Publisher("/firefly/gimbal_roll_cmd", Float64, queue_size=1, latch=True)
+    while roll.get_num_connections() == 0:
+        time.sleep(0.05)
+    roll.publish(Float64(3.0))  # beyond the roll joint's 45 deg: clamped
+    time.sleep(3.0)
+    result = {}
+    for axis in ("yaw", "roll", "pitch"):
+        result[axis] = rospy.wait_for_message(f"/firefly/gimbal_{axis}_status", Float64, timeout=30).data
+    q = rospy.wait_for_message("/firefly/ground_truth/odometry", Odometry, timeout=30).pose.pose.orientation
+    result["q_WB"] = [q.x, q.y, q.z, q.w]
+    return result
