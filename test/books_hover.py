@@ -1,5 +1,6 @@
 """The book's hovering figure (section 3.6) as a check on a bag of the hovering example: the set
 point (0, 0, 1), 0.040 m position RMS over the 10 s from 5 s after it, and no rotation."""
+
 import sys
 from pathlib import Path
 
@@ -14,8 +15,7 @@ from rotors_evaluation.metrics import rms_error  # noqa: E402
 
 def assert_hovers_like_the_book(bag: Path, label: str) -> float:
     """Asserts the figure on the firefly's bag and returns the position RMS [m]."""
-    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench",
-                       "/motor_speed")
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench", "/motor_speed")
     wp = data.waypoints[0]
     assert np.allclose(wp.position, [0, 0, 1])
     pos_rms = rms_error(data.position.window(wp.t + 5, wp.t + 15), wp.position)

@@ -1,6 +1,7 @@
 """Shared fixtures: an isolated ROS master per test and a way to run rospy client code (the functions
 of the package clients/) in a child process (rospy can be initialised once per process, so the test
 process itself never calls init_node)."""
+
 import json
 import os
 import signal
@@ -8,10 +9,11 @@ import subprocess
 import sys
 import textwrap
 import time
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Dict, Iterator, List
 
 import pytest
+
 from rotors_evaluation.processes import kill_graph_leftovers, restore_sigint, stop_process_group
 from rotors_evaluation.ros_master import start_own_master
 
@@ -21,8 +23,9 @@ TESTS = Path(__file__).resolve().parent  # holds the package clients/
 
 def pytest_configure(config):
     restore_sigint()  # run as a background job (nohup make test &), the ROS processes would ignore Ctrl-C
-    config.addinivalue_line("markers", "long: the long tier (minutes each): run by make test-all and make test-long, "
-                                       "not by make test")
+    config.addinivalue_line("markers", "long: the long tier (minutes each): run by make test-all and make test-long, " "not by make test")
+
+
 # make test-sanitize points ROTORS_WS at a sanitizer's workspace (scripts/test_sanitize.sh)
 WS = Path(os.environ.get("ROTORS_WS", REPO / "build" / "ws"))
 
@@ -35,7 +38,7 @@ class RosGraph:
         self.env["ROS_HOME"] = str(tmp_path / "ros_home")
         self.env["ROS_LOG_DIR"] = str(tmp_path / "ros_log")
         self.tmp_path = tmp_path
-        self.procs: List[subprocess.Popen] = []
+        self.procs: list[subprocess.Popen] = []
         # the master is started on a port verified to be its own (runs may overlap)
         master, self.port = start_own_master(self.env, tmp_path / "master.log")
         master.log_path = tmp_path / "master.log"  # type: ignore[attr-defined]
@@ -43,38 +46,39 @@ class RosGraph:
         self.env["ROS_MASTER_URI"] = f"http://127.0.0.1:{self.port}"
         self.wait_for(lambda: self.run(["rosparam", "set", "/use_sim_time", "true"], check=False).returncode == 0, 20)
 
-    def start(self, cmd: List[str], name: str) -> subprocess.Popen:
+    def start(self, cmd: list[str], name: str) -> subprocess.Popen:
         log = open(self.tmp_path / f"{name}.log", "w")
         p = subprocess.Popen(cmd, env=self.env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
         p.log_path = self.tmp_path / f"{name}.log"  # type: ignore[attr-defined]
         self.procs.append(p)
         return p
 
-    def run(self, cmd: List[str], check: bool = True, timeout: float = 60) -> subprocess.CompletedProcess:
+    def run(self, cmd: list[str], check: bool = True, timeout: float = 60) -> subprocess.CompletedProcess:
         res = subprocess.run(cmd, env=self.env, capture_output=True, text=True, timeout=timeout)
         if check and res.returncode != 0:
             raise AssertionError(f"{cmd} failed ({res.returncode}): {res.stdout}{res.stderr}")
         return res
 
-    def rospy(self, code: str, timeout: float = 120) -> Dict:
+    def rospy(self, code: str, timeout: float = 120) -> dict:
         """Runs `code` after rospy.init_node in a child process; it fills the dict `result`. Tests call
         run_client, which runs a function of test/clients/ this way."""
         script = "import json, sys, time, rospy\nrospy.init_node('pytest_client', anonymous=True)\nresult = {}\n"
         script += textwrap.dedent(code) + "\nprint('RESULT=' + json.dumps(result))\n"
-        res = subprocess.run([sys.executable, "-c", script], env=self.env, capture_output=True, text=True,
-                             timeout=timeout)
+        res = subprocess.run([sys.executable, "-c", script], env=self.env, capture_output=True, text=True, timeout=timeout)
         for line in res.stdout.splitlines():
             if line.startswith("RESULT="):
-                return json.loads(line[len("RESULT="):])
+                return json.loads(line[len("RESULT=") :])
         raise AssertionError(f"rospy client failed ({res.returncode}):\n{res.stdout}\n{res.stderr}")
 
-    def run_client(self, function: str, timeout: float = 120, **kwargs) -> Dict:
+    def run_client(self, function: str, timeout: float = 120, **kwargs) -> dict:
         """Runs the client function `function` ("clients.module:name", a module of test/clients/) in a
         child process after rospy.init_node, called with `kwargs` (sent as JSON: str, numbers, bools,
         lists, dicts); returns what it returned (a JSON-serialisable dict; none gives {})."""
-        code = (f"sys.path.insert(0, {str(TESTS)!r})\n"
-                "from clients import call\n"
-                f"result = call({function!r}, json.loads({json.dumps(kwargs)!r}))\n")
+        code = (
+            f"sys.path.insert(0, {str(TESTS)!r})\n"
+            "from clients import call\n"
+            f"result = call({function!r}, json.loads({json.dumps(kwargs)!r}))\n"
+        )
         return self.rospy(code, timeout=timeout)
 
     @staticmethod
@@ -130,7 +134,7 @@ def wait_sim_time(ros: RosGraph, t_s: float, timeout_s: float = 300.0) -> float:
     return ros.run_client("clients.sim:wait_sim_time", timeout=timeout_s + 60, t_s=t_s, timeout_s=timeout_s)["t"]
 
 
-def send_hover_pose(ros: RosGraph, then: str = "", **kwargs) -> Dict:
+def send_hover_pose(ros: RosGraph, then: str = "", **kwargs) -> dict:
     """Sends the set point (0, 0, 1) latched on /firefly/command/pose once the controller listens,
     then calls the client function `then` ("clients.module:name") with `kwargs` in the same client
     (the latched message lives as long as it); returns what that function returned ({} without one)."""

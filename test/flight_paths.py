@@ -5,10 +5,11 @@ velocity, acceleration and yaw-rate feed-forward the Lee position controller tak
 A path is a start (x, y, z, yaw) and a list of corners (x, y, z): the MAV first turns to face the
 first leg, flies it facing along it, turns on the spot at each corner, and so on; or, given a fixed
 `facing` yaw, turns to it once and keeps it (flying sideways past what it looks at)."""
+
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import List, Sequence, Tuple
 
 import numpy as np
 
@@ -30,12 +31,12 @@ POWERPLANT_FACING = 0.0
 
 @dataclass
 class Trajectory:
-    t_s: np.ndarray         # (N,)
-    p_W: np.ndarray         # (N, 3)
-    v_W: np.ndarray         # (N, 3)
-    a_W: np.ndarray         # (N, 3)
-    yaw: np.ndarray         # (N,) unwrapped
-    yaw_rate: np.ndarray    # (N,)
+    t_s: np.ndarray  # (N,)
+    p_W: np.ndarray  # (N, 3)
+    v_W: np.ndarray  # (N, 3)
+    a_W: np.ndarray  # (N, 3)
+    yaw: np.ndarray  # (N,) unwrapped
+    yaw_rate: np.ndarray  # (N,)
 
     @property
     def duration_s(self) -> float:
@@ -45,7 +46,7 @@ class Trajectory:
         return float(np.sum(np.linalg.norm(np.diff(self.p_W, axis=0), axis=1)))
 
 
-def _straight(length: float, v_max: float, a_max: float, dt: float) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _straight(length: float, v_max: float, a_max: float, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Distance, speed and acceleration along a leg at dt: accelerate, cruise, brake (a triangle if short)."""
     v_peak = min(v_max, np.sqrt(length * a_max))
     t_ramp = v_peak / a_max
@@ -65,19 +66,27 @@ def _straight(length: float, v_max: float, a_max: float, dt: float) -> Tuple[np.
     return np.minimum(s, length), np.maximum(v, 0.0), a
 
 
-def _turn(delta: float, yaw_rate_max: float, dt: float) -> Tuple[np.ndarray, np.ndarray]:
+def _turn(delta: float, yaw_rate_max: float, dt: float) -> tuple[np.ndarray, np.ndarray]:
     """Yaw change and rate of a turn by delta: (1 - cos(pi t / T)) / 2 of it, peak rate yaw_rate_max."""
     T = max(np.pi * abs(delta) / (2 * yaw_rate_max), dt)
     t = np.arange(0.0, T + 1e-9, dt)
     return delta * (1 - np.cos(np.pi * t / T)) / 2, delta * np.pi / (2 * T) * np.sin(np.pi * t / T)
 
 
-def sample(start: Sequence[float], corners: Sequence[Sequence[float]], speed: float = 1.2, accel: float = 0.8,
-           yaw_rate: float = 0.6, dt: float = 0.02, hold_s: float = 1.0, facing: float | None = None) -> Trajectory:
+def sample(
+    start: Sequence[float],
+    corners: Sequence[Sequence[float]],
+    speed: float = 1.2,
+    accel: float = 0.8,
+    yaw_rate: float = 0.6,
+    dt: float = 0.02,
+    hold_s: float = 1.0,
+    facing: float | None = None,
+) -> Trajectory:
     """The path sampled every dt, ending with hold_s on the last corner."""
     p = np.array(start[:3], float)
     yaw = float(start[3])
-    rows: List[Tuple] = []  # t-less rows: p, v, a, yaw, yaw_rate
+    rows: list[tuple] = []  # t-less rows: p, v, a, yaw, yaw_rate
 
     def hold(seconds: float) -> None:
         for _ in range(int(round(seconds / dt))):
@@ -104,5 +113,11 @@ def sample(start: Sequence[float], corners: Sequence[Sequence[float]], speed: fl
         hold(0.3)
     hold(hold_s)
     t = dt * np.arange(len(rows))
-    return Trajectory(t, np.array([r[0] for r in rows]), np.array([r[1] for r in rows]),
-                      np.array([r[2] for r in rows]), np.array([r[3] for r in rows]), np.array([r[4] for r in rows]))
+    return Trajectory(
+        t,
+        np.array([r[0] for r in rows]),
+        np.array([r[1] for r in rows]),
+        np.array([r[2] for r in rows]),
+        np.array([r[3] for r in rows]),
+        np.array([r[4] for r in rows]),
+    )

@@ -7,6 +7,7 @@ of the step in ArduPilot's frames (body FRD, NED from the origin); one answer pe
 step without a frame (lockstep); PWM 1000..2000 us drives the motors 0..maxRotVelocity; a packet that
 is not a servo packet is one line and changes nothing.
 """
+
 import json
 import math
 import socket
@@ -49,8 +50,8 @@ class ArduPilotSide:
         text = data.replace(b"\n", b"\0")
         last = text.rstrip(b"\0").rfind(b"\0")  # SIM_JSON: the text between the last two NULs
         assert last >= 0, f"the answer must begin with a newline: {data!r}"
-        line = text[last + 1:].split(b"\0")[0].decode()
-        assert '": ' not in line, "ArduPilot skips exactly `\"key\":`: no space after the colon"
+        line = text[last + 1 :].split(b"\0")[0].decode()
+        assert '": ' not in line, 'ArduPilot skips exactly `"key":`: no space after the colon'
         state = json.loads(line)
         self.read = sim_json_read(line)
         # what SIM_JSON reads is what the line says
@@ -64,16 +65,23 @@ class ArduPilotSide:
 # and one more character, finds the key with strstr from there and skips it and 2 more (`":`), then
 # reads a number with atof, a vector with sscanf("[%f, %f, %f]") (a space in a scanf format matches
 # any whitespace, none included), a boolean with strncasecmp("true")
-SIM_JSON_KEYS = [("", "timestamp", "double", True), ("imu", "gyro", "vector3", True),
-                 ("imu", "accel_body", "vector3", True), ("", "position", "vector3", False),
-                 ("", "quaternion", "quaternion", False), ("", "velocity", "vector3", True),
-                 ("", "rng_1", "float", False), ("", "airspeed", "float", False),
-                 ("", "no_time_sync", "boolean", False)]
+SIM_JSON_KEYS = [
+    ("", "timestamp", "double", True),
+    ("imu", "gyro", "vector3", True),
+    ("imu", "accel_body", "vector3", True),
+    ("", "position", "vector3", False),
+    ("", "quaternion", "quaternion", False),
+    ("", "velocity", "vector3", True),
+    ("", "rng_1", "float", False),
+    ("", "airspeed", "float", False),
+    ("", "no_time_sync", "boolean", False),
+]
 C_FLOAT = r"\s*[-+]?(?:\d+\.?\d*(?:[eE][-+]?\d+)?|\.\d+(?:[eE][-+]?\d+)?|inf|nan)"
 
 
 def sim_json_read(line: str) -> dict:
     import re
+
     read = {}
     for section, key, kind, required in SIM_JSON_KEYS:
         p = 0
@@ -85,7 +93,7 @@ def sim_json_read(line: str) -> dict:
         if i < 0:
             assert not required, f"SIM_JSON finds no required key {key}: the line is refused"
             continue
-        rest = line[i + len(key) + 3:]  # `"key":`
+        rest = line[i + len(key) + 3 :]  # `"key":`
         name = f"{section}.{key}" if section else key
         if kind in ("double", "float"):
             m = re.match(C_FLOAT, rest)
@@ -129,17 +137,18 @@ def test_servo_frames_answered_with_imu_truth_ardupilot_frames():
         expected.append((world.time, imu, p, q, v))
     # the answer to the frame received at the start of step k is the state after step k, which the
     # world publishes at the start of step k + 1
-    for state, (t, imu, p, q, v) in zip(states, expected):
+    for state, (t, imu, p, _q, v) in zip(states, expected):
         assert state["timestamp"] == pytest.approx(t, abs=1e-9)
-        np.testing.assert_allclose(state["imu"]["gyro"], frd([imu.angular_velocity.x, imu.angular_velocity.y,
-                                                              imu.angular_velocity.z]), atol=1e-8)
-        np.testing.assert_allclose(state["imu"]["accel_body"], frd([imu.linear_acceleration.x,
-                                                                    imu.linear_acceleration.y,
-                                                                    imu.linear_acceleration.z]), atol=1e-7)
+        np.testing.assert_allclose(
+            state["imu"]["gyro"], frd([imu.angular_velocity.x, imu.angular_velocity.y, imu.angular_velocity.z]), atol=1e-8
+        )
+        np.testing.assert_allclose(
+            state["imu"]["accel_body"], frd([imu.linear_acceleration.x, imu.linear_acceleration.y, imu.linear_acceleration.z]), atol=1e-7
+        )
         np.testing.assert_allclose(state["position"], [p[1], p[0], -p[2]], atol=1e-8)  # NED
         np.testing.assert_allclose(state["velocity"], [v[1], v[0], -v[2]], atol=1e-8)
         qw, qx, qy, qz = state["quaternion"]
-        assert qw ** 2 + qx ** 2 + qy ** 2 + qz ** 2 == pytest.approx(1.0, abs=1e-7)
+        assert qw**2 + qx**2 + qy**2 + qz**2 == pytest.approx(1.0, abs=1e-7)
     last = states[-1]
     print("last answer:", json.dumps(last, separators=(",", ":")))
     # the iris faces east, level: body->NED is yaw +90 deg
@@ -232,8 +241,10 @@ def test_a_repeated_frame_count_is_answered_again_without_a_step():
     ap.send_servos([1500] * 4)
     again = ap.receive_state()
     time.sleep(0.2)
-    print(f"frame {ap.frame - 1} sent twice: answered with t = {first['timestamp']:.4f} s both times; "
-          f"the world stayed at {world.time:.4f} s")
+    print(
+        f"frame {ap.frame - 1} sent twice: answered with t = {first['timestamp']:.4f} s both times; "
+        f"the world stayed at {world.time:.4f} s"
+    )
     assert again == first and world.time == held
     ap.send_servos([1500] * 4)  # the next frame steps again
     stepper.join()
@@ -264,10 +275,9 @@ def test_airspeed_is_the_airspeed_sensors_reading_in_wind():
     ap = ArduPilotSide(port)
     state = fly(world, ap, 50)
     sensor = world.message("/iris/air_speed")[0].vector
-    reading = math.sqrt(sensor.x ** 2 + sensor.y ** 2 + sensor.z ** 2)
+    reading = math.sqrt(sensor.x**2 + sensor.y**2 + sensor.z**2)
     ground_speed = float(np.linalg.norm(state["velocity"]))
-    print(f"JSON airspeed {state['airspeed']:.3f} m/s; the airspeed sensor {reading:.3f} m/s; ground speed "
-          f"{ground_speed:.4f} m/s")
+    print(f"JSON airspeed {state['airspeed']:.3f} m/s; the airspeed sensor {reading:.3f} m/s; ground speed " f"{ground_speed:.4f} m/s")
     assert ap.read["airspeed"] == pytest.approx(reading, abs=0.02) and reading > 2.5 and ground_speed < 0.1
 
 
@@ -291,11 +301,16 @@ def test_launch_command_line_loads_x_quad_home_at_world_origin(tmp_path):
     wins; a line is `NAME VALUE` or `NAME,VALUE`, '#' starts a comment). AP_Motors_Class.h: FRAME_CLASS
     1 = quad, FRAME_TYPE 1 = X."""
     import subprocess
+
     script = rs.paths.package_path("rotors_gazebo") / "scripts" / "ardupilot_sitl"
     world_file = rs.paths.package_path("rotors_gazebo") / "worlds" / "basic.world"
-    out = subprocess.run([str(script), "--ardupilot_dir", str(tmp_path / "ardupilot"), "--instance", "2",
-                          "--world", str(world_file), "--print-command"], check=True, capture_output=True,
-                         text=True, env={**__import__("os").environ, "ROS_HOME": str(tmp_path)}).stdout
+    out = subprocess.run(
+        [str(script), "--ardupilot_dir", str(tmp_path / "ardupilot"), "--instance", "2", "--world", str(world_file), "--print-command"],
+        check=True,
+        capture_output=True,
+        text=True,
+        env={**__import__("os").environ, "ROS_HOME": str(tmp_path)},
+    ).stdout
     print(out)
     cmd = out.splitlines()[0].split()
     assert cmd[0].endswith("build/sitl/bin/arducopter") and cmd[cmd.index("--model") + 1] == "JSON"
@@ -317,9 +332,16 @@ def techpod_speed_after(pwm: list[int]) -> float:
     """The techpod launched at 15 m/s, 100 m up, flown 1 s by ArduPlane's servo outputs."""
     port = free_udp_port()
     world = rs.World("basic", step_size=DT)
-    world.spawn(str(rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"), "techpod",
-                xyz=(0, 0, 100), mav_name="techpod", namespace="techpod", enable_ardupilot_interface="true",
-                ardupilot_servo_port=str(port), random_seed="4")
+    world.spawn(
+        str(rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"),
+        "techpod",
+        xyz=(0, 0, 100),
+        mav_name="techpod",
+        namespace="techpod",
+        enable_ardupilot_interface="true",
+        ardupilot_servo_port=str(port),
+        random_seed="4",
+    )
     world.set_model_state("techpod", [0, 0, 100], velocity=[15.0, 0, 0])
     ap = ArduPilotSide(port)
     fly(world, ap, 400, pwm)
@@ -337,7 +359,9 @@ def test_arduplanes_default_servo_functions_drive_the_techpod():
     unused, _ = techpod_speed_after([1500, 1500, 0, 1500])
     _, roll_rate = techpod_speed_after([1900, 1500, 1000, 1500])
     _, level_rate = techpod_speed_after(neutral)
-    print(f"after 1 s from 15 m/s: {full:.2f} m/s at full throttle, {idle:.2f} m/s idle, {unused:.2f} m/s with "
-          f"no throttle output; roll rate {roll_rate:.3f} rad/s with aileron 1900 us, {level_rate:.3f} neutral")
+    print(
+        f"after 1 s from 15 m/s: {full:.2f} m/s at full throttle, {idle:.2f} m/s idle, {unused:.2f} m/s with "
+        f"no throttle output; roll rate {roll_rate:.3f} rad/s with aileron 1900 us, {level_rate:.3f} neutral"
+    )
     assert full > idle + 0.3 and unused == pytest.approx(idle, abs=1e-6)
     assert roll_rate > 10 * abs(level_rate) + 0.05  # high PWM rolls right (+x in FLU and FRD alike)

@@ -2,6 +2,7 @@
 keeps running. pymavlink stands in for PX4 (not on these machines) on the autopilot's side of the
 socket; socat's pty pair stands in for a Pixhawk's USB serial port.
 """
+
 import socket
 import subprocess
 import time
@@ -9,9 +10,9 @@ import time
 import numpy as np
 import pytest
 from pymavlink import mavutil
+from test_px4_mavlink import DT, SteppingWorld, answer, connect, free_port, make_world, next_sensor, start_lockstep
 
 import rotors_sim as rs
-from test_px4_mavlink import DT, SteppingWorld, answer, connect, free_port, make_world, next_sensor, start_lockstep
 
 
 def run_until_sensor(link, n=1):
@@ -57,8 +58,7 @@ def test_skipped_answers_never_end_the_session(capfd):
     err = capfd.readouterr().err
     late = [line for line in err.splitlines() if "no HIL_ACTUATOR_CONTROLS within" in line]
     print(late[0])
-    print(f"answers applied after the silence: {world.autopilot_answers('firefly') - answers_before}; "
-          f"t = {world.time:.3f} s")
+    print(f"answers applied after the silence: {world.autopilot_answers('firefly') - answers_before}; " f"t = {world.time:.3f} s")
     assert late and "the link stays up" in late[0]
     assert "closed the connection" not in err
     assert world.autopilot_answers("firefly") - answers_before >= 95  # the link is still up
@@ -169,8 +169,7 @@ def test_a_port_in_use_is_refused_at_spawn_with_one_line():
 
 def test_missing_serial_device_is_one_line_and_world_runs_on(capfd):
     world = rs.World("basic", step_size=DT)
-    world.spawn_mav("firefly", enable_mavlink_interface=True, mavlink_serial_enabled=True,
-                    mavlink_serial_device="/dev/ttyACM_not_there")
+    world.spawn_mav("firefly", enable_mavlink_interface=True, mavlink_serial_enabled=True, mavlink_serial_device="/dev/ttyACM_not_there")
     world.step(100)
     assert world.time == pytest.approx(100 * DT)
     line = next(line for line in capfd.readouterr().err.splitlines() if "ttyACM_not_there" in line)
@@ -187,8 +186,9 @@ def test_hitl_over_serial_pty_exchanges_sensor_and_controls(tmp_path):
             assert time.monotonic() < deadline
             time.sleep(0.05)
         world = rs.World("basic", step_size=DT)
-        world.spawn_mav("firefly", enable_mavlink_interface=True, mavlink_serial_enabled=True,
-                        mavlink_serial_device=str(a), mavlink_baud_rate=921600)
+        world.spawn_mav(
+            "firefly", enable_mavlink_interface=True, mavlink_serial_enabled=True, mavlink_serial_device=str(a), mavlink_baud_rate=921600
+        )
         fc = mavutil.mavlink_connection(str(b), baud=921600, source_system=1)
         sensors = 0
         for _ in range(50):

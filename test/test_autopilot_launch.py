@@ -4,15 +4,15 @@ pymavlink on PX4's side (PX4 is not on these machines: it stands in for it), and
 mav_betaflight_sitl.launch with the real Betaflight firmware started by the launch file and RC on
 the vehicle's rc topic (sensor_msgs/Joy), as joy_to_rc or a user's node sends it.
 """
+
 import time
 
 import numpy as np
-
 import pytest
 from pymavlink import mavutil
+from test_px4_mavlink import answer
 
 from conftest import launch
-from test_px4_mavlink import answer
 
 pytestmark = pytest.mark.xdist_group("betaflight_ports")
 
@@ -52,8 +52,7 @@ def test_betaflight_sitl_launch_runs_firmware_flies_on_rc_topic(ros, tmp_path):
     """The lockstep firmware, started by the launch file, answers and flies on RC from /iris/rc (the
     sticks are held for spans of sim time, the firmware's clock). No retry: the lockstep build has no
     start-up race (docs/autopilots.md)."""
-    proc = launch(ros, "rotors_gazebo", "mav_betaflight_sitl.launch", f"betaflight_workdir:={tmp_path / 'bf'}",
-                  "random_seed:=3")
+    proc = launch(ros, "rotors_gazebo", "mav_betaflight_sitl.launch", f"betaflight_workdir:={tmp_path / 'bf'}", "random_seed:=3")
     result = ros.run_client("clients.autopilot_launch:betaflight_rc_climb", timeout=300, log_path=str(proc.log_path))
     answered = "Betaflight answers" in proc.log_path.read_text(errors="replace")
     print(f"firmware answered: {answered}; climbed to {result['z_max']:.2f} m on RC from /iris/rc")
@@ -95,8 +94,7 @@ def test_mav_px4_sitl_multi_launch_gives_each_vehicle_its_port(ros):
         deadline = time.monotonic() + 60
         while True:
             try:
-                link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1,
-                                                  autoreconnect=False)
+                link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1, autoreconnect=False)
                 break
             except OSError:
                 assert time.monotonic() < deadline, f"nothing listens on TCP {4560 + instance}"

@@ -2,6 +2,7 @@
 gymnasium's env checker passes on one vehicle, and the checks it applies to a single environment
 hold for the vector one (seeded resets and steps repeat, observations lie in their space and are
 not reused, autoreset in the same step keeps the last observation); gym.make_vec finds them."""
+
 import warnings
 
 import gymnasium as gym
@@ -57,7 +58,7 @@ def test_vector_env_passes_the_checks_of_a_single_env(task):
         envs.step(bad)
 
 
-def test_autoreset_returns_the_next_episode_and_keeps_the_last_observation():
+def test_autoreset_returns_next_episode_and_keeps_last_obs():
     envs = FlightBatchEnv("hover", 4, episode_s=0.3)
     envs.reset(seed=0)
     steps = 0

@@ -11,6 +11,7 @@ the state packets' timestamps, it runs 16 gyro/PID loops (8 kHz) per 2 ms state 
 state before it reads the next, so two flights with the same RC at the same sim times are the same,
 bit for bit. Betaflight's own build (its clock scaled to the state rate) still flies too.
 """
+
 import time
 
 import numpy as np
@@ -117,8 +118,10 @@ def test_armed_over_rc_the_motors_idle_without_lifting_off(flight):
 def test_takes_off_in_angle_mode_and_holds_altitude_band_level(flight):
     assert col(flight["takeoff"], "z").max() > 1.2
     hold = flight["hold"]
-    print(f"hold: z {col(hold, 'z').min():.2f}..{col(hold, 'z').max():.2f} m, "
-          f"|roll| <= {np.abs(col(hold, 'roll')).max():.1f} deg, |pitch| <= {np.abs(col(hold, 'pitch')).max():.1f} deg")
+    print(
+        f"hold: z {col(hold, 'z').min():.2f}..{col(hold, 'z').max():.2f} m, "
+        f"|roll| <= {np.abs(col(hold, 'roll')).max():.1f} deg, |pitch| <= {np.abs(col(hold, 'pitch')).max():.1f} deg"
+    )
     assert np.all(np.abs(col(hold, "z") - 1.5) < 0.25)
     assert np.abs(col(hold, "roll")).max() < 3.0 and np.abs(col(hold, "pitch")).max() < 3.0
     assert np.ptp(col(hold, "x")) < 0.5 and np.ptp(col(hold, "y")) < 0.5
@@ -130,8 +133,10 @@ def test_roll_and_pitch_commands_held_and_move_it_right_way(flight):
     # on a loaded machine its RC smoothing and angle loop settle later in sim time than on a quiet one
     settled_roll = col(roll, "roll")[50:]
     settled_pitch = col(pitch, "pitch")[50:]
-    print(f"roll stick 1600: roll {settled_roll.mean():.2f} deg (ptp {np.ptp(settled_roll):.2f}); "
-          f"pitch stick 1600: pitch {settled_pitch.mean():.2f} deg (ptp {np.ptp(settled_pitch):.2f})")
+    print(
+        f"roll stick 1600: roll {settled_roll.mean():.2f} deg (ptp {np.ptp(settled_roll):.2f}); "
+        f"pitch stick 1600: pitch {settled_pitch.mean():.2f} deg (ptp {np.ptp(settled_pitch):.2f})"
+    )
     # right stick: right wing down (roll > 0 about forward), the vehicle drifts right (-y in ENU)
     assert settled_roll.min() > 1.0 and np.ptp(settled_roll) < 2.0
     assert col(roll, "y")[-1] < col(roll, "y")[0] - 0.2
@@ -183,9 +188,11 @@ def test_two_lockstep_flights_same_rc_equal_bit_for_bit(tmp_path):
     first, wall = lockstep_flight(tmp_path / "first")
     second, _ = lockstep_flight(tmp_path / "second")
     differing = np.flatnonzero(np.any(first != second, axis=1))
-    print(f"{len(first)} steps ({first[-1, 0]:.1f} s of sim time, {first[-1, 0] / wall:.1f} x real time with a "
-          f"Python loop per step): climbed to {first[:, 3].max():.2f} m, rotors up to {np.abs(first[:, 8:]).max():.0f} "
-          f"rad/s; steps that differ: {len(differing)}")
+    print(
+        f"{len(first)} steps ({first[-1, 0]:.1f} s of sim time, {first[-1, 0] / wall:.1f} x real time with a "
+        f"Python loop per step): climbed to {first[:, 3].max():.2f} m, rotors up to {np.abs(first[:, 8:]).max():.0f} "
+        f"rad/s; steps that differ: {len(differing)}"
+    )
     assert first[:, 3].max() > 1.0  # it flew
     assert len(differing) == 0, f"the flights part at t = {first[differing[0], 0]:.3f} s"
 
@@ -204,6 +211,7 @@ def test_30_lockstep_launches_on_a_loaded_machine_all_answer(tmp_path):
     with two CPU hogs running: each configured over its CLI, restarted by `save`, then 200 states,
     each answered."""
     import subprocess
+
     hogs = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(2)]
     answered = []
     try:

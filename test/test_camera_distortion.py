@@ -5,6 +5,7 @@ cv2.projectPoints puts them with the same K and plumb_bob D (within 0.5 px).
 The expected position of a square is the area-weighted centroid of its projected outline (a 40 x 40
 grid of its points through projectPoints), so the lens' curvature across a square does not count as
 error; the squares are turned in their plane so that no edge runs along a pixel row."""
+
 import math
 
 import cv2
@@ -15,7 +16,7 @@ import rotors_sim as rs
 
 W, H, HFOV = 752, 480, 1.3962634
 WALL_X_M = 3.0  # the wall of squares, ahead of the camera (world x)
-SIDE_M = 0.1    # a square's side: about 15 px
+SIDE_M = 0.1  # a square's side: about 15 px
 TURN_RAD = 0.4  # each square turned about the viewing axis
 
 
@@ -48,7 +49,8 @@ def world_sdf(lens: str, squares: list[tuple[float, float]]) -> str:
     visuals = "".join(
         f"<visual name='s{i}'><pose>{WALL_X_M} {y} {z} {TURN_RAD} 0 0</pose><geometry><box><size>0.005 {SIDE_M} "
         f"{SIDE_M}</size></box></geometry><material><diffuse>1 1 1 1</diffuse></material></visual>"
-        for i, (y, z) in enumerate(squares))
+        for i, (y, z) in enumerate(squares)
+    )
     # unlit (ambient 1, no sun), black sky: a square is 255, the rest 0
     return f"""<?xml version='1.0'?><sdf version='1.6'><world name='lens'>
       <physics type='ode'><max_step_size>0.01</max_step_size></physics>
@@ -85,11 +87,12 @@ def test_distorted_images_put_squares_where_opencv_projects(name):
     for y, z in grid:
         outline, _ = cv2.projectPoints(square_points_O(y, z, 8).reshape(-1, 1, 3), np.zeros(3), np.zeros(3), K, D)
         outline = outline.reshape(-1, 2)
-        if outline[:, 0].min() > 4 and outline[:, 0].max() < W - 5 and outline[:, 1].min() > 4 and \
-                outline[:, 1].max() < H - 5:
+        if outline[:, 0].min() > 4 and outline[:, 0].max() < W - 5 and outline[:, 1].min() > 4 and outline[:, 1].max() < H - 5:
             inside.append((y, z))
-    lens = (f"<distortion><k1>{k1}</k1><k2>{k2}</k2><k3>{k3}</k3><p1>{p1}</p1><p2>{p2}</p2>"
-            f"<center>{center[0]} {center[1]}</center></distortion>")
+    lens = (
+        f"<distortion><k1>{k1}</k1><k2>{k2}</k2><k3>{k3}</k3><p1>{p1}</p1><p2>{p2}</p2>"
+        f"<center>{center[0]} {center[1]}</center></distortion>"
+    )
     world = rs.World(sdf=world_sdf(lens, inside))
     world.step()
     image = world.camera_image("rig", "cam").reshape(H, W).astype(np.float64)
@@ -106,11 +109,13 @@ def test_distorted_images_put_squares_where_opencv_projects(name):
         predicted = expected_centroid(y, z, K, D)
         errors.append(np.linalg.norm(measured - predicted, axis=1).min())
     errors = np.array(errors)
-    moved = np.array([np.linalg.norm(expected_centroid(y, z, K, D) - expected_centroid(y, z, intrinsics(center),
-                                                                                        np.zeros(5)))
-                      for y, z in inside])
-    print(f"{name}: {len(inside)} squares, {count - 1} blobs; the lens moves them up to {moved.max():.1f} px; "
-          f"rendered vs cv2.projectPoints: median {np.median(errors):.3f} px, max {errors.max():.3f} px")
+    moved = np.array(
+        [np.linalg.norm(expected_centroid(y, z, K, D) - expected_centroid(y, z, intrinsics(center), np.zeros(5))) for y, z in inside]
+    )
+    print(
+        f"{name}: {len(inside)} squares, {count - 1} blobs; the lens moves them up to {moved.max():.1f} px; "
+        f"rendered vs cv2.projectPoints: median {np.median(errors):.3f} px, max {errors.max():.3f} px"
+    )
     assert count - 1 == len(inside) and len(inside) > 50
     assert moved.max() > 20.0  # the lens matters
     assert errors.max() < 0.5

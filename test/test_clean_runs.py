@@ -1,6 +1,7 @@
 """Runs that begin and end cleanly (lockstep participants, shutdown order, evaluation windows):
 Ctrl-C ends the bag with the flight, a late controller holds the clock, a killed controller pauses
 the simulation and its restart resumes the flight."""
+
 import os
 import signal
 import subprocess
@@ -38,8 +39,7 @@ def test_ctrl_c_ends_bag_with_flight_and_eval_sees_no_collision(ros: RosGraph):
     # as a user would: the hovering example in lockstep, Ctrl-C after 22 s of sim time. Paced at 10x real
     # time: as fast as possible (40-70x over ROS) the flight ran up to 50 s of sim time on past 22 s in the
     # second or so the Ctrl-C takes to land (test client exit, signal, shutdown), beyond the bound below
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true",
-                  "real_time_factor:=10")
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true", "real_time_factor:=10")
     try:
         wait_sim_time(ros, 22.0)
     finally:
@@ -52,16 +52,24 @@ def test_ctrl_c_ends_bag_with_flight_and_eval_sees_no_collision(ros: RosGraph):
     print(f"bag ends at {end:.3f} s, last motor command at {last['firefly/command/motor_speed']:.3f} s")
     assert end - last["firefly/command/motor_speed"] <= STEP_S + 1e-9, last
     assert 22.0 <= end < 60.0
-    res = subprocess.run([sys.executable, str(EVAL), "-b", str(bag), "--mav_name", "firefly"], capture_output=True,
-                         text=True)
+    res = subprocess.run([sys.executable, str(EVAL), "-b", str(bag), "--mav_name", "firefly"], capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
     assert "No collisions occurred" in res.stdout, res.stdout
     assert "Position RMS error: 0.040 m" in res.stdout, res.stdout
 
 
 def fly_determinism_launch(ros: RosGraph, tag: str, controller_delay_s: float) -> Path:
-    proc = ros.start(["roslaunch", "-p", str(ros.port), str(REPO / "test/launch/lockstep_determinism.launch"),
-                      f"log_file:={tag}", f"controller_delay_s:={controller_delay_s}"], f"launch_{tag}")
+    proc = ros.start(
+        [
+            "roslaunch",
+            "-p",
+            str(ros.port),
+            str(REPO / "test/launch/lockstep_determinism.launch"),
+            f"log_file:={tag}",
+            f"controller_delay_s:={controller_delay_s}",
+        ],
+        f"launch_{tag}",
+    )
     try:
         assert ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         # the set point is latched and the simulation unpaused at once: a late controller must hold the clock
@@ -78,8 +86,11 @@ def fly_determinism_launch(ros: RosGraph, tag: str, controller_delay_s: float) -
 def poses(bag: Path, until_s: float):
     b = FlightBag(bag)
     try:
-        return [(t_ns, bytes(raw)) for conn, t_ns, raw in b.reader.messages()
-                if conn.topic == "firefly/ground_truth/pose" and t_ns <= until_s * 1e9]
+        return [
+            (t_ns, bytes(raw))
+            for conn, t_ns, raw in b.reader.messages()
+            if conn.topic == "firefly/ground_truth/pose" and t_ns <= until_s * 1e9
+        ]
     finally:
         b.close()
 
@@ -95,8 +106,7 @@ def test_controller_starting_5_s_late_gives_same_trajectory(ros: RosGraph):
 
 
 def test_killed_controller_pauses_lockstep_restart_resumes(ros: RosGraph):
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true",
-                  "real_time_factor:=0")
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true", "real_time_factor:=0")
     restarted = None
     try:
         wait_sim_time(ros, 12.0)
@@ -109,9 +119,17 @@ def test_killed_controller_pauses_lockstep_restart_resumes(ros: RosGraph):
         log = Path(proc.log_path).read_text()
         assert "/firefly/command/motor_speed went away at t = " in log, log[-3000:]
         # the user restarts it (its parameters are still on the server); the hover set point is resent
-        restarted = ros.start(["rosrun", "rotors_control", "lee_position_controller_node", "__ns:=/firefly",
-                               "__name:=lee_position_controller_node", "odometry:=odometry_sensor1/odometry"],
-                              "controller_again")
+        restarted = ros.start(
+            [
+                "rosrun",
+                "rotors_control",
+                "lee_position_controller_node",
+                "__ns:=/firefly",
+                "__name:=lee_position_controller_node",
+                "odometry:=odometry_sensor1/odometry",
+            ],
+            "controller_again",
+        )
         send_hover_pose(ros)
         wait_sim_time(ros, t_paused + 10.0, timeout_s=120)
         assert "/firefly/command/motor_speed is back; resuming at t = " in Path(proc.log_path).read_text()
@@ -127,6 +145,5 @@ def test_killed_controller_pauses_lockstep_restart_resumes(ros: RosGraph):
         b.close()
     after = [zz for t, zz in z if t_paused + 5.0 < t < t_paused + 10.0]
     assert after and abs(np.mean(after) - 1.04) < 0.02, "the MAV is not hovering again after the restart"
-    res = subprocess.run([sys.executable, str(EVAL), "-b", str(bag), "--mav_name", "firefly"], capture_output=True,
-                         text=True)
+    res = subprocess.run([sys.executable, str(EVAL), "-b", str(bag), "--mav_name", "firefly"], capture_output=True, text=True)
     assert "No collisions occurred" in res.stdout, res.stdout

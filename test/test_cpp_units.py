@@ -2,6 +2,7 @@
 The list is pinned: a binary that silently vanishes (no googletest, a CMake mistake) fails here, and so
 does one that runs another number of tests than it holds today (a test that vanishes, or one added
 without raising its pin)."""
+
 import re
 import subprocess
 
@@ -36,8 +37,7 @@ def test_gtest(name: str):
     binary = WS / "devel" / "lib" / name
     assert binary.is_file(), f"{binary} was not built: is googletest installed, and did `catkin_make tests` run?"
     src_test_dir = WS / "src" / binary.parent.name / "test"
-    res = subprocess.run([str(binary)], cwd=src_test_dir if src_test_dir.is_dir() else None,
-                         capture_output=True, text=True, timeout=900)
+    res = subprocess.run([str(binary)], cwd=src_test_dir if src_test_dir.is_dir() else None, capture_output=True, text=True, timeout=900)
     failed = [line for line in res.stdout.splitlines() if "[  FAILED  ]" in line]
     assert res.returncode == 0, "\n".join(failed) + "\n" + res.stdout[-4000:] + res.stderr[-2000:]
     passed = re.search(r"\[  PASSED  \] (\d+) tests?", res.stdout)

@@ -1,6 +1,7 @@
 """Every shipped vehicle's xacro expands and parses with urdfdom (check_urdf), alone and as the
 generic-odometry and generic-pose-sensor composites, each looks like itself (RotorS' body meshes
 where they exist, propellers scaled by radius_rotor), and a broken xacro is one clear error."""
+
 import subprocess
 import xml.etree.ElementTree as ET
 
@@ -15,9 +16,18 @@ ROTORS = {"firefly": 6, "neo11": 6, "neo9": 6, "omav": 12}  # 4 otherwise
 @pytest.mark.parametrize("mav", VEHICLES)
 @pytest.mark.parametrize("top", ["{mav}_base.xacro", "mav_generic_odometry_sensor.gazebo", "mav_generic_pose_sensor.gazebo"])
 def test_vehicle_description_parses_with_urdfdom(mav: str, top: str, tmp_path):
-    urdf = subprocess.run(["xacro", str(package_path("rotors_description") / "urdf" / top.format(mav=mav)),
-                           f"mav_name:={mav}", f"namespace:={mav}", "enable_logging:=true"],
-                          capture_output=True, text=True, check=True).stdout
+    urdf = subprocess.run(
+        [
+            "xacro",
+            str(package_path("rotors_description") / "urdf" / top.format(mav=mav)),
+            f"mav_name:={mav}",
+            f"namespace:={mav}",
+            "enable_logging:=true",
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
     path = tmp_path / f"{mav}.urdf"
     path.write_text(urdf)
     res = subprocess.run(["check_urdf", str(path)], capture_output=True, text=True)
@@ -29,16 +39,30 @@ def test_vehicle_description_parses_with_urdfdom(mav: str, top: str, tmp_path):
 
 
 # rotors_reference.md section 3.1: radius_rotor [m]
-RADIUS_ROTOR = {"firefly": 0.1, "hummingbird": 0.1, "pelican": 0.128, "iris": 0.1, "neo11": 0.1397,
-                "asymmetric_quadrotor": 0.128, "ardrone": 0.1, "neo9": 0.1143, "omav": 0.1143}
+RADIUS_ROTOR = {
+    "firefly": 0.1,
+    "hummingbird": 0.1,
+    "pelican": 0.128,
+    "iris": 0.1,
+    "neo11": 0.1397,
+    "asymmetric_quadrotor": 0.128,
+    "ardrone": 0.1,
+    "neo9": 0.1143,
+    "omav": 0.1143,
+}
 BODY_MESH = {"firefly": "firefly.ply", "pelican": "pelican.dae"}
 
 
 @pytest.mark.parametrize("mav", VEHICLES)
 def test_vehicle_visuals_are_body_and_props_scaled_by_radius(mav: str):
-    urdf = ET.fromstring(subprocess.run(
-        ["xacro", str(package_path("rotors_description") / "urdf" / f"{mav}_base.xacro"), f"namespace:={mav}"],
-        capture_output=True, text=True, check=True).stdout)
+    urdf = ET.fromstring(
+        subprocess.run(
+            ["xacro", str(package_path("rotors_description") / "urdf" / f"{mav}_base.xacro"), f"namespace:={mav}"],
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout
+    )
     links = {link.get("name"): link for link in urdf.iter("link")}
     rotors = [name for name in links if name.startswith(f"{mav}/rotor_")]
     assert len(rotors) == ROTORS.get(mav, 4)
@@ -59,29 +83,37 @@ def test_vehicle_visuals_are_body_and_props_scaled_by_radius(mav: str):
     # drawn arms carry no mass: the inertial links are the body and the rotors (and the asymmetric arms,
     # the omav's tilt units)
     massive = {name for name, link in links.items() if link.find("inertial") is not None}
-    assert all(name.endswith("base_link_inertia") or "/rotor_" in name or name.endswith("_link") or
-               "/tilt_unit_" in name for name in massive)
+    assert all(
+        name.endswith("base_link_inertia") or "/rotor_" in name or name.endswith("_link") or "/tilt_unit_" in name for name in massive
+    )
 
 
 @pytest.mark.parametrize("mav_name", VEHICLES)
 def test_multirotors_take_autopilot_interface_before_its_sensors(mav_name):
-    for flag, filename in (("enable_mavlink_interface", "librotors_gazebo_mavlink_interface.so"),
-                           ("enable_ardupilot_interface", "librotors_gazebo_ardupilot_interface.so"),
-                           ("enable_betaflight_interface", "librotors_gazebo_betaflight_interface.so")):
-        res = subprocess.run(["xacro", str(package_path("rotors_description") / "urdf" / f"{mav_name}_base.xacro"),
-                              f"mav_name:={mav_name}", f"namespace:={mav_name}", f"{flag}:=true"],
-                             capture_output=True, text=True)
+    for flag, filename in (
+        ("enable_mavlink_interface", "librotors_gazebo_mavlink_interface.so"),
+        ("enable_ardupilot_interface", "librotors_gazebo_ardupilot_interface.so"),
+        ("enable_betaflight_interface", "librotors_gazebo_betaflight_interface.so"),
+    ):
+        res = subprocess.run(
+            [
+                "xacro",
+                str(package_path("rotors_description") / "urdf" / f"{mav_name}_base.xacro"),
+                f"mav_name:={mav_name}",
+                f"namespace:={mav_name}",
+                f"{flag}:=true",
+            ],
+            capture_output=True,
+            text=True,
+        )
         assert res.returncode == 0, res.stderr
         plugins = [p.get("filename") for p in ET.fromstring(res.stdout).iter("plugin")]
         assert plugins.count(filename) == 1
         # it pins the sensor topics it reads before their plugins advertise them
         assert plugins.index(filename) < plugins.index("librotors_gazebo_imu_plugin.so")
-        navigation = {"librotors_gazebo_gps_plugin.so", "librotors_gazebo_magnetometer_plugin.so",
-                      "librotors_gazebo_pressure_plugin.so"}
+        navigation = {"librotors_gazebo_gps_plugin.so", "librotors_gazebo_magnetometer_plugin.so", "librotors_gazebo_pressure_plugin.so"}
         # PX4 and ArduPilot read GPS, magnetometer and barometer: the interface brings them
         assert navigation <= set(plugins) or flag == "enable_betaflight_interface"
-
-
 
 
 def test_launch_files_with_lee_or_attitude_offer_in_process():

@@ -1,6 +1,7 @@
 """The front page and the docs: every relative link and anchor in README.md and docs/ resolves, every
 docs page is in the index, README stays a front page (under 250 lines), and no line names a commit
 hash (figures carry the date and machine of their run, nothing else)."""
+
 import re
 from pathlib import Path
 
@@ -52,6 +53,10 @@ def test_every_docs_page_is_in_the_index():
 def test_readme_is_a_front_page_and_no_line_names_a_commit():
     lines = (REPO / "README.md").read_text().splitlines()
     assert len(lines) < 250, f"README.md has {len(lines)} lines; move detail to a docs page"
-    named = [f"{p.relative_to(REPO)}:{i + 1}: {h}" for p in PAGES for i, line in enumerate(p.read_text().splitlines())
-             for h in HASH.findall(line)]
+    named = [
+        f"{p.relative_to(REPO)}:{i + 1}: {h}"
+        for p in PAGES
+        for i, line in enumerate(p.read_text().splitlines())
+        for h in HASH.findall(line)
+    ]
     assert not named, "commit hashes in the docs: " + "; ".join(named)

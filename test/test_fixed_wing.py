@@ -1,6 +1,7 @@
 """The techpod with RotorS' fixed-wing dynamics (librotors_gazebo_fw_dynamics_plugin.so), flown from
 Python without ROS: trimmed level flight holds altitude and airspeed for 20 s, lift equals weight
 at trim within 2 %, and an aileron step rolls right wing down at the rate the coefficients predict."""
+
 import math
 import sys
 import xml.etree.ElementTree as ET
@@ -10,10 +11,9 @@ import numpy as np
 import pytest
 
 import rotors_sim as rs
+from conftest import REPO, launch, stop_launch
 from rotors_sim import _engine
 from rotors_sim.world import run_xacro
-
-from conftest import REPO, launch, stop_launch
 
 URDF = rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"
 FW = rs.paths.resource("fixed_wing")
@@ -35,10 +35,10 @@ def command(elevator_rad: float = 0.0, throttle: float = 0.0, aileron: float = 0
 def trim(model, mass: float):
     """alpha, elevator, throttle of level flight at V_TRIM: world x and z force and the pitch moment zero
     (Newton with a numerical Jacobian)."""
+
     def residual(x):
         alpha, elevator, throttle = x
-        w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0.0, 0.0, 0.0],
-                          command(elevator, throttle))
+        w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0.0, 0.0, 0.0], command(elevator, throttle))
         f, m = np.asarray(w["force_B"]), np.asarray(w["moment_B"])
         # body pitched nose up by alpha (FLU): world x = cos a f_x - sin a f_z, world z = sin a f_x + cos a f_z
         fx_W = math.cos(alpha) * f[0] - math.sin(alpha) * f[2]
@@ -72,8 +72,10 @@ def test_lift_equals_weight_at_trim_within_2_percent(trimmed):
     model, mass, (alpha, elevator, throttle) = trimmed
     w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0, 0, 0], command(elevator, throttle))
     lift = 0.5 * 1.18 * V_TRIM**2 * 0.47 * w["lift_coefficient"]
-    print(f"techpod {mass:.3f} kg at {V_TRIM} m/s: alpha {math.degrees(alpha):.2f} deg, elevator "
-          f"{math.degrees(elevator):.2f} deg, throttle {throttle:.3f}; lift {lift:.2f} N, weight {mass * G:.2f} N")
+    print(
+        f"techpod {mass:.3f} kg at {V_TRIM} m/s: alpha {math.degrees(alpha):.2f} deg, elevator "
+        f"{math.degrees(elevator):.2f} deg, throttle {throttle:.3f}; lift {lift:.2f} N, weight {mass * G:.2f} N"
+    )
     assert abs(mass - 2.81) < 0.01  # RotorS' techpod with its sensors
     assert abs(lift / (mass * G) - 1.0) < 0.02
     assert 0.0 < throttle < 1.0 and abs(elevator) < SURFACE_MAX
@@ -90,8 +92,10 @@ def test_trimmed_level_flight_holds_altitude_airspeed_20_s(trimmed):
         p, _, v, _ = world.link_state("techpod")
         heights.append(p[2])
         speeds.append(float(np.linalg.norm(v)))
-    print(f"20 s from trim: height {min(heights):.3f}-{max(heights):.3f} m, airspeed {min(speeds):.3f}-"
-          f"{max(speeds):.3f} m/s, flown {p[0]:.1f} m")
+    print(
+        f"20 s from trim: height {min(heights):.3f}-{max(heights):.3f} m, airspeed {min(speeds):.3f}-"
+        f"{max(speeds):.3f} m/s, flown {p[0]:.1f} m"
+    )
     assert max(abs(h - 50.0) for h in heights) < 1.0
     assert max(abs(s - V_TRIM) for s in speeds) < 0.5
     assert p[0] > 250.0  # it flew forward at about 15 m/s
@@ -112,9 +116,13 @@ def test_aileron_step_rolls_right_wing_down_at_predicted_rate(trimmed):
     world.step(60)
     _, q, _, w_W = world.link_state("techpod")
     x, y, z, qw = q
-    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * qw), 2 * (x * z + y * qw)],
-                  [2 * (x * y + z * qw), 1 - 2 * (x * x + z * z), 2 * (y * z - x * qw)],
-                  [2 * (x * z - y * qw), 2 * (y * z + x * qw), 1 - 2 * (x * x + y * y)]])
+    R = np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * qw), 2 * (x * z + y * qw)],
+            [2 * (x * y + z * qw), 1 - 2 * (x * x + z * z), 2 * (y * z - x * qw)],
+            [2 * (x * z - y * qw), 2 * (y * z + x * qw), 1 - 2 * (x * x + y * y)],
+        ]
+    )
     p_B = (R.T @ w_W)[0]  # FLU roll rate: positive = right wing down
     print(f"aileron step: roll rate {p_B:.4f} rad/s after 0.6 s, predicted steady {p_predicted:.4f} rad/s")
     assert p_B > 0.0
@@ -130,16 +138,32 @@ def test_fixed_wing_with_joy_flies_techpod_on_joystick_commands(ros):
     # back at the trim state, and from there the command must hold it up for 10 s
     model = _engine.FixedWingModel(str(FW / "aero_params_techpod.yaml"), str(FW / "techpod.yaml"))
     alpha, elevator, throttle = trim(model, techpod_mass())
-    proc = launch(ros, "rotors_gazebo", "fixed_wing_with_joy.launch", "gui:=false", "joystick:=none",
-                  "world_name:=basic", "real_time_factor:=5", "enable_logging:=true")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "fixed_wing_with_joy.launch",
+        "gui:=false",
+        "joystick:=none",
+        "world_name:=basic",
+        "real_time_factor:=5",
+        "enable_logging:=true",
+    )
     try:
-        got = ros.run_client("clients.fixed_wing:joystick_flight_from_trim", timeout=240,
-                             pitch=float(elevator / SURFACE_MAX), thrust=float(throttle),
-                             qy=math.sin(-alpha / 2), qw=math.cos(alpha / 2), v_trim=V_TRIM)
+        got = ros.run_client(
+            "clients.fixed_wing:joystick_flight_from_trim",
+            timeout=240,
+            pitch=float(elevator / SURFACE_MAX),
+            thrust=float(throttle),
+            qy=math.sin(-alpha / 2),
+            qw=math.cos(alpha / 2),
+            v_trim=V_TRIM,
+        )
     finally:
         stop_launch(proc)
-    print(f"fixed_wing_with_joy: launched at {got['launched_vx']:.1f} m/s; 10 s from trim: flown {got['x']:.0f} m, "
-          f"height {got['z0']:.1f} -> {got['z']:.1f} m, forward speed {got['vx']:.1f} m/s")
+    print(
+        f"fixed_wing_with_joy: launched at {got['launched_vx']:.1f} m/s; 10 s from trim: flown {got['x']:.0f} m, "
+        f"height {got['z0']:.1f} -> {got['z']:.1f} m, forward speed {got['vx']:.1f} m/s"
+    )
     assert got["launched_vx"] > 10.0 and got["reset"]
     assert got["x"] > 120.0 and abs(got["z"] - got["z0"]) < 3.0 and got["vx"] > 12.0
     # enable_logging:=true reaches the techpod's bag plugin (RotorS' spawn_fixed_wing.launch drops it)
@@ -163,8 +187,17 @@ def test_wind_changes_airspeed_and_aoa_as_the_model_says(trimmed, wind_direction
     model, mass, (alpha, elevator, throttle) = trimmed
     wind_W = float(wind_speed) * np.array([float(c) for c in wind_direction.split()])
     world = rs.World("basic")
-    world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1,
-                enable_wind=True, wind_direction=wind_direction, wind_speed_mean=wind_speed)
+    world.spawn(
+        URDF,
+        "techpod",
+        xyz=(0, 0, 50),
+        namespace="techpod",
+        mav_name="techpod",
+        random_seed=1,
+        enable_wind=True,
+        wind_direction=wind_direction,
+        wind_speed_mean=wind_speed,
+    )
     fly_from_trim(world, alpha, elevator, throttle)
     world.step(1)  # the plugin's forces act from the state of the step before (RotorS' order)
     _, _, v0, _ = world.link_state("techpod")
@@ -177,8 +210,10 @@ def test_wind_changes_airspeed_and_aoa_as_the_model_says(trimmed, wind_direction
     v_air_B = R.T @ (np.array([V_TRIM, 0.0, 0.0]) - wind_W)
     w = model.compute(list(v_air_B), [0.0, 0.0, 0.0], command(elevator, throttle))
     a_model = R @ np.asarray(w["force_B"]) / mass - [0.0, 0.0, G]
-    print(f"wind {wind_W} m/s: airspeed {w['airspeed']:.2f} m/s, alpha {math.degrees(w['alpha']):.2f} deg "
-          f"(trim {math.degrees(alpha):.2f}); acceleration {np.round(a_W, 3)} m/s^2, model {np.round(a_model, 3)}")
+    print(
+        f"wind {wind_W} m/s: airspeed {w['airspeed']:.2f} m/s, alpha {math.degrees(w['alpha']):.2f} deg "
+        f"(trim {math.degrees(alpha):.2f}); acceleration {np.round(a_W, 3)} m/s^2, model {np.round(a_model, 3)}"
+    )
     assert w["airspeed"] == pytest.approx(np.linalg.norm(v_air_B), abs=1e-9)
     if wind_W[0] != 0.0:
         assert w["airspeed"] == pytest.approx(V_TRIM + 5.0, abs=0.01)
@@ -194,8 +229,11 @@ def test_deflection_out_of_range_is_one_line_changes_nothing(trimmed):
     world = rs.World("basic")
     world.spawn(URDF, "techpod", xyz=(0, 0, 50), namespace="techpod", mav_name="techpod", random_seed=1)
     fly_from_trim(world, alpha, elevator, throttle)
-    with pytest.raises(rs.SimError, match=r"normalized\[4\] = 1\.5 puts the aileron_left at 0\.523599 rad, outside "
-                                          r"its deflection range \[-0\.349066, 0\.349066\] rad"):
+    with pytest.raises(
+        rs.SimError,
+        match=r"normalized\[4\] = 1\.5 puts the aileron_left at 0\.523599 rad, outside "
+        r"its deflection range \[-0\.349066, 0\.349066\] rad",
+    ):
         world.set_actuators("techpod", command(elevator, throttle, aileron=1.5))
     world.step(200)  # the trim command stays in force: level flight
     p, _, v, _ = world.link_state("techpod")

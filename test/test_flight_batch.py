@@ -11,11 +11,9 @@ import rotors_sim as rs
 from rotors_sim.paths import package_path
 
 DT, DIVISOR = 0.002, 5
-GUST = {"model": package_path("rotors_description") / "urdf" / "mav_with_wind_gust.gazebo",
-        "wind_gust_start": 3.0}
+GUST = {"model": package_path("rotors_description") / "urdf" / "mav_with_wind_gust.gazebo", "wind_gust_start": 3.0}
 # RotorS' waypoint example's kind of route: (time [s], position [m], yaw [rad])
-ROUTE = [(0.0, [0.0, 0.0, 1.0], 0.0), (2.0, [1.0, 0.5, 1.5], 0.5), (5.0, [-0.5, 1.0, 1.2], -1.0),
-         (8.0, [0.0, 0.0, 1.0], 0.0)]
+ROUTE = [(0.0, [0.0, 0.0, 1.0], 0.0), (2.0, [1.0, 0.5, 1.5], 0.5), (5.0, [-0.5, 1.0, 1.2], -1.0), (8.0, [0.0, 0.0, 1.0], 0.0)]
 
 
 def world_with_lee(mav: str, seed: int, **xacro_args) -> tuple[rs.World, rs.LeePositionController]:
@@ -56,8 +54,7 @@ def test_batch_flies_the_route_as_the_full_world(mav: str, wind: str):
         truth = batch.truth()[0]
         worst_m = max(worst_m, float(np.linalg.norm(p_world - truth[0:3])))
         worst_deg = max(worst_deg, angle_deg(q_world, truth[3:7]))
-    print(f"{mav} {wind}: largest difference {worst_m:.2e} m, {worst_deg:.2e} deg over 10 s "
-          f"(end at {np.round(truth[0:3], 3)})")
+    print(f"{mav} {wind}: largest difference {worst_m:.2e} m, {worst_deg:.2e} deg over 10 s " f"(end at {np.round(truth[0:3], 3)})")
     assert worst_m < 1e-3 and worst_deg < 0.1
     assert np.linalg.norm(truth[0:3] - [0.0, 0.0, 1.0]) < 0.3  # it flew the route back towards home
 
@@ -86,8 +83,7 @@ def test_attitude_controller_flies_as_in_the_full_world():
     world.listen(["/firefly/odometry_sensor1/odometry"])
     attitude = rs.AttitudeLevelController.for_mav("firefly")
     world.attach_controller("firefly", attitude)
-    batch = rs.FlightBatch("firefly", 1, mode="roll_pitch_yawrate_thrust", step_size=DT, control_divisor=DIVISOR,
-                           seeds=[3])
+    batch = rs.FlightBatch("firefly", 1, mode="roll_pitch_yawrate_thrust", step_size=DT, control_divisor=DIVISOR, seeds=[3])
     command = [0.05, -0.03, 0.2, 16.0]
     attitude.set_roll_pitch_yawrate_thrust(*command)
     batch.commands[0] = command
@@ -95,15 +91,26 @@ def test_attitude_controller_flies_as_in_the_full_world():
     batch.step(1000)
     p_world, q_world, _, _ = world.link_state("firefly")
     truth = batch.truth()[0]
-    print(f"2 s of roll 0.05, pitch -0.03, yaw rate 0.2: at {np.round(truth[:3], 3)} m, "
-          f"{np.linalg.norm(p_world - truth[:3]):.1e} m and {angle_deg(q_world, truth[3:7]):.1e} deg from the world")
+    print(
+        f"2 s of roll 0.05, pitch -0.03, yaw rate 0.2: at {np.round(truth[:3], 3)} m, "
+        f"{np.linalg.norm(p_world - truth[:3]):.1e} m and {angle_deg(q_world, truth[3:7]):.1e} deg from the world"
+    )
     assert np.linalg.norm(p_world - truth[:3]) < 1e-3 and angle_deg(q_world, truth[3:7]) < 0.1
 
 
 def noisy_batch(count: int, seeds: list[int], threads: int = 1) -> rs.FlightBatch:
-    batch = rs.FlightBatch("firefly", count, step_size=DT, control_divisor=DIVISOR, seeds=seeds, threads=threads,
-                           odometry_noise_position="0.01 0.01 0.01", model=GUST["model"], wind_gust_start=0.5,
-                           wind_gust_force_variance=1.0)
+    batch = rs.FlightBatch(
+        "firefly",
+        count,
+        step_size=DT,
+        control_divisor=DIVISOR,
+        seeds=seeds,
+        threads=threads,
+        odometry_noise_position="0.01 0.01 0.01",
+        model=GUST["model"],
+        wind_gust_start=0.5,
+        wind_gust_force_variance=1.0,
+    )
     batch.commands[:] = [0.3, -0.2, 1.2, 0.4]
     return batch
 
@@ -131,15 +138,15 @@ def test_batch_of_n_equals_n_single_runs_on_any_thread_count():
 
 
 def test_takes_off_from_the_ground_and_lands_again():
-    batch = rs.FlightBatch("firefly", 1, mode="rotor_speeds", step_size=DT, noise=False,
-                           positions=[[0.0, 0.0, 0.1]])  # spawned as RotorS spawns it, rotors stopped
+    batch = rs.FlightBatch(
+        "firefly", 1, mode="rotor_speeds", step_size=DT, noise=False, positions=[[0.0, 0.0, 0.1]]
+    )  # spawned as RotorS spawns it, rotors stopped
     batch.step(1000)
     rest = batch.truth()[0]
     lowest = rest[2] + min(c[2] for c in batch.description.contact_points_B) + batch.description.p_M_cog[2]
     print(f"at rest: the lowest corner at z = {lowest * 1e3:.2f} mm, speed {np.linalg.norm(rest[7:10]):.1e} m/s")
     assert batch.in_contact[0] and -1e-3 < lowest < 0.0 and np.linalg.norm(rest[7:10]) < 1e-3
-    batch = rs.FlightBatch("firefly", 1, step_size=DT, control_divisor=DIVISOR, noise=False,
-                           positions=[[0.0, 0.0, 0.1]])
+    batch = rs.FlightBatch("firefly", 1, step_size=DT, control_divisor=DIVISOR, noise=False, positions=[[0.0, 0.0, 0.1]])
     batch.commands[0] = [0.0, 0.0, 1.0, 0.0]  # Lee's controller takes it up to 1 m
     batch.step(2500)
     up = batch.truth()[0]
@@ -198,6 +205,5 @@ def test_normalized_thrust_at_the_hover_fraction_hovers():
     before = batch.truth()[:, 9].copy()
     batch.step(500)  # then they hold its weight
     change = batch.truth()[:, 9] - before
-    print(f"hover fraction {batch.commands[0, 0]:.3f}: vertical speed {before[0]:.3f} m/s, "
-          f"{change[0]:.1e} m/s change over 1 s")
+    print(f"hover fraction {batch.commands[0, 0]:.3f}: vertical speed {before[0]:.3f} m/s, " f"{change[0]:.1e} m/s change over 1 s")
     assert np.all(np.abs(change) < 1e-3)

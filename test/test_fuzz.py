@@ -17,15 +17,25 @@ robot_state_publisher, not ours, logs each invalid JointState). The test prints 
 Left out, with the reason: /clock (the simulator's own output: a second publisher is a set-up error,
 not an input), /rosout (ROS' log aggregation), the Empty services pause/unpause/reset (no payload;
 their effects are tested in test_faults.py) and roscpp's get_loggers/set_logger_level."""
+
 from pathlib import Path
 
 import pytest
+
 from conftest import RosGraph, stop_launch, wait_sim_time
 
-WATCHED = ["/gazebo", "/firefly/lee_position_controller_node", "/firefly/robot_state_publisher", "/bystanders/msf",
-           "/bystanders/roll_pitch_yawrate_thrust_controller_node", "/bystanders/rotors_joy_interface",
-           "/bystanders/planner", "/bystanders/mapping", "/bystanders/omav_pose_controller_node",
-           "/bystanders/fixed_wing_joy_interface"]
+WATCHED = [
+    "/gazebo",
+    "/firefly/lee_position_controller_node",
+    "/firefly/robot_state_publisher",
+    "/bystanders/msf",
+    "/bystanders/roll_pitch_yawrate_thrust_controller_node",
+    "/bystanders/rotors_joy_interface",
+    "/bystanders/planner",
+    "/bystanders/mapping",
+    "/bystanders/omav_pose_controller_node",
+    "/bystanders/fixed_wing_joy_interface",
+]
 
 # The hovering example with the camera gimbal (its command topics in the simulator), plus the
 # project's other input-taking nodes outside its control loop ("bystanders": the estimator, the
@@ -79,35 +89,51 @@ def test_fuzzing_every_input_of_the_hovering_example(ros: RosGraph, tmp_path: Pa
     proc = ros.start(["roslaunch", "-p", str(ros.port), str(launch_file)], "launch")
     try:
         wait_sim_time(ros, 10.0)
-        res = ros.run_client("clients.fuzz:fuzz_every_input", timeout=900, log_path=str(Path(proc.log_path)),
-                             watched=WATCHED)
+        res = ros.run_client("clients.fuzz:fuzz_every_input", timeout=900, log_path=str(Path(proc.log_path)), watched=WATCHED)
     finally:
         stop_launch(proc)
     rows = res["rows"]
-    header = (f"{'topic / service':44} {'type':36} {'invalid':>7} {'extreme':>7} {'crashes':>7} {'non-finite':>10} "
-              f"{'offset (inv.)':>13} {'log lines/s':>11} {'back':>5}")
+    header = (
+        f"{'topic / service':44} {'type':36} {'invalid':>7} {'extreme':>7} {'crashes':>7} {'non-finite':>10} "
+        f"{'offset (inv.)':>13} {'log lines/s':>11} {'back':>5}"
+    )
     print("\n" + header + "\n" + "-" * len(header))
     for r in rows:
         lines_per_s = max(r["invalid_log_lines"], r["extreme_log_lines"])
-        print(f"{r['name']:44} {r['type']:36} {r['invalid']:7d} {r['extreme']:7d} {len(r['crashed']):7d} "
-              f"{0 if r['finite'] else 1:10d} {r['invalid_offset'] * 1000:10.1f} mm {lines_per_s:11d} "
-              f"{'yes' if r['recovered'] else 'reset':>5}")
-    print(f"{len(rows)} inputs, {sum(r['invalid'] + r['extreme'] for r in rows)} messages and calls, "
-          f"{res['samples']} states sampled")
+        print(
+            f"{r['name']:44} {r['type']:36} {r['invalid']:7d} {r['extreme']:7d} {len(r['crashed']):7d} "
+            f"{0 if r['finite'] else 1:10d} {r['invalid_offset'] * 1000:10.1f} mm {lines_per_s:11d} "
+            f"{'yes' if r['recovered'] else 'reset':>5}"
+        )
+    print(f"{len(rows)} inputs, {sum(r['invalid'] + r['extreme'] for r in rows)} messages and calls, " f"{res['samples']} states sampled")
     names = {r["name"] for r in rows}
-    for expected in ("/firefly/command/motor_speed", "/firefly/gazebo/command/motor_speed",
-                     "/firefly/command/trajectory", "/firefly/command/pose", "/firefly/odometry_sensor1/odometry",
-                     "/firefly/motor_failure", "/gazebo/spawn_urdf_model", "/gazebo/delete_model",
-                     "/firefly/set_motor_failure", "/bystanders/msf_core/imu_state_input",
-                     "/bystanders/msf_updates/pose_with_covariance_input", "/bystanders/command/roll_pitch_yawrate_thrust",
-                     "/bystanders/joy", "/bystanders/msf/pose_sensor/initialize_msf_scale",
-                     "/bystanders/fixed_wing_joy", "/bystanders/goal", "/bystanders/octomap_binary",
-                     "/bystanders/cloud_in", "/firefly/gimbal_pitch_cmd"):
+    for expected in (
+        "/firefly/command/motor_speed",
+        "/firefly/gazebo/command/motor_speed",
+        "/firefly/command/trajectory",
+        "/firefly/command/pose",
+        "/firefly/odometry_sensor1/odometry",
+        "/firefly/motor_failure",
+        "/gazebo/spawn_urdf_model",
+        "/gazebo/delete_model",
+        "/firefly/set_motor_failure",
+        "/bystanders/msf_core/imu_state_input",
+        "/bystanders/msf_updates/pose_with_covariance_input",
+        "/bystanders/command/roll_pitch_yawrate_thrust",
+        "/bystanders/joy",
+        "/bystanders/msf/pose_sensor/initialize_msf_scale",
+        "/bystanders/fixed_wing_joy",
+        "/bystanders/goal",
+        "/bystanders/octomap_binary",
+        "/bystanders/cloud_in",
+        "/firefly/gimbal_pitch_cmd",
+    ):
         assert expected in names, f"{expected} was not fuzzed: {sorted(names)}"
     for r in rows:
         assert r["crashed"] == [], f"{r['name']}: {r['crashed']} crashed"
         assert r["finite"], f"{r['name']}: the physics state became non-finite"
         assert r["invalid_offset"] < 0.05, f"{r['name']}: invalid input moved the MAV {r['invalid_offset']:.3f} m"
-        assert r["name"] in NOT_RATE_LIMITED_UPSTREAM or (r["invalid_log_lines"] <= 12 and r["extreme_log_lines"] <= 12), (
-            f"{r['name']}: {r['invalid_log_lines']} / {r['extreme_log_lines']} log lines in 1 s: not rate-limited")
+        assert r["name"] in NOT_RATE_LIMITED_UPSTREAM or (
+            r["invalid_log_lines"] <= 12 and r["extreme_log_lines"] <= 12
+        ), f"{r['name']}: {r['invalid_log_lines']} / {r['extreme_log_lines']} log lines in 1 s: not rate-limited"
         assert r["recovered"], f"{r['name']}: the MAV did not come back to its set point after the extreme inputs"

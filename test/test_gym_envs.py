@@ -2,6 +2,7 @@
 scripted policy (the Lee controller's rotor speeds as the action) holds the hover and reaches every
 waypoint while a random policy crashes, bad actions raise one clear exception, and the vector
 environment steps many worlds in one call with autoreset."""
+
 import warnings
 
 import gymnasium as gym
@@ -76,10 +77,13 @@ def test_a_scripted_policy_reaches_every_waypoint():
     assert info["success"] and terminated
 
 
-@pytest.mark.parametrize("action, match", [
-    (np.zeros(5, np.float32), r"action has shape \(5,\).*needs \(6,\)"),
-    (np.full(6, np.nan, np.float32), "has NaN or inf"),
-])
+@pytest.mark.parametrize(
+    "action, match",
+    [
+        (np.zeros(5, np.float32), r"action has shape \(5,\).*needs \(6,\)"),
+        (np.full(6, np.nan, np.float32), "has NaN or inf"),
+    ],
+)
 def test_bad_actions_raise_one_exception_and_env_keeps_working(action, match):
     env = HoverEnv()
     env.reset(seed=0)

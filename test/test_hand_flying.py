@@ -1,6 +1,7 @@
 """Hand flying: rotors_joy_interface's mapping (RotorS' axes, scales and parameters), the terminal
 keyboard joystick and the gamepad scaling, and a flight: mav_with_keyboard.launch run in a
 pseudo-terminal, driven by scripted key presses, climbs, rolls and yaws as commanded."""
+
 import json
 import math
 import os
@@ -80,22 +81,26 @@ RECORDER = textwrap.dedent("""
 """)
 
 
-def keyboard_flight(ros: RosGraph, tmp_path: Path, launch_args: list, ready, ready_s: float, recorder: str,
-                    record_s: float, fly) -> tuple:
+def keyboard_flight(ros: RosGraph, tmp_path: Path, launch_args: list, ready, ready_s: float, recorder: str, record_s: float, fly) -> tuple:
     """Runs `roslaunch rotors_gazebo <launch_args>` with a pseudo-terminal as its stdin (the keyboard
     joystick reads it), waits up to ready_s for `ready(launch log)`, starts `recorder` for record_s seconds and
     calls fly(keys), keys(key, count, period) typing a key count times and returning when it
     started. Returns (the launch log, odometry rows, command rows, what fly returned)."""
     master, slave = os.openpty()
     launch_log = open(tmp_path / "launch.log", "w")
-    proc = subprocess.Popen(["roslaunch", "-p", str(ros.port), "rotors_gazebo", *launch_args], env=ros.env,
-                            stdin=slave, stdout=launch_log, stderr=subprocess.STDOUT, start_new_session=True)
+    proc = subprocess.Popen(
+        ["roslaunch", "-p", str(ros.port), "rotors_gazebo", *launch_args],
+        env=ros.env,
+        stdin=slave,
+        stdout=launch_log,
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     proc.log_path = tmp_path / "launch.log"
     rec_proc = None
     try:
         assert ros.wait_for(lambda: ready(proc.log_path.read_text()), ready_s), proc.log_path.read_text()[-3000:]
-        rec_proc = subprocess.Popen([sys.executable, "-c", recorder, str(record_s)], env=ros.env,
-                                    stdout=subprocess.PIPE, text=True)
+        rec_proc = subprocess.Popen([sys.executable, "-c", recorder, str(record_s)], env=ros.env, stdout=subprocess.PIPE, text=True)
         assert rec_proc.stdout.readline().strip() == "READY"
 
         def keys(key: str, count: int, period: float = 0.05) -> float:
@@ -113,7 +118,7 @@ def keyboard_flight(ros: RosGraph, tmp_path: Path, launch_args: list, ready, rea
         stop_launch(proc)
         os.close(master)
         os.close(slave)
-    rec = json.loads(next(line for line in out.splitlines() if line.startswith("RESULT="))[len("RESULT="):])
+    rec = json.loads(next(line for line in out.splitlines() if line.startswith("RESULT="))[len("RESULT=") :])
     return proc.log_path.read_text(), np.array(rec["odom"]), np.array(rec["cmd"]), marks
 
 
@@ -124,42 +129,48 @@ def at(series, t):
 
 def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
     def ready(log: str) -> bool:
-        return ("rotors_joy_interface" in ros.run(["rosnode", "list"], check=False).stdout
-                and "Successfully spawned" in log)
+        return "rotors_joy_interface" in ros.run(["rosnode", "list"], check=False).stdout and "Successfully spawned" in log
 
     def fly(keys) -> tuple:
         time.sleep(1.0)
-        t_climb = keys("w", 22)                  # thrust axis -1 + 22 * 0.05 = 0.1: 16.5 N
+        t_climb = keys("w", 22)  # thrust axis -1 + 22 * 0.05 = 0.1: 16.5 N
         time.sleep(2.5)
-        keys("s", 2)                             # 15 N, about the weight
+        keys("s", 2)  # 15 N, about the weight
         time.sleep(0.5)
-        t_roll = keys("\x1b[C", 30)              # right arrow held 1.5 s: roll +10 deg
+        t_roll = keys("\x1b[C", 30)  # right arrow held 1.5 s: roll +10 deg
         time.sleep(1.5)
-        t_yaw = keys("d", 30)                    # D held 1.5 s: yaw rate -45 deg/s
+        t_yaw = keys("d", 30)  # D held 1.5 s: yaw rate -45 deg/s
         return t_climb, t_roll, t_yaw
 
     log, odom, cmd, (t_climb, t_roll, t_yaw) = keyboard_flight(
-        ros, tmp_path, ["mav_with_keyboard.launch", "gui:=false"], ready, 60, RECORDER, 14, fly)
+        ros, tmp_path, ["mav_with_keyboard.launch", "gui:=false"], ready, 60, RECORDER, 14, fly
+    )
     assert "keys: arrows roll/pitch" in log, log[-3000:]
 
-    assert cmd[:, 4].max() == pytest.approx(16.5, abs=1e-5)          # W x 22
-    assert cmd[:, 1].max() == pytest.approx(math.radians(10), abs=1e-6)   # right arrow: roll right
+    assert cmd[:, 4].max() == pytest.approx(16.5, abs=1e-5)  # W x 22
+    assert cmd[:, 1].max() == pytest.approx(math.radians(10), abs=1e-6)  # right arrow: roll right
     assert cmd[:, 3].min() == pytest.approx(-math.radians(45), abs=1e-6)  # D: yaw right
     climbed = at(odom, t_roll)[2] - at(odom, t_climb)[2]
     moved = at(odom, t_yaw)[1] - at(odom, t_roll)[1]
     yawed = at(odom, t_yaw + 3.0)[3] - at(odom, t_yaw)[3]
-    print(f"keyboard flight: climbed {climbed:.2f} m, rolled right and moved {moved:.2f} m in y, "
-          f"yawed {math.degrees(yawed):.1f} deg in 3 s")
+    print(
+        f"keyboard flight: climbed {climbed:.2f} m, rolled right and moved {moved:.2f} m in y, "
+        f"yawed {math.degrees(yawed):.1f} deg in 3 s"
+    )
     assert climbed > 1.0
     assert moved < -0.5
     assert yawed < -math.radians(20)  # with RotorS' RPYT gains the yaw rate builds up over about 2 s
 
 
-WING_RECORDER = RECORDER.replace("/firefly/", "/techpod/").replace(
-    "m.yaw_rate, m.thrust.z", "m.yaw_rate, m.thrust.x").replace(
-    "math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2))]",
-    "math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2)), "
-    "math.atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x ** 2 + q.y ** 2)), m.pose.pose.position.x]")
+WING_RECORDER = (
+    RECORDER.replace("/firefly/", "/techpod/")
+    .replace("m.yaw_rate, m.thrust.z", "m.yaw_rate, m.thrust.x")
+    .replace(
+        "math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2))]",
+        "math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2)), "
+        "math.atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x ** 2 + q.y ** 2)), m.pose.pose.position.x]",
+    )
+)
 
 
 def plot_wing_flight(odom, cmd, t_climb: float, t_bank: float, out: Path) -> None:
@@ -203,18 +214,25 @@ def test_keyboard_fixed_wing_flight_climbs_banks_and_turns(ros: RosGraph, tmp_pa
     # climbs; three taps of the right arrow deflect the ailerons (roll axis 0.6 -> +-0.21 rad) and
     # spring back: it banks right and turns right. Ground truth and stick commands are recorded.
     def fly(keys) -> tuple:
-        keys("w", 30, 0.02)                      # throttle 0.5
+        keys("w", 30, 0.02)  # throttle 0.5
         time.sleep(2.0)
-        t_climb = keys("w", 6, 0.02)             # throttle 0.8
-        keys("\x1b[B", 1)                        # down arrow: pitch up
+        t_climb = keys("w", 6, 0.02)  # throttle 0.8
+        keys("\x1b[B", 1)  # down arrow: pitch up
         time.sleep(4.0)
-        t_bank = keys("\x1b[C", 3, 0.2)          # right arrow three times: ailerons 0.6 of full, then back
+        t_bank = keys("\x1b[C", 3, 0.2)  # right arrow three times: ailerons 0.6 of full, then back
         time.sleep(6.0)
         return t_climb, t_bank
 
     _, odom, cmd, (t_climb, t_bank) = keyboard_flight(
-        ros, tmp_path, ["fixed_wing_with_joy.launch", "gui:=false", "joystick:=keyboard", "world_name:=basic",
-                        "real_time_factor:=1"], lambda log: "launched at 15.0 m/s" in log, 90, WING_RECORDER, 15, fly)
+        ros,
+        tmp_path,
+        ["fixed_wing_with_joy.launch", "gui:=false", "joystick:=keyboard", "world_name:=basic", "real_time_factor:=1"],
+        lambda log: "launched at 15.0 m/s" in log,
+        90,
+        WING_RECORDER,
+        15,
+        fly,
+    )
     plot_wing_flight(odom, cmd, t_climb, t_bank, tmp_path / "fixed_wing_keyboard.png")
     assert cmd[:, 4].max() == pytest.approx(0.8, abs=1e-6)  # throttle from W x 36
     assert cmd[:, 1].max() == pytest.approx(0.6, abs=1e-6)  # the right arrow's roll command
@@ -222,8 +240,9 @@ def test_keyboard_fixed_wing_flight_climbs_banks_and_turns(ros: RosGraph, tmp_pa
     after = odom[odom[:, 0] > t_bank]
     bank = np.degrees(after[:, 4]).max()
     turned = np.degrees(at(odom, t_bank + 6.0)[3] - at(odom, t_bank)[3])
-    print(f"fixed-wing keyboard flight: climbed {climbed:.1f} m in 4 s, banked up to {bank:.1f} deg right, "
-          f"turned {turned:.1f} deg in 6 s")
+    print(
+        f"fixed-wing keyboard flight: climbed {climbed:.1f} m in 4 s, banked up to {bank:.1f} deg right, " f"turned {turned:.1f} deg in 6 s"
+    )
     assert climbed > 2.0
     assert bank > 10.0  # roll about +x (FLU) is right wing down
     assert turned < -20.0  # a right turn: the heading decreases

@@ -4,13 +4,14 @@ of pi) and HIL_GPS (5 Hz); the autopilot's controls come back as mav_msgs/Actuat
 arm, HIL mode and reboot reach it as MAVLink commands. No autopilot board is on these machines:
 pymavlink on a UDP socket stands in for it (the node's serial path is pymavlink's own).
 """
+
 import threading
 import time
 
 from pymavlink import mavutil
+from test_ardupilot_json import free_udp_port
 
 from conftest import launch
-from test_ardupilot_json import free_udp_port
 
 
 class AutopilotStandIn:
@@ -52,8 +53,10 @@ def test_fixed_wing_hil_launch_exchanges_hil_with_autopilot(ros):
     gps = autopilot.of_type("HIL_GPS")
     rate = (len(sensors) - 1) / ((sensors[-1].time_usec - sensors[0].time_usec) * 1e-6)
     s = sensors[-1]
-    print(f"{len(sensors)} HIL_SENSOR at {rate:.0f} Hz of sim time, {len(gps)} HIL_GPS; at rest: acc "
-          f"({s.xacc:.2f}, {s.yacc:.2f}, {s.zacc:.2f}) m/s^2, {s.abs_pressure:.1f} hPa, mag z {s.zmag:.3f} G")
+    print(
+        f"{len(sensors)} HIL_SENSOR at {rate:.0f} Hz of sim time, {len(gps)} HIL_GPS; at rest: acc "
+        f"({s.xacc:.2f}, {s.yacc:.2f}, {s.zacc:.2f}) m/s^2, {s.abs_pressure:.1f} hPa, mag z {s.zmag:.3f} G"
+    )
     assert 90 < rate < 110
     # FRD: the specific force at rest is -z (the mean of 2 s: the ADIS16448's noise and turn-on bias)
     z_mean, x_mean = sum(m.zacc for m in sensors) / len(sensors), sum(m.xacc for m in sensors) / len(sensors)
@@ -92,6 +95,7 @@ def test_one_frames_module_the_codecs_and_the_hil_node_share():
 
     from rotors_hil_interface import hil_messages as hm
     from rotors_sim import frames
+
     T_NED_ENU = np.array([[0, 1, 0], [1, 0, 0], [0, 0, -1]])
     T_FLU_FRD = np.diag([1, -1, -1])
     rng = np.random.default_rng(7)
@@ -106,7 +110,6 @@ def test_one_frames_module_the_codecs_and_the_hil_node_share():
         v = rng.normal(size=3)
         np.testing.assert_allclose(frames.ned_from_enu(v), T_NED_ENU @ v)
         np.testing.assert_allclose(frames.frd_from_flu(v), T_FLU_FRD @ v)
-        fields = hm.hil_state_fields(q, v, v, 47.0, 8.0, 500.0, hm.world_from_body([q[0], -q[1], -q[2], -q[3]],
-                                                                                     [0, 0, 9.80665]))
+        fields = hm.hil_state_fields(q, v, v, 47.0, 8.0, 500.0, hm.world_from_body([q[0], -q[1], -q[2], -q[3]], [0, 0, 9.80665]))
         np.testing.assert_allclose(fields["attitude_quaternion"], q_ned, atol=1e-7)
         assert max(abs(fields["xacc"]), abs(fields["yacc"]), abs(fields["zacc"])) <= 1  # at rest: a = 0

@@ -1,5 +1,6 @@
 """End to end, as the book's sections 3.3 and 3.6: the firefly hovering example with logging,
 evaluated with hovering_eval. Runs in lockstep, faster than real time."""
+
 import subprocess
 import sys
 from pathlib import Path
@@ -15,17 +16,30 @@ from rotors_evaluation.metrics import rms_error  # noqa: E402
 
 # Topics of a spawned firefly (rotors_reference.md section 5, mav_hovering_example set-up).
 ROTORS_TOPICS = [
-    "/firefly/command/motor_speed", "/firefly/command/trajectory", "/firefly/command/pose",
-    "/firefly/gazebo/command/motor_speed", "/firefly/motor_speed", *[f"/firefly/motor_speed/{i}" for i in range(6)],
-    "/firefly/joint_states", "/firefly/imu", "/firefly/ground_truth/imu",
-    *[f"/firefly/{s}/{t}" for s in ("ground_truth", "odometry_sensor1")
-      for t in ("odometry", "pose", "pose_with_covariance", "position", "transform")],
-    "/tf", "/clock", "/gazebo/model_states"]
+    "/firefly/command/motor_speed",
+    "/firefly/command/trajectory",
+    "/firefly/command/pose",
+    "/firefly/gazebo/command/motor_speed",
+    "/firefly/motor_speed",
+    *[f"/firefly/motor_speed/{i}" for i in range(6)],
+    "/firefly/joint_states",
+    "/firefly/imu",
+    "/firefly/ground_truth/imu",
+    *[
+        f"/firefly/{s}/{t}"
+        for s in ("ground_truth", "odometry_sensor1")
+        for t in ("odometry", "pose", "pose_with_covariance", "position", "transform")
+    ],
+    "/tf",
+    "/clock",
+    "/gazebo/model_states",
+]
 
 
 def fly(ros: RosGraph, *args: str, until_s: float = 21.0):
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true",
-                  "real_time_factor:=10", *args)
+    proc = launch(
+        ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true", "real_time_factor:=10", *args
+    )
     try:
         wait_sim_time(ros, until_s)
         topics = ros.run(["rostopic", "list"]).stdout.split()
@@ -42,8 +56,7 @@ def test_firefly_hovers_with_the_books_rms_and_logs_a_bag(ros: RosGraph, tmp_pat
     missing = [t for t in ROTORS_TOPICS if t not in topics]
     assert not missing, f"topics missing: {missing}"
 
-    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench",
-                       "/motor_speed")
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench", "/motor_speed")
     wp = data.waypoints[0]
     assert np.allclose(wp.position, [0, 0, 1]) and 5.0 <= wp.t < 5.5  # sent after 5 s of sim time
     # takes off after about 5 s: on the ground before, climbing after
@@ -62,8 +75,16 @@ def test_firefly_hovers_with_the_books_rms_and_logs_a_bag(ros: RosGraph, tmp_pat
     assert np.all(np.sign(m.mean(axis=0)) == [1, -1, 1, -1, 1, -1])
     # the bag holds what the evaluation scripts need
     flight_bag = FlightBag(bag)
-    for t in ("ground_truth/pose", "ground_truth/twist", "motor_speed", "imu", "odometry_sensor1/odometry",
-              "command/motor_speed", "command/trajectory", "wrench"):
+    for t in (
+        "ground_truth/pose",
+        "ground_truth/twist",
+        "motor_speed",
+        "imu",
+        "odometry_sensor1/odometry",
+        "command/motor_speed",
+        "command/trajectory",
+        "wrench",
+    ):
         assert f"firefly/{t}" in flight_bag.topics, flight_bag.topics
     assert flight_bag.topics["firefly/ground_truth/pose"] == "geometry_msgs/msg/PoseStamped"
     flight_bag.close()
@@ -73,9 +94,27 @@ def test_firefly_hovers_with_the_books_rms_and_logs_a_bag(ros: RosGraph, tmp_pat
     # noise-free IMU in hover reads +g on z
     assert imu["gt_acc"][2] == pytest.approx(9.8, abs=1e-3) and abs(imu["gt_acc"][0]) < 1e-3
 
-    out = subprocess.run(["rosrun", "rotors_evaluation", "hovering_eval.py", "-b", str(bag), "--save_plots", "True",
-                          "--plot", "False", "--mav_name", "firefly", "--plot_dir", str(tmp_path)],
-                         capture_output=True, text=True, env=ros.env, check=True).stdout
+    out = subprocess.run(
+        [
+            "rosrun",
+            "rotors_evaluation",
+            "hovering_eval.py",
+            "-b",
+            str(bag),
+            "--save_plots",
+            "True",
+            "--plot",
+            "False",
+            "--mav_name",
+            "firefly",
+            "--plot_dir",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        env=ros.env,
+        check=True,
+    ).stdout
     assert "Position RMS error: 0.040 m" in out, out
     assert "Angular velocity RMS error: 0.000 rad/s" in out
     assert "No collisions occurred - good job!" in out
@@ -111,15 +150,23 @@ def test_rosbag_record_of_hovering_example_evaluates_unchanged(ros: RosGraph, tm
     assert "firefly/ground_truth/twist" not in recorded.topics
     assert recorded.topics["firefly/ground_truth/pose"] == "geometry_msgs/msg/Pose"
     recorded.close()
-    hover = subprocess.run(["rosrun", "rotors_evaluation", "hovering_eval.py", "-b", str(bag), "--mav_name", "firefly",
-                            "--plot", "False"], capture_output=True, text=True, env=ros.env)
+    hover = subprocess.run(
+        ["rosrun", "rotors_evaluation", "hovering_eval.py", "-b", str(bag), "--mav_name", "firefly", "--plot", "False"],
+        capture_output=True,
+        text=True,
+        env=ros.env,
+    )
     print(hover.stdout, hover.stderr)
     assert hover.returncode == 0, hover.stderr
     assert "Position RMS error: 0.040 m" in hover.stdout
     assert "note: pose from 'firefly/ground_truth/odometry' (nav_msgs/msg/Odometry)" in hover.stderr
     assert "note: twist from 'firefly/ground_truth/odometry' (nav_msgs/msg/Odometry)" in hover.stderr
-    waypoints = subprocess.run(["rosrun", "rotors_evaluation", "waypoints_eval.py", "-b", str(bag), "--mav_name",
-                                "firefly", "--plot", "False"], capture_output=True, text=True, env=ros.env)
+    waypoints = subprocess.run(
+        ["rosrun", "rotors_evaluation", "waypoints_eval.py", "-b", str(bag), "--mav_name", "firefly", "--plot", "False"],
+        capture_output=True,
+        text=True,
+        env=ros.env,
+    )
     print(waypoints.stdout, waypoints.stderr)
     assert waypoints.returncode == 0, waypoints.stderr
     assert "waypoint" in waypoints.stdout.lower()

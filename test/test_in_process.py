@@ -2,13 +2,14 @@
 messages in memory) fly the flight they fly as separate nodes, bit for bit in lockstep; and the
 rotors as kinematic joints on the body (the default) fly the flight that hinged rotor bodies fly,
 within 0.1 mm."""
-import pytest
+
 import numpy as np
+import pytest
 from rosbags.rosbag1 import Reader
 from rosbags.typesys import Stores, get_typestore
+from test_lockstep_determinism import assert_identical_flights, fly_once, messages
 
 from conftest import RosGraph
-from test_lockstep_determinism import assert_identical_flights, fly_once, messages
 
 
 def without_seq(msgs, topic: str = "firefly/command/motor_speed"):

@@ -1,23 +1,24 @@
 """Lockstep makes runs repeatable: two runs with the same seeds write identical bags, message for
 message and bit for bit in the payloads."""
+
 import os
 import struct
 import subprocess
 from pathlib import Path
 
+import pytest
 from rosbags.rosbag1 import Reader
 
-from rotors_evaluation.bag_data import FlightBag
-
-import pytest
-
 from conftest import REPO, RosGraph, send_hover_pose, stop_launch, wait_sim_time
+from rotors_evaluation.bag_data import FlightBag
 
 
 def fly_once(ros: RosGraph, tag: str, *launch_args: str) -> Path:
     """Hovers at (0, 0, 1) for 6 s of sim time in lockstep; the bag it wrote."""
-    proc = ros.start(["roslaunch", "-p", str(ros.port), str(REPO / "test/launch/lockstep_determinism.launch"),
-                      f"log_file:={tag}", *launch_args], f"launch_{tag}")
+    proc = ros.start(
+        ["roslaunch", "-p", str(ros.port), str(REPO / "test/launch/lockstep_determinism.launch"), f"log_file:={tag}", *launch_args],
+        f"launch_{tag}",
+    )
     try:
         ready = ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         assert ready, Path(proc.log_path).read_text()[-2000:]
@@ -44,7 +45,7 @@ def messages(bag: Path, until_s: float):
                 payload = bytes(raw)
                 if conn.topic == INPUT_TOPIC or conn.topic in SETPOINT_TOPICS:  # Header = seq, sec, nsec, frame_id (uint32 length + bytes)
                     frame_len = int.from_bytes(payload[12:16], "little")
-                    payload = payload[16 + frame_len:]
+                    payload = payload[16 + frame_len :]
                 out.append((conn.topic, t, payload))
     return sorted(out)
 
@@ -70,11 +71,23 @@ def fly_hovering_example(ros: RosGraph, tag: str, cpu_hog: bool) -> Path:
     """The book's hovering example as a user starts it (its waypoint node included), seeded, in
     lockstep and as fast as possible, to 8 s of sim time (the waypoint is due at 5 s); with cpu_hog
     a busy process per core competes for the CPU the whole time. The bag it wrote."""
-    hogs = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(os.cpu_count() or 2)] if cpu_hog \
-        else []
-    proc = ros.start(["roslaunch", "-p", str(ros.port), "rotors_gazebo", "mav_hovering_example.launch", "gui:=false",
-                      "lockstep:=true", "real_time_factor:=0", "enable_logging:=true", f"log_file:={tag}",
-                      "random_seed:=42"], f"launch_{tag}")
+    hogs = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(os.cpu_count() or 2)] if cpu_hog else []
+    proc = ros.start(
+        [
+            "roslaunch",
+            "-p",
+            str(ros.port),
+            "rotors_gazebo",
+            "mav_hovering_example.launch",
+            "gui:=false",
+            "lockstep:=true",
+            "real_time_factor:=0",
+            "enable_logging:=true",
+            f"log_file:={tag}",
+            "random_seed:=42",
+        ],
+        f"launch_{tag}",
+    )
     try:
         wait_sim_time(ros, 8.0)
         ros.run(["rosservice", "call", "/gazebo/pause_physics"])
@@ -97,14 +110,19 @@ def test_hovering_example_repeats_bit_for_bit_beside_cpu_hog(ros: RosGraph):
             assert b.unwaited("firefly") is None, b.unwaited("firefly")
         finally:
             b.close()
-    a, b = (sorted((topic, None if topic in SETPOINT_TOPICS else t, payload) for topic, t, payload in
-                   messages(bag, 7.5)) for bag in (quiet, loaded))
+    a, b = (
+        sorted((topic, None if topic in SETPOINT_TOPICS else t, payload) for topic, t, payload in messages(bag, 7.5))
+        for bag in (quiet, loaded)
+    )
     assert any(m[0] in SETPOINT_TOPICS for m in a)  # the waypoint node's set point is in the flight
     assert_identical_flights(a, b)
     # the MAV took off at the waypoint's due time: still on the ground before 5 s, climbing after
     with Reader(quiet) as r:
-        z = [(t / 1e9, struct.unpack_from("<d", bytes(raw), len(bytes(raw)) - 40)[0]) for conn, t, raw in
-             r.messages() if conn.topic == "firefly/ground_truth/pose"]
+        z = [
+            (t / 1e9, struct.unpack_from("<d", bytes(raw), len(bytes(raw)) - 40)[0])
+            for conn, t, raw in r.messages()
+            if conn.topic == "firefly/ground_truth/pose"
+        ]
     assert max(h for t, h in z if t < 4.9) < 0.2 and max(h for t, h in z if 6.0 < t < 7.5) > 0.5
 
 
@@ -117,6 +135,7 @@ def test_python_module_hover_bit_for_bit_as_ros_in_lockstep(ros: RosGraph):
     import struct
 
     from mav_msgs.msg import Actuators
+
     from rotors_sim.examples import hovering_example
 
     bag = fly_hovering_example(ros, "ros_side", False)
@@ -127,8 +146,7 @@ def test_python_module_hover_bit_for_bit_as_ros_in_lockstep(ros: RosGraph):
         for conn, t, raw in r.messages():
             if conn.topic in recorded and 0 < t <= until_s * 1e9:
                 recorded[conn.topic].append((t / 1e9, bytes(raw)))
-    flight = hovering_example(random_seed=42, duration_s=until_s,
-                              record=tuple("/" + t for t in (*same_bytes, "firefly/ground_truth/pose")))
+    flight = hovering_example(random_seed=42, duration_s=until_s, record=tuple("/" + t for t in (*same_bytes, "firefly/ground_truth/pose")))
 
     def ours(topic):
         return [payload for name, t, payload in flight.messages if name == "/" + topic]
@@ -142,13 +160,14 @@ def test_python_module_hover_bit_for_bit_as_ros_in_lockstep(ros: RosGraph):
     mine, theirs = ours("firefly/ground_truth/pose"), [p[-56:] for t, p in recorded["firefly/ground_truth/pose"]]
     assert len(mine) == len(theirs) > 500
     assert all(a[:24] == b[:24] for a, b in zip(mine, theirs))  # positions: the same bits
-    worst_q = max(max(abs(x - y) for x, y in zip(struct.unpack("<4d", a[24:]), struct.unpack("<4d", b[24:])))
-                  for a, b in zip(mine, theirs))
+    worst_q = max(max(abs(x - y) for x, y in zip(struct.unpack("<4d", a[24:]), struct.unpack("<4d", b[24:]))) for a, b in zip(mine, theirs))
     assert worst_q < 1e-15
     theirs = [Actuators().deserialize(p).angular_velocities for t, p in recorded["firefly/command/motor_speed"]]
     mine = [tuple(speeds) for t, speeds in flight.commands if t <= until_s]
-    print(f"motor commands: ROS {len(theirs)}, Python {len(mine)}; ground-truth quaternions within {worst_q:.1e}; "
-          f"z at {until_s} s: {flight.position_W[-1][2]:.6f} m")
+    print(
+        f"motor commands: ROS {len(theirs)}, Python {len(mine)}; ground-truth quaternions within {worst_q:.1e}; "
+        f"z at {until_s} s: {flight.position_W[-1][2]:.6f} m"
+    )
     assert len(theirs) > 500 and abs(len(mine) - len(theirs)) <= 1
     diff = [i for i, (a, b) in enumerate(zip(mine, theirs)) if a != b]
     assert not diff, f"{len(diff)} motor commands differ, first at index {diff[0]}"

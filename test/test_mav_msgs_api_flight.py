@@ -1,14 +1,15 @@
 """A RotorS user's controller, written against the mav_msgs C++ API only (test/mav_msgs_api_user),
 builds here and hovers the firefly as the book's figure shows (section 3.6: 0.040 m)."""
+
 from pathlib import Path
 
 from books_hover import assert_hovers_like_the_book
+
 from conftest import RosGraph, stop_launch, wait_sim_time
 
 
 def test_mav_msgs_api_controller_hovers_within_books_figure(ros: RosGraph):
-    proc = ros.start(["roslaunch", "-p", str(ros.port), "mav_msgs_api_user", "user_controller_hovering.launch"],
-                     "launch")
+    proc = ros.start(["roslaunch", "-p", str(ros.port), "mav_msgs_api_user", "user_controller_hovering.launch"], "launch")
     try:
         wait_sim_time(ros, 21.0)
     finally:

@@ -3,6 +3,7 @@ mav_planning_msgs definitions have the md5sums of the upstream packages, so bags
 interoperate. The values are pinned literals, as the upstream packages' generated code states them
 (rosserial ros_lib getMD5(), gennodejs md5sum(), genlisp md5sum of mav_comm, rotors_simulator,
 gazebo_ros_pkgs, ethzasl_msf and mavros, looked up in public repositories), not recomputed from our files."""
+
 import importlib
 import subprocess
 

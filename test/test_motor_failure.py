@@ -2,6 +2,7 @@
 40 s sim time (service set_motor_failure). The simulator stops that rotor, announces the fault on
 motor_failure 0.2 s later (a failure detection's delay), the Lee controller re-allocates without it, and the hexacopter keeps flying on five
 rotors; disturbance_eval shows the disturbance. Bad requests are refused with one line."""
+
 import json
 import math
 import subprocess
@@ -19,8 +20,15 @@ EVAL = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts" / "distur
 
 
 def test_hexacopter_keeps_flying_with_one_motor_out(ros: RosGraph):
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true",
-                  "real_time_factor:=20", "log_file:=motor_failure")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_hovering_example.launch",
+        "enable_logging:=true",
+        "lockstep:=true",
+        "real_time_factor:=20",
+        "log_file:=motor_failure",
+    )
     try:
         # one client, as soon as the MAV is spawned: the calls take milliseconds, well before 40 s
         got = ros.run_client("clients.motor_failure:failure_requests")
@@ -38,16 +46,14 @@ def test_hexacopter_keeps_flying_with_one_motor_out(ros: RosGraph):
     assert "motor 1 at 0.00 of its command: allocation updated" in log, log[-3000:]
 
     bag = next(Path(ros.env["ROS_HOME"]).glob("motor_failure_*.bag"))
-    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench",
-                       "/motor_speed")
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench", "/motor_speed")
     motors = data.motor_speeds.window(45.0, 60.0).values
     assert np.abs(motors[:, 1]).max() < 1.0, "the failed rotor still turns"
     # the opposite rotor (4) has no share left at hover: the other four carry a quarter each
     assert np.abs(motors[:, 4]).mean() < 0.1 * np.abs(motors[:, 0]).mean()
     error = np.linalg.norm(data.position.window(40.0, 60.0).values - [0.0, 0.0, 1.0], axis=1)
     before = np.linalg.norm(data.position.window(30.0, 40.0).values - [0.0, 0.0, 1.0], axis=1)
-    print(f"motor 1 out at 40 s: largest position error {error.max():.3f} m (before: {before.max():.3f} m), "
-          f"final {error[-1]:.3f} m")
+    print(f"motor 1 out at 40 s: largest position error {error.max():.3f} m (before: {before.max():.3f} m), " f"final {error[-1]:.3f} m")
     assert error.max() < 0.5 and error[-1] < 0.1
     # yaw is what the five rotors give up: it may drift (one sign of yaw torque is out of reach)
     bag_data = FlightBag(bag)
@@ -57,9 +63,13 @@ def test_hexacopter_keeps_flying_with_one_motor_out(ros: RosGraph):
     print(f"yaw at 60 s: {yaw_60:.3f} rad (held at 0 before the failure)")
     assert not np.any(data.collision_times > 10.0)  # contacts only while resting on the ground before take-off
 
-    res = subprocess.run([sys.executable, str(EVAL), "-b", str(bag), "-n", "firefly", "--plot", "False",
-                          "--json", "-"], capture_output=True, text=True, timeout=120)
+    res = subprocess.run(
+        [sys.executable, str(EVAL), "-b", str(bag), "-n", "firefly", "--plot", "False", "--json", "-"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert res.returncode == 0, res.stderr
-    print(res.stdout[:res.stdout.index("{")])
-    summary = json.loads(res.stdout[res.stdout.index("{"):])
+    print(res.stdout[: res.stdout.index("{")])
+    summary = json.loads(res.stdout[res.stdout.index("{") :])
     assert summary["settling_time"] is not None and 0.0 < summary["settling_time"] < 10.0

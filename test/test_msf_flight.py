@@ -1,6 +1,7 @@
 """Hovering with state estimation (book section 3.4, issue #7): the firefly flies on the estimate of
 msf_updates/pose_sensor fusing its biased IMU with a noisy 10 Hz pose that arrives 100 ms late.
 Judged against the simulator's ground truth, in lockstep with seeded noise."""
+
 import subprocess
 import sys
 from pathlib import Path
@@ -20,8 +21,17 @@ INIT_TIME = 5.0  # hovering_example_msf initialises the estimator after 5 s of s
 
 
 def fly_msf(ros: RosGraph, until_s: float, *args: str, during=None):
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example_msf.launch", "enable_logging:=true", "lockstep:=true",
-                  "real_time_factor:=10", "random_seed:=3", *args, name="msf_launch")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_hovering_example_msf.launch",
+        "enable_logging:=true",
+        "lockstep:=true",
+        "real_time_factor:=10",
+        "random_seed:=3",
+        *args,
+        name="msf_launch",
+    )
     try:
         extra = during() if during else None
         wait_sim_time(ros, until_s)
@@ -39,9 +49,16 @@ def fly_msf(ros: RosGraph, until_s: float, *args: str, during=None):
 def test_firefly_hovers_on_estimate_and_filter_is_consistent(ros: RosGraph, tmp_path: Path):
     bag, topics, info, log, _ = fly_msf(ros, 46.0)
     # MSF's outputs (its inputs are remapped to imu and odometry_sensor1/pose_with_covariance)
-    for t in ("/firefly/msf_core/odometry", "/firefly/msf_core/pose", "/firefly/msf_core/pose_after_update",
-              "/firefly/msf_core/state_out", "/firefly/msf_core/cov_core", "/firefly/imu",
-              "/firefly/odometry_sensor1/pose_with_covariance", "/firefly/ground_truth/imu_bias"):
+    for t in (
+        "/firefly/msf_core/odometry",
+        "/firefly/msf_core/pose",
+        "/firefly/msf_core/pose_after_update",
+        "/firefly/msf_core/state_out",
+        "/firefly/msf_core/cov_core",
+        "/firefly/imu",
+        "/firefly/odometry_sensor1/pose_with_covariance",
+        "/firefly/ground_truth/imu_bias",
+    ):
         assert t in topics, t
     assert "lee_position_controller_node" in info  # the controller flies on the estimate (remap)
     assert "Initialized scale" in log and "is not a parameter of this estimator" not in log
@@ -72,28 +89,62 @@ def test_firefly_hovers_on_estimate_and_filter_is_consistent(ros: RosGraph, tmp_
     assert r.nees_samples > 2000
 
     # the evaluation scripts: estimator RMS, and hovering_eval reads the pose command as waypoint
-    out = subprocess.run(["rosrun", "rotors_evaluation", "estimator_eval.py", "-b", str(bag), "--mav_name", "firefly",
-                          "--save_plots", "True", "--plot", "False", "--plot_dir", str(tmp_path)],
-                         capture_output=True, text=True, env=ros.env)
+    out = subprocess.run(
+        [
+            "rosrun",
+            "rotors_evaluation",
+            "estimator_eval.py",
+            "-b",
+            str(bag),
+            "--mav_name",
+            "firefly",
+            "--save_plots",
+            "True",
+            "--plot",
+            "False",
+            "--plot_dir",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        env=ros.env,
+    )
     assert out.returncode == 0, out.stderr
     assert "Estimator position RMS error:" in out.stdout and "NEES (15 states)" in out.stdout, out.stdout
     assert (tmp_path / "estimator_position_error.png").stat().st_size > 10000
     # (--end_time: the bag goes on while the launch shuts down, and the MAV falls once its estimator is gone)
-    out = subprocess.run(["rosrun", "rotors_evaluation", "hovering_eval.py", "-b", str(bag), "--mav_name", "firefly",
-                          "--plot", "False", "--end_time", "46"], capture_output=True, text=True, env=ros.env)
+    out = subprocess.run(
+        ["rosrun", "rotors_evaluation", "hovering_eval.py", "-b", str(bag), "--mav_name", "firefly", "--plot", "False", "--end_time", "46"],
+        capture_output=True,
+        text=True,
+        env=ros.env,
+    )
     assert "[Waypoint 0]: [0.000, 0.000, 1.000, 0.000]" in out.stdout and "No collisions occurred" in out.stdout, out
     assert "Position RMS error: 0.0" in out.stdout, out.stdout
 
     # side by side with the ideal odometry sensor: the same ground-truth metrics, plus the estimator's
-    ideal = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true",
-                   "real_time_factor:=10", "random_seed:=3", "log_file:=ideal", name="ideal_launch")
+    ideal = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_hovering_example.launch",
+        "enable_logging:=true",
+        "lockstep:=true",
+        "real_time_factor:=10",
+        "random_seed:=3",
+        "log_file:=ideal",
+        name="ideal_launch",
+    )
     try:
         wait_sim_time(ros, 21.0)
     finally:
         stop_launch(ideal)
     ideal_bag = sorted(Path(ros.env["ROS_HOME"]).glob("ideal_*.bag"))[-1]
-    out = subprocess.run(["rosrun", "rotors_evaluation", "compare_eval.py", "-b", str(ideal_bag), str(bag),
-                          "--mav_name", "firefly", "--end_time", "46"], capture_output=True, text=True, env=ros.env)
+    out = subprocess.run(
+        ["rosrun", "rotors_evaluation", "compare_eval.py", "-b", str(ideal_bag), str(bag), "--mav_name", "firefly", "--end_time", "46"],
+        capture_output=True,
+        text=True,
+        env=ros.env,
+    )
     assert out.returncode == 0, out.stdout + out.stderr
     rows = [line.split() for line in out.stdout.splitlines()[2:]]
     assert rows[0][0] == ideal_bag.name and rows[0][1] == "0.040" and rows[0][4] == "-", out.stdout
@@ -143,8 +194,10 @@ def test_estimator_survives_a_pose_outage_and_reconverges(ros: RosGraph, tmp_pat
     assert during.max_position_error < 0.15, during
     # ...and re-converges once poses come back
     after = evaluate_estimator(bag, "firefly", begin=end + 2.0, end=47.0)
-    print(f"after the outage: estimator RMS {after.position_rms:.3f} m, NEES mean {after.nees_mean:.1f}, "
-          f"{100 * after.nees_fraction_inside_95:.0f} % inside the 95 % bounds")
+    print(
+        f"after the outage: estimator RMS {after.position_rms:.3f} m, NEES mean {after.nees_mean:.1f}, "
+        f"{100 * after.nees_fraction_inside_95:.0f} % inside the 95 % bounds"
+    )
     assert after.position_rms < 0.03, after
     assert after.nees_fraction_inside_95 >= 0.8, after
     data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
@@ -154,8 +207,7 @@ def test_estimator_survives_a_pose_outage_and_reconverges(ros: RosGraph, tmp_pat
 
 def test_estimator_refuses_what_it_does_not_do_and_names_typos(ros: RosGraph):
     # estimating the scale online is not there: one line naming the parameter, exit 1
-    res = ros.run(["rosrun", "msf_updates", "pose_sensor", "_pose_sensor/pose_fixed_scale:=false"], check=False,
-                  timeout=30)
+    res = ros.run(["rosrun", "msf_updates", "pose_sensor", "_pose_sensor/pose_fixed_scale:=false"], check=False, timeout=30)
     assert res.returncode == 1
     assert "pose_sensor/pose_fixed_scale: false: estimating scale online is not supported" in res.stdout + res.stderr
     # RotorS' msf_simulator.yaml typo is reported, not silently ignored; NaN input is dropped, node lives on
@@ -177,8 +229,7 @@ def test_estimator_refuses_what_it_does_not_do_and_names_typos(ros: RosGraph):
 def test_any_vehicle_hovers_on_the_estimate(ros: RosGraph):
     # the generic pose sensor carries the same mount on every vehicle, so msf_simulator.yaml fits
     bag, _, _, _, _ = fly_msf(ros, 30.0, "mav_name:=hummingbird")
-    data = load_flight(bag, "hummingbird", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory",
-                       "/wrench")
+    data = load_flight(bag, "hummingbird", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
     offset = np.array([0.0, 0.0, -0.035])  # the hummingbird's controller/simulator mismatch (reference 9)
     rms = rms_error(data.position.window(20.0, 30.0), data.waypoints[0].position + offset)
     r = evaluate_estimator(bag, "hummingbird", begin=15.0, end=30.0)

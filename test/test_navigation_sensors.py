@@ -1,6 +1,7 @@
 """RotorS' GPS, magnetometer and barometer on the firefly (enable_navigation_sensors:=true): rates in
 sim time, NavSatFix against the ground-truth position mapped to WGS84 by the textbook formulas
 (within 1 cm), pressure against the standard atmosphere, the magnetic field in the body frame."""
+
 import math
 from pathlib import Path
 
@@ -16,8 +17,7 @@ LAT0, LON0, H0 = 47.3667, 8.55, 500.0  # the basic world's spherical_coordinates
 def ecef(lat_deg, lon_deg, h):
     phi, lam = math.radians(lat_deg), math.radians(lon_deg)
     n = A / math.sqrt(1 - E2 * math.sin(phi) ** 2)
-    return np.array([(n + h) * math.cos(phi) * math.cos(lam), (n + h) * math.cos(phi) * math.sin(lam),
-                     (n * (1 - E2) + h) * math.sin(phi)])
+    return np.array([(n + h) * math.cos(phi) * math.cos(lam), (n + h) * math.cos(phi) * math.sin(lam), (n * (1 - E2) + h) * math.sin(phi)])
 
 
 def enu(lat_deg, lon_deg, h):
@@ -77,8 +77,10 @@ def test_gps_magnetometer_barometer_on_the_firefly(ros: RosGraph, tmp_path: Path
         q = truth[4:8]
         v_w = rotate(q, truth[8:11])
         max_speed = max(max_speed, np.linalg.norm(v_w))
-    print(f"GPS against ground truth on WGS84: largest error {max(errors) * 1000:.2f} mm over {len(errors)} fixes "
-          f"(up to {max_speed:.2f} m/s)")
+    print(
+        f"GPS against ground truth on WGS84: largest error {max(errors) * 1000:.2f} mm over {len(errors)} fixes "
+        f"(up to {max_speed:.2f} m/s)"
+    )
     assert max(errors) < 0.01
     # ground speed: world-frame velocity with sigma 0.1 m/s
     residuals = []
@@ -93,17 +95,20 @@ def test_gps_magnetometer_barometer_on_the_firefly(ros: RosGraph, tmp_path: Path
     assert worst < 1e-6, worst
     # magnetometer: the ENU reference field rotated into the body, within bias + 4 sigma
     m_w = np.array([8.15e-7, 2.1493e-5, -4.2795e-5])
-    worst = max(np.max(np.abs(np.array(b) - rotate(truth_at(t)[4:8], m_w, inverse=True)))
-                for t, *b in got["mag"])
+    worst = max(np.max(np.abs(np.array(b) - rotate(truth_at(t)[4:8], m_w, inverse=True))) for t, *b in got["mag"])
     print(f"magnetometer: largest difference from R^T m_W {worst:.3g} T (bias within 4e-7, sigma 8e-8)")
     assert worst < 4e-7 + 4 * 8e-8
 
 
 def rotate(q_xyzw, v, inverse=False):
     x, y, z, w = q_xyzw
-    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                  [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                  [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    r = np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
     return (r.T if inverse else r) @ np.asarray(v)
 
 
@@ -117,13 +122,16 @@ def test_the_world_magnetic_model_field_at_the_worlds_origin():
     from pygeomag import GeoMag
 
     import rotors_sim as rs
+
     lat, lon, elevation = -35.363261, 149.165230, 584.0
-    world = rs.World(sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="canberra">
+    world = rs.World(
+        sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="canberra">
       <physics type="ode"><max_step_size>0.004</max_step_size><real_time_factor>0</real_time_factor></physics>
       <spherical_coordinates><surface_model>EARTH_WGS84</surface_model><latitude_deg>{lat}</latitude_deg>
       <longitude_deg>{lon}</longitude_deg><elevation>{elevation}</elevation><heading_deg>0</heading_deg>
       </spherical_coordinates>
-      <include><uri>model://ground_plane</uri></include></world></sdf>""")
+      <include><uri>model://ground_plane</uri></include></world></sdf>"""
+    )
     world.spawn_mav("iris", random_seed=3, enable_navigation_sensors=True, autopilot_profile="px4")
     readings = []
     for _ in range(400):
@@ -131,7 +139,7 @@ def test_the_world_magnetic_model_field_at_the_worlds_origin():
         m = world.message("/iris/magnetic_field")[0].magnetic_field
         readings.append([m.x, m.y, m.z])
     mean_B = np.mean(readings[100:], axis=0)  # FLU body, facing east and level: x east, y north, z up
-    now = datetime.datetime.now(datetime.timezone.utc)
+    now = datetime.datetime.now(datetime.UTC)
     year = now.year + (now.timetuple().tm_yday - 1) / 365.25
     wmm = GeoMag().calculate(glat=lat, glon=lon, alt=elevation / 1000, time=year)
     expected_B = np.array([wmm.y, wmm.x, -wmm.z]) * 1e-9

@@ -2,6 +2,7 @@
 its vehicle yaml and gains from `rosrun rotors_gazebo vehicle_params`, flown by the hovering
 example. It must hover within 0.01 m of its set point first time (the simulated vehicle weighs
 more than its body: rotors and sensors; the computed yaml knows it)."""
+
 import math
 import sys
 from pathlib import Path
@@ -17,8 +18,7 @@ from rotors_evaluation.metrics import rms_error  # noqa: E402
 NAME = "readme_xquad"
 URDF = REPO / "rotors_description" / "urdf"
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
-CREATED = [URDF / f"{NAME}.xacro", URDF / f"{NAME}_base.xacro", RESOURCE / f"{NAME}.yaml",
-           RESOURCE / f"lee_controller_{NAME}.yaml"]
+CREATED = [URDF / f"{NAME}.xacro", URDF / f"{NAME}_base.xacro", RESOURCE / f"{NAME}.yaml", RESOURCE / f"lee_controller_{NAME}.yaml"]
 
 
 def write_vehicle_as_readme_says() -> None:
@@ -29,9 +29,15 @@ def write_vehicle_as_readme_says() -> None:
     rotors = "".join(
         f'  <xacro:placed_rotor motor_number="{i}" suffix="{s}" direction="{dr}" color="{c}" x="{x:.6f}" y="{y:.6f}" '
         f'z="${{rotor_offset_top}}" />\n'
-        for i, (s, dr, c, x, y) in enumerate([("front_left", "cw", "Red", d, d), ("back_left", "ccw", "Blue", -d, d),
-                                              ("back_right", "cw", "Blue", -d, -d),
-                                              ("front_right", "ccw", "Red", d, -d)]))
+        for i, (s, dr, c, x, y) in enumerate(
+            [
+                ("front_left", "cw", "Red", d, d),
+                ("back_left", "ccw", "Blue", -d, d),
+                ("back_right", "cw", "Blue", -d, -d),
+                ("front_right", "ccw", "Red", d, -d),
+            ]
+        )
+    )
     (URDF / f"{NAME}.xacro").write_text(head + rotors + "</robot>\n")
     # step 2: copy pelican_base.xacro, replace the name
     (URDF / f"{NAME}_base.xacro").write_text((URDF / "pelican_base.xacro").read_text().replace("pelican", NAME))
@@ -51,8 +57,15 @@ def test_a_quadrotor_added_by_the_readme_steps_hovers_first_time(ros: RosGraph):
         assert math.isclose(vehicle["rotor_configuration"]["0"]["angle"], math.pi / 4, abs_tol=1e-6)
         assert "scaled to" in res.stdout
         # step 4: fly it
-        proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", f"mav_name:={NAME}", "enable_logging:=true",
-                      "lockstep:=true", "real_time_factor:=0")
+        proc = launch(
+            ros,
+            "rotors_gazebo",
+            "mav_hovering_example.launch",
+            f"mav_name:={NAME}",
+            "enable_logging:=true",
+            "lockstep:=true",
+            "real_time_factor:=0",
+        )
         try:
             wait_sim_time(ros, 21.0)
         finally:

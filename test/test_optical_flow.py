@@ -2,6 +2,7 @@
 RotorS' flow camera (64 x 64, 100 Hz) over RotorS' textured asphalt_plane (an OGRE material script
 with tarmac.png): the integrated flow rate is v / h, the translation over the height, as a
 downward camera sees the ground move; over an untextured ground there is nothing to track."""
+
 import math
 
 import numpy as np
@@ -30,13 +31,14 @@ TOPIC = "/cam/px4flow/raw/optical_flow_rad"
 def fly(ground: str, velocity_W, height: float, seconds: float = 2.0) -> np.ndarray:
     """(integration time [s], integrated_x, integrated_y [rad], quality) of every sample of a camera
     looking straight down from `height`, moving at `velocity_W` (no gravity: it keeps its speed)."""
-    world = rs.World(sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="flow">
+    world = rs.World(
+        sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="flow">
       <physics type="ode"><max_step_size>0.001</max_step_size><real_time_factor>0</real_time_factor></physics>
-      <gravity>0 0 0</gravity>{GROUND[ground]}</world></sdf>""")
+      <gravity>0 0 0</gravity>{GROUND[ground]}</world></sdf>"""
+    )
     world.spawn(CAMERA, "cam")
     # pitched down by 90 deg: the camera's x (its optical axis) along -z of the world
-    world.set_model_state("cam", [0, 0, height], [0, math.sin(math.pi / 4), 0, math.cos(math.pi / 4)],
-                          velocity=list(velocity_W))
+    world.set_model_state("cam", [0, 0, height], [0, math.sin(math.pi / 4), 0, math.cos(math.pi / 4)], velocity=list(velocity_W))
     seen, rows = 0, []
     for _ in range(int(seconds / 0.01)):
         world.step(10)
@@ -56,9 +58,11 @@ def test_flow_rate_is_speed_over_height(velocity_W, height):
     # along world +x is motion along image -y (MAVLink: positive integrated_x), along world +y is
     # motion along image -x (negative integrated_y)
     want_x, want_y = velocity_W[0] / h, -velocity_W[1] / h
-    print(f"v = {velocity_W[:2]} m/s at h = {h:.2f} m: flow {rate_x:.4f}, {rate_y:.4f} rad/s, v/h {want_x:.4f}, "
-          f"{want_y:.4f}; quality {s[:, 3].mean():.0f}/255 over {len(s)} samples of "
-          f"{1000 * np.median(s[:, 0]):.0f} ms")
+    print(
+        f"v = {velocity_W[:2]} m/s at h = {h:.2f} m: flow {rate_x:.4f}, {rate_y:.4f} rad/s, v/h {want_x:.4f}, "
+        f"{want_y:.4f}; quality {s[:, 3].mean():.0f}/255 over {len(s)} samples of "
+        f"{1000 * np.median(s[:, 0]):.0f} ms"
+    )
     assert len(s) >= 30 and np.allclose(s[:, 0], 0.05, atol=1e-6)  # 20 Hz, RotorS' output rate
     assert rate_x == pytest.approx(want_x, rel=0.10)
     assert rate_y == pytest.approx(want_y, rel=0.10, abs=0.005)
@@ -73,8 +77,9 @@ def test_untextured_ground_gives_no_flow():
 
 def test_optical_flow_on_a_depth_camera_is_one_line():
     world = rs.World(sdf="""<?xml version="1.0"?><sdf version="1.6"><world name="w"></world></sdf>""")
-    with pytest.raises(rs.SimError, match=r"librotors_gazebo_optical_flow_plugin.so belongs in a <sensor "
-                                          r"type=\"camera\">, not type 'depth'"):
+    with pytest.raises(
+        rs.SimError, match=r"librotors_gazebo_optical_flow_plugin.so belongs in a <sensor " r"type=\"camera\">, not type 'depth'"
+    ):
         world.spawn(CAMERA.replace('type="camera"', 'type="depth"'), "cam")
 
 
@@ -88,12 +93,13 @@ def test_a_world_with_a_camera_steps_from_a_new_thread_each_time():
     ended thread: EGL_BAD_ACCESS)."""
     import threading
 
-    world = rs.World(sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="flow">
+    world = rs.World(
+        sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="flow">
       <physics type="ode"><max_step_size>0.001</max_step_size><real_time_factor>0</real_time_factor></physics>
-      <gravity>0 0 0</gravity>{GROUND["asphalt"]}</world></sdf>""")
+      <gravity>0 0 0</gravity>{GROUND["asphalt"]}</world></sdf>"""
+    )
     world.spawn(CAMERA, "cam")
-    world.set_model_state("cam", [0, 0, 2.0], [0, math.sin(math.pi / 4), 0, math.cos(math.pi / 4)],
-                          velocity=[0.5, 0.0, 0.0])
+    world.set_model_state("cam", [0, 0, 2.0], [0, math.sin(math.pi / 4), 0, math.cos(math.pi / 4)], velocity=[0.5, 0.0, 0.0])
     errors, keep = [], []
 
     def step():

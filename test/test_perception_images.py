@@ -8,46 +8,59 @@ frame goes through OpenCV as a VIO front end would:
 
 Through the Python module (no ROS): the same engine, plugins, renderer and Lee controller library
 as under ROS; the vehicle flies test/flight_paths.py's paths closed loop."""
+
 from dataclasses import dataclass, field
-from typing import List
 
 import cv2
 import numpy as np
 import pytest
+from flight_paths import POWERPLANT_FACING, POWERPLANT_PATH, POWERPLANT_START, WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 import rotors_sim as rs
-from flight_paths import (POWERPLANT_FACING, POWERPLANT_PATH, POWERPLANT_START, WAREHOUSE_FACING, WAREHOUSE_LOOP,
-                          WAREHOUSE_START, sample)
 
 VI_SENSOR = rs.paths.package_path("rotors_description") / "urdf" / "mav_with_vi_sensor.gazebo"
 STEREO = "firefly_vi_sensor_stereo_camera"
 W, H = 752, 480
 F_PX, BASELINE_M = W / (2.0 * np.tan(1.3962634 / 2.0)), 0.11
-SGBM = dict(minDisparity=0, numDisparities=128, blockSize=5, P1=8 * 25, P2=32 * 25, uniquenessRatio=10,
-            speckleWindowSize=100, speckleRange=2, mode=cv2.STEREO_SGBM_MODE_SGBM_3WAY)
+SGBM = dict(
+    minDisparity=0,
+    numDisparities=128,
+    blockSize=5,
+    P1=8 * 25,
+    P2=32 * 25,
+    uniquenessRatio=10,
+    speckleWindowSize=100,
+    speckleRange=2,
+    mode=cv2.STEREO_SGBM_MODE_SGBM_3WAY,
+)
 
 
 @dataclass
 class Figures:
-    corners: List[int] = field(default_factory=list)
-    tracks: List[int] = field(default_factory=list)
+    corners: list[int] = field(default_factory=list)
+    tracks: list[int] = field(default_factory=list)
     sgbm_within: int = 0
     sgbm_matched: int = 0
-    relative: List[float] = field(default_factory=list)
-    depth_m: List[float] = field(default_factory=list)  # ground truth of each corner with a disparity
+    relative: list[float] = field(default_factory=list)
+    depth_m: list[float] = field(default_factory=list)  # ground truth of each corner with a disparity
     worst_tracking_m: float = 0.0
 
     def line(self, world: str) -> str:
         c, t = np.array(self.corners), np.array(self.tracks)
         z, good = np.array(self.depth_m), np.abs(np.array(self.relative)) <= 0.03
-        bands = ", ".join(f"{lo}-{hi} m {100 * good[(z >= lo) & (z < hi)].mean():.0f} % of {np.sum((z >= lo) & (z < hi))}"
-                          for lo, hi in ((0, 4), (4, 8), (8, 30)) if np.any((z >= lo) & (z < hi)))
-        return (f"{world}: {len(c)} frames; Shi-Tomasi corners median {np.median(c):.0f}, 10th percentile "
-                f"{np.percentile(c, 10):.0f}; KLT tracks kept median {np.median(t):.0f}, 10th percentile "
-                f"{np.percentile(t, 10):.0f}; SGBM depth within 3 % for {100 * self.sgbm_within / self.sgbm_matched:.1f} % "
-                f"of {self.sgbm_matched} corners with a disparity ({bands}; median relative error "
-                f"{np.median(self.relative):+.4f}); "
-                f"tracking error at most {self.worst_tracking_m:.2f} m")
+        bands = ", ".join(
+            f"{lo}-{hi} m {100 * good[(z >= lo) & (z < hi)].mean():.0f} % of {np.sum((z >= lo) & (z < hi))}"
+            for lo, hi in ((0, 4), (4, 8), (8, 30))
+            if np.any((z >= lo) & (z < hi))
+        )
+        return (
+            f"{world}: {len(c)} frames; Shi-Tomasi corners median {np.median(c):.0f}, 10th percentile "
+            f"{np.percentile(c, 10):.0f}; KLT tracks kept median {np.median(t):.0f}, 10th percentile "
+            f"{np.percentile(t, 10):.0f}; SGBM depth within 3 % for {100 * self.sgbm_within / self.sgbm_matched:.1f} % "
+            f"of {self.sgbm_matched} corners with a disparity ({bands}; median relative error "
+            f"{np.median(self.relative):+.4f}); "
+            f"tracking error at most {self.worst_tracking_m:.2f} m"
+        )
 
 
 def left(world: rs.World) -> np.ndarray:
@@ -58,8 +71,7 @@ def fly_and_measure(world_name: str, start, corners, facing=None, every_s: float
     """Flies the path closed loop and measures a frame every `every_s` after take-off."""
     world = rs.World(world_name)
     x, y, z, yaw = start
-    world.spawn_mav("firefly", model=VI_SENSOR, random_seed=3, xyz=(x, y, 0.1), rpy=(0.0, 0.0, yaw),
-                    enable_vi_ground_truth_depth=True)
+    world.spawn_mav("firefly", model=VI_SENSOR, random_seed=3, xyz=(x, y, 0.1), rpy=(0.0, 0.0, yaw), enable_vi_ground_truth_depth=True)
     controller = rs.LeePositionController.for_mav("firefly")
     world.attach_controller("firefly", controller)
     path = sample((x, y, 0.1, yaw), [(x, y, z)] + list(corners), facing=facing)
@@ -115,11 +127,14 @@ def test_warehouse_loads_rotors_models_nested_and_stand_ins():
 
 # the warehouse flight (about 90 s here) in the long tier, which keeps make test under 25 min; the
 # power plant flight stays in the quick tier
-@pytest.mark.parametrize("world_name", [pytest.param("warehouse", marks=pytest.mark.long),
-                                        pytest.param("powerplant", marks=pytest.mark.long)])
+@pytest.mark.parametrize(
+    "world_name", [pytest.param("warehouse", marks=pytest.mark.long), pytest.param("powerplant", marks=pytest.mark.long)]
+)
 def test_vi_sensor_flight_gives_corners_tracks_stereo_depth(world_name):
-    start, corners, facing = {"warehouse": (WAREHOUSE_START, WAREHOUSE_LOOP, WAREHOUSE_FACING),
-                              "powerplant": (POWERPLANT_START, POWERPLANT_PATH, POWERPLANT_FACING)}[world_name]
+    start, corners, facing = {
+        "warehouse": (WAREHOUSE_START, WAREHOUSE_LOOP, WAREHOUSE_FACING),
+        "powerplant": (POWERPLANT_START, POWERPLANT_PATH, POWERPLANT_FACING),
+    }[world_name]
     figures = fly_and_measure(world_name, start, corners, facing)
     print(figures.line(world_name))
     assert figures.worst_tracking_m < 0.5  # the flight went where the path goes

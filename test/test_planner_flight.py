@@ -4,6 +4,7 @@ the vehicle's radius), a goal behind the wall of obstacle_course.world reached w
 flight only, goals the planner cannot fly refused in one line while the MAV keeps hovering, a map
 built with the VI-sensor's depth camera against the world's octomap, and reactive avoidance with a 2D
 laser (section 5.1)."""
+
 import re
 import subprocess
 import sys
@@ -11,11 +12,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_vehicles_flight import ground_truth
+from test_worlds import EVAL, contacts_with, evaluate, fly_logged
 
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 from rotors_evaluation.bag_data import load_flight
-from test_vehicles_flight import ground_truth
-from test_worlds import EVAL, contacts_with, evaluate, fly_logged
 
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
 
@@ -24,8 +25,12 @@ def smallest_clearance(points: np.ndarray, octree: Path, tmp_path: Path, z_offse
     """The smallest distance of the points to an occupied leaf of the .bt (rotors_path_clearance)."""
     points_file = tmp_path / "path.txt"
     np.savetxt(points_file, points)
-    res = subprocess.run(["rosrun", "rotors_planning", "rotors_path_clearance", str(octree), str(points_file), "0", "0",
-                          str(z_offset_m)], capture_output=True, text=True, check=True)
+    res = subprocess.run(
+        ["rosrun", "rotors_planning", "rotors_path_clearance", str(octree), str(points_file), "0", "0", str(z_offset_m)],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     print(res.stdout.strip())
     return float(res.stdout.split("smallest clearance ")[1].split()[0])
 
@@ -66,8 +71,15 @@ def test_power_plant_planner_reaches_every_waypoint_no_collision(ros: RosGraph, 
 def test_goal_behind_wall_reached_with_map_built_in_flight(ros: RosGraph):
     # no prior map: the VLP-16's map grows as the MAV flies; the straight line to the goal crosses
     # the wall at x = 2.0-2.2 (y -3..3, up to 3 m)
-    proc = launch(ros, "rotors_gazebo", "mav_obstacle_course_into_the_unknown.launch", "gui:=false",
-                  "enable_logging:=true", "lockstep:=true", "real_time_factor:=2")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_obstacle_course_into_the_unknown.launch",
+        "gui:=false",
+        "enable_logging:=true",
+        "lockstep:=true",
+        "real_time_factor:=2",
+    )
     try:
         wait_sim_time(ros, 45.0)
     finally:
@@ -97,9 +109,18 @@ def test_unflyable_goals_one_line_each_and_mav_keeps_hovering(ros: RosGraph):
     # the box ends 3.3 m high and 3.3 m to the sides: the wall (3 m high, y -3..3) plus the
     # clearance (0.57 m; over its top edge sqrt(0.3^2 + 0.3^2) = 0.42 m) closes it, so nothing behind
     # the wall can be reached
-    proc = launch(ros, "rotors_gazebo", "mav_with_planner.launch", "world_name:=obstacle_course", "gui:=false",
-                  "map_min:=[-3, -3.3, 0.5]", "map_max:=[5, 3.3, 3.3]", "planning_time:=0.5", "lockstep:=true",
-                  "real_time_factor:=5")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_with_planner.launch",
+        "world_name:=obstacle_course",
+        "gui:=false",
+        "map_min:=[-3, -3.3, 0.5]",
+        "map_max:=[5, 3.3, 3.3]",
+        "planning_time:=0.5",
+        "lockstep:=true",
+        "real_time_factor:=5",
+    )
     try:
         wait_sim_time(ros, 6.0)
         send_goal(ros, 0.0, 1.0, 1.5)
@@ -125,8 +146,16 @@ def test_unflyable_goals_one_line_each_and_mav_keeps_hovering(ros: RosGraph):
 
 
 def test_missing_map_file_is_one_line_and_goals_are_refused(ros: RosGraph):
-    proc = launch(ros, "rotors_gazebo", "mav_with_planner.launch", "gui:=false", "map_source:=file",
-                  "map_file:=/nonexistent/map.bt", "lockstep:=true", "real_time_factor:=5")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_with_planner.launch",
+        "gui:=false",
+        "map_source:=file",
+        "map_file:=/nonexistent/map.bt",
+        "lockstep:=true",
+        "real_time_factor:=5",
+    )
     try:
         wait_sim_time(ros, 6.0)
         send_goal(ros, 0.0, 0.0, 1.0)
@@ -143,19 +172,47 @@ def test_missing_map_file_is_one_line_and_goals_are_refused(ros: RosGraph):
 @pytest.mark.long  # the long tier: make test-all / make test-long
 def test_map_from_vi_sensor_depth_camera_matches_power_plant(ros: RosGraph, tmp_path: Path):
     built, truth = tmp_path / "built.bt", tmp_path / "truth.bt"
-    proc = launch(ros, "rotors_gazebo", "mav_powerplant_with_planner.launch", "gui:=false", "mapping:=true",
-                  f"map_save_path:={built}", "lockstep:=true", "real_time_factor:=0")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_powerplant_with_planner.launch",
+        "gui:=false",
+        "mapping:=true",
+        f"map_save_path:={built}",
+        "lockstep:=true",
+        "real_time_factor:=0",
+    )
     try:
         wait_sim_time(ros, 120.0, timeout_s=900.0)  # the first leg (5-74 s) and a hover at the waypoint
         # the truth at the map's resolution, ground included, in the box the MAV flew in
-        ros.run_client("clients.octomap:get_octomap", timeout=300, origin=[10.0, -10.0, 14.75],
-                       lengths=[50.0, 50.0, 30.5], leaf_size=0.25, filename=str(truth))
+        ros.run_client(
+            "clients.octomap:get_octomap",
+            timeout=300,
+            origin=[10.0, -10.0, 14.75],
+            lengths=[50.0, 50.0, 30.5],
+            leaf_size=0.25,
+            filename=str(truth),
+        )
     finally:
         stop_launch(proc)
     log = Path(proc.log_path).read_text()
     print([line for line in log.splitlines() if "[mapping]" in line][-1])
-    out = subprocess.run([sys.executable, str(EVAL / "mapping_eval.py"), "-m", str(built), "-t", str(truth),
-                          "--save_plots", "True", "--plot_dir", str(tmp_path)], capture_output=True, text=True)
+    out = subprocess.run(
+        [
+            sys.executable,
+            str(EVAL / "mapping_eval.py"),
+            "-m",
+            str(built),
+            "-t",
+            str(truth),
+            "--save_plots",
+            "True",
+            "--plot_dir",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+    )
     print(out.stdout, out.stderr)
     assert out.returncode == 0
     # precision: occupied leaves on or next to a truth leaf (the plant's faces lie on cell
@@ -174,8 +231,9 @@ def box_distance(p: np.ndarray, lo, hi) -> np.ndarray:
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
 def test_reactive_avoidance_steers_around_wall_with_2d_laser(ros: RosGraph):
-    proc = launch(ros, "rotors_gazebo", "mav_reactive_avoidance.launch", "gui:=false", "enable_logging:=true",
-                  "lockstep:=true", "real_time_factor:=2")
+    proc = launch(
+        ros, "rotors_gazebo", "mav_reactive_avoidance.launch", "gui:=false", "enable_logging:=true", "lockstep:=true", "real_time_factor:=2"
+    )
     try:
         wait_sim_time(ros, 50.0)
     finally:
@@ -187,9 +245,11 @@ def test_reactive_avoidance_steers_around_wall_with_2d_laser(ros: RosGraph):
     wall = box_distance(p, (2.0, -3.0, 0.0), (2.2, 3.0, 3.0))
     pillar = np.hypot(p[:, 0] - 4.0, p[:, 1] + 4.0) - 0.3
     ball = np.linalg.norm(p - [4.0, 4.0, 1.0], axis=1) - 0.5
-    print(f"end at {p[-1].round(3)}, {np.linalg.norm(p[-1, :2] - goal[:2]):.3f} m from the goal in xy; smallest "
-          f"clearance: wall {wall.min():.2f} m, pillar {pillar.min():.2f} m, ball {ball.min():.2f} m; "
-          f"height {p[p[:, 0] > 0.5, 2].min():.2f}-{p[p[:, 0] > 0.5, 2].max():.2f} m")
+    print(
+        f"end at {p[-1].round(3)}, {np.linalg.norm(p[-1, :2] - goal[:2]):.3f} m from the goal in xy; smallest "
+        f"clearance: wall {wall.min():.2f} m, pillar {pillar.min():.2f} m, ball {ball.min():.2f} m; "
+        f"height {p[p[:, 0] > 0.5, 2].min():.2f}-{p[p[:, 0] > 0.5, 2].max():.2f} m"
+    )
     assert np.linalg.norm(p[-1, :2] - goal[:2]) < 0.15
     assert min(wall.min(), pillar.min(), ball.min()) > 0.32  # the firefly's radius
     hits = [t for t in contacts_with(bag, "firefly", "::", 3.0)]  # after take-off: with anything

@@ -8,6 +8,7 @@ and the disarmed values; and a closed loop: an attitude and altitude controller 
 side, estimating from HIL_SENSOR alone, flies the firefly to 2 m above its take-off point, level
 and on its heading, and holds it (its horizontal position is not observable from HIL_SENSOR).
 """
+
 import math
 import re
 import socket
@@ -58,8 +59,7 @@ def make_world(port: int, urdf: str | None = None, seed: int = 11, **xacro) -> r
     world = rs.World("basic", step_size=DT)
     if urdf is None:
         xacro.setdefault("mavlink_answer_timeout", STRICT_LOCKSTEP_S)
-        world.spawn_mav("firefly", random_seed=seed, enable_mavlink_interface=True, mavlink_tcp_port=port,
-                        pressure_variance=0.0, **xacro)
+        world.spawn_mav("firefly", random_seed=seed, enable_mavlink_interface=True, mavlink_tcp_port=port, pressure_variance=0.0, **xacro)
     else:
         world.spawn(urdf, "firefly", xyz=(0, 0, 0.1))
     return world
@@ -85,8 +85,7 @@ def connect(port: int, timeout_s: float = 10.0):
     deadline = time.monotonic() + timeout_s
     while True:
         try:
-            link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{port}", source_system=1, source_component=1,
-                                              autoreconnect=False)
+            link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{port}", source_system=1, source_component=1, autoreconnect=False)
             link.mav.heartbeat_send(mavlink2.MAV_TYPE_QUADROTOR, mavlink2.MAV_AUTOPILOT_PX4, 0, 0, 0)
             return link
         except OSError:
@@ -125,7 +124,7 @@ def exchange():
     world = make_world(port)
     stepper, link = start_lockstep(world, port, 400)
     records = []
-    for i in range(400):
+    for _i in range(400):
         sensor, others = next_sensor(link)
         imu = world.message("/firefly/imu")[0]
         mag = world.message("/firefly/magnetic_field")[0]
@@ -133,8 +132,19 @@ def exchange():
         gps = world.message("/firefly/gps")
         speed = world.message("/firefly/ground_speed")
         truth = world.link_state("firefly")
-        records.append(dict(sensor=sensor, others=others, imu=imu, mag=mag, baro=baro, truth=truth,
-                            gps=gps[0] if gps else None, speed=speed[0] if speed else None, time=world.time))
+        records.append(
+            dict(
+                sensor=sensor,
+                others=others,
+                imu=imu,
+                mag=mag,
+                baro=baro,
+                truth=truth,
+                gps=gps[0] if gps else None,
+                speed=speed[0] if speed else None,
+                time=world.time,
+            )
+        )
         answer(link, [0.0] * 6, armed=True, t_us=sensor.time_usec)
     stepper.join()
     link.close()
@@ -158,8 +168,10 @@ def test_hil_sensor_carries_imu_mag_baro_in_px4_units(exchange):
         assert s.fields_updated & 0b10000000000 == 0  # no differential pressure: no airspeed sensor
         assert s.id == 0
     s = records[-1]["sensor"]
-    print(f"at rest: acc {s.xacc:.3f} {s.ygyro:.3f} {s.zacc:.3f} m/s^2 FRD, mag {s.xmag:.4f} {s.ymag:.4f} "
-          f"{s.zmag:.4f} G, {s.abs_pressure:.2f} hPa, pressure altitude {s.pressure_alt:.1f} m, {s.temperature:.1f} C")
+    print(
+        f"at rest: acc {s.xacc:.3f} {s.ygyro:.3f} {s.zacc:.3f} m/s^2 FRD, mag {s.xmag:.4f} {s.ymag:.4f} "
+        f"{s.zmag:.4f} G, {s.abs_pressure:.2f} hPa, pressure altitude {s.pressure_alt:.1f} m, {s.temperature:.1f} C"
+    )
     assert s.zacc == pytest.approx(-9.81, abs=0.1) and abs(s.xacc) < 0.1  # FRD: at rest the specific force is up = -z
     # the firefly faces east (yaw 0 in ENU): the field's north component lies along -y of FRD (its left)
     assert s.ymag < -0.1 and s.zmag > 0.3
@@ -229,17 +241,28 @@ def test_lockstep_waits_on_unanswered_hil_sensor_loses_no_answer():
 def channels_urdf(port: int) -> str:
     """The firefly with RotorS-style control_channels: u -> (u + offset) * scaling + zero_armed."""
     text = subprocess.run(
-        ["xacro", str(rs.paths.package_path("rotors_description") / "urdf" / "firefly_base.xacro"),
-         "mav_name:=firefly", "namespace:=firefly", "enable_mavlink_interface:=true",
-         f"mavlink_tcp_port:={port}", "random_seed:=3", f"mavlink_answer_timeout:={STRICT_LOCKSTEP_S}"],
-        check=True, capture_output=True, text=True).stdout
+        [
+            "xacro",
+            str(rs.paths.package_path("rotors_description") / "urdf" / "firefly_base.xacro"),
+            "mav_name:=firefly",
+            "namespace:=firefly",
+            "enable_mavlink_interface:=true",
+            f"mavlink_tcp_port:={port}",
+            "random_seed:=3",
+            f"mavlink_answer_timeout:={STRICT_LOCKSTEP_S}",
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
     channels = "".join(
         f'<channel name="rotor{i}"><input_index>{5 - i}</input_index><input_offset>0.1</input_offset>'
         f"<input_scaling>500</input_scaling><zero_position_disarmed>{10 * i}</zero_position_disarmed>"
         f"<zero_position_armed>100</zero_position_armed><joint_control_type>velocity</joint_control_type>"
-        f"<joint_name>firefly/rotor_{i}_joint</joint_name></channel>" for i in range(6))
-    return re.sub(r"(<enable_lockstep>[^<]*</enable_lockstep>)", r"\1<control_channels>" + channels + "</control_channels>",
-                  text, count=1)
+        f"<joint_name>firefly/rotor_{i}_joint</joint_name></channel>"
+        for i in range(6)
+    )
+    return re.sub(r"(<enable_lockstep>[^<]*</enable_lockstep>)", r"\1<control_channels>" + channels + "</control_channels>", text, count=1)
 
 
 def settle_on(link, controls, armed, steps):
@@ -270,16 +293,21 @@ def test_no_control_channels_output_i_drives_motor_i_to_max(exchange):
     stepper, link = start_lockstep(world, port, 300)
     settle_on(link, [0.1, 0.2, 0.3, 0.4, 0.5, 0.6], True, 300)
     stepper.join()
-    np.testing.assert_allclose(np.abs(world.rotor_speeds("firefly")), np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]) * MAX_ROT,
-                               rtol=2e-3)
+    np.testing.assert_allclose(np.abs(world.rotor_speeds("firefly")), np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]) * MAX_ROT, rtol=2e-3)
 
 
 def quat_mul(a, b):
     """Hamilton product of (w, x, y, z) quaternions."""
     aw, ax, ay, az = a
     bw, bx, by, bz = b
-    return np.array([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
+    return np.array(
+        [
+            aw * bw - ax * bx - ay * by - az * bz,
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+        ]
+    )
 
 
 def integrate_gyro(q, w, dt):
@@ -351,10 +379,17 @@ class HilSensorAutopilot:
         field_angle_enu = math.atan2(2.1493e-5, 8.15e-7)
         yaw = field_angle_enu - math.atan2(m[1], m[0])
         self.initial = (roll, pitch, yaw)
-        cy, sy, cp, sp, cr, sr = (math.cos(yaw / 2), math.sin(yaw / 2), math.cos(pitch / 2), math.sin(pitch / 2),
-                                  math.cos(roll / 2), math.sin(roll / 2))
-        self.q = np.array([cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy,
-                           cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy])
+        cy, sy, cp, sp, cr, sr = (
+            math.cos(yaw / 2),
+            math.sin(yaw / 2),
+            math.cos(pitch / 2),
+            math.sin(pitch / 2),
+            math.cos(roll / 2),
+            math.sin(roll / 2),
+        )
+        self.q = np.array(
+            [cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy]
+        )
         self.q_level_xyzw = [0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)]
 
 
@@ -376,17 +411,21 @@ def test_autopilot_side_controller_flies_on_hil_sensor_to_2_m():
     stepper.join()
     truth = np.array(truth)
     roll0, pitch0, yaw0 = pilot.initial
-    print(f"estimated at rest: roll {math.degrees(roll0):.2f} pitch {math.degrees(pitch0):.2f} "
-          f"yaw {math.degrees(yaw0):.2f} deg (truth 0, 0, 0); {len(truth)} steps through the bridge in {wall:.1f} s "
-          f"({len(truth) / wall:.0f} steps/s)")
+    print(
+        f"estimated at rest: roll {math.degrees(roll0):.2f} pitch {math.degrees(pitch0):.2f} "
+        f"yaw {math.degrees(yaw0):.2f} deg (truth 0, 0, 0); {len(truth)} steps through the bridge in {wall:.1f} s "
+        f"({len(truth) / wall:.0f} steps/s)"
+    )
     held = truth[truth[:, 0] > 8.0]
     z_rest = truth[0, 3]
     tilt = np.degrees(2 * np.arcsin(np.clip(np.hypot(held[:, 4], held[:, 5]), 0, 1)))
     yaw = np.degrees(2 * np.arctan2(held[:, 6], held[:, 7]))  # about up: q = (0, 0, sin, cos) when level
     drift = np.hypot(held[:, 1] - truth[0, 1], held[:, 2] - truth[0, 2])
-    print(f"t > 8 s: height above the rest {held[:, 3].min() - z_rest:.3f}..{held[:, 3].max() - z_rest:.3f} m, "
-          f"tilt <= {tilt.max():.2f} deg, yaw {yaw.min():.2f}..{yaw.max():.2f} deg, horizontal drift <= {drift.max():.2f} m "
-          "(not observable from HIL_SENSOR: the accelerometer's turn-on bias reads as a tilt)")
+    print(
+        f"t > 8 s: height above the rest {held[:, 3].min() - z_rest:.3f}..{held[:, 3].max() - z_rest:.3f} m, "
+        f"tilt <= {tilt.max():.2f} deg, yaw {yaw.min():.2f}..{yaw.max():.2f} deg, horizontal drift <= {drift.max():.2f} m "
+        "(not observable from HIL_SENSOR: the accelerometer's turn-on bias reads as a tilt)"
+    )
     # the estimates at rest: within the accelerometer's turn-on bias (sigma 0.196 m/s^2: 1.1 deg) and
     # the magnetometer's heading
     assert abs(math.degrees(roll0)) < 2.5 and abs(math.degrees(pitch0)) < 2.5 and abs(math.degrees(yaw0)) < 2.0
@@ -410,8 +449,10 @@ def test_distance_sensor_carries_rangefinder_reading_in_cm():
         answer(link, [0.0] * 6, armed=True)
     stepper.join()
     m, r = seen[-1]
-    print(f"{len(seen)} DISTANCE_SENSOR; last {m.current_distance} cm (Range {r.range:.4f} m), "
-          f"{m.min_distance}-{m.max_distance} cm, orientation {m.orientation}")
+    print(
+        f"{len(seen)} DISTANCE_SENSOR; last {m.current_distance} cm (Range {r.range:.4f} m), "
+        f"{m.min_distance}-{m.max_distance} cm, orientation {m.orientation}"
+    )
     assert len(seen) >= 7  # the rangefinder's 20 Hz over 0.4 s, each one sent once
     assert 2.0 < r.range < 3.0
     assert m.current_distance == round(r.range * 100) and m.min_distance == round(r.min_range * 100)
@@ -422,9 +463,15 @@ def test_two_vehicles_own_ports_step_in_lockstep_with_autopilots():
     ports = free_port(), free_port()
     world = rs.World("basic", step_size=DT)
     for i, port in enumerate(ports):
-        world.spawn_mav("firefly", namespace=f"firefly_{i}", xyz=(0, 2 * i, 0.1), random_seed=30 + i,
-                        enable_mavlink_interface=True, mavlink_tcp_port=port,
-                        mavlink_answer_timeout=STRICT_LOCKSTEP_S)
+        world.spawn_mav(
+            "firefly",
+            namespace=f"firefly_{i}",
+            xyz=(0, 2 * i, 0.1),
+            random_seed=30 + i,
+            enable_mavlink_interface=True,
+            mavlink_tcp_port=port,
+            mavlink_answer_timeout=STRICT_LOCKSTEP_S,
+        )
     stepper = SteppingWorld(world)
     stepper.run(1)
     stepper.join()
@@ -458,9 +505,11 @@ def test_hil_optical_flow_carries_the_flow_plugins_integrals():
     import test_optical_flow as flow
 
     port = free_port()
-    world = rs.World(sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="flow">
+    world = rs.World(
+        sdf=f"""<?xml version="1.0"?><sdf version="1.6"><world name="flow">
       <physics type="ode"><max_step_size>0.002</max_step_size><real_time_factor>0</real_time_factor></physics>
-      <gravity>0 0 0</gravity>{flow.GROUND["asphalt"]}</world></sdf>""")
+      <gravity>0 0 0</gravity>{flow.GROUND["asphalt"]}</world></sdf>"""
+    )
     interface = f"""<plugin name="mavlink_interface" filename="librotors_gazebo_mavlink_interface.so">
         <robotNamespace>cam</robotNamespace><linkName>link</linkName><mavlink_tcp_port>{port}</mavlink_tcp_port>
         <answer_timeout>{STRICT_LOCKSTEP_S}</answer_timeout>
@@ -468,8 +517,7 @@ def test_hil_optical_flow_carries_the_flow_plugins_integrals():
       <plugin name="imu" filename="librotors_gazebo_imu_plugin.so"><robotNamespace>cam</robotNamespace>
         <linkName>link</linkName><imuTopic>imu</imuTopic></plugin>"""
     world.spawn(flow.CAMERA.replace("</link></model>", "</link>" + interface + "</model>"), "cam")
-    world.set_model_state("cam", [0, 0, 2.0], [0, math.sin(math.pi / 4), 0, math.cos(math.pi / 4)],
-                          velocity=[0.5, 0.0, 0.0])
+    world.set_model_state("cam", [0, 0, 2.0], [0, math.sin(math.pi / 4), 0, math.cos(math.pi / 4)], velocity=[0.5, 0.0, 0.0])
     stepper, link = start_lockstep(world, port, 500)
     pairs = []
     for _ in range(500):
@@ -480,13 +528,16 @@ def test_hil_optical_flow_carries_the_flow_plugins_integrals():
         answer(link, [], armed=True)
     stepper.join()
     m, r = pairs[-1]
-    print(f"{len(pairs)} HIL_OPTICAL_FLOW; last integrated_x {m.integrated_x:.4f} rad over {m.integration_time_us} us "
-          f"(OpticalFlowRad {r.integrated_x:.4f}), quality {m.quality}")
+    print(
+        f"{len(pairs)} HIL_OPTICAL_FLOW; last integrated_x {m.integrated_x:.4f} rad over {m.integration_time_us} us "
+        f"(OpticalFlowRad {r.integrated_x:.4f}), quality {m.quality}"
+    )
     assert len(pairs) >= 15  # the plugin's 20 Hz over 1 s
     for m, r in pairs:
         assert m.integration_time_us == r.integration_time_us and m.quality == r.quality
-        np.testing.assert_allclose([m.integrated_x, m.integrated_y, m.distance], [r.integrated_x, r.integrated_y, r.distance],
-                                   rtol=1e-6, atol=1e-7)
+        np.testing.assert_allclose(
+            [m.integrated_x, m.integrated_y, m.distance], [r.integrated_x, r.integrated_y, r.distance], rtol=1e-6, atol=1e-7
+        )
     assert m.integrated_x / (m.integration_time_us * 1e-6) == pytest.approx(0.5 / (2.0 - flow.ASPHALT_TOP), rel=0.15)
 
 
@@ -494,9 +545,17 @@ def techpod_flight(throttle: float, armed: bool) -> float:
     """The techpod launched at 15 m/s, 100 m up, for 2 s on PX4's outputs; its forward speed at the end."""
     port = free_port()
     world = rs.World("basic", step_size=DT)
-    world.spawn(str(rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"), "techpod",
-                xyz=(0, 0, 100), mav_name="techpod", namespace="techpod", enable_mavlink_interface="true",
-                mavlink_tcp_port=str(port), random_seed="4", mavlink_answer_timeout=str(STRICT_LOCKSTEP_S))
+    world.spawn(
+        str(rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"),
+        "techpod",
+        xyz=(0, 0, 100),
+        mav_name="techpod",
+        namespace="techpod",
+        enable_mavlink_interface="true",
+        mavlink_tcp_port=str(port),
+        random_seed="4",
+        mavlink_answer_timeout=str(STRICT_LOCKSTEP_S),
+    )
     world.set_model_state("techpod", [0, 0, 100], velocity=[15.0, 0, 0])
     stepper, link = start_lockstep(world, port, 500)
     for _ in range(500):

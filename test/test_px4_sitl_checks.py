@@ -15,17 +15,15 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 import yaml
+from px4_checks import MAG_VALUE_EQUAL_COUNT, DataValidatorStale, GnssChecks, gyro_vibration_metric, hil_sensor_channels
 from pygeomag import GeoMag
-from px4_checks import (MAG_VALUE_EQUAL_COUNT, DataValidatorStale, GnssChecks, gyro_vibration_metric,
-                        hil_sensor_channels)
-from test_px4_mavlink import STRICT_LOCKSTEP_S, answer, free_port, frd, integrate_gyro, rotate, start_lockstep
+from test_px4_mavlink import STRICT_LOCKSTEP_S, answer, frd, free_port, integrate_gyro, rotate, start_lockstep
 
 import rotors_sim as rs
 
 LAUNCH = rs.paths.package_path("rotors_gazebo") / "launch" / "mav_px4_sitl.launch"
 # PX4-SITL_gazebo-classic models/iris/iris.sdf.jinja: each rotor's motor model and the channels
-PX4_IRIS = dict(motor_constant=5.84e-06, moment_constant=0.06, max_rot_velocity=1100.0, input_scaling=1000.0,
-                zero_position_armed=100.0)
+PX4_IRIS = dict(motor_constant=5.84e-06, moment_constant=0.06, max_rot_velocity=1100.0, input_scaling=1000.0, zero_position_armed=100.0)
 REST_S, FLIGHT_S, Z_REF = 20.0, 60.0, 2.0
 
 
@@ -37,8 +35,11 @@ def px4_iris_controller_yaml(tmp_path) -> str:
     """The Lee controller's vehicle file for the iris PX4 flies: our iris with PX4's rotor constants."""
     vehicle = yaml.safe_load(rs.paths.resource("iris.yaml").read_text())
     for rotor in vehicle["rotor_configuration"].values():
-        rotor.update(rotor_force_constant=PX4_IRIS["motor_constant"], rotor_moment_constant=PX4_IRIS["moment_constant"],
-                     max_rot_velocity=PX4_IRIS["max_rot_velocity"])
+        rotor.update(
+            rotor_force_constant=PX4_IRIS["motor_constant"],
+            rotor_moment_constant=PX4_IRIS["moment_constant"],
+            max_rot_velocity=PX4_IRIS["max_rot_velocity"],
+        )
     path = tmp_path / "px4_iris.yaml"
     path.write_text(yaml.safe_dump(vehicle))
     return str(path)
@@ -95,8 +96,7 @@ class GpsInertialStandIn:
         if not self.flying:
             return [0.0] * 4
         velocity_B = rotate([self.q[0], -self.q[1], -self.q[2], -self.q[3]], self.v)
-        speeds = self.lee.engine.answer(self.p, np.array([self.q[1], self.q[2], self.q[3], self.q[0]]), velocity_B, w,
-                                        s.time_usec * 1e-6)
+        speeds = self.lee.engine.answer(self.p, np.array([self.q[1], self.q[2], self.q[3], self.q[0]]), velocity_B, w, s.time_usec * 1e-6)
         u = (np.asarray(speeds) - PX4_IRIS["zero_position_armed"]) / PX4_IRIS["input_scaling"]
         return list(np.clip(u, 0.0, 1.0))
 
@@ -125,13 +125,19 @@ def px4_flight(tmp_path_factory):
     step = float(defaults["step_size"])
     port = free_port()
     world = rs.World(defaults["world_name"], step_size=step)
-    world.spawn_mav(defaults["mav_name"], enable_mavlink_interface=True, mavlink_tcp_port=port,
-                    autopilot_profile=defaults["autopilot_profile"], random_seed=5,
-                    mavlink_answer_timeout=STRICT_LOCKSTEP_S)
+    world.spawn_mav(
+        defaults["mav_name"],
+        enable_mavlink_interface=True,
+        mavlink_tcp_port=port,
+        autopilot_profile=defaults["autopilot_profile"],
+        random_seed=5,
+        mavlink_answer_timeout=STRICT_LOCKSTEP_S,
+    )
     # PX4 connects, takes the first HIL_SENSOR and answers it: from then on each step waits for its answer
     stepper, link = start_lockstep(world, port, int(FLIGHT_S / step))
-    controller = rs.LeePositionController(rs.paths.resource("lee_controller_iris.yaml"),
-                                          px4_iris_controller_yaml(tmp_path_factory.mktemp("px4")))
+    controller = rs.LeePositionController(
+        rs.paths.resource("lee_controller_iris.yaml"), px4_iris_controller_yaml(tmp_path_factory.mktemp("px4"))
+    )
     pilot = GpsInertialStandIn(controller)
     sensors, fixes, truth = [], [], []
     start = time.monotonic()
@@ -153,8 +159,10 @@ def px4_flight(tmp_path_factory):
     wall = time.monotonic() - start
     stepper.join()
     link.close()
-    print(f"{len(sensors)} HIL_SENSOR and {len(fixes)} HIL_GPS in {wall:.1f} s of wall time; initial yaw estimate "
-          f"{math.degrees(pilot.yaw):.2f} deg (the iris faces east: 0)")
+    print(
+        f"{len(sensors)} HIL_SENSOR and {len(fixes)} HIL_GPS in {wall:.1f} s of wall time; initial yaw estimate "
+        f"{math.degrees(pilot.yaw):.2f} deg (the iris faces east: 0)"
+    )
     return world, sensors, fixes, np.array(truth), defaults
 
 
@@ -163,12 +171,17 @@ def test_the_launch_flies_pxs_iris_constants(px4_flight):
     assert defaults["mav_name"] == "iris" and defaults["autopilot_profile"] == "px4"
     assert float(defaults["step_size"]) == 0.004  # PX4's IMU_INTEG_RATE 250 Hz
     urdf = rs.paths.package_path("rotors_description") / "urdf" / "iris_base.xacro"
-    text = rs.xacro_to_urdf(urdf, mav_name="iris", namespace="iris", enable_mavlink_interface="true",
-                            autopilot_profile="px4") if hasattr(rs, "xacro_to_urdf") else None
+    text = (
+        rs.xacro_to_urdf(urdf, mav_name="iris", namespace="iris", enable_mavlink_interface="true", autopilot_profile="px4")
+        if hasattr(rs, "xacro_to_urdf")
+        else None
+    )
     if text is None:
         import subprocess
-        text = subprocess.run(["xacro", str(urdf), "enable_mavlink_interface:=true", "autopilot_profile:=px4"],
-                              check=True, capture_output=True, text=True).stdout
+
+        text = subprocess.run(
+            ["xacro", str(urdf), "enable_mavlink_interface:=true", "autopilot_profile:=px4"], check=True, capture_output=True, text=True
+        ).stdout
     root = ET.fromstring(text)
     motors = [p for p in root.iter("plugin") if p.get("filename") == "librotors_gazebo_motor_model.so"]
     assert len(motors) == 4
@@ -186,8 +199,10 @@ def test_the_launch_flies_pxs_iris_constants(px4_flight):
     # hover throttle and thrust-to-weight as airframe 10015 sees them
     mass = 1.5 + 4 * 0.005 + 0.015 * 3 + 0.015  # body, rotors, IMU and the three navigation sensors
     omega_hover = math.sqrt(mass * 9.81 / (4 * PX4_IRIS["motor_constant"]))
-    print(f"hover: {omega_hover:.0f} rad/s, throttle u = {(omega_hover - 100) / 1000:.2f}; thrust to weight "
-          f"{4 * PX4_IRIS['motor_constant'] * 1100 ** 2 / (mass * 9.81):.2f}")
+    print(
+        f"hover: {omega_hover:.0f} rad/s, throttle u = {(omega_hover - 100) / 1000:.2f}; thrust to weight "
+        f"{4 * PX4_IRIS['motor_constant'] * 1100 ** 2 / (mass * 9.81):.2f}"
+    )
 
 
 def test_no_hil_sensor_channel_goes_stale_at_rest_or_in_hover(px4_flight):
@@ -199,8 +214,7 @@ def test_no_hil_sensor_channel_goes_stale_at_rest_or_in_hover(px4_flight):
                 validators[name] = DataValidatorStale(MAG_VALUE_EQUAL_COUNT if name == "magnetometer" else 100)
             validators[name].put(values)
     for name, v in validators.items():
-        print(f"{name}: longest run of equal values {v.max_equal_count} (stale above {v.threshold}), "
-              f"stale samples {v.stale_samples}")
+        print(f"{name}: longest run of equal values {v.max_equal_count} (stale above {v.threshold}), " f"stale samples {v.stale_samples}")
     assert set(validators) >= {"accelerometer", "gyroscope", "magnetometer", "barometer"}
     assert all(v.stale_samples == 0 for v in validators.values())
 
@@ -212,8 +226,9 @@ def test_ekf2_gnss_checks_pass_for_10_s_within_30_s(px4_flight):
         if t > 30.0:
             break
         checks.run(t, m)
-    print(f"EKF2's GNSS checks (every bit on, drift filters on every fix) passed at t = {checks.passed_at} s; "
-          f"failures {checks.failures}")
+    print(
+        f"EKF2's GNSS checks (every bit on, drift filters on every fix) passed at t = {checks.passed_at} s; " f"failures {checks.failures}"
+    )
     assert checks.passed_at is not None and checks.passed_at <= 30.0
 
 
@@ -225,9 +240,11 @@ def test_gyro_vibration_metric_against_ekf2s_at_rest_limit(px4_flight):
     # 250 Hz: per-axis sigma 0.0138 rad/s, E|w_k - w_k-1| = sqrt(2) sigma sqrt(8 / pi)
     sigma = 0.0008726646 / math.sqrt(0.004)
     px4_own = math.sqrt(2) * sigma * math.sqrt(8 / math.pi)
-    print(f"gyro vibration metric at rest: ours {metric.mean():.4f} rad/s, PX4's own iris {px4_own:.4f} rad/s, "
-          "the land detector's limit 0.02: neither counts as at rest, so EKF2's drift checks do not run "
-          "in PX4's own simulation either (GnssChecks runs them anyway)")
+    print(
+        f"gyro vibration metric at rest: ours {metric.mean():.4f} rad/s, PX4's own iris {px4_own:.4f} rad/s, "
+        "the land detector's limit 0.02: neither counts as at rest, so EKF2's drift checks do not run "
+        "in PX4's own simulation either (GnssChecks runs them anyway)"
+    )
     assert metric.mean() == pytest.approx(px4_own, rel=0.1)
 
 
@@ -238,6 +255,8 @@ def test_gps_inertial_controller_takes_off_to_2_m_and_holds_it(px4_flight):
     start = rest[-1, 1:4]
     error = held[:, 1:4] - (start + np.array([0, 0, Z_REF]))
     horizontal = np.hypot(error[:, 0], error[:, 1])
-    print(f"t > {REST_S + 15:.0f} s: height error {np.abs(error[:, 2]).max():.3f} m, horizontal <= "
-          f"{horizontal.max():.3f} m (the estimate's: {np.abs(held[:, 4:7] - held[:, 1:4]).max(axis=0).round(3)})")
+    print(
+        f"t > {REST_S + 15:.0f} s: height error {np.abs(error[:, 2]).max():.3f} m, horizontal <= "
+        f"{horizontal.max():.3f} m (the estimate's: {np.abs(held[:, 4:7] - held[:, 1:4]).max(axis=0).round(3)})"
+    )
     assert np.abs(error[:, 2]).max() < 0.2 and horizontal.max() < 0.3

@@ -2,6 +2,7 @@
 one process (different seeds differ, the same seed repeats), sensors and contacts, the controllers
 from the vehicle yaml, and bad input as one clear exception with the world still working.
 (Bit for bit against a lockstep ROS flight: test_lockstep_determinism.py.)"""
+
 import io
 import math
 
@@ -109,9 +110,17 @@ def first_differences(a: dict, b: dict, canonical=lambda topic, data: data) -> d
 def spawn_windy_firefly(world: rs.World, gust_start_s: float) -> None:
     """The firefly with a 3 N gust and every noisy sensor seeded: IMU, odometry noise, GPS,
     magnetometer (a random initial bias), pressure."""
-    world.spawn_mav("firefly", model=WIND_GUST_MODEL, random_seed=7, enable_navigation_sensors=True,
-                    wind_gust_start=gust_start_s, wind_gust_duration=1.0, wind_gust_force_mean=3.0,
-                    odometry_noise_position="0.01 0.01 0.01", odometry_noise_attitude="0.02 0.02 0.02")
+    world.spawn_mav(
+        "firefly",
+        model=WIND_GUST_MODEL,
+        random_seed=7,
+        enable_navigation_sensors=True,
+        wind_gust_start=gust_start_s,
+        wind_gust_duration=1.0,
+        wind_gust_force_mean=3.0,
+        odometry_noise_position="0.01 0.01 0.01",
+        odometry_noise_attitude="0.02 0.02 0.02",
+    )
 
 
 def test_reset_repeats_flight_bit_for_bit_with_wind_and_nav():
@@ -124,11 +133,17 @@ def test_reset_repeats_flight_bit_for_bit_with_wind_and_nav():
     assert world.time == 0.0
     second = fly_recording_everything(world)
     counts = {t: len(m) for t, m in first.items()}
-    print(f"{len(first)} topics, {sum(counts.values())} messages; differing after reset: "
-          f"{first_differences(first, second) or 'none'}")
-    for topic in ("/firefly/imu", "/firefly/gps", "/firefly/magnetic_field", "/firefly/air_pressure",
-                  "/firefly/odometry_sensor1/odometry", "/firefly/ground_speed", "/firefly/wind_speed",
-                  "/firefly/external_force"):
+    print(f"{len(first)} topics, {sum(counts.values())} messages; differing after reset: " f"{first_differences(first, second) or 'none'}")
+    for topic in (
+        "/firefly/imu",
+        "/firefly/gps",
+        "/firefly/magnetic_field",
+        "/firefly/air_pressure",
+        "/firefly/odometry_sensor1/odometry",
+        "/firefly/ground_speed",
+        "/firefly/wind_speed",
+        "/firefly/external_force",
+    ):
         assert counts.get(topic, 0) > 0, topic
     assert first_differences(first, second) == {}
     # the gust pushed the MAV: the flights are not a trivial hover
@@ -156,8 +171,7 @@ def test_reset_world_repeats_the_flight_with_the_time_running_on():
         msg.serialize(buffer)
         return buffer.getvalue()
 
-    print(f"{len(first)} topics; differing after reset_world (stamps aside): "
-          f"{first_differences(first, second, unstamped) or 'none'}")
+    print(f"{len(first)} topics; differing after reset_world (stamps aside): " f"{first_differences(first, second, unstamped) or 'none'}")
     assert first_differences(first, second, unstamped) == {}
 
 
@@ -176,9 +190,13 @@ def test_sensors_messages_and_contacts():
     world.spawn_mav("firefly", random_seed=9, enable_navigation_sensors=True)
     world.step(200)  # 2 s on the ground, motors off
     topics = {t: kind for t, kind, _ in world.topics()}
-    for topic, kind in {"/firefly/imu": "sensor_msgs/Imu", "/firefly/odometry_sensor1/odometry": "nav_msgs/Odometry",
-                        "/firefly/gps": "sensor_msgs/NavSatFix", "/firefly/magnetic_field": "sensor_msgs/MagneticField",
-                        "/firefly/air_pressure": "sensor_msgs/FluidPressure"}.items():
+    for topic, kind in {
+        "/firefly/imu": "sensor_msgs/Imu",
+        "/firefly/odometry_sensor1/odometry": "nav_msgs/Odometry",
+        "/firefly/gps": "sensor_msgs/NavSatFix",
+        "/firefly/magnetic_field": "sensor_msgs/MagneticField",
+        "/firefly/air_pressure": "sensor_msgs/FluidPressure",
+    }.items():
         assert topics.get(topic) == kind, (topic, topics.get(topic))
     imu, count = world.message("/firefly/imu")
     assert count == 200 and abs(imu.linear_acceleration.z - 9.8) < 0.5  # at rest: the specific force is -g
@@ -230,8 +248,7 @@ def test_controllers_read_vehicle_yaml_name_missing_param(tmp_path):
     with pytest.warns(UserWarning, match="unknown parameter.*positon_gain"):
         typo = tmp_path / "typo.yaml"
         typo.write_text("positon_gain: {x: 1, y: 1, z: 1}\n")
-        rs.LeePositionController(rs.paths.resource("lee_controller_firefly.yaml"), rs.paths.resource("firefly.yaml"),
-                                 typo)
+        rs.LeePositionController(rs.paths.resource("lee_controller_firefly.yaml"), rs.paths.resource("firefly.yaml"), typo)
 
 
 BOX = """<?xml version="1.0"?><sdf version="1.6"><model name="b"><static>true</static><link name="l">
@@ -240,22 +257,25 @@ SPHERE = """<?xml version="1.0"?><sdf version="1.6"><model name="s"><link name="
   <collision name="c"><geometry><sphere><radius>{}</radius></sphere></geometry></collision></link></model></sdf>"""
 
 
-@pytest.mark.parametrize("bad, match", [
-    (lambda w: w.spawn_mav("fireflyy"), "unknown vehicle mav_name 'fireflyy'"),
-    (lambda w: w.set_motor_speeds("firefly", [500.0] * 4), "has 4 angular_velocities, the vehicle has 6 motors"),
-    (lambda w: w.set_motor_speeds("firefly", [float("nan")] * 6), r"angular_velocities\[0\] = nan"),
-    (lambda w: w.set_motor_speeds("nobody", [1.0] * 6), "no vehicle with motor models in namespace 'nobody'"),
-    (lambda w: w.link_state("nobody"), "no model 'nobody' in the world"),
-    (lambda w: w.message("/firefly/imuu"), "no plugin publishes '/firefly/imuu'"),
-    (lambda w: w.set_model_state("firefly", [0, 0, float("inf")]), "position must be finite"),
-    (lambda w: w.step(-1), "must be >= 0"),
-    (lambda w: w.laser_scan("firefly", "imu"), "has no sensor 'imu'"),
-    (lambda w: rs.World("nowhere"), "unknown world 'nowhere'"),
-    (lambda w: w.spawn("<robot name='x'><link name='a'></robot>", "x"), "model 'x': the description does not parse"),
-    (lambda w: w.spawn(BOX.format("1 0 1"), "b"), r"box <size> y 0\.000000 must be finite and > 0"),
-    (lambda w: w.spawn(BOX.format("1 nan 1"), "b"), r"does not parse: Error reading element <size>"),  # sdformat
-    (lambda w: w.spawn(SPHERE.format("-0.5"), "s"), r"sphere <radius> -0\.500000 must be finite and > 0"),
-])
+@pytest.mark.parametrize(
+    "bad, match",
+    [
+        (lambda w: w.spawn_mav("fireflyy"), "unknown vehicle mav_name 'fireflyy'"),
+        (lambda w: w.set_motor_speeds("firefly", [500.0] * 4), "has 4 angular_velocities, the vehicle has 6 motors"),
+        (lambda w: w.set_motor_speeds("firefly", [float("nan")] * 6), r"angular_velocities\[0\] = nan"),
+        (lambda w: w.set_motor_speeds("nobody", [1.0] * 6), "no vehicle with motor models in namespace 'nobody'"),
+        (lambda w: w.link_state("nobody"), "no model 'nobody' in the world"),
+        (lambda w: w.message("/firefly/imuu"), "no plugin publishes '/firefly/imuu'"),
+        (lambda w: w.set_model_state("firefly", [0, 0, float("inf")]), "position must be finite"),
+        (lambda w: w.step(-1), "must be >= 0"),
+        (lambda w: w.laser_scan("firefly", "imu"), "has no sensor 'imu'"),
+        (lambda w: rs.World("nowhere"), "unknown world 'nowhere'"),
+        (lambda w: w.spawn("<robot name='x'><link name='a'></robot>", "x"), "model 'x': the description does not parse"),
+        (lambda w: w.spawn(BOX.format("1 0 1"), "b"), r"box <size> y 0\.000000 must be finite and > 0"),
+        (lambda w: w.spawn(BOX.format("1 nan 1"), "b"), r"does not parse: Error reading element <size>"),  # sdformat
+        (lambda w: w.spawn(SPHERE.format("-0.5"), "s"), r"sphere <radius> -0\.500000 must be finite and > 0"),
+    ],
+)
 def test_bad_input_is_one_exception_and_world_keeps_working(bad, match):
     world = rs.World("basic")
     world.spawn_mav("firefly", random_seed=4)

@@ -4,18 +4,27 @@ where a bus left over from the old vehicle would show: a 6-rotor firefly spins u
 on a 6-speed command; a 4-rotor hummingbird re-spawned in its place must spin up its four on a
 4-speed command, which the firefly's rotor count would reject, and the simulator's log must hold
 no rejected motor command."""
+
 from pathlib import Path
 
-from conftest import REPO, RosGraph
 from test_sim_server import start_server
 
+from conftest import REPO, RosGraph
+
+
 def spawn(ros: RosGraph, tmp_path: Path, vehicle: str) -> None:
-    urdf = ros.run([str(REPO / "rotors_description/scripts/rotors_xacro"),
-                    str(REPO / f"rotors_description/urdf/{vehicle}_base.xacro"), f"mav_name:={vehicle}",
-                    "namespace:=mav"]).stdout
+    urdf = ros.run(
+        [
+            str(REPO / "rotors_description/scripts/rotors_xacro"),
+            str(REPO / f"rotors_description/urdf/{vehicle}_base.xacro"),
+            f"mav_name:={vehicle}",
+            "namespace:=mav",
+        ]
+    ).stdout
     (tmp_path / f"{vehicle}.urdf").write_text(urdf)
-    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(tmp_path / f"{vehicle}.urdf"),
-                   "-model", "mav", "-z", "0.1"])
+    res = ros.run(
+        ["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(tmp_path / f"{vehicle}.urdf"), "-model", "mav", "-z", "0.1"]
+    )
     assert "Successfully spawned entity 'mav'" in res.stdout, res.stdout + res.stderr
 
 

@@ -7,11 +7,12 @@ RotorS' own lee_position_controller_node.cpp is not shipped (never copied code).
 ROTORS_UPSTREAM_CONTROL_NODES pointing at a RotorS checkout's rotors_control/src/nodes, the package
 also holds upstream_lee_position_controller_node, and this test flies it too (docs/controllers.md
 gives the figures of such a run)."""
+
 from pathlib import Path
 
 import pytest
-
 from books_hover import assert_hovers_like_the_book
+
 from conftest import WS, RosGraph, stop_launch, wait_sim_time
 
 NODES = ["user_lee_position_controller_node"]
@@ -21,8 +22,7 @@ if (WS / "devel" / "lib" / "rotors_control_api_user" / "upstream_lee_position_co
 
 @pytest.mark.parametrize("node", NODES)
 def test_rotors_control_api_node_hovers_within_books_figure(ros: RosGraph, node: str):
-    proc = ros.start(["roslaunch", "-p", str(ros.port), "rotors_control_api_user", "user_lee_hovering.launch",
-                      f"node:={node}"], "launch")
+    proc = ros.start(["roslaunch", "-p", str(ros.port), "rotors_control_api_user", "user_lee_hovering.launch", f"node:={node}"], "launch")
     try:
         wait_sim_time(ros, 21.0)
     finally:

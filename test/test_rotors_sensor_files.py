@@ -6,6 +6,7 @@ launch/rotors_sensor_files.launch). From Python without ROS: firefly_two_generic
 publishes at its two rates (10 and 20 Hz at the basic world's 100 Hz steps); the motor model's force
 type turns its command into a joint effort (the disc's spin-up against omega = tau t / I) and
 publishes it on motorForcePubTopic."""
+
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +37,7 @@ CAMERA_TOPICS = {  # topic -> (type, rate [Hz] or None, (width, height) of an im
     "/probe/camera/depth/image_raw": ("sensor_msgs/Image", 10.0, (160, 120)),
 }
 
+
 def test_rotors_sensor_files_publish_topics_types_sizes_rates(ros: RosGraph):
     """Rates in sim time, from the header stamps of consecutive messages."""
     launch = ros.start(["roslaunch", "-p", str(ros.port), str(HERE / "launch/rotors_sensor_files.launch")], "launch")
@@ -58,8 +60,7 @@ def test_rotors_sensor_files_publish_topics_types_sizes_rates(ros: RosGraph):
     # valid depths: [depthNoiseMinDist, depthNoiseMaxDist] within the point-cloud cutoff (as
     # gazebo_ros, the cutoff applies to the depth image too): the probe's [1, 2] m inside 0.1-10 m;
     # the pmd's [0.1, 6] m inside the default 0.4-5 m
-    for topic, (low, high) in (("/probe/camera/depth/image_raw", (1.0, 2.0)),
-                               ("/tof/rgbd/camera_depth/depth/image_raw", (0.4, 5.0))):
+    for topic, (low, high) in (("/probe/camera/depth/image_raw", (1.0, 2.0)), ("/tof/rgbd/camera_depth/depth/image_raw", (0.4, 5.0))):
         d = got["depth"][topic]
         print(f"{topic}: {d['valid']} valid pixels in {d['min']:.3f}..{d['max']:.3f} m, {d['nan']} NaN")
         assert d["valid"] > 1000 and d["nan"] > 1000 and low <= d["min"] < low + 0.1 and high - 0.1 < d["max"] <= high
@@ -79,9 +80,13 @@ def test_two_generic_pose_sensors_publish_at_their_divisors():
     seen = run(world, 2.0)
     # the basic world steps at 100 Hz: divisors 10 and 5 give 10 Hz and 20 Hz
     for sensor, rate_hz in (("odometry_sensor1", 10.0), ("odometry_sensor2", 20.0)):
-        for leaf, kind in (("odometry", "nav_msgs/Odometry"), ("pose", "geometry_msgs/Pose"),
-                           ("pose_with_covariance", "geometry_msgs/PoseWithCovarianceStamped"),
-                           ("position", "geometry_msgs/PointStamped"), ("transform", "geometry_msgs/TransformStamped")):
+        for leaf, kind in (
+            ("odometry", "nav_msgs/Odometry"),
+            ("pose", "geometry_msgs/Pose"),
+            ("pose_with_covariance", "geometry_msgs/PoseWithCovarianceStamped"),
+            ("position", "geometry_msgs/PointStamped"),
+            ("transform", "geometry_msgs/TransformStamped"),
+        ):
             topic = f"/firefly/{sensor}/{leaf}"
             assert seen[topic][0] == kind, (topic, seen.get(topic))
         print(f"{sensor}: {seen[f'/firefly/{sensor}/odometry'][1]:.1f} Hz")

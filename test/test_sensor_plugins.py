@@ -1,11 +1,12 @@
 """Sensor plugins in the running simulator: the odometry outage map (package:// URL) suppresses
 measurements over black pixels; the IMU at rest reads +g; exact and noisy depth cameras."""
+
 from pathlib import Path
 
 import pytest
+from test_sim_server import start_server
 
 from conftest import RosGraph
-from test_sim_server import start_server
 
 
 def sensor_box(name: str) -> str:
@@ -37,8 +38,7 @@ def test_outage_map_suppresses_odometry_over_black_pixels(ros: RosGraph, tmp_pat
     for name, x, y in (("white", 0.05, 0.05), ("black", 16.05, -4.95)):
         f = tmp_path / f"{name}.urdf"
         f.write_text(sensor_box(name))
-        ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(f), "-model", name, "-x", str(x),
-                 "-y", str(y), "-z", "0.1"])
+        ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(f), "-model", name, "-x", str(x), "-y", str(y), "-z", "0.1"])
     result = ros.run_client("clients.sensor_plugins:odometry_counts_and_imu")
     assert result["white"] > 50  # 100 Hz where the map is white
     assert result["black"] == 0  # nothing over the black blob
@@ -61,18 +61,20 @@ def test_wind_force_accelerates_a_free_body_as_f_over_m(ros: RosGraph, tmp_path:
     t = result["t"]
     # semi-implicit Euler: y_N = a dt^2 N (N+1) / 2 with a = 2 m/s^2
     n = round(t / 0.01)
-    assert result["y"] == pytest.approx(2.0 * 0.01 ** 2 * n * (n + 1) / 2, rel=1e-6)
+    assert result["y"] == pytest.approx(2.0 * 0.01**2 * n * (n + 1) / 2, rel=1e-6)
 
 
 def depth_rig(name: str) -> str:
     """A static rig 2 m above the ground with two depth cameras looking straight down: exact
     (libgazebo_ros_openni_kinect) and Kinect-noisy (librotors_gazebo_noisydepth_plugin)."""
+
     def depth_sensor(sensor: str, plugin: str, extra: str) -> str:
         return f"""<sensor type="depth" name="{sensor}"><pose>0 0 0 0 1.5707963 0</pose><update_rate>10</update_rate>
       <camera><horizontal_fov>1.0</horizontal_fov><image><width>160</width><height>120</height><format>L8</format></image>
         <clip><near>0.05</near><far>10</far></clip></camera>
       <plugin name="{sensor}_plugin" filename="{plugin}"><robotNamespace>{name}</robotNamespace>
         <cameraName>{sensor}</cameraName><frameName>{name}/optical</frameName>{extra}</plugin></sensor>"""
+
     return f"""<robot name="{name}">
   <link name="{name}/base_link"><inertial><mass value="1"/>
     <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>

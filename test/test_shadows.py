@@ -3,6 +3,7 @@ travelling 45 deg down towards +x casts a shadow 1 m long behind it (x 0.5 to 1.
 camera looking straight down; the shadowed ground is lit by the ambient light only. The switches
 (the sun's <cast_shadows>, <scene><shadows>, the visual's <cast_shadows>, World(shadows=False))
 each take the shadow away."""
+
 import numpy as np
 import pytest
 
@@ -48,8 +49,7 @@ def test_cube_casts_shadow_as_long_as_its_height_at_45_degrees():
     behind = (x > 0.6) & (x < 1.4)
     beyond = (x > 1.6) & (x < 3.0)
     before = x < -0.85  # nearer the cube the camera sees its sunlit side (x -0.5), not the ground
-    print(f"ground lit {grey[beyond].mean():.1f} (expected {lit:.1f}), in the shadow {grey[behind].mean():.1f} "
-          f"(expected {shadow:.1f})")
+    print(f"ground lit {grey[beyond].mean():.1f} (expected {lit:.1f}), in the shadow {grey[behind].mean():.1f} " f"(expected {shadow:.1f})")
     assert np.allclose(grey[behind], shadow, atol=2) and np.allclose(grey[beyond], lit, atol=2)
     assert np.allclose(grey[before], lit, atol=2)
     # the shadow's far edge at x = 1.5 (cube top edge 0.5 + height 1 / tan 45), within 3 cm
@@ -61,9 +61,11 @@ def test_cube_casts_shadow_as_long_as_its_height_at_45_degrees():
 
 @pytest.mark.parametrize("switch", ["sun", "scene", "visual", "option"])
 def test_each_switch_takes_the_shadow_away(switch):
-    sdf = world_sdf(sun_casts="false" if switch == "sun" else "true",
-                    scene_shadows="false" if switch == "scene" else "true",
-                    cube_casts="false" if switch == "visual" else "true")
+    sdf = world_sdf(
+        sun_casts="false" if switch == "sun" else "true",
+        scene_shadows="false" if switch == "scene" else "true",
+        cube_casts="false" if switch == "visual" else "true",
+    )
     grey, x = ground_row(rs.World(sdf=sdf, shadows=switch != "option"))
     lit = 255 * ALBEDO * (AMBIENT + SUN * np.cos(np.pi / 4))
     assert np.allclose(grey[(x > 0.6) & (x < 3.0)], lit, atol=2)

@@ -1,6 +1,7 @@
 """The simulator's ROS face: /clock, pause/unpause/reset services, spawn/delete, model states
 (topic and get_model_state),
 and one-line errors for bad input."""
+
 from pathlib import Path
 
 import pytest
@@ -45,8 +46,9 @@ def test_runtime_spawn_delete_and_tf(ros: RosGraph, tmp_path: Path):
     urdf = tmp_path / "box.urdf"
     urdf.write_text(BOX_URDF)
     ros.run(["rosparam", "set", "/box_description", BOX_URDF])
-    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-param", "/box_description", "-model", "box",
-                   "-x", "1", "-y", "2", "-z", "0.1"])
+    res = ros.run(
+        ["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-param", "/box_description", "-model", "box", "-x", "1", "-y", "2", "-z", "0.1"]
+    )
     assert "Successfully spawned entity 'box'" in res.stdout
     result = ros.run_client("clients.sim_server:box_tf_and_delete")
     assert abs(result["x"] - 1.0) < 2e-3 and abs(result["y"] - 2.0) < 2e-3  # resting on the ground
@@ -97,21 +99,25 @@ def test_bad_model_is_one_line_error_and_server_keeps_running(ros: RosGraph, tmp
     assert len(lines) == 1, res.stderr
     assert "link 'bad/arm' has no <inertial>" in lines[0]
     plugin = tmp_path / "plugin.urdf"
-    plugin.write_text(BOX_URDF.replace("</robot>", '<gazebo><plugin name="ghost" filename="librotors_gazebo_ghost.so">'
-                                                   "</plugin></gazebo></robot>"))
-    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(plugin), "-model", "ghost"],
-                  check=False)
+    plugin.write_text(
+        BOX_URDF.replace("</robot>", '<gazebo><plugin name="ghost" filename="librotors_gazebo_ghost.so">' "</plugin></gazebo></robot>")
+    )
+    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(plugin), "-model", "ghost"], check=False)
     assert res.returncode == 1
     assert "plugin 'ghost' (librotors_gazebo_ghost.so)" in res.stderr and "not found" in res.stderr
     # a firefly whose first motor lost its <motorConstant> is refused (no silent default)
-    firefly = ros.run([str(package_path("rotors_description") / "scripts" / "rotors_xacro"),
-                       str(package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"),
-                       "mav_name:=firefly", "namespace:=firefly"]).stdout
+    firefly = ros.run(
+        [
+            str(package_path("rotors_description") / "scripts" / "rotors_xacro"),
+            str(package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"),
+            "mav_name:=firefly",
+            "namespace:=firefly",
+        ]
+    ).stdout
     first_constant = firefly.index("<motorConstant>")
     broken = tmp_path / "no_motor_constant.urdf"
-    broken.write_text(firefly[:first_constant] + firefly[firefly.index("</motorConstant>") + len("</motorConstant>"):])
-    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(broken), "-model", "firefly"],
-                  check=False)
+    broken.write_text(firefly[:first_constant] + firefly[firefly.index("</motorConstant>") + len("</motorConstant>") :])
+    res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(broken), "-model", "firefly"], check=False)
     lines = [line for line in res.stderr.splitlines() if line.strip()]
     assert res.returncode == 1 and len(lines) == 1, res.stderr
     assert "missing required parameter <motorConstant>" in lines[0], lines[0]
@@ -143,6 +149,5 @@ def test_spawn_normalises_the_quaternion_as_set_model_state_does(ros: RosGraph, 
     print(result)
     assert result["ok"] == [True, True]
     assert sum(c * c for c in result["turned"]) == pytest.approx(1.0, abs=1e-9)
-    assert result["turned"][2] == pytest.approx(2 ** -0.5, abs=1e-6) and result["turned"][3] == pytest.approx(2 ** -0.5,
-                                                                                                               abs=1e-6)
+    assert result["turned"][2] == pytest.approx(2**-0.5, abs=1e-6) and result["turned"][3] == pytest.approx(2**-0.5, abs=1e-6)
     assert result["plain"] == pytest.approx([0, 0, 0, 1], abs=1e-9)

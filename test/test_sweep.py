@@ -3,6 +3,7 @@ flight; a 2 x 2 x 2 sweep of 14 s lockstep flights on local Ray records one inje
 crash and evaluates the others against the physics (a constant wind force F against the Lee
 position gain k_p leaves a steady offset F / k_p); a resumed sweep flies nothing twice; the same
 sweep runs on a two-node Ray cluster (head + worker on loopback) through --address."""
+
 import csv
 import json
 import math
@@ -49,15 +50,18 @@ def rows(out: Path):
         return list(csv.DictReader(f))
 
 
-@pytest.mark.parametrize("edit, names", [
-    ("launch.mav_nam: firefly", "'launch.mav_nam'"),
-    ("controller.position_gain.w: 3", "'controller.position_gain.w'"),
-    ("model.wind_forse_mean: 1", "'model.wind_forse_mean'"),
-    ("vary_bad_range", "'controller.mass'"),
-    ("evaluation_estimator", "evaluation 'estimator'"),
-    ("unknown_top", "'repetitons'"),
-])
-def test_a_bad_sweep_file_is_one_line_naming_the_entry_before_any_flight(tmp_path: Path, edit: str, names: str):
+@pytest.mark.parametrize(
+    "edit, names",
+    [
+        ("launch.mav_nam: firefly", "'launch.mav_nam'"),
+        ("controller.position_gain.w: 3", "'controller.position_gain.w'"),
+        ("model.wind_forse_mean: 1", "'model.wind_forse_mean'"),
+        ("vary_bad_range", "'controller.mass'"),
+        ("evaluation_estimator", "evaluation 'estimator'"),
+        ("unknown_top", "'repetitons'"),
+    ],
+)
+def test_bad_sweep_file_is_one_line_naming_the_entry(tmp_path: Path, edit: str, names: str):
     text = SMALL
     if edit == "vary_bad_range":
         text = text.replace("model.wind_force_mean: [0, 2]", "controller.mass: {uniform: [1.4], draws: 3}")
@@ -84,6 +88,7 @@ def check_small_sweep(out: Path, res: subprocess.CompletedProcess) -> list:
     assert "the simulator (rotors_sim_server) died at sim time" in failed[0]["reason"]
     assert failed[0]["log_tail"].strip()
     import pyarrow.parquet as pq
+
     parquet = pq.read_table(out / "results.parquet").to_pylist()
     assert [r["id"] for r in parquet] == [r["id"] for r in table]
     report = (out / "report.md").read_text()
@@ -114,7 +119,7 @@ def check_small_sweep(out: Path, res: subprocess.CompletedProcess) -> list:
 
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
-def test_local_ray_sweep_records_the_injected_crash_evaluates_the_rest_and_resumes(tmp_path: Path):
+def test_local_ray_sweep_records_crash_evaluates_rest_resumes(tmp_path: Path):
     (tmp_path / "small.yaml").write_text(SMALL)
     out = tmp_path / "out"
     res = sweep(str(tmp_path / "small.yaml"), "-o", str(out), "--workers", "2")
@@ -149,10 +154,14 @@ def test_the_same_sweep_runs_on_a_two_node_ray_cluster(tmp_path: Path):
     env.pop("DISPLAY", None)
     common = ["--num-cpus=1", "--node-ip-address=127.0.0.1", "--disable-usage-stats"]
     try:
-        subprocess.run([ray, "start", "--head", f"--port={port}", "--include-dashboard=false", *common], env=env,
-                       check=True, capture_output=True, timeout=120)
-        subprocess.run([ray, "start", f"--address=127.0.0.1:{port}", *common], env=env, check=True,
-                       capture_output=True, timeout=120)
+        subprocess.run(
+            [ray, "start", "--head", f"--port={port}", "--include-dashboard=false", *common],
+            env=env,
+            check=True,
+            capture_output=True,
+            timeout=120,
+        )
+        subprocess.run([ray, "start", f"--address=127.0.0.1:{port}", *common], env=env, check=True, capture_output=True, timeout=120)
         (tmp_path / "small.yaml").write_text(SMALL)
         out = tmp_path / "out"
         res = sweep(str(tmp_path / "small.yaml"), "-o", str(out), "--address", f"127.0.0.1:{port}")
@@ -168,33 +177,45 @@ def test_sensor_noise_varies_through_the_models_xacro_arguments(tmp_path: Path):
     """model.odometry_noise_position and model.imu_gyroscope_noise_density reach the plugins'
     noiseNormalPosition and gyroscopeNoiseDensity of the spawned description."""
     import shlex
+
     from rotors_evaluation import sweep_flight, sweep_spec
-    text = SMALL.replace("""vary:
+
+    text = SMALL.replace(
+        """vary:
   controller.position_gain.x: [4, 8]
   model.wind_force_mean: [0, 2]
-inject_failure: {flight: 3, at_sim_s: 3}""", """vary:
+inject_failure: {flight: 3, at_sim_s: 3}""",
+        """vary:
   model.odometry_noise_position: ["0 0 0", "0.05 0.05 0.05"]
-  model.imu_gyroscope_noise_density: [0.0003394, 0.001]""")
+  model.imu_gyroscope_noise_density: [0.0003394, 0.001]""",
+    )
     (tmp_path / "noise.yaml").write_text(text)
     spec = sweep_spec.load(tmp_path / "noise.yaml")
     assert len(spec.flights) == 8
     last = spec.flights[-1]
     args = sweep_flight.launch_arguments(spec.to_json(), last.params, last.seed, tmp_path)
-    xacro = [str(REPO / "rotors_description" / "scripts" / "rotors_xacro"),
-             str(REPO / "rotors_description" / "urdf" / "mav_generic_odometry_sensor.gazebo"),
-             "mav_name:=firefly", "namespace:=firefly", *shlex.split(args["xacro_args"])]
+    xacro = [
+        str(REPO / "rotors_description" / "scripts" / "rotors_xacro"),
+        str(REPO / "rotors_description" / "urdf" / "mav_generic_odometry_sensor.gazebo"),
+        "mav_name:=firefly",
+        "namespace:=firefly",
+        *shlex.split(args["xacro_args"]),
+    ]
     urdf = subprocess.run(xacro, capture_output=True, text=True, check=True).stdout
     assert "<noiseNormalPosition>0.05 0.05 0.05</noiseNormalPosition>" in urdf
     assert "<gyroscopeNoiseDensity>0.001</gyroscopeNoiseDensity>" in urdf
     assert "<windForceMean>0</windForceMean>" in urdf  # the fixed enable_wind came along
 
 
-def test_a_disturbance_sweep_may_set_every_option_of_the_evaluation_scripts(tmp_path: Path):
+def test_disturbance_sweep_may_set_every_evaluation_option(tmp_path: Path):
     """eval_options are the evaluation scripts' own numeric options (one dataclass): a sweep shorter
     than the default 40 s disturbance sets disturbance_time, and a misspelt option is named."""
     from rotors_evaluation import options, sweep_spec
-    text = SMALL.replace("evaluation: hovering\neval_options: {delay_first_evaluation: 5, rms_calc_time: 4}",
-                         "evaluation: disturbance\neval_options: {disturbance_time: 8, rms_calc_time: 4}")
+
+    text = SMALL.replace(
+        "evaluation: hovering\neval_options: {delay_first_evaluation: 5, rms_calc_time: 4}",
+        "evaluation: disturbance\neval_options: {disturbance_time: 8, rms_calc_time: 4}",
+    )
     (tmp_path / "gust.yaml").write_text(text)
     spec = sweep_spec.load(tmp_path / "gust.yaml")
     assert spec.eval_options == {"disturbance_time": 8.0, "rms_calc_time": 4.0}
@@ -206,8 +227,7 @@ def test_a_disturbance_sweep_may_set_every_option_of_the_evaluation_scripts(tmp_
         sweep_spec.load(tmp_path / "bad.yaml")
 
 
-BATCH = SMALL.replace("inject_failure: {flight: 3, at_sim_s: 3}\n", "engine: batch\n").replace(
-    "repetitions: 2", "repetitions: 3")
+BATCH = SMALL.replace("inject_failure: {flight: 3, at_sim_s: 3}\n", "engine: batch\n").replace("repetitions: 2", "repetitions: 3")
 
 
 def test_batch_engine_sweep_scores_the_physics_and_resumes(tmp_path: Path):
@@ -229,12 +249,15 @@ def test_batch_engine_sweep_scores_the_physics_and_resumes(tmp_path: Path):
     assert res.returncode == 0 and "12 flights, 12 finished before, 0 to fly" in res.stderr, res.stderr
 
 
-@pytest.mark.parametrize("edit, says", [
-    ("evaluation: [hovering, estimator]", "'estimator' needs the world"),
-    ("launch: rotors_gazebo/mav_hovering_example_msf.launch", "needs the world"),
-    ("fixed: {launch.enable_lidar: vlp16, ", "'launch.enable_lidar' needs the world"),
-    ("engine: batches", "engine 'batches' is unknown"),
-])
+@pytest.mark.parametrize(
+    "edit, says",
+    [
+        ("evaluation: [hovering, estimator]", "'estimator' needs the world"),
+        ("launch: rotors_gazebo/mav_hovering_example_msf.launch", "needs the world"),
+        ("fixed: {launch.enable_lidar: vlp16, ", "'launch.enable_lidar' needs the world"),
+        ("engine: batches", "engine 'batches' is unknown"),
+    ],
+)
 def test_batch_engine_refuses_what_needs_the_world(tmp_path: Path, edit: str, says: str):
     text = BATCH
     key = edit.split(":")[0]

@@ -2,6 +2,7 @@
 the URDF the simulator flies (rotor positions, directions, constants, speed limits, mass, inertia,
 gravity), except the differences resource/urdf_overrides.yaml names with a reason (the book's
 deliberate mass and gravity mismatch among them)."""
+
 import subprocess
 from pathlib import Path
 
@@ -54,8 +55,7 @@ def test_a_yaml_that_disagrees_with_its_xacro_is_named(tmp_path: Path):
     firefly["rotor_configuration"]["5"]["angle"] = -0.6
     lines = compare_with_urdf("firefly", firefly, body_of("firefly"), WORLD_GRAVITY, overrides("firefly"))
     assert lines == [
-        "firefly: rotor_configuration/2/rotor_force_constant: 9e-06 in firefly.yaml, 8.54858e-06 in the URDF "
-        "(not a named override)",
+        "firefly: rotor_configuration/2/rotor_force_constant: 9e-06 in firefly.yaml, 8.54858e-06 in the URDF " "(not a named override)",
         "firefly: rotor_configuration/4/direction: -1 in firefly.yaml, 1 in the URDF (not a named override)",
         "firefly: rotor_configuration/5/position: angle -0.6000 rad, arm 0.2150 m in firefly.yaml, -0.5236 rad, "
         "0.2150 m in the URDF (16.4 mm apart) (not a named override)",
@@ -63,11 +63,13 @@ def test_a_yaml_that_disagrees_with_its_xacro_is_named(tmp_path: Path):
     # the command-line check says the same and fails
     bad = tmp_path / "firefly.yaml"  # named as the shipped one, so the lines are the same
     bad.write_text(yaml.safe_dump(firefly))
-    res = subprocess.run(["rosrun", "rotors_gazebo", "vehicle_params", "--mav_name", "firefly", "--check",
-                          "--yaml", str(bad)], capture_output=True, text=True)
+    res = subprocess.run(
+        ["rosrun", "rotors_gazebo", "vehicle_params", "--mav_name", "firefly", "--check", "--yaml", str(bad)],
+        capture_output=True,
+        text=True,
+    )
     assert res.returncode == 1 and res.stdout.splitlines() == lines
-    res = subprocess.run(["rosrun", "rotors_gazebo", "vehicle_params", "--mav_name", "iris", "--check"],
-                         capture_output=True, text=True)
+    res = subprocess.run(["rosrun", "rotors_gazebo", "vehicle_params", "--mav_name", "iris", "--check"], capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr
     assert "iris: iris.yaml agrees with the URDF (named overrides: mass, inertia, gravity)" in res.stdout
 
@@ -76,5 +78,7 @@ def test_a_named_override_that_is_not_needed_is_reported():
     pelican = yaml.safe_load((resource() / "pelican.yaml").read_text())
     named = dict(overrides("pelican"), **{"rotor_configuration/0/direction": "stale"})
     lines = compare_with_urdf("pelican", pelican, body_of("pelican"), WORLD_GRAVITY, named)
-    assert lines == ["pelican: rotor_configuration/0/direction: named override, but both give "
-                     f"{pelican['rotor_configuration']['0']['direction']}: remove it"]
+    assert lines == [
+        "pelican: rotor_configuration/0/direction: named override, but both give "
+        f"{pelican['rotor_configuration']['0']['direction']}: remove it"
+    ]

@@ -1,5 +1,6 @@
 """Every shipped vehicle hovers with its own yaml; the waypoint publisher moves the MAV; the swarm
 launch flies all nine fireflies; bad input gets one clear line and the simulation carries on."""
+
 import math
 import subprocess
 import xml.etree.ElementTree as ET
@@ -10,13 +11,18 @@ import yaml
 
 from conftest import RosGraph, launch, package_path, stop_launch, wait_sim_time
 
-LEE_KP_Z = {"hummingbird": 4, "pelican": 4, "iris": 6, "neo11": 17, "asymmetric_quadrotor": 4, "firefly": 6,
-            "ardrone": 6, "neo9": 17}
+LEE_KP_Z = {"hummingbird": 4, "pelican": 4, "iris": 6, "neo11": 17, "asymmetric_quadrotor": 4, "firefly": 6, "ardrone": 6, "neo9": 17}
 
 
 def simulated_mass(ros: RosGraph, mav: str) -> float:
-    urdf = ros.run(["xacro", str(package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"),
-                    f"mav_name:={mav}", f"namespace:={mav}"]).stdout
+    urdf = ros.run(
+        [
+            "xacro",
+            str(package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"),
+            f"mav_name:={mav}",
+            f"namespace:={mav}",
+        ]
+    ).stdout
     return sum(float(m.get("value")) for m in ET.fromstring(urdf).iter("mass"))
 
 
@@ -24,15 +30,24 @@ def ground_truth(ros: RosGraph, ns: str) -> dict:
     return ros.run_client("clients.sim:ground_truth", ns=ns)
 
 
-@pytest.mark.parametrize("mav", ["hummingbird", "pelican", "iris", pytest.param("neo11", marks=pytest.mark.long),
-                                 "asymmetric_quadrotor", "ardrone", pytest.param("neo9", marks=pytest.mark.long)])
+@pytest.mark.parametrize(
+    "mav",
+    [
+        "hummingbird",
+        "pelican",
+        "iris",
+        pytest.param("neo11", marks=pytest.mark.long),
+        "asymmetric_quadrotor",
+        "ardrone",
+        pytest.param("neo9", marks=pytest.mark.long),
+    ],
+)
 def test_vehicle_hovers_at_the_offset_its_parameters_predict(ros: RosGraph, mav: str):
     m_ctrl = yaml.safe_load((package_path("rotors_gazebo") / "resource" / f"{mav}.yaml").read_text())["mass"]
     m_sim = simulated_mass(ros, mav)
     # reference section 9: dz = (m_ctrl 9.81 - m_sim g) / K_p,z (no integral action in the controller)
     dz = (m_ctrl * 9.81 - m_sim * 9.8) / LEE_KP_Z[mav]
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", f"mav_name:={mav}", "lockstep:=true",
-                  "real_time_factor:=10")
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", f"mav_name:={mav}", "lockstep:=true", "real_time_factor:=10")
     try:
         wait_sim_time(ros, 40.0)
         s = ground_truth(ros, mav)
@@ -85,8 +100,7 @@ def test_controller_interface_rejects_bad_keeps_last_valid(ros: RosGraph):
 @pytest.mark.long  # the long tier: make test-all / make test-long
 def test_swarm_launch_flies_all_nine_fireflies(ros: RosGraph):
     targets = [(0, -1), (1, -1), (1, 0), (1, -2), (-1, 0), (-2, 0), (-3, 0), (-4, 0), (0, 0)]
-    proc = launch(ros, "rotors_gazebo", "firefly_swarm_hovering_example.launch", "lockstep:=true",
-                  "real_time_factor:=10", name="swarm")
+    proc = launch(ros, "rotors_gazebo", "firefly_swarm_hovering_example.launch", "lockstep:=true", "real_time_factor:=10", name="swarm")
     try:
         wait_sim_time(ros, 10.0)
         # the last waypoints go out 10 s after each publisher starts; give them time to arrive
@@ -103,8 +117,15 @@ def test_swarm_launch_flies_all_nine_fireflies(ros: RosGraph):
 
 
 def test_unknown_vehicle_name_is_one_clear_line(ros: RosGraph):
-    res = subprocess.run(["roslaunch", "-p", str(ros.port), "rotors_gazebo", "spawn_mav.launch", "mav_name:=bumblebee"],
-                         capture_output=True, text=True, env=ros.env, timeout=60)
+    res = subprocess.run(
+        ["roslaunch", "-p", str(ros.port), "rotors_gazebo", "spawn_mav.launch", "mav_name:=bumblebee"],
+        capture_output=True,
+        text=True,
+        env=ros.env,
+        timeout=60,
+    )
     assert res.returncode != 0
-    assert "rotors_xacro: unknown vehicle mav_name:=bumblebee (known: ardrone asymmetric_quadrotor firefly hummingbird " \
-           "iris neo11 neo9 omav pelican techpod)" in res.stdout + res.stderr
+    assert (
+        "rotors_xacro: unknown vehicle mav_name:=bumblebee (known: ardrone asymmetric_quadrotor firefly hummingbird "
+        "iris neo11 neo9 omav pelican techpod)" in res.stdout + res.stderr
+    )

@@ -1,6 +1,7 @@
 """End to end: the hovering example with the VI-sensor (RotorS' mav_hovering_example_with_vi_sensor
 .launch) records stereo images, the VI-sensor's IMU and ground truth with enable_logging:=true, and
 export_euroc.py turns that bag into an EuRoC dataset that is read back here."""
+
 import csv
 import math
 import subprocess
@@ -8,18 +9,20 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 import yaml
 from PIL import Image
 
-import pytest
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
 from rotors_evaluation.bag_data import FlightBag  # noqa: E402
 
 F_PX = 752 / (2 * math.tan(1.3962634 / 2))  # f = W / (2 tan(hfov / 2))
-VI_TOPICS = [f"/firefly/vi_sensor/{t}" for t in (
-    "left/image_raw", "left/camera_info", "right/image_raw", "right/camera_info", "imu", "ground_truth/odometry")]
+VI_TOPICS = [
+    f"/firefly/vi_sensor/{t}"
+    for t in ("left/image_raw", "left/camera_info", "right/image_raw", "right/camera_info", "imu", "ground_truth/odometry")
+]
 
 
 def stamps(bag: FlightBag, topic: str):
@@ -28,8 +31,15 @@ def stamps(bag: FlightBag, topic: str):
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
 def test_vi_sensor_flight_records_synced_stereo_exports_euroc(ros: RosGraph, tmp_path: Path):
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example_with_vi_sensor.launch", "enable_logging:=true",
-                  "lockstep:=true", "real_time_factor:=0", "gui:=false")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_hovering_example_with_vi_sensor.launch",
+        "enable_logging:=true",
+        "lockstep:=true",
+        "real_time_factor:=0",
+        "gui:=false",
+    )
     try:
         wait_sim_time(ros, 8.0)
         topics = ros.run(["rostopic", "list"]).stdout.split()
@@ -64,8 +74,12 @@ def test_vi_sensor_flight_records_synced_stereo_exports_euroc(ros: RosGraph, tmp
     bag.close()
 
     out = tmp_path / "euroc"
-    result = subprocess.run([sys.executable, str(REPO / "rotors_gazebo_compat/rotors_evaluation/scripts/export_euroc.py"),
-                             "-b", str(bags[-1]), "-o", str(out)], capture_output=True, text=True, timeout=300)
+    result = subprocess.run(
+        [sys.executable, str(REPO / "rotors_gazebo_compat/rotors_evaluation/scripts/export_euroc.py"), "-b", str(bags[-1]), "-o", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert result.returncode == 0, result.stderr
     print(result.stdout)
 

@@ -9,6 +9,7 @@ The odometry: keyframes whose Shi-Tomasi corners are matched into the right imag
 row (stereo depth Z = f b / d); the corners are tracked by KLT from frame to frame, and each frame's
 pose relative to its keyframe comes from solvePnPRansac and solvePnPRefineLM on the inliers. A new
 keyframe is taken when fewer than 200 corners remain or the camera has moved 1 m from the keyframe."""
+
 import csv
 import json
 import math
@@ -20,18 +21,22 @@ import cv2
 import numpy as np
 import pytest
 import yaml
+from flight_paths import WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
-from flight_paths import WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 TRAJECTORY_DUE_S = 6.0  # from take-off on the ground (it replaces the hovering example's waypoint)
 KLT = dict(winSize=(21, 21), maxLevel=3, criteria=(cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 30, 0.01))
 
 
 def quaternion_matrix(w: float, x: float, y: float, z: float) -> np.ndarray:
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
 
 
 def transform(R: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -81,8 +86,13 @@ class StereoVO:
         back, ok_back, _ = cv2.calcOpticalFlowPyrLK(right, left, matched, None, **KLT)
         uv, uv_r = corners.reshape(-1, 2), matched.reshape(-1, 2)
         d = uv[:, 0] - uv_r[:, 0]
-        keep = ((ok.ravel() == 1) & (ok_back.ravel() == 1) & (np.linalg.norm(back.reshape(-1, 2) - uv, axis=1) < 0.5)
-                & (np.abs(uv[:, 1] - uv_r[:, 1]) < 0.5) & (d > 0.5))
+        keep = (
+            (ok.ravel() == 1)
+            & (ok_back.ravel() == 1)
+            & (np.linalg.norm(back.reshape(-1, 2) - uv, axis=1) < 0.5)
+            & (np.abs(uv[:, 1] - uv_r[:, 1]) < 0.5)
+            & (d > 0.5)
+        )
         Z = self.f * self.b / d[keep]
         near = Z < 20.0  # beyond, a disparity under 2.5 px: too little depth information
         uv, Z = uv[keep][near], Z[near]
@@ -101,11 +111,11 @@ class StereoVO:
         for left, right in frames:
             tracked, ok, _ = cv2.calcOpticalFlowPyrLK(previous, left, uv.reshape(-1, 1, 2), None, **KLT)
             back, ok_back, _ = cv2.calcOpticalFlowPyrLK(left, previous, tracked, None, **KLT)
-            keep = ((ok.ravel() == 1) & (ok_back.ravel() == 1)
-                    & (np.linalg.norm(back.reshape(-1, 2) - uv, axis=1) < 1.0))
+            keep = (ok.ravel() == 1) & (ok_back.ravel() == 1) & (np.linalg.norm(back.reshape(-1, 2) - uv, axis=1) < 1.0)
             uv, X = tracked.reshape(-1, 2)[keep], X[keep]
-            found, rvec, tvec, inliers = cv2.solvePnPRansac(X, uv, self.K, None, iterationsCount=200,
-                                                             reprojectionError=1.0, confidence=0.999)
+            found, rvec, tvec, inliers = cv2.solvePnPRansac(
+                X, uv, self.K, None, iterationsCount=200, reprojectionError=1.0, confidence=0.999
+            )
             assert found and inliers is not None and len(inliers) >= 20, "the VO lost track"
             inliers = inliers.ravel()
             rvec, tvec = cv2.solvePnPRefineLM(X[inliers], uv[inliers], self.K, None, rvec, tvec)
@@ -129,19 +139,45 @@ class StereoVO:
 def fly_and_export(ros: RosGraph, tmp_path: Path):
     """The flight's EuRoC folder (mav0) and the sim time [s] at which the loop begins (after take-off,
     facing down the first aisle)."""
-    path = sample((0.0, 0.0, 0.1, 0.0), [(0.0, 0.0, WAREHOUSE_START[2]), WAREHOUSE_START[:3]] + WAREHOUSE_LOOP,
-                  speed=1.5, accel=1.0, yaw_rate=0.8, facing=WAREHOUSE_FACING)
+    path = sample(
+        (0.0, 0.0, 0.1, 0.0),
+        [(0.0, 0.0, WAREHOUSE_START[2]), WAREHOUSE_START[:3]] + WAREHOUSE_LOOP,
+        speed=1.5,
+        accel=1.0,
+        yaw_rate=0.8,
+        facing=WAREHOUSE_FACING,
+    )
     facing_start = np.abs(np.angle(np.exp(1j * (path.yaw - WAREHOUSE_START[3])))) < 1e-6
     at_start = (np.linalg.norm(path.p_W - WAREHOUSE_START[:3], axis=1) < 1e-6) & facing_start
     loop_begins_s = TRAJECTORY_DUE_S + float(path.t_s[np.argmax(at_start)])
-    proc = launch(ros, "rotors_gazebo", "mav_hovering_example_with_vi_sensor.launch", "world_name:=warehouse",
-                  "enable_logging:=true", "lockstep:=true", "real_time_factor:=0", "gui:=false")
+    proc = launch(
+        ros,
+        "rotors_gazebo",
+        "mav_hovering_example_with_vi_sensor.launch",
+        "world_name:=warehouse",
+        "enable_logging:=true",
+        "lockstep:=true",
+        "real_time_factor:=0",
+        "gui:=false",
+    )
     try:
         # the whole path on command/trajectory, due from TRAJECTORY_DUE_S on (each point at its time_from_start)
         points = tmp_path / "trajectory.json"
-        points.write_text(json.dumps([dict(p=path.p_W[i].tolist(), v=path.v_W[i].tolist(), a=path.a_W[i].tolist(),
-                                           yaw=float(path.yaw[i]), rate=float(path.yaw_rate[i]), t=float(path.t_s[i]))
-                                      for i in range(len(path.t_s))]))
+        points.write_text(
+            json.dumps(
+                [
+                    dict(
+                        p=path.p_W[i].tolist(),
+                        v=path.v_W[i].tolist(),
+                        a=path.a_W[i].tolist(),
+                        yaw=float(path.yaw[i]),
+                        rate=float(path.yaw_rate[i]),
+                        t=float(path.t_s[i]),
+                    )
+                    for i in range(len(path.t_s))
+                ]
+            )
+        )
         ros.run_client("clients.visual_odometry:send_trajectory", points_file=str(points), due_s=TRAJECTORY_DUE_S)
         wait_sim_time(ros, TRAJECTORY_DUE_S + path.duration_s, timeout_s=1500)
     finally:
@@ -149,8 +185,12 @@ def fly_and_export(ros: RosGraph, tmp_path: Path):
     bags = sorted(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
     assert bags, Path(proc.log_path).read_text()[-3000:]
     out = tmp_path / "euroc"
-    result = subprocess.run([sys.executable, str(REPO / "rotors_gazebo_compat/rotors_evaluation/scripts/export_euroc.py"),
-                             "-b", str(bags[-1]), "-o", str(out)], capture_output=True, text=True, timeout=900)
+    result = subprocess.run(
+        [sys.executable, str(REPO / "rotors_gazebo_compat/rotors_evaluation/scripts/export_euroc.py"), "-b", str(bags[-1]), "-o", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
     assert result.returncode == 0, result.stderr
     bags[-1].unlink()  # 1 GB of images, now in the export
     return out / "mav0", loop_begins_s
@@ -180,12 +220,14 @@ def test_stereo_vo_on_euroc_export_of_warehouse_flight(ros: RosGraph, tmp_path: 
     # stamps: the VO's frame-to-frame speed lines up with the ground truth's with no lag
     v_true, v_vo = np.diff(p_true, axis=0), np.diff(p_vo, axis=0)
     lags = range(-3, 4)
-    misfit = [np.mean(np.linalg.norm(v_vo[3 + k:len(v_vo) - 3 + k] - v_true[3:len(v_true) - 3], axis=1)) for k in lags]
+    misfit = [np.mean(np.linalg.norm(v_vo[3 + k : len(v_vo) - 3 + k] - v_true[3 : len(v_true) - 3], axis=1)) for k in lags]
     lag = list(lags)[int(np.argmin(misfit))]
-    print(f"stereo VO over {len(stamps)} frames ({vo.keyframes} keyframes), {flown_m:.1f} m flown: end error "
-          f"{error_m[-1]:.3f} m = {100 * error_m[-1] / flown_m:.2f} % of the distance (largest on the way "
-          f"{error_m.max():.3f} m), end rotation error {yaw_error_deg:.2f} deg; speed misfit by lag "
-          f"{dict(zip(lags, np.round(misfit, 4)))}")
+    print(
+        f"stereo VO over {len(stamps)} frames ({vo.keyframes} keyframes), {flown_m:.1f} m flown: end error "
+        f"{error_m[-1]:.3f} m = {100 * error_m[-1] / flown_m:.2f} % of the distance (largest on the way "
+        f"{error_m.max():.3f} m), end rotation error {yaw_error_deg:.2f} deg; speed misfit by lag "
+        f"{dict(zip(lags, np.round(misfit, 4)))}"
+    )
     assert flown_m >= 30.0
     assert error_m[-1] <= 0.02 * flown_m
     assert lag == 0

@@ -1,6 +1,7 @@
 """RotorS' remaining worlds (issue 42 item 8), from Python without ROS: each loads, its terrain or
 room stands where RotorS' files put it, and the firefly hovers in it with the Lee controller.
 (The ROS hovering example in the waypoint world: test_worlds.py.)"""
+
 import cv2
 import numpy as np
 
@@ -8,9 +9,11 @@ import rotors_sim as rs
 from rotors_sim.paths import package_path
 
 MODELS = package_path("rotors_gazebo") / "models"
-BALL = ("<sdf version='1.6'><model name='ball'><link name='link'><inertial><mass>1</mass></inertial>"
-        "<collision name='c'><geometry><sphere><radius>0.5</radius></sphere></geometry></collision></link>"
-        "</model></sdf>")
+BALL = (
+    "<sdf version='1.6'><model name='ball'><link name='link'><inertial><mass>1</mass></inertial>"
+    "<collision name='c'><geometry><sphere><radius>0.5</radius></sphere></geometry></collision></link>"
+    "</model></sdf>"
+)
 
 
 def terrain_height_m(image: str, size_xy_m: float, size_z_m: float, pos_z_m: float, x: float, y: float) -> float:
@@ -41,7 +44,7 @@ def flat_points(image: str, size_xy_m: float, size_z_m: float, pos_z_m: float, a
     found = []
     for r in range(1, n - 1):
         for c in range(1, n - 1):
-            patch = grey[r - 1:r + 2, c - 1:c + 2]
+            patch = grey[r - 1 : r + 2, c - 1 : c + 2]
             if np.ptp(patch) <= 1 and pos_z_m + grey[r, c] / 255.0 * size_z_m > above_m:
                 found.append((grey[r, c], (c / (n - 1) - 0.5) * size_xy_m, (0.5 - r / (n - 1)) * size_xy_m))
     return [(x, y) for _, x, y in sorted(found, reverse=True)[:count]]
@@ -53,8 +56,7 @@ def test_the_yosemite_terrain_is_rotors_heightmap():
     points = flat_points(image, 1000, 125, -15, 5.0, 3)
     assert len(points) == 3
     for i, (x, y) in enumerate(points):
-        world.spawn(BALL.replace("'ball'", f"'ball{i}'"), f"ball{i}",
-                    xyz=(x, y, terrain_height_m(image, 1000, 125, -15, x, y) + 1.0))
+        world.spawn(BALL.replace("'ball'", f"'ball{i}'"), f"ball{i}", xyz=(x, y, terrain_height_m(image, 1000, 125, -15, x, y) + 1.0))
     world.step(int(round(3.0 / world.step_size)))
     for i, (x, y) in enumerate(points):
         rest = np.asarray(world.link_state(f"ball{i}")[0])
@@ -77,8 +79,13 @@ def test_hemicyl_ridge_along_y_wind_field_blows_at_the_hover():
     rest = np.asarray(world.link_state("ball")[0])
     print(f"hemicyl ridge top at (0, 500): heightmap {top:.2f} m; ball centre at {rest[2]:.2f} m")
     assert top > 195.0 and abs(rest[2] - (top + 0.5)) < 0.1
-    p = hover(world, (-1000.0, 0.0, 0.1), enable_wind=True, use_custom_static_wind_field=True,
-              custom_wind_field_path=str(MODELS / "hemicyl/wind_field_hemicyl.txt"))
+    p = hover(
+        world,
+        (-1000.0, 0.0, 0.1),
+        enable_wind=True,
+        use_custom_static_wind_field=True,
+        custom_wind_field_path=str(MODELS / "hemicyl/wind_field_hemicyl.txt"),
+    )
     wind, count = world.message("/firefly/wind_speed")
     speed = np.linalg.norm([wind.velocity.x, wind.velocity.y, wind.velocity.z])
     print(f"hemicyl at (-1000, 0, 1.1): wind {speed:.2f} m/s from the field; firefly at {p.round(3)}")

@@ -2,6 +2,7 @@
 wall, the contact is recorded and hovering_eval.py counts it; the power plant example crashes where
 the book says it must (the straight line between its waypoints is in collision, seed section 3);
 no run prints ODE's 'LCP internal error'."""
+
 import subprocess
 import sys
 from pathlib import Path
@@ -25,8 +26,7 @@ def lcp_errors(log: Path) -> int:
 def contacts_with(bag: Path, mav: str, other: str, after_s: float) -> list:
     b = FlightBag(bag)
     try:
-        return [t_ns * 1e-9 for msg, _, t_ns in b.messages(f"{mav}/wrench")
-                if other in msg.header.frame_id and t_ns * 1e-9 > after_s]
+        return [t_ns * 1e-9 for msg, _, t_ns in b.messages(f"{mav}/wrench") if other in msg.header.frame_id and t_ns * 1e-9 > after_s]
     finally:
         b.close()
 
@@ -34,21 +34,20 @@ def contacts_with(bag: Path, mav: str, other: str, after_s: float) -> list:
 def fly_logged(ros: RosGraph, launch_file: str, until_s: float, *args: str):
     """A firefly launch with logging in lockstep, as fast as possible, until `until_s` of sim time;
     asserts that no LCP error was printed and returns the bag and its flight data."""
-    proc = launch(ros, "rotors_gazebo", launch_file, "enable_logging:=true", "lockstep:=true", "real_time_factor:=0",
-                  *args)
+    proc = launch(ros, "rotors_gazebo", launch_file, "enable_logging:=true", "lockstep:=true", "real_time_factor:=0", *args)
     try:
         wait_sim_time(ros, until_s)
     finally:
         stop_launch(proc)
     assert lcp_errors(Path(proc.log_path)) == 0
     bag = next(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
-    return bag, load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory",
-                            "/wrench")
+    return bag, load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
 
 
 def evaluate(script: str, bag: Path, *args: str) -> str:
-    res = subprocess.run([sys.executable, str(EVAL / script), "-b", str(bag), "--mav_name", "firefly", *args],
-                         capture_output=True, text=True)
+    res = subprocess.run(
+        [sys.executable, str(EVAL / script), "-b", str(bag), "--mav_name", "firefly", *args], capture_output=True, text=True
+    )
     print(res.stdout)
     assert res.returncode == 0, res.stderr
     return res.stdout
@@ -86,13 +85,18 @@ def test_power_plant_example_collides_as_book_says_and_counted(ros: RosGraph):
 def test_get_octomap_of_power_plant_agrees_with_rotors_octree(ros: RosGraph, tmp_path: Path):
     world = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "worlds" / "powerplant.world"
     reference = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource" / "power_plant.bt"
-    proc = launch(ros, "gazebo_ros", "empty_world.launch", f"world_name:={world}", "paused:=true", "gui:=false",
-                  name="world")
+    proc = launch(ros, "gazebo_ros", "empty_world.launch", f"world_name:={world}", "paused:=true", "gui:=false", name="world")
     out = tmp_path / "powerplant_from_service.bt"
     try:
         # power_plant.bt spans x -15..35, y -35..15, z 0..50; the world holds it 0.25 m lower
-        result = ros.run_client("clients.octomap:get_octomap", timeout=300, origin=[10.0, -10.0, 24.75],
-                                lengths=[50.0, 50.0, 50.0], leaf_size=0.25, filename=str(out))
+        result = ros.run_client(
+            "clients.octomap:get_octomap",
+            timeout=300,
+            origin=[10.0, -10.0, 24.75],
+            lengths=[50.0, 50.0, 50.0],
+            leaf_size=0.25,
+            filename=str(out),
+        )
     finally:
         stop_launch(proc)
     assert result["resolution"] == 0.25 and result["bytes"] > 0

@@ -6,6 +6,7 @@ rviz draws an .stl in the URDF <material> colour but a .dae in the mesh's own ma
 propellers are shipped as STL made from RotorS' propeller_cw/ccw.dae:
     dae_to_stl.py meshes/propeller_cw.dae meshes/propeller_cw.stl
 """
+
 import struct
 import sys
 import xml.etree.ElementTree as ET

@@ -3,6 +3,7 @@ height, roll and pitch against the RC the pilot sends (the flight of test/test_b
 
     python rotors_python/examples/betaflight_flight_plot.py docs/betaflight_flight.png
 """
+
 import sys
 import tempfile
 
@@ -21,8 +22,10 @@ DT = 0.002
 
 def euler_deg(q):
     x, y, z, w = q
-    return (np.degrees(np.arctan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))),
-            np.degrees(np.arcsin(np.clip(2 * (w * y - z * x), -1, 1))))
+    return (
+        np.degrees(np.arctan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))),
+        np.degrees(np.arcsin(np.clip(2 * (w * y - z * x), -1, 1))),
+    )
 
 
 def main(out: str) -> None:

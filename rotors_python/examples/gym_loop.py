@@ -3,6 +3,7 @@
 Lee controller's rotor speeds as the motor action), three episodes each, then the vector
 environment over 16 worlds with random actions. Prints returns and episode lengths.
     python gym_loop.py"""
+
 import time
 
 import gymnasium as gym
@@ -51,8 +52,10 @@ def main() -> int:
         _, _, terminated, truncated, _ = envs.step(envs.action_space.sample())
         ended += int(np.sum(terminated | truncated))
     wall = time.perf_counter() - t0
-    print(f"vector env, 16 worlds, 500 steps of 10 ms: {ended} episodes ended, "
-          f"{16 * 500 * 0.01 / wall:.0f} drone-s per wall second (random actions, Python in the loop)")
+    print(
+        f"vector env, 16 worlds, 500 steps of 10 ms: {ended} episodes ended, "
+        f"{16 * 500 * 0.01 / wall:.0f} drone-s per wall second (random actions, Python in the loop)"
+    )
     return 0
 
 

@@ -2,6 +2,7 @@
 """The book's hovering example from Python (rotors_sim, no ROS): the firefly takes off to (0, 0, 1)
 when the waypoint is due at 5 s and hovers 0.040 m above it, as the ROS example does. Saves a plot.
     python hover_plot.py [out.png]"""
+
 import sys
 
 import matplotlib

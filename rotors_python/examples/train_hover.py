@@ -5,6 +5,7 @@ rotors_control's roll-pitch-yawrate-thrust controller), and plots the mean episo
 the environment steps. `make train-example` installs PyTorch (the CPU build) and Stable-Baselines3
 into build/rl-site and runs it.
     python train_hover.py [--steps 8000000] [--plot docs/hover_training.png]"""
+
 import argparse
 import json
 import time
@@ -48,8 +49,11 @@ class FlightBatchVecEnv(VecEnv):
         self.lengths += 1
         infos = [{} for _ in range(self.num_envs)]
         for i in np.flatnonzero(done):
-            infos[i] = {"terminal_observation": info["final_obs"][i], "TimeLimit.truncated": bool(truncated[i]),
-                        "episode": {"r": float(self.returns[i]), "l": int(self.lengths[i])}}
+            infos[i] = {
+                "terminal_observation": info["final_obs"][i],
+                "TimeLimit.truncated": bool(truncated[i]),
+                "episode": {"r": float(self.returns[i]), "l": int(self.lengths[i])},
+            }
             self.finished.append((float(self.returns[i]), int(self.lengths[i])))
             self.returns[i], self.lengths[i] = 0.0, 0
         return obs, reward.astype(np.float32), done, infos
@@ -78,12 +82,21 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     torch.set_num_threads(1)  # the engine's threads step the vehicles; one for the network is enough
-    envs = FlightBatchEnv("hover", args.envs, action_type="attitude", episode_s=3.0, alive_bonus=1.0,
-                          sensor_seed=args.seed)
+    envs = FlightBatchEnv("hover", args.envs, action_type="attitude", episode_s=3.0, alive_bonus=1.0, sensor_seed=args.seed)
     vec = FlightBatchVecEnv(envs)
     vec.seed(args.seed)
-    model = PPO("MlpPolicy", vec, n_steps=128, batch_size=2048, n_epochs=5, learning_rate=3e-4, gamma=0.99,
-                policy_kwargs={"net_arch": [64, 64]}, seed=args.seed, verbose=0)
+    model = PPO(
+        "MlpPolicy",
+        vec,
+        n_steps=128,
+        batch_size=2048,
+        n_epochs=5,
+        learning_rate=3e-4,
+        gamma=0.99,
+        policy_kwargs={"net_arch": [64, 64]},
+        seed=args.seed,
+        verbose=0,
+    )
     t0 = time.perf_counter()
     points = []
     chunk = args.envs * 128 * 4
@@ -91,10 +104,12 @@ def main() -> int:
         model.learn(chunk, reset_num_timesteps=False)
         recent = vec.finished[-200:]
         if recent:
-            points.append((model.num_timesteps, float(np.mean([r for r, _ in recent])),
-                           float(np.mean([n for _, n in recent]))))
-            print(f"{model.num_timesteps:>8,d} steps, {time.perf_counter() - t0:6.0f} s: mean return "
-                  f"{points[-1][1]:7.1f}, mean length {points[-1][2]:5.1f} of 300", flush=True)
+            points.append((model.num_timesteps, float(np.mean([r for r, _ in recent])), float(np.mean([n for _, n in recent]))))
+            print(
+                f"{model.num_timesteps:>8,d} steps, {time.perf_counter() - t0:6.0f} s: mean return "
+                f"{points[-1][1]:7.1f}, mean length {points[-1][2]:5.1f} of 300",
+                flush=True,
+            )
     wall = time.perf_counter() - t0
     steps, returns, lengths = np.array(points).T
     fig, ax = plt.subplots(figsize=(7, 3.6))
@@ -107,9 +122,19 @@ def main() -> int:
     ax.set_title(f"PPO (Stable-Baselines3) on FlightBatchEnv hover, {wall / 60:.1f} min on 2 cores")
     fig.tight_layout()
     fig.savefig(args.plot, dpi=110)
-    print(json.dumps({"steps": int(model.num_timesteps), "wall_s": wall, "first_return": float(returns[0]),
-                      "last_return": float(returns[-1]), "first_length": float(lengths[0]),
-                      "last_length": float(lengths[-1]), "plot": args.plot}))
+    print(
+        json.dumps(
+            {
+                "steps": int(model.num_timesteps),
+                "wall_s": wall,
+                "first_return": float(returns[0]),
+                "last_return": float(returns[-1]),
+                "first_length": float(lengths[0]),
+                "last_length": float(lengths[-1]),
+                "plot": args.plot,
+            }
+        )
+    )
     return 0
 
 

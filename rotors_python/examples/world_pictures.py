@@ -5,6 +5,7 @@ a static rig), and the VI-sensor's left image (752 x 480, mono8) in each, with t
 
     python3 rotors_python/examples/world_pictures.py docs/
 """
+
 import sys
 from pathlib import Path
 

@@ -5,6 +5,7 @@ flight. Runs in its own venv (scripts/bench.py installs it). Prints one JSON lin
     python crazyflow040_hover.py <worlds> <seconds>
 0.4.0's state command is 16 wide (x, y, z, v, a, q x y z w, body rates); a zero quaternion gives
 NaN, so the command holds the identity attitude."""
+
 import json
 import sys
 import time
@@ -28,5 +29,18 @@ sim.step(steps)
 sim.data.states.pos.block_until_ready()
 wall = time.perf_counter() - t0
 z = float(sim.data.states.pos[0, 0, 2])
-print(json.dumps({"peer": "crazyflow040", "mode": "one_call", "worlds": worlds, "sim_s": seconds, "wall_s": wall,
-                  "drone_s_per_s": worlds * seconds / wall, "physics_hz": 500, "control_hz": 100, "z_end_m": z}))
+print(
+    json.dumps(
+        {
+            "peer": "crazyflow040",
+            "mode": "one_call",
+            "worlds": worlds,
+            "sim_s": seconds,
+            "wall_s": wall,
+            "drone_s_per_s": worlds * seconds / wall,
+            "physics_hz": 500,
+            "control_hz": 100,
+            "z_end_m": z,
+        }
+    )
+)

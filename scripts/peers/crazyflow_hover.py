@@ -5,6 +5,7 @@ crazyflow's own venv (scripts/bench.py installs it). Prints one JSON line.
 mode "loop": each control period Python sets the state command (state_control) and calls step(5),
 as a Python controller in the loop would. mode "one_call" (its fastest documented use): the state
 controller runs inside Sim.step, so the command is set once and one step call runs the flight."""
+
 import json
 import sys
 import time
@@ -38,5 +39,18 @@ else:
 sim.data.states.pos.block_until_ready()
 wall = time.perf_counter() - t0
 z = float(sim.data.states.pos[0, 0, 2])
-print(json.dumps({"peer": "crazyflow", "mode": mode, "worlds": worlds, "sim_s": seconds, "wall_s": wall,
-                  "drone_s_per_s": worlds * seconds / wall, "physics_hz": 500, "control_hz": 100, "z_end_m": z}))
+print(
+    json.dumps(
+        {
+            "peer": "crazyflow",
+            "mode": mode,
+            "worlds": worlds,
+            "sim_s": seconds,
+            "wall_s": wall,
+            "drone_s_per_s": worlds * seconds / wall,
+            "physics_hz": 500,
+            "control_hz": 100,
+            "z_end_m": z,
+        }
+    )
+)

@@ -4,6 +4,7 @@ message), physics at 500 Hz, in one call. Prints one JSON line.
     python rotors_batch_hover.py <vehicles> <seconds> [threads] [imu]
 imu "imu" simulates the IMU with its noise (as RotorS' vehicle carries it); "no_imu" leaves it out
 (what the peers simulate: no sensors)."""
+
 import json
 import sys
 import time
@@ -21,6 +22,21 @@ t0 = time.perf_counter()
 batch.step(steps)
 wall = time.perf_counter() - t0
 z = float(batch.truth()[0, 2])
-print(json.dumps({"peer": "rotors_batch", "mode": "one_call", "worlds": vehicles, "sim_s": seconds, "wall_s": wall,
-                  "drone_s_per_s": vehicles * seconds / wall, "physics_hz": 500, "control_hz": 100, "z_end_m": z,
-                  "threads": batch.threads, "imu": imu, "memory_bytes_per_vehicle": batch.memory()}))
+print(
+    json.dumps(
+        {
+            "peer": "rotors_batch",
+            "mode": "one_call",
+            "worlds": vehicles,
+            "sim_s": seconds,
+            "wall_s": wall,
+            "drone_s_per_s": vehicles * seconds / wall,
+            "physics_hz": 500,
+            "control_hz": 100,
+            "z_end_m": z,
+            "threads": batch.threads,
+            "imu": imu,
+            "memory_bytes_per_vehicle": batch.memory(),
+        }
+    )
+)

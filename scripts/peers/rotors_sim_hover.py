@@ -6,6 +6,7 @@ mode "loop" (README's Python example): each control period Python reads every wo
 computes the Lee controller's rotor speeds and sets them, then steps all worlds 5 physics steps.
 mode "one_call" (the fastest documented use): the controller is attached inside the engine
 (attach_controller) and one Batch.step call runs the whole flight, the worlds on threads."""
+
 import json
 import sys
 import time
@@ -46,5 +47,18 @@ else:
         batch.step(SUBSTEPS)
 wall = time.perf_counter() - t0
 z = float(batch[0].link_state("firefly")[0][2])
-print(json.dumps({"peer": "rotors_sim", "mode": mode, "worlds": worlds, "sim_s": seconds, "wall_s": wall,
-                  "drone_s_per_s": worlds * seconds / wall, "physics_hz": 500, "control_hz": 100, "z_end_m": z}))
+print(
+    json.dumps(
+        {
+            "peer": "rotors_sim",
+            "mode": mode,
+            "worlds": worlds,
+            "sim_s": seconds,
+            "wall_s": wall,
+            "drone_s_per_s": worlds * seconds / wall,
+            "physics_hz": 500,
+            "control_hz": 100,
+            "z_end_m": z,
+        }
+    )
+)

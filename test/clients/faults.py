@@ -39,7 +39,7 @@ class Watch:
         deadline = time.monotonic() + limit_s
         while self.state["clock"] < t_s or self.state["p"] is None:
             if time.monotonic() > deadline:
-                raise SystemExit("sim time stuck at %.2f s (waiting for %.2f s)" % (self.state["clock"], t_s))
+                raise SystemExit("sim time stuck at {:.2f} s (waiting for {:.2f} s)".format(self.state["clock"], t_s))
             time.sleep(0.01)
         return self.state["clock"]
 

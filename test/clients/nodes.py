@@ -13,7 +13,7 @@ def node_pid(name: str) -> int:
 
 
 def _stat_fields(pid: int) -> list:
-    return open("/proc/%d/stat" % pid).read().rsplit(")", 1)[1].split()
+    return open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()
 
 
 def alive(pid: int) -> bool:

@@ -39,7 +39,7 @@ def record_and_reset(flight_s: float) -> dict:
         unpause()
         deadline = time.monotonic() + 120
         while clock[0] is None or clock[0] < start_s + flight_s:
-            assert time.monotonic() < deadline, "sim time stuck at %s" % clock[0]
+            assert time.monotonic() < deadline, f"sim time stuck at {clock[0]}"
             time.sleep(0.01)
         pause()
         time.sleep(1.0)  # what was published before the pause arrives

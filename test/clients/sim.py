@@ -19,7 +19,7 @@ def wait_sim_time(t_s: float, timeout_s: float) -> dict:
     t = 0.0
     while t < t_s:
         if time.monotonic() > deadline:
-            raise SystemExit("sim time stuck at %.2f s" % t)
+            raise SystemExit(f"sim time stuck at {t:.2f} s")
         try:
             t = rospy.wait_for_message("/clock", Clock, timeout=5).clock.to_sec()
         except rospy.ROSException:

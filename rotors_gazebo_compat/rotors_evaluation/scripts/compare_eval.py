@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Tabulates hovering metrics of several bags side by side:
 compare_eval.py -b a.bag b.bag --mav_name firefly"""
+
 import sys
 from pathlib import Path
 

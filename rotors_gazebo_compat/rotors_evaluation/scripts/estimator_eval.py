@@ -2,6 +2,7 @@
 """Estimator evaluation of a flight bag (ours): the estimate (msf_core/odometry, cov_core,
 state_out) against the simulator's ground truth: estimator RMS, bias estimates, NEES.
 `rosrun rotors_evaluation estimator_eval.py -b <bag> --mav_name firefly --save_plots True`"""
+
 import sys
 from pathlib import Path
 

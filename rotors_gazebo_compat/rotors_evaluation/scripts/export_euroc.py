@@ -11,6 +11,7 @@ for the VI-sensor geometry that rotors_description's vi_sensor_macro builds.
 
     rosrun rotors_evaluation export_euroc.py -b <bag> -o <dir> [--mav_name firefly]
 """
+
 import argparse
 import sys
 from pathlib import Path
@@ -27,8 +28,12 @@ P_L_CAM = {"left": np.array([0.015, 0.055, 0.0065]), "right": np.array([0.015, -
 # optical frame (x right, y down, z forward) in the camera link frame: rpy (-pi/2, 0, -pi/2)
 R_L_OPTICAL = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
 # the ADIS16448 model of default_imu / vi_sensor_macro (continuous-time densities)
-ADIS16448 = {"gyroscope_noise_density": 0.0003394, "gyroscope_random_walk": 0.000038785,
-             "accelerometer_noise_density": 0.004, "accelerometer_random_walk": 0.006}
+ADIS16448 = {
+    "gyroscope_noise_density": 0.0003394,
+    "gyroscope_random_walk": 0.000038785,
+    "accelerometer_noise_density": 0.004,
+    "accelerometer_random_walk": 0.006,
+}
 
 
 def _ns(stamp) -> int:
@@ -37,9 +42,13 @@ def _ns(stamp) -> int:
 
 def _rotation(q) -> np.ndarray:
     w, x, y, z = q.w, q.x, q.y, q.z
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
 
 
 def _matrix_yaml(T: np.ndarray) -> str:
@@ -78,7 +87,8 @@ def _write_camera(bag: FlightBag, mav: str, side: str, out: Path, from_png) -> i
         f"sensor_type: camera\ncomment: VI-sensor {side} camera (simulated, {bag.path.name})\n"
         f"T_BS:\n{_matrix_yaml(T_BS)}rate_hz: {rate:.3f}\nresolution: [{info.width}, {info.height}]\n"
         f"camera_model: pinhole\nintrinsics: [{K[0]!r}, {K[4]!r}, {K[2]!r}, {K[5]!r}]\n"
-        f"distortion_model: radial-tangential\ndistortion_coefficients: [{D[0]!r}, {D[1]!r}, {D[2]!r}, {D[3]!r}]\n")
+        f"distortion_model: radial-tangential\ndistortion_coefficients: [{D[0]!r}, {D[1]!r}, {D[2]!r}, {D[3]!r}]\n"
+    )
     return len(rows)
 
 
@@ -96,12 +106,13 @@ def _write_imu(bag: FlightBag, mav: str, out: Path) -> int:
         raise BagError(f"no messages on {topic}")
     (folder / "data.csv").write_text(
         "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
-        "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n" + "\n".join(lines) + "\n")
+        "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n" + "\n".join(lines) + "\n"
+    )
     rate = (len(stamps) - 1) / ((stamps[-1] - stamps[0]) * 1e-9) if len(stamps) > 1 else 0.0
     noise = "".join(f"{k}: {v!r}\n" for k, v in ADIS16448.items())
     (folder / "sensor.yaml").write_text(
-        f"sensor_type: imu\ncomment: VI-sensor ADIS16448 (simulated)\nT_BS:\n{_matrix_yaml(np.eye(4))}"
-        f"rate_hz: {rate:.3f}\n{noise}")
+        f"sensor_type: imu\ncomment: VI-sensor ADIS16448 (simulated)\nT_BS:\n{_matrix_yaml(np.eye(4))}" f"rate_hz: {rate:.3f}\n{noise}"
+    )
     return len(lines)
 
 
@@ -127,8 +138,8 @@ def _write_ground_truth(bag: FlightBag, mav: str, out: Path) -> int:
     (folder / "data.csv").write_text(
         "#timestamp,p_RS_R_x [m],p_RS_R_y [m],p_RS_R_z [m],q_RS_w [],q_RS_x [],q_RS_y [],q_RS_z [],"
         "v_RS_R_x [m s^-1],v_RS_R_y [m s^-1],v_RS_R_z [m s^-1],b_w_RS_S_x [rad s^-1],b_w_RS_S_y [rad s^-1],"
-        "b_w_RS_S_z [rad s^-1],b_a_RS_S_x [m s^-2],b_a_RS_S_y [m s^-2],b_a_RS_S_z [m s^-2]\n"
-        + "\n".join(lines) + "\n")
+        "b_w_RS_S_z [rad s^-1],b_a_RS_S_x [m s^-2],b_a_RS_S_y [m s^-2],b_a_RS_S_z [m s^-2]\n" + "\n".join(lines) + "\n"
+    )
     return len(lines)
 
 
@@ -140,13 +151,16 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         from PIL import Image  # matplotlib's own PNG writer
+
         bag = FlightBag(Path(args.bag))
         out = Path(args.output)
         try:
-            counts = {"cam0": _write_camera(bag, args.mav_name, "left", out, Image),
-                      "cam1": _write_camera(bag, args.mav_name, "right", out, Image),
-                      "imu0": _write_imu(bag, args.mav_name, out),
-                      "state_groundtruth_estimate0": _write_ground_truth(bag, args.mav_name, out)}
+            counts = {
+                "cam0": _write_camera(bag, args.mav_name, "left", out, Image),
+                "cam1": _write_camera(bag, args.mav_name, "right", out, Image),
+                "imu0": _write_imu(bag, args.mav_name, out),
+                "state_groundtruth_estimate0": _write_ground_truth(bag, args.mav_name, out),
+            }
         finally:
             bag.close()
     except BagError as e:

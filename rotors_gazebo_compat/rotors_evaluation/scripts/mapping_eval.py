@@ -2,6 +2,7 @@
 """Mapping evaluation: a map built in flight against the world's octomap. Runs as
 `rosrun rotors_evaluation mapping_eval.py -m built.bt -t truth.bt --save_plots True` (or
 `--from_service CX CY CZ LX LY LZ` with the simulator running)."""
+
 import sys
 from pathlib import Path
 

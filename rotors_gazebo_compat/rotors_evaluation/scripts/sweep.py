@@ -5,6 +5,7 @@ Every flight runs isolated (own ROS master, ROS_HOME, logs), in lockstep and as 
 results go to DIR/results.csv, results.parquet and report.md with plots. Run it again to resume:
 finished flights are not flown twice. The sweep file format is in rotors_evaluation/sweep_spec.py
 and README ("Batch experiments")."""
+
 import argparse
 import sys
 import time
@@ -38,20 +39,22 @@ def main(argv=None) -> int:
         return 0
     from rotors_evaluation.sweep_report import write_report, write_table
     from rotors_evaluation.sweep_run import run_sweep
+
     t0 = time.monotonic()
     try:
         rows = run_sweep(spec, out, address=a.address, workers=a.workers)
     except KeyboardInterrupt:
-        print(f"\nsweep.py: interrupted; finished flights are kept in {out}, run the same command to resume",
-              file=sys.stderr)
+        print(f"\nsweep.py: interrupted; finished flights are kept in {out}, run the same command to resume", file=sys.stderr)
         return 130
     wall_s = time.monotonic() - t0
     tables = write_table(spec, rows, out)
     report = write_report(spec, rows, out, wall_s)
     failed = sum(r["status"] == "failed" for r in rows)
     unrepeatable = sum(r["status"] == "not repeatable" for r in rows)
-    print(f"[sweep] {len(rows)} flights, {failed} failed, {unrepeatable} not repeatable, {wall_s:.1f} s; "
-          f"{', '.join(map(str, tables))}, {report}")
+    print(
+        f"[sweep] {len(rows)} flights, {failed} failed, {unrepeatable} not repeatable, {wall_s:.1f} s; "
+        f"{', '.join(map(str, tables))}, {report}"
+    )
     return 0
 
 

@@ -2,6 +2,7 @@
 """Waypoint evaluation of a RotorS flight bag (Python 3, rosbags). Runs as
 `rosrun rotors_evaluation waypoints_eval.py -b <bag> --save_plots True --mav_name firefly` or as a plain
 script with only the PyPI dependencies."""
+
 import sys
 from pathlib import Path
 

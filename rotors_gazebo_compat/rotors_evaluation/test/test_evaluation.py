@@ -1,34 +1,48 @@
 """The evaluation scripts on synthetic bags whose RMS, settling time and collision time are known
 exactly, run as plain Python scripts (no ROS needed), plus their one-line errors on bad input."""
+
 import json
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
-
 from synthetic_bags import write_flight, write_old_rotors_flight
 
 SCRIPTS = Path(__file__).resolve().parents[1] / "scripts"
 
 
 def run(script: str, *args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, str(SCRIPTS / script), *args, "--plot", "False"], capture_output=True,
-                          text=True, timeout=120)
+    return subprocess.run([sys.executable, str(SCRIPTS / script), *args, "--plot", "False"], capture_output=True, text=True, timeout=120)
 
 
 def hover_bag(tmp_path: Path, **kw) -> Path:
     # set point (0, 0, 1) at t = 5 s; from 10 s on an offset of (0.04, 0, 0.03): RMS = 0.05 m;
     # angular velocity (0.08, 0, 0) throughout: RMS 0.08 rad/s
-    return write_flight(tmp_path / kw.pop("name", "hover.bag"),
-                        lambda t: (0.04, 0.0, 1.03) if t > 10.0 else (0.0, 0.0, 0.1 if t < 5 else 0.5),
-                        lambda t: (0.08, 0.0, 0.0), [(5.0, (0.0, 0.0, 1.0))], **kw)
+    return write_flight(
+        tmp_path / kw.pop("name", "hover.bag"),
+        lambda t: (0.04, 0.0, 1.03) if t > 10.0 else (0.0, 0.0, 0.1 if t < 5 else 0.5),
+        lambda t: (0.08, 0.0, 0.0),
+        [(5.0, (0.0, 0.0, 1.0))],
+        **kw,
+    )
 
 
 def test_hovering_rms_is_exact_and_printed_as_rotors_does(tmp_path: Path):
     bag = hover_bag(tmp_path)
-    res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "firefly", "--json", str(tmp_path / "r.json"),
-              "--save_plots", "True", "--plot_dir", str(tmp_path))
+    res = run(
+        "hovering_eval.py",
+        "-b",
+        str(bag),
+        "--mav_name",
+        "firefly",
+        "--json",
+        str(tmp_path / "r.json"),
+        "--save_plots",
+        "True",
+        "--plot_dir",
+        str(tmp_path),
+    )
     assert res.returncode == 0, res.stderr
     assert "[Waypoint 0]: [0.000, 0.000, 1.000, 0.000] at time 5.000 s" in res.stdout
     assert "Position RMS error: 0.050 m" in res.stdout
@@ -48,7 +62,7 @@ def test_collision_after_the_delay_voids_the_score(tmp_path: Path):
     assert res.returncode == 0, res.stderr
     assert "Collision at time 12.500 s!" in res.stdout
     assert "One or more collisions occurred - no points are awarded!" in res.stdout
-    summary = json.loads(res.stdout[res.stdout.index("{"):])
+    summary = json.loads(res.stdout[res.stdout.index("{") :])
     assert summary["collision_times"] == [12.5]
 
 
@@ -58,12 +72,12 @@ def test_waypoint_settling_time_is_exact(tmp_path: Path):
         if t <= 20.0:
             return (0.0, 0.0, 1.0)
         return (1.5, 0.0, 1.0) if t < 23.5 else (2.0, 0.0, 1.0)
-    bag = write_flight(tmp_path / "wp.bag", position, lambda t: (0.0, 0.0, 0.0),
-                       [(5.0, (0.0, 0.0, 1.0)), (20.0, (2.0, 0.0, 1.0))])
+
+    bag = write_flight(tmp_path / "wp.bag", position, lambda t: (0.0, 0.0, 0.0), [(5.0, (0.0, 0.0, 1.0)), (20.0, (2.0, 0.0, 1.0))])
     for script in ("waypoints_eval.py", "waypoint_eval.py"):
         res = run(script, "-b", str(bag), "--mav_name", "firefly", "--json", "-")
         assert res.returncode == 0, res.stderr
-        summary = json.loads(res.stdout[res.stdout.index("{"):])
+        summary = json.loads(res.stdout[res.stdout.index("{") :])
         assert summary["segments"][1]["settling_time"] == pytest.approx(3.5, abs=0.011)
         assert summary["segments"][1]["position_rms"] == pytest.approx(0.0, abs=1e-12)
         assert "settling time: 3.50 s" in res.stdout
@@ -82,11 +96,11 @@ def test_original_rotors_bag_without_mav_prefix(tmp_path: Path):
     res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "firefly", "-m", "/motors", "--json", "-")
     assert res.returncode == 0, res.stderr
     assert "Position RMS error: 0.050 m" in res.stdout
-    assert json.loads(res.stdout[res.stdout.index("{"):])["topics"]["motors"] == "motors"
+    assert json.loads(res.stdout[res.stdout.index("{") :])["topics"]["motors"] == "motors"
     # the MotorSpeed messages are read: 4,000 samples of six rotors at 543 rad/s
     from rotors_evaluation.bag_data import load_flight
-    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory",
-                       "/wrench", "/motors")
+
+    data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench", "/motors")
     assert data.motor_speeds is not None and data.motor_speeds.values.shape == (4000, 6)
     assert (data.motor_speeds.values == 543.0).all()
 
@@ -94,8 +108,9 @@ def test_original_rotors_bag_without_mav_prefix(tmp_path: Path):
 def test_compare_tabulates_several_bags(tmp_path: Path):
     a = hover_bag(tmp_path, name="a.bag")
     b = write_flight(tmp_path / "b.bag", lambda t: (0.0, 0.0, 1.0), lambda t: (0, 0, 0), [(5.0, (0.0, 0.0, 1.0))])
-    res = subprocess.run([sys.executable, str(SCRIPTS / "compare_eval.py"), "-b", str(a), str(b), "-n", "firefly"],
-                         capture_output=True, text=True)
+    res = subprocess.run(
+        [sys.executable, str(SCRIPTS / "compare_eval.py"), "-b", str(a), str(b), "-n", "firefly"], capture_output=True, text=True
+    )
     assert res.returncode == 0, res.stderr
     lines = res.stdout.splitlines()
     assert lines[0].split()[:3] == ["bag", "position", "RMS"]
@@ -115,6 +130,7 @@ def test_wrong_mav_name_names_missing_topic_and_lists_bag(tmp_path: Path):
 
 def test_empty_and_truncated_bags_get_one_clear_line(tmp_path: Path):
     from rosbags.rosbag1 import Writer
+
     empty = tmp_path / "empty.bag"
     with Writer(empty):
         pass
@@ -133,38 +149,44 @@ def test_empty_and_truncated_bags_get_one_clear_line(tmp_path: Path):
 def test_pre_2_0_rotors_bag_is_evaluated_by_every_script(tmp_path: Path):
     """RotorS' own test bag layout (reference 1.6): old names without prefix, MotorSpeed on /motors,
     /<mav>/collisions, CommandTrajectoryPositionYaw set points, CommandMotorSpeed commands."""
+
     def position(t):  # as hover_bag, then waypoint 1 at 20 s to (2, 0, 1) reached at 23.5 s
         if t <= 10.0:
             return (0.0, 0.0, 0.1 if t < 5 else 0.5)
         if t <= 20.0:
             return (0.04, 0.0, 1.03)
         return (1.5, 0.0, 1.0) if t < 23.5 else (2.0, 0.0, 1.0)
-    bag = write_old_rotors_flight(tmp_path / "waypoint_example.bag", position,
-                                  [(5.0, (0.0, 0.0, 1.0)), (20.0, (2.0, 0.0, 1.0))], collisions=[35.0])
+
+    bag = write_old_rotors_flight(
+        tmp_path / "waypoint_example.bag", position, [(5.0, (0.0, 0.0, 1.0)), (20.0, (2.0, 0.0, 1.0))], collisions=[35.0]
+    )
     res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor", "-m", "/motors", "--json", "-")
     assert res.returncode == 0, res.stderr
     assert "[Waypoint 0]: [0.000, 0.000, 1.000, 0.000] at time 5.000 s" in res.stdout
     assert "Collision at time 35.000 s!" in res.stdout  # and, as RotorS, no points
-    summary = json.loads(res.stdout[res.stdout.index("{"):])
+    summary = json.loads(res.stdout[res.stdout.index("{") :])
     assert summary["position_rms"] == pytest.approx(0.05, abs=1e-12)
     assert summary["topics"]["waypoints"] == "asymmetric_quadrotor/command/trajectory_position_yaw"
     assert summary["topics"]["motors"] == "motors" and summary["topics"]["wrench"] == "asymmetric_quadrotor/collisions"
     res = run("waypoints_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor", "--json", "-")
     assert res.returncode == 0, res.stderr
-    summary = json.loads(res.stdout[res.stdout.index("{"):])
+    summary = json.loads(res.stdout[res.stdout.index("{") :])
     assert summary["segments"][1]["settling_time"] == pytest.approx(3.5, abs=0.011)
     print(res.stdout)
 
 
 def test_a_topic_of_a_type_the_evaluation_cannot_use_is_one_line(tmp_path: Path):
-    bag = write_old_rotors_flight(tmp_path / "velocity.bag", lambda t: (0.0, 0.0, 1.0), [(5.0, (1.0, 0.0, 0.0))],
-                                  set_point_type="CommandTrajectoryVelocityYawrate")
+    bag = write_old_rotors_flight(
+        tmp_path / "velocity.bag", lambda t: (0.0, 0.0, 1.0), [(5.0, (1.0, 0.0, 0.0))], set_point_type="CommandTrajectoryVelocityYawrate"
+    )
     res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor")
     assert res.returncode == 1 and "Traceback" not in res.stderr, res.stderr
     lines = res.stderr.strip().splitlines()
     assert len(lines) == 1, res.stderr
-    assert ("waypoint topic 'asymmetric_quadrotor/command/trajectory_position_yaw' has type "
-            "mav_msgs/msg/CommandTrajectoryVelocityYawrate, which holds no position set point") in lines[0]
+    assert (
+        "waypoint topic 'asymmetric_quadrotor/command/trajectory_position_yaw' has type "
+        "mav_msgs/msg/CommandTrajectoryVelocityYawrate, which holds no position set point"
+    ) in lines[0]
     res = run("hovering_eval.py", "-b", str(bag), "--mav_name", "asymmetric_quadrotor", "-t", "/motors")
     assert res.returncode == 1 and len(res.stderr.strip().splitlines()) == 1, res.stderr
     assert "twist topic 'motors' has type mav_msgs/msg/MotorSpeed" in res.stderr

@@ -5,6 +5,7 @@ and collisions are known exactly, and the module's series API itself.
 RotorS' own hovering_eval.py imports this module too; it is not shipped (never copied code). With
 ROTORS_UPSTREAM_EVALUATION pointing at a RotorS checkout's rotors_evaluation/src, the last test runs
 it on the same bag."""
+
 import os
 import subprocess
 import sys
@@ -12,7 +13,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from synthetic_bags import write_flight
 
 HERE = Path(__file__).resolve().parent
@@ -22,8 +22,7 @@ SRC = HERE.parent / "src"
 def run(script: Path, *args: str, cwd: Path) -> subprocess.CompletedProcess:
     """The script as a user runs it, in `cwd` (where RotorS' module saves its plots)."""
     env = dict(os.environ, PYTHONPATH=f"{SRC}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
-    return subprocess.run([sys.executable, str(script), *args], capture_output=True, text=True, timeout=120,
-                          env=env, cwd=cwd)
+    return subprocess.run([sys.executable, str(script), *args], capture_output=True, text=True, timeout=120, env=env, cwd=cwd)
 
 
 def two_waypoint_bag(tmp_path: Path, **kw) -> Path:
@@ -33,8 +32,8 @@ def two_waypoint_bag(tmp_path: Path, **kw) -> Path:
         if t < 20.0:
             return (0.0, 0.0, 0.5) if t < 7.0 else (0.05, 0.0, 1.0)
         return (1.5, 0.0, 1.0) if t < 23.5 else (2.0, 0.0, 1.0)
-    return write_flight(tmp_path / "two.bag", position, lambda t: (0.0, 0.03, 0.0),
-                        [(5.0, (0.0, 0.0, 1.0)), (20.0, (2.0, 0.0, 1.0))], **kw)
+
+    return write_flight(tmp_path / "two.bag", position, lambda t: (0.0, 0.03, 0.0), [(5.0, (0.0, 0.0, 1.0)), (20.0, (2.0, 0.0, 1.0))], **kw)
 
 
 def test_a_user_script_on_rosbag_tools_gets_the_exact_figures(tmp_path: Path):
@@ -44,7 +43,7 @@ def test_a_user_script_on_rosbag_tools_gets_the_exact_figures(tmp_path: Path):
     out = res.stdout
     # periods count from the bag's first message (0.01 s), as RotorS' helpers do
     assert "[Waypoint 0]: [0.000, 0.000, 1.000] from 4.990 s to 19.990 s" in out
-    assert "[Waypoint 0]: Settling time: 2.000 s" in out      # inside 0.1 m from 7 s (first sample after 7.0)
+    assert "[Waypoint 0]: Settling time: 2.000 s" in out  # inside 0.1 m from 7 s (first sample after 7.0)
     assert "[Waypoint 0]: Position RMS error: 0.050 m" in out
     assert "[Waypoint 1]: Settling time: 3.500 s" in out
     assert "[Waypoint 1]: Position RMS error: 0.000 m" in out
@@ -57,6 +56,7 @@ def test_a_user_script_on_rosbag_tools_gets_the_exact_figures(tmp_path: Path):
 def test_series_slice_resample_and_work_follow_rotors_rules(tmp_path: Path):
     sys.path.insert(0, str(SRC))
     from rosbag_tools import analyze_bag
+
     ab = analyze_bag.AnalyzeBag(str(two_waypoint_bag(tmp_path)), save_plots=False)
     ab.add_pose_topic("firefly/ground_truth/pose")
     ab.add_twist_topic("/firefly/ground_truth/twist")
@@ -75,15 +75,17 @@ def test_series_slice_resample_and_work_follow_rotors_rules(tmp_path: Path):
     for t in (0.0, 0.5, 1.0):
         speeds.append_array([100.0, -100.0])
         speeds.append_times(t, analyze_bag.BagTime(t))
-    assert analyze_bag.work(speeds, 1e-6) == pytest.approx(2 * 100.0 ** 3 * 1e-6 * 1.0)
+    assert analyze_bag.work(speeds, 1e-6) == pytest.approx(2 * 100.0**3 * 1e-6 * 1.0)
     assert analyze_bag.create_topic_list("a,b") == ["a", "b"] and analyze_bag.create_topic_list("") == []
 
 
 UPSTREAM = os.environ.get("ROTORS_UPSTREAM_EVALUATION")
 if UPSTREAM:  # only defined when RotorS' sources are given (see the module docstring)
+
     def test_rotors_own_hovering_eval_runs_on_this_module(tmp_path: Path):
-        res = run(Path(UPSTREAM) / "hovering_eval.py", "-b", str(two_waypoint_bag(tmp_path)), "-n", "firefly",
-                  "--plot", "False", cwd=tmp_path)
+        res = run(
+            Path(UPSTREAM) / "hovering_eval.py", "-b", str(two_waypoint_bag(tmp_path)), "-n", "firefly", "--plot", "False", cwd=tmp_path
+        )
         assert res.returncode == 0, res.stderr
         print(res.stdout)
         assert "Average position RMS error: 0.050 m" in res.stdout

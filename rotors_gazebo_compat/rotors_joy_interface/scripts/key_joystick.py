@@ -2,6 +2,7 @@
 """key_joystick.py: fly with the keyboard in a plain terminal (no uinput, no X, no joy_node).
 Publishes sensor_msgs/Joy on `joy` at ~rate (20 Hz) for rotors_joy_interface. Keys: arrows roll
 and pitch, W/S thrust, A/D yaw, Space centres, Q or Ctrl-C quits (see keyboard.KeyJoystick)."""
+
 import os
 import select
 import sys
@@ -20,8 +21,10 @@ HELP = "keys: arrows roll/pitch, W/S thrust up/down, A/D yaw left/right, Space l
 def main() -> int:
     rospy.init_node("key_joystick")
     if not os.isatty(sys.stdin.fileno()):
-        rospy.logfatal("[key_joystick] stdin is not a terminal: run it in one (rosrun rotors_joy_interface "
-                       "key_joystick.py __ns:=<mav>), or launch mav_with_keyboard.launch from a terminal")
+        rospy.logfatal(
+            "[key_joystick] stdin is not a terminal: run it in one (rosrun rotors_joy_interface "
+            "key_joystick.py __ns:=<mav>), or launch mav_with_keyboard.launch from a terminal"
+        )
         return 1
     rate_hz = float(rospy.get_param("~rate", 20.0))
     pub = rospy.Publisher("joy", Joy, queue_size=10)

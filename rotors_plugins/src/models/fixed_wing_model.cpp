@@ -174,7 +174,7 @@ std::string FixedWingInputs::FromNormalized(const std::vector<double>& n, const 
 }
 
 FixedWingModel::FixedWingModel(FixedWingAeroParams aero, FixedWingVehicleParams vehicle)
-    : aero_(std::move(aero)), vehicle_(std::move(vehicle)) {
+    : aero_(std::move(aero)), vehicle_(vehicle) {
   const std::string why = aero_.Validate();
   if (!why.empty()) throw std::invalid_argument("fixed-wing aerodynamic parameters: " + why);
 }

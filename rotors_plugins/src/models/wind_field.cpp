@@ -67,7 +67,7 @@ WindField WindField::Load(const std::string& path) {
   for (size_t k = 0; k < fk.size(); ++k)
     if (fk[k] < 0.0 || fk[k] > 1.0 || (k > 0 && fk[k] <= fk[k - 1]))
       throw Bad(path, "'vertical_spacing_factors:' must increase within [0, 1]");
-  const size_t columns = static_cast<size_t>(f.n_x * f.n_y), points = columns * fk.size();
+  const size_t columns = static_cast<size_t>(f.n_x) * static_cast<size_t>(f.n_y), points = columns * fk.size();
   f.bottom_z = take("bottom_z", columns);
   f.top_z = take("top_z", columns);
   for (size_t c = 0; c < columns; ++c)

@@ -17,10 +17,8 @@
 namespace rotors_flight_batch {
 
 using rotors_sim::SimError;
-using rotors_sim::physics::FreeBodyInertia;
 using rotors_sim::physics::FreeBodyState;
 using rotors_sim::physics::RotationFromQuaternion;
-using rotors_sim::physics::StepFreeBody;
 namespace rgp = rotors_gazebo_plugins;
 
 namespace {

@@ -56,6 +56,15 @@ struct KernelBefore {
 };
 
 namespace kernel_detail {
+/// Lanes of V: 1 for double, the vector's width for a GCC vector of doubles.
+template <class V>
+struct LaneCount {
+  static constexpr size_t value = sizeof(V) / sizeof(double);
+};
+template <>
+struct LaneCount<double> {
+  static constexpr size_t value = 1;
+};
 template <class V>
 inline V Load(const double* p) {
   V v;
@@ -110,7 +119,7 @@ template <class V, size_t Stride>
 inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
                                  const KernelBefore& before) {
   using namespace kernel_detail;
-  constexpr size_t L = sizeof(V) / sizeof(double);
+  constexpr size_t L = LaneCount<V>::value;
   static_assert(Stride >= L, "a row holds at least the call's lanes");
   const size_t n = a.n;
   rotors_sim::physics::FreeBodyStateT<V> s;
@@ -246,7 +255,7 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
 template <class V>
 inline unsigned StepLanes(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
                           const KernelBefore& before) {
-  return StepLanesStrided<V, sizeof(V) / sizeof(double)>(m, a, i0, wind, before);
+  return StepLanesStrided<V, kernel_detail::LaneCount<V>::value>(m, a, i0, wind, before);
 }
 
 /// One vehicle (the last group's vehicles when there are fewer than four) with rows of 4 lanes.

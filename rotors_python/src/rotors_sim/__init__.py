@@ -16,8 +16,8 @@ See docs/python.md.
 
 from rotors_sim._engine import SimError, atmosphere, frames, step_all
 from rotors_sim.batch import Batch
-from rotors_sim.flight_batch import FlightBatch
 from rotors_sim.controllers import AttitudeLevelController, LeePositionController
+from rotors_sim.flight_batch import FlightBatch
 from rotors_sim.world import Odometry, World, known_vehicles
 
 __all__ = [

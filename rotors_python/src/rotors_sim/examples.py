@@ -26,9 +26,16 @@ class HoverFlight:
     messages: list = field(default_factory=list)  # (topic, time_s, ROS wire bytes) of `record` topics
 
 
-def hovering_example(mav_name: str = "firefly", random_seed: int = 42, duration_s: float = 15.0,
-                     waypoint=(0.0, 0.0, 1.0, 0.0), due_s: float = 5.0, record: tuple[str, ...] = (),
-                     world: World | None = None, attached: bool = False) -> HoverFlight:
+def hovering_example(
+    mav_name: str = "firefly",
+    random_seed: int = 42,
+    duration_s: float = 15.0,
+    waypoint=(0.0, 0.0, 1.0, 0.0),
+    due_s: float = 5.0,
+    record: tuple[str, ...] = (),
+    world: World | None = None,
+    attached: bool = False,
+) -> HoverFlight:
     world = world or World("basic")
     world.spawn_mav(mav_name, random_seed=random_seed)
     lee = LeePositionController.for_mav(mav_name)

@@ -14,8 +14,9 @@ nodes. See docs/batched_flight.md for what it simulates, what it leaves out and 
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -25,10 +26,14 @@ from rotors_sim.controllers import load_yamls
 from rotors_sim.paths import resource
 from rotors_sim.world import World
 
-COMMAND_MODES = ("rotor_speeds", "normalized_thrust", "lee_position", "roll_pitch_yawrate_thrust",
-                 "attitude_thrust", "rate_thrust")
-ODOMETRY_COLUMNS = {"position_W": slice(0, 3), "orientation": slice(3, 7), "velocity_B": slice(7, 10),
-                    "angular_velocity_B": slice(10, 13), "stamp": 13}
+COMMAND_MODES = ("rotor_speeds", "normalized_thrust", "lee_position", "roll_pitch_yawrate_thrust", "attitude_thrust", "rate_thrust")
+ODOMETRY_COLUMNS = {
+    "position_W": slice(0, 3),
+    "orientation": slice(3, 7),
+    "velocity_B": slice(7, 10),
+    "angular_velocity_B": slice(10, 13),
+    "stamp": 13,
+}
 
 
 def controller_yamls(mav_name: str, mode: str) -> list[Path]:
@@ -60,11 +65,25 @@ class FlightBatch:
     Further keywords go to the xacro (enable_wind=True, ...).
     """
 
-    def __init__(self, mav_name: str = "firefly", count: int = 1, *, mode: str = "lee_position",
-                 world: str = "basic", step_size: float | None = 0.002, control_divisor: int = 5, threads: int = 0,
-                 seeds: Sequence[int] | None = None, noise: bool = True, imu: bool = True,
-                 positions: Any = None, yaws: Any = None, controller_params: Sequence[str | Path] | None = None,
-                 controller_overrides: Sequence[dict[str, float]] | None = None, **xacro_args: Any):
+    def __init__(
+        self,
+        mav_name: str = "firefly",
+        count: int = 1,
+        *,
+        mode: str = "lee_position",
+        world: str = "basic",
+        step_size: float | None = 0.002,
+        control_divisor: int = 5,
+        threads: int = 0,
+        seeds: Sequence[int] | None = None,
+        noise: bool = True,
+        imu: bool = True,
+        positions: Any = None,
+        yaws: Any = None,
+        controller_params: Sequence[str | Path] | None = None,
+        controller_overrides: Sequence[dict[str, float]] | None = None,
+        **xacro_args: Any,
+    ):
         if mode not in COMMAND_MODES:
             raise SimError(f"mode '{mode}' is not known; use one of: {', '.join(COMMAND_MODES)}")
         if int(count) < 1:
@@ -77,8 +96,7 @@ class FlightBatch:
             raise SimError(f"seeds must be >= 0 (got {min(seeds)})")
         self.world = World(world, step_size=step_size)
         # the description is read from the vehicle as the full world spawns it, at rest in the air
-        self.world.spawn_mav(mav_name, xyz=(0.0, 0.0, 1.0), random_seed=seeds[0], odometry_divisor=control_divisor,
-                             **xacro_args)
+        self.world.spawn_mav(mav_name, xyz=(0.0, 0.0, 1.0), random_seed=seeds[0], odometry_divisor=control_divisor, **xacro_args)
         self.description = self.world.engine.describe_multirotor(mav_name, "odometry_sensor1/odometry")
         self.mav_name = mav_name
         self.mode = mode
@@ -89,8 +107,20 @@ class FlightBatch:
             if mode != "lee_position" or len(controller_overrides) != count:
                 raise SimError(f"controller_overrides: one dict per vehicle ({count}) for mode lee_position")
             each = [{**numbers, **{k.replace(".", "/"): float(v) for k, v in o.items()}} for o in controller_overrides]
-        self._b = _engine.FlightBatch(self.description, count, mode, numbers, others, source, threads=threads,
-                                      imu=imu, noise=noise, seeds=seeds, description_seed=seeds[0], numbers_each=each)
+        self._b = _engine.FlightBatch(
+            self.description,
+            count,
+            mode,
+            numbers,
+            others,
+            source,
+            threads=threads,
+            imu=imu,
+            noise=noise,
+            seeds=seeds,
+            description_seed=seeds[0],
+            numbers_each=each,
+        )
         self.commands: np.ndarray = self._b.commands
         """Writable view of the engine's command array (count x command_columns)."""
         start = np.zeros((count, 3)) if positions is None else np.asarray(positions, dtype=float)
@@ -173,5 +203,8 @@ class FlightBatch:
 
     def memory(self) -> dict[str, int]:
         """Bytes per vehicle: the state arrays, the controller objects and the noise models."""
-        return {"state": self._b.state_bytes_per_vehicle, "controller": self._b.controller_bytes_per_vehicle,
-                "noise": self._b.noise_bytes_per_vehicle}
+        return {
+            "state": self._b.state_bytes_per_vehicle,
+            "controller": self._b.controller_bytes_per_vehicle,
+            "noise": self._b.noise_bytes_per_vehicle,
+        }

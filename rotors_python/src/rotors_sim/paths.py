@@ -10,7 +10,7 @@ import rospkg
 from rotors_sim._engine import SimError
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def package_path(name: str) -> Path:
     try:
         return Path(rospkg.RosPack().get_path(name))

@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import functools
 import importlib
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 import xacro
@@ -23,8 +24,9 @@ from rotors_sim.paths import package_path, world_file
 def known_vehicles() -> list[str]:
     """Vehicles with a mechanics file <name>.xacro beside <name>_base.xacro (as rotors_xacro checks)."""
     urdf = package_path("rotors_description") / "urdf"
-    return sorted(p.name[: -len("_base.xacro")] for p in urdf.glob("*_base.xacro")
-                  if (urdf / p.name.replace("_base.xacro", ".xacro")).exists())
+    return sorted(
+        p.name[: -len("_base.xacro")] for p in urdf.glob("*_base.xacro") if (urdf / p.name.replace("_base.xacro", ".xacro")).exists()
+    )
 
 
 def run_xacro(path: str | Path, args: dict[str, Any]) -> str:
@@ -36,7 +38,7 @@ def run_xacro(path: str | Path, args: dict[str, Any]) -> str:
         raise SimError(f"xacro {Path(path).name}: {e}") from None
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def message_class(datatype: str) -> type:
     """The Python class of a ROS message type, e.g. 'sensor_msgs/Imu'."""
     package, name = datatype.split("/")
@@ -59,8 +61,7 @@ class Odometry:
 class World:
     """A world from rotors_gazebo/worlds (by name), a .world file, or SDF text (`sdf=`)."""
 
-    def __init__(self, name_or_path: str | Path = "basic", *, sdf: str | None = None, step_size: float | None = None,
-                 shadows: bool = True):
+    def __init__(self, name_or_path: str | Path = "basic", *, sdf: str | None = None, step_size: float | None = None, shadows: bool = True):
         """`step_size` [s] overrides the world file's max_step_size (e.g. 0.002 for 500 Hz physics);
         `shadows=False` draws no shadows whatever the world says (faster cameras)."""
         _engine.add_model_path(str(package_path("rotors_gazebo") / "models"))  # model://asphalt_plane, ...
@@ -73,8 +74,14 @@ class World:
         self._vehicles: dict[str, str] = {}  # namespace -> model name
 
     # --- vehicles ---
-    def spawn(self, description: str | Path, name: str, xyz: Sequence[float] = (0.0, 0.0, 0.0),
-              rpy: Sequence[float] = (0.0, 0.0, 0.0), **xacro_args: Any) -> str:
+    def spawn(
+        self,
+        description: str | Path,
+        name: str,
+        xyz: Sequence[float] = (0.0, 0.0, 0.0),
+        rpy: Sequence[float] = (0.0, 0.0, 0.0),
+        **xacro_args: Any,
+    ) -> str:
         """Spawns a model from URDF/SDF text, or from a .urdf/.sdf/.xacro/.gazebo file (run through
         xacro with `xacro_args`). Returns the model name."""
         text = str(description)
@@ -85,9 +92,16 @@ class World:
             text = path.read_text() if path.suffix in (".urdf", ".sdf") and not xacro_args else run_xacro(path, xacro_args)
         return self._w.spawn(text, name, list(map(float, xyz)), list(map(float, rpy)))
 
-    def spawn_mav(self, mav_name: str = "firefly", namespace: str | None = None,
-                  xyz: Sequence[float] = (0.0, 0.0, 0.1), rpy: Sequence[float] = (0.0, 0.0, 0.0),
-                  random_seed: int = -1, model: str | Path | None = None, **xacro_args: Any) -> str:
+    def spawn_mav(
+        self,
+        mav_name: str = "firefly",
+        namespace: str | None = None,
+        xyz: Sequence[float] = (0.0, 0.0, 0.1),
+        rpy: Sequence[float] = (0.0, 0.0, 0.0),
+        random_seed: int = -1,
+        model: str | Path | None = None,
+        **xacro_args: Any,
+    ) -> str:
         """A RotorS vehicle as spawn_mav.launch spawns it: `model` defaults to
         mav_generic_odometry_sensor.gazebo (the hovering example's), `random_seed` seeds every sensor
         noise (-1: from the clock). Further xacro arguments as keywords (enable_logging=False, ...)."""
@@ -96,9 +110,16 @@ class World:
             raise SimError(f"unknown vehicle mav_name '{mav_name}' (known: {' '.join(known)})")
         namespace = namespace or mav_name
         path = model or package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"
-        args = dict(mav_name=mav_name, namespace=namespace, random_seed=random_seed, enable_logging=False,
-                    enable_ground_truth=True, log_file=mav_name, wait_to_record_bag=False,
-                    enable_mavlink_interface=False)
+        args = dict(
+            mav_name=mav_name,
+            namespace=namespace,
+            random_seed=random_seed,
+            enable_logging=False,
+            enable_ground_truth=True,
+            log_file=mav_name,
+            wait_to_record_bag=False,
+            enable_mavlink_interface=False,
+        )
         args.update(xacro_args)
         name = self.spawn(path, namespace, xyz, rpy, **args)
         self._vehicles[namespace] = name
@@ -142,10 +163,17 @@ class World:
         """(position_W, orientation (x, y, z, w), velocity_W, angular_velocity_W); the canonical link by default."""
         return self._w.link_state(model, link)
 
-    def set_model_state(self, model: str, position: Sequence[float], orientation: Sequence[float] = (0, 0, 0, 1),
-                        velocity: Sequence[float] = (0, 0, 0), angular_velocity: Sequence[float] = (0, 0, 0)) -> None:
-        self._w.set_model_state(model, list(map(float, position)), list(map(float, orientation)),
-                                list(map(float, velocity)), list(map(float, angular_velocity)))
+    def set_model_state(
+        self,
+        model: str,
+        position: Sequence[float],
+        orientation: Sequence[float] = (0, 0, 0, 1),
+        velocity: Sequence[float] = (0, 0, 0),
+        angular_velocity: Sequence[float] = (0, 0, 0),
+    ) -> None:
+        self._w.set_model_state(
+            model, list(map(float, position)), list(map(float, orientation)), list(map(float, velocity)), list(map(float, angular_velocity))
+        )
 
     def set_motor_speeds(self, namespace: str, speeds: Sequence[float]) -> None:
         """The motor command [rad/s], as command/motor_speed would give it (validated the same way)."""
@@ -202,8 +230,7 @@ class World:
         loop reads one or two topics. No argument: all again."""
         self._w.listen(list(topics))
 
-    def attach_controller(self, namespace: str, controller: Any,
-                          odometry_topic: str = "odometry_sensor1/odometry") -> None:
+    def attach_controller(self, namespace: str, controller: Any, odometry_topic: str = "odometry_sensor1/odometry") -> None:
         """Runs `controller` (LeePositionController, AttitudeLevelController) in C++ inside step():
         each new odometry message of /<namespace>/<odometry_topic> is answered with a motor command
         before the next physics step, exactly as the Python loop (and a ROS node in lockstep) would."""

@@ -5,6 +5,7 @@ Same names and fields as RotorS. Differences, all fixes: IMU accelerations and m
 motor speeds are read (RotorS appended to numpy arrays with list methods, and read only the old
 MotorSpeed message); a series that settles at its first sample (time 0.0) counts as settled;
 `resample` interpolates linearly (RotorS used an FFT resampling that rings at the ends)."""
+
 from __future__ import annotations
 
 import copy
@@ -12,6 +13,7 @@ import math
 import os
 
 import numpy
+
 from rotors_evaluation.bag_data import FlightBag
 
 
@@ -182,8 +184,7 @@ class AnalyzeBag:
             series_list.append(cls())
 
     def add_pose_topic(self, topic):
-        self._add(topic, self.pose_topics, (self.pos, XYZWithTime), (self.quat, QuatWithTime),
-                  (self.rpy, RPYWithTime))
+        self._add(topic, self.pose_topics, (self.pos, XYZWithTime), (self.quat, QuatWithTime), (self.rpy, RPYWithTime))
 
     def add_twist_topic(self, topic):
         self._add(topic, self.twist_topics, (self.pqr, XYZWithTime))
@@ -202,15 +203,19 @@ class AnalyzeBag:
 
     def extract_messages(self):
         """Reads every added topic that the bag holds (a topic it lacks stays an empty series)."""
-        extractors = ((self.pose_topics, self._pose), (self.twist_topics, self._twist), (self.imu_topics, self._imu),
-                      (self.motor_velocity_topics, self._motor_velocity), (self.waypoint_topics, self._waypoint),
-                      (self.wrench_topics, self._wrench))
+        extractors = (
+            (self.pose_topics, self._pose),
+            (self.twist_topics, self._twist),
+            (self.imu_topics, self._imu),
+            (self.motor_velocity_topics, self._motor_velocity),
+            (self.waypoint_topics, self._waypoint),
+            (self.wrench_topics, self._wrench),
+        )
         for topics, extract in extractors:
             for index, topic in enumerate(topics):
                 for msg, msgtype, t_ns in self.bag.messages(topic):
                     bag_time = BagTime(t_ns * 1e-9)
-                    self.bag_time_start = bag_time if self.bag_time_start is None else min(self.bag_time_start,
-                                                                                           bag_time)
+                    self.bag_time_start = bag_time if self.bag_time_start is None else min(self.bag_time_start, bag_time)
                     self.bag_time_end = bag_time if self.bag_time_end is None else max(self.bag_time_end, bag_time)
                     stamp = msg.header.stamp
                     extract(index, msg, msgtype, stamp.sec + stamp.nanosec * 1e-9, bag_time)
@@ -227,8 +232,7 @@ class AnalyzeBag:
         else:
             print(f"Got unknown type: {msgtype} on pose topic {self.pose_topics[index]}")
             return
-        for series, append in ((self.pos, "append_point"), (self.quat, "append_quaternion"),
-                               (self.rpy, "append_quaternion")):
+        for series, append in ((self.pos, "append_point"), (self.quat, "append_quaternion"), (self.rpy, "append_quaternion")):
             getattr(series[index], append)(position if append == "append_point" else orientation)
             series[index].append_times(t, bag_time)
 
@@ -259,14 +263,18 @@ class AnalyzeBag:
 
     def _figure(self, title):
         from matplotlib import pyplot
+
         fig = pyplot.figure()
         fig.suptitle(title)
         return fig, fig.add_subplot(111)
 
     @staticmethod
     def _mark_times(ax, start_time, end_time, settling_time):
-        for t, color, label in ((start_time, "c", "start evaluation"), (end_time, "m", "end evaluation"),
-                                (settling_time, "k", "settled, start RMS eval")):
+        for t, color, label in (
+            (start_time, "c", "start evaluation"),
+            (end_time, "m", "end evaluation"),
+            (settling_time, "k", "settled, start RMS eval"),
+        ):
             if t:
                 ax.axvline(x=t, color=color, label=label)
 
@@ -285,8 +293,7 @@ class AnalyzeBag:
             fig.savefig(file_name + ".png")
         return fig
 
-    def plot_positions(self, start_time=None, end_time=None, settling_time=None, x_range=None, y_range=None,
-                       plot_suffix=None):
+    def plot_positions(self, start_time=None, end_time=None, settling_time=None, x_range=None, y_range=None, plot_suffix=None):
         fig, ax = self._figure("Position")
         for pos, topic in zip(self.pos, self.pose_topics):
             for axis, color in zip("xyz", "brg"):
@@ -294,30 +301,37 @@ class AnalyzeBag:
         self._mark_times(ax, start_time, end_time, settling_time)
         return self._finish(fig, ax, "pos", plot_suffix, x_range, y_range, ylabel="position [m]")
 
-    def plot_position_error(self, set_point, settling_radius=None, start_time=None, end_time=None,
-                            settling_time=None, x_range=None, y_range=None, plot_suffix=None):
+    def plot_position_error(
+        self,
+        set_point,
+        settling_radius=None,
+        start_time=None,
+        end_time=None,
+        settling_time=None,
+        x_range=None,
+        y_range=None,
+        plot_suffix=None,
+    ):
         fig, ax = self._figure("Position error")
         for pos, topic in zip(self.pos, self.pose_topics):
-            error = numpy.sqrt((pos.x - set_point.x[0]) ** 2 + (pos.y - set_point.y[0]) ** 2 +
-                               (pos.z - set_point.z[0]) ** 2)
+            error = numpy.sqrt((pos.x - set_point.x[0]) ** 2 + (pos.y - set_point.y[0]) ** 2 + (pos.z - set_point.z[0]) ** 2)
             ax.plot(pos.time, error, "b", label=f"pos_error {topic}")
         if settling_radius:
             ax.axhline(y=settling_radius, color="r", label="settling radius")
         self._mark_times(ax, start_time, end_time, settling_time)
         return self._finish(fig, ax, "pos_error", plot_suffix, x_range, y_range, ylabel="position error [m]")
 
-    def plot_angular_velocities(self, start_time=None, end_time=None, settling_time=None, x_range=None,
-                                y_range=None, plot_suffix=None):
+    def plot_angular_velocities(self, start_time=None, end_time=None, settling_time=None, x_range=None, y_range=None, plot_suffix=None):
         fig, ax = self._figure("Angular velocities")
         for pqr, topic in zip(self.pqr, self.twist_topics):
             for axis, color, name in zip("xyz", "brg", ("p", "q", "r")):
                 ax.plot(pqr.time, getattr(pqr, axis), color, label=f"{name} {topic}")
         self._mark_times(ax, start_time, end_time, settling_time)
-        return self._finish(fig, ax, "angular_velocity", plot_suffix, x_range, y_range,
-                            ylabel="angular velocity [rad/s]")
+        return self._finish(fig, ax, "angular_velocity", plot_suffix, x_range, y_range, ylabel="angular velocity [rad/s]")
 
     def plot_3d_trajectories(self):
         from matplotlib import pyplot
+
         fig = pyplot.figure()
         ax = fig.add_subplot(111, projection="3d")
         for pos, topic in zip(self.pos, self.pose_topics):
@@ -325,8 +339,7 @@ class AnalyzeBag:
         ax.legend(loc="best", fontsize="small")
         return fig
 
-    def plot_rpys(self, start_time=None, end_time=None, settling_time=None, x_range=None, y_range=None,
-                  plot_suffix=None):
+    def plot_rpys(self, start_time=None, end_time=None, settling_time=None, x_range=None, y_range=None, plot_suffix=None):
         fig, ax = self._figure("Attitude")
         for rpy, topic in zip(self.rpy, self.pose_topics):
             for name, color in zip(("roll", "pitch", "yaw"), "brg"):
@@ -361,8 +374,11 @@ def xyz_rms_error(set_point, input_series):
     """RMS of the distance [m] between the points of input_series and set_point (XYZWithTime)."""
     if not len(input_series.x):
         return 0.0
-    squared = ((input_series.x - _first(set_point.x)) ** 2 + (input_series.y - _first(set_point.y)) ** 2 +
-               (input_series.z - _first(set_point.z)) ** 2)
+    squared = (
+        (input_series.x - _first(set_point.x)) ** 2
+        + (input_series.y - _first(set_point.y)) ** 2
+        + (input_series.z - _first(set_point.z)) ** 2
+    )
     return float(numpy.sqrt(numpy.mean(squared)))
 
 
@@ -375,8 +391,9 @@ def settling_time(set_point, input_series, bounding_radius, min_time):
     set_point and stayed inside for min_time; None when it never did."""
     entered = None
     for t, x, y, z in zip(input_series.time, input_series.x, input_series.y, input_series.z):
-        inside = math.sqrt((x - _first(set_point.x)) ** 2 + (y - _first(set_point.y)) ** 2 +
-                           (z - _first(set_point.z)) ** 2) <= bounding_radius
+        inside = (
+            math.sqrt((x - _first(set_point.x)) ** 2 + (y - _first(set_point.y)) ** 2 + (z - _first(set_point.z)) ** 2) <= bounding_radius
+        )
         if not inside:
             entered = None
             continue
@@ -410,6 +427,7 @@ def create_set_point(x, y, z):
 def _headless():
     if not os.environ.get("DISPLAY"):
         import matplotlib
+
         matplotlib.use("Agg")
 
 

@@ -1,13 +1,13 @@
 """RotorS' rosbag_tools.helpers: the command line of the evaluation scripts (initialize), the
 evaluation period of each waypoint, settling time, RMS errors, collisions and the score table,
 with RotorS' names, arguments, return values and printed lines."""
+
 from __future__ import annotations
 
 import sys
 
-from rotors_evaluation import options
-
 from rosbag_tools import analyze_bag
+from rotors_evaluation import options
 
 
 def get_score(evaluated_variable, max_variable, scores):
@@ -26,8 +26,7 @@ def initialize(argv=None):
     --begin_time, -e, --rms_calc_time, --settling_radius, --min_settled_time, -D) and returns
     [AnalyzeBag with the messages extracted, plot, begin_time, end_time, rms_calc_time,
     settling_radius, min_settled_time, first_waypoint_evaluation_delay]."""
-    o = options.parse("Evaluate a RotorS bag (rosbag_tools.helpers.initialize)",
-                      sys.argv[1:] if argv is None else argv)
+    o = options.parse("Evaluate a RotorS bag (rosbag_tools.helpers.initialize)", sys.argv[1:] if argv is None else argv)
     prefix = o.mav_name
 
     def topics(option):
@@ -47,8 +46,7 @@ def initialize(argv=None):
     if ab.topics:
         ab.extract_messages()
     plot = bool(o.plot or o.save_plots)
-    return [ab, plot, o.begin_time, o.end_time, o.rms_calc_time, o.settling_radius, o.min_settled_time,
-            o.delay_first_evaluation]
+    return [ab, plot, o.begin_time, o.end_time, o.rms_calc_time, o.settling_radius, o.min_settled_time, o.delay_first_evaluation]
 
 
 def get_evaluation_period(waypoints, index, bag_time_start, bag_time_end, total_end_time):
@@ -60,29 +58,28 @@ def get_evaluation_period(waypoints, index, bag_time_start, bag_time_end, total_
     else:
         end_time = min(total_end_time, bag_time_end)
     if bag_time_end < end_time:
-        print("[Waypoint %d]: Stopping evaluation early, as the bag file ends." % index)
+        print(f"[Waypoint {index}]: Stopping evaluation early, as the bag file ends.")
     return [begin_time, end_time]
 
 
 def get_settling_time(positions, set_point, radius, min_time, index, print_output=True):
     t = analyze_bag.settling_time(set_point, positions, radius, min_time)
     if print_output:
-        print("[Waypoint %d]: Settling time: %.3f s" % (index, t) if t is not None
-              else "[Waypoint %d]: System didn't settle." % index)
+        print(f"[Waypoint {index}]: Settling time: {t:.3f} s" if t is not None else f"[Waypoint {index}]: System didn't settle.")
     return t
 
 
 def get_rms_position_error(positions, position_set_point, index, print_output=True):
     rms = analyze_bag.xyz_rms_error(position_set_point, positions)
     if print_output:
-        print("[Waypoint %d]: Position RMS error: %.3f m" % (index, rms))
+        print(f"[Waypoint {index}]: Position RMS error: {rms:.3f} m")
     return rms
 
 
 def get_rms_angular_velocity_error(angular_velocities, angular_velocity_set_point, index, print_output=True):
     rms = analyze_bag.xyz_rms_error(angular_velocity_set_point, angular_velocities)
     if print_output:
-        print("[Waypoint %d]: Angular velocity RMS error: %.3f rad/s" % (index, rms))
+        print(f"[Waypoint {index}]: Angular velocity RMS error: {rms:.3f} rad/s")
     return rms
 
 
@@ -90,20 +87,30 @@ def _absolute(settling_time, start_time):
     return None if settling_time is None else settling_time + start_time
 
 
-def plot_positions(analyze_bag, start_time, end_time, settling_time, settling_radius, set_point_position, x_range,
-                   plot_suffix):
+def plot_positions(analyze_bag, start_time, end_time, settling_time, settling_radius, set_point_position, x_range, plot_suffix):
     settled = _absolute(settling_time, start_time)
-    analyze_bag.plot_positions(start_time=start_time, end_time=end_time, settling_time=settled, x_range=x_range,
-                               plot_suffix=plot_suffix)
-    analyze_bag.plot_position_error(set_point=set_point_position, settling_radius=settling_radius,
-                                    start_time=start_time, end_time=end_time, settling_time=settled,
-                                    x_range=x_range, y_range=[0, 1], plot_suffix=plot_suffix)
+    analyze_bag.plot_positions(start_time=start_time, end_time=end_time, settling_time=settled, x_range=x_range, plot_suffix=plot_suffix)
+    analyze_bag.plot_position_error(
+        set_point=set_point_position,
+        settling_radius=settling_radius,
+        start_time=start_time,
+        end_time=end_time,
+        settling_time=settled,
+        x_range=x_range,
+        y_range=[0, 1],
+        plot_suffix=plot_suffix,
+    )
 
 
 def plot_angular_velocities(analyze_bag, start_time, end_time, settling_time, x_range, plot_suffix):
-    analyze_bag.plot_angular_velocities(start_time=start_time, end_time=end_time,
-                                        settling_time=_absolute(settling_time, start_time), x_range=x_range,
-                                        plot_suffix=plot_suffix, y_range=[-1.5, 1.5])
+    analyze_bag.plot_angular_velocities(
+        start_time=start_time,
+        end_time=end_time,
+        settling_time=_absolute(settling_time, start_time),
+        x_range=x_range,
+        plot_suffix=plot_suffix,
+        y_range=[-1.5, 1.5],
+    )
 
 
 def calculate_average(list_values):
@@ -120,7 +127,7 @@ def no_collisions_occured(analyze_bag, start_time, end_time):
     t_last = -1.0
     for t in collisions:
         if t - t_last >= 1:
-            print("Collision at time %.3f!" % t)
+            print(f"Collision at time {t:.3f}!")
             t_last = t
     print("One or more collisions occurred - no points are awarded!")
     return False
@@ -128,7 +135,7 @@ def no_collisions_occured(analyze_bag, start_time, end_time):
 
 def print_scoring(average_value, max_value, value_type, unit, scores):
     if average_value is None:
-        print("No %s evaluated, hence no scoring is provided." % value_type)
+        print(f"No {value_type} evaluated, hence no scoring is provided.")
         return
-    print("Average %s: %.3f %s" % (value_type, average_value, unit))
-    print("Score for %s: %.2f" % (value_type, get_score(average_value, max_value, scores)))
+    print(f"Average {value_type}: {average_value:.3f} {unit}")
+    print(f"Score for {value_type}: {get_score(average_value, max_value, scores):.2f}")

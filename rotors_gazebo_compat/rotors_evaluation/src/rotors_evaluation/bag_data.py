@@ -9,14 +9,15 @@ CommandTrajectoryPositionYaw and any other set point with `position` and `yaw` f
 types are taken from the definitions stored in the bag. A topic of a type the evaluation cannot use
 is one line naming the topic and the type.
 """
+
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Optional
+from typing import Optional
 
 import numpy as np
 from rosbags.rosbag1 import Reader, ReaderError
-from rosbags.typesys import Stores, get_typestore, get_types_from_msg
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
 
 class BagError(Exception):
@@ -26,6 +27,7 @@ class BagError(Exception):
 @dataclass
 class Series:
     """Samples of a vector quantity: t [s] (N,), values (N, k)."""
+
     t: np.ndarray
     values: np.ndarray
 
@@ -44,20 +46,21 @@ class WaypointSample:
 @dataclass
 class FlightData:
     path: Path
-    position: Series                      # (N, 3) [m]
-    angular_velocity: Series              # (N, 3) [rad/s]
-    waypoints: List[WaypointSample]
-    collision_times: np.ndarray           # [s]
-    motor_speeds: Optional[Series] = None  # (N, rotors) [rad/s]
-    topics: Dict[str, str] = field(default_factory=dict)
+    position: Series  # (N, 3) [m]
+    angular_velocity: Series  # (N, 3) [rad/s]
+    waypoints: list[WaypointSample]
+    collision_times: np.ndarray  # [s]
+    motor_speeds: Series | None = None  # (N, rotors) [rad/s]
+    topics: dict[str, str] = field(default_factory=dict)
     flight_end: Optional["FlightEnd"] = None  # where the simulation stopped, if the bag says so
-    unwaited: Optional["Unwaited"] = None     # lockstep steps that were not waited for, if any
+    unwaited: Optional["Unwaited"] = None  # lockstep steps that were not waited for, if any
 
 
 @dataclass
 class FlightEnd:
     """The simulation was paused or stopped at t [s] and did not resume: what the bag holds after t
     is not a controlled flight (a controller that exited first, a simulator that shut down)."""
+
     t: float
     reason: str
     dropped_s: float = 0.0  # [s] of pose data recorded after t (left out of the evaluation)
@@ -67,6 +70,7 @@ class FlightEnd:
 class Unwaited:
     """Steps after which lockstep did not wait for a participant's answer (simulation_status): the
     flight depended on wall-clock timing and another run with the same seed may differ."""
+
     steps: int
     reason: str
 
@@ -92,8 +96,13 @@ GROUND_TRUTH_FORMS = {
 }
 UNSTAMPED_TYPES = ("geometry_msgs/msg/Pose", "geometry_msgs/msg/Twist")
 TWIST_TYPES = ("geometry_msgs/msg/TwistStamped", "nav_msgs/msg/Odometry", "geometry_msgs/msg/Twist")
-POSE_TYPES = ("geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/TransformStamped",
-              "geometry_msgs/msg/PointStamped", "nav_msgs/msg/Odometry", "geometry_msgs/msg/Pose")
+POSE_TYPES = (
+    "geometry_msgs/msg/PoseStamped",
+    "geometry_msgs/msg/TransformStamped",
+    "geometry_msgs/msg/PointStamped",
+    "nav_msgs/msg/Odometry",
+    "geometry_msgs/msg/Pose",
+)
 
 
 def _yaw(q) -> float:
@@ -134,8 +143,10 @@ def _set_point(msg, msgtype: str, topic: str):
         return None
     if hasattr(msg, "position") and hasattr(msg, "yaw"):  # mav_msgs/CommandTrajectoryPositionYaw and kin (pre-2.0)
         return msg.position, float(msg.yaw)
-    raise BagError(f"waypoint topic '{topic}' has type {msgtype}, which holds no position set point (usable: "
-                   f"MultiDOFJointTrajectory, PoseStamped, Pose, or a message with position and yaw fields)")
+    raise BagError(
+        f"waypoint topic '{topic}' has type {msgtype}, which holds no position set point (usable: "
+        f"MultiDOFJointTrajectory, PoseStamped, Pose, or a message with position and yaw fields)"
+    )
 
 
 class FlightBag:
@@ -149,8 +160,9 @@ class FlightBag:
             self.reader = Reader(self.path)
             self.reader.open()
         except ReaderError as e:
-            raise BagError(f"cannot read bag '{self.path}': {e} (if it is unindexed or truncated, run: "
-                           f"rosbag reindex {self.path})") from e
+            raise BagError(
+                f"cannot read bag '{self.path}': {e} (if it is unindexed or truncated, run: " f"rosbag reindex {self.path})"
+            ) from e
         self.typestore = get_typestore(Stores.ROS1_NOETIC)
         types = {}
         for conn in self.reader.connections:
@@ -166,7 +178,7 @@ class FlightBag:
     def close(self) -> None:
         self.reader.close()
 
-    def resolve(self, mav_name: str, topic: str) -> Optional[str]:
+    def resolve(self, mav_name: str, topic: str) -> str | None:
         """'<mav>/<topic>' as the bag plugin writes it, else the bare topic of old RotorS bags."""
         topic = topic.lstrip("/")
         for candidate in ([f"{mav_name.strip('/')}/{topic}"] if mav_name else []) + [topic]:
@@ -174,7 +186,7 @@ class FlightBag:
                 return candidate
         return None
 
-    def resolve_any(self, mav_name: str, topic: str) -> Optional[str]:
+    def resolve_any(self, mav_name: str, topic: str) -> str | None:
         """resolve() of the topic, then of the names older RotorS generations used for it."""
         for candidate in (topic,) + OLD_TOPIC_NAMES.get("/" + topic.lstrip("/"), ()):
             found = self.resolve(mav_name, candidate)
@@ -186,8 +198,10 @@ class FlightBag:
         found = self.resolve(mav_name, topic)
         if found is None:
             wanted = f"{mav_name.strip('/')}/{topic.lstrip('/')}" if mav_name else topic.lstrip("/")
-            raise BagError(f"{what} topic '{wanted}' is not in bag '{self.path.name}' (check --mav_name and the "
-                           f"topic options); the bag has: {', '.join(sorted(self.topics))}")
+            raise BagError(
+                f"{what} topic '{wanted}' is not in bag '{self.path.name}' (check --mav_name and the "
+                f"topic options); the bag has: {', '.join(sorted(self.topics))}"
+            )
         return found
 
     def require_ground_truth(self, mav_name: str, topic: str, what: str, usable: tuple) -> str:
@@ -199,13 +213,16 @@ class FlightBag:
         for form in GROUND_TRUTH_FORMS.get("/" + topic.lstrip("/"), ()):
             other = self.resolve(mav_name, form)
             if other is not None and self.topics[other] in usable and self.topics[other] not in UNSTAMPED_TYPES:
-                why = (f"'{found}' is unstamped ({self.topics[found]})" if found is not None
-                       else f"the bag has no '{mav_name.strip('/')}/{topic.lstrip('/')}'")
+                why = (
+                    f"'{found}' is unstamped ({self.topics[found]})"
+                    if found is not None
+                    else f"the bag has no '{mav_name.strip('/')}/{topic.lstrip('/')}'"
+                )
                 print(f"note: {what} from '{other}' ({self.topics[other]}): {why}", file=sys.stderr)
                 return other
         return found if found is not None else self.require(mav_name, topic, what)
 
-    def flight_end(self, mav_name: str) -> Optional[FlightEnd]:
+    def flight_end(self, mav_name: str) -> FlightEnd | None:
         """The last pause or stop that was not followed by a resume, from the bag plugin's
         simulation_status markers; None for bags without them (rosbag record, RotorS)."""
         topic = self.resolve(mav_name, STATUS_TOPIC)
@@ -217,11 +234,12 @@ class FlightBag:
                 end = None
             elif end is None:
                 state = "stopped" if msg.state == 2 else "paused"
-                end = FlightEnd(_stamp(msg, t_ns), f"the simulation was {state}: {msg.reason}" if msg.reason
-                                else f"the simulation was {state}")
+                end = FlightEnd(
+                    _stamp(msg, t_ns), f"the simulation was {state}: {msg.reason}" if msg.reason else f"the simulation was {state}"
+                )
         return end
 
-    def unwaited(self, mav_name: str) -> Optional[Unwaited]:
+    def unwaited(self, mav_name: str) -> Unwaited | None:
         """The count of steps lockstep did not wait for (the largest a status marker reports) and
         why the first was not; None when every step was waited for or the bag has no markers."""
         topic = self.resolve(mav_name, STATUS_TOPIC)
@@ -242,15 +260,15 @@ class FlightBag:
                 try:
                     msg = self.typestore.deserialize_ros1(raw, conn.msgtype)
                 except Exception as e:  # noqa: BLE001 - a definition that does not match the bytes
-                    raise BagError(f"topic '{topic}' of type {conn.msgtype} in bag '{self.path.name}' cannot be "
-                                   f"decoded: {e}") from e
+                    raise BagError(f"topic '{topic}' of type {conn.msgtype} in bag '{self.path.name}' cannot be " f"decoded: {e}") from e
                 yield msg, conn.msgtype, t_ns
         except ReaderError as e:
-            raise BagError(f"cannot read topic '{topic}' of bag '{self.path}': {e} (if it is truncated, run: "
-                           f"rosbag reindex {self.path})") from e
+            raise BagError(
+                f"cannot read topic '{topic}' of bag '{self.path}': {e} (if it is truncated, run: " f"rosbag reindex {self.path})"
+            ) from e
 
 
-def _until(data: FlightData, end: Optional[FlightEnd]) -> FlightData:
+def _until(data: FlightData, end: FlightEnd | None) -> FlightData:
     """Drops what was recorded after the simulation stopped for good (see FlightEnd)."""
     if end is None:
         return data
@@ -264,8 +282,9 @@ def _until(data: FlightData, end: Optional[FlightEnd]) -> FlightData:
     return data
 
 
-def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, waypoint_topic: str,
-                wrench_topic: str, motor_topic: Optional[str] = None) -> FlightData:
+def load_flight(
+    path: Path, mav_name: str, pose_topic: str, twist_topic: str, waypoint_topic: str, wrench_topic: str, motor_topic: str | None = None
+) -> FlightData:
     bag = FlightBag(path)
     try:
         used = {}
@@ -317,21 +336,31 @@ def load_flight(path: Path, mav_name: str, pose_topic: str, twist_topic: str, wa
             motor = bag.resolve_any(mav_name, motor_topic)
             sample = next(bag.messages(motor), None) if motor else None
             if sample is not None and not (hasattr(sample[0], "angular_velocities") or hasattr(sample[0], "motor_speed")):
-                print(f"note: motor topic '{motor}' has type {sample[1]}, which holds no rotor speeds; motor speeds "
-                      f"are left out", file=sys.stderr)
+                print(
+                    f"note: motor topic '{motor}' has type {sample[1]}, which holds no rotor speeds; motor speeds " f"are left out",
+                    file=sys.stderr,
+                )
                 motor = None
             if motor:
                 used["motors"] = motor
                 tm, om = [], []
-                for msg, msgtype, t_ns in bag.messages(motor):
+                for msg, _msgtype, t_ns in bag.messages(motor):
                     # Actuators; pre-2.0 MotorSpeed and CommandMotorSpeed
                     speeds = msg.angular_velocities if hasattr(msg, "angular_velocities") else msg.motor_speed
                     tm.append(_stamp(msg, t_ns))
                     om.append(list(speeds))
                 if tm and len({len(o) for o in om}) == 1:
                     motors = Series(np.array(tm), np.array(om))
-        data = FlightData(bag.path, Series(np.array(t), np.array(p)), Series(np.array(tw), np.array(w).reshape(-1, 3)),
-                          waypoints, np.array(sorted(collisions)), motors, used, unwaited=bag.unwaited(mav_name))
+        data = FlightData(
+            bag.path,
+            Series(np.array(t), np.array(p)),
+            Series(np.array(tw), np.array(w).reshape(-1, 3)),
+            waypoints,
+            np.array(sorted(collisions)),
+            motors,
+            used,
+            unwaited=bag.unwaited(mav_name),
+        )
         return _until(data, bag.flight_end(mav_name))
     finally:
         bag.close()

@@ -3,9 +3,9 @@ against the simulator's ground truth (ground_truth/pose, ground_truth/twist, gro
 from one flight bag. Errors use the filter's error state [dp, dv, dtheta (IMU frame), db_w, db_a]
 (msf_updates/ekf/core_state.h); NEES = e^T P^-1 e is chi-square with 15 degrees of freedom for a
 consistent filter."""
+
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Optional
 
 import numpy as np
 
@@ -18,10 +18,10 @@ NEES_BOUNDS_95 = (6.262, 27.488)
 
 @dataclass
 class Track:
-    t: np.ndarray            # (N,)
-    p: np.ndarray            # (N, 3) world
-    q: np.ndarray            # (N, 4) w, x, y, z (world <- body)
-    v: Optional[np.ndarray] = None  # (N, 3) world
+    t: np.ndarray  # (N,)
+    p: np.ndarray  # (N, 3) world
+    q: np.ndarray  # (N, 4) w, x, y, z (world <- body)
+    v: np.ndarray | None = None  # (N, 3) world
 
     def until(self, t_end: float) -> "Track":
         keep = self.t <= t_end
@@ -33,26 +33,33 @@ class EstimatorResult:
     bag: str
     start_time: float
     end_time: float
-    position_rms: float            # [m]
-    velocity_rms: float            # [m/s]
-    attitude_rms_deg: float        # [deg]
-    max_position_error: float      # [m]
-    gyroscope_bias: Dict[str, List[float]] = field(default_factory=dict)      # truth, estimate at end_time
-    accelerometer_bias: Dict[str, List[float]] = field(default_factory=dict)
+    position_rms: float  # [m]
+    velocity_rms: float  # [m/s]
+    attitude_rms_deg: float  # [deg]
+    max_position_error: float  # [m]
+    gyroscope_bias: dict[str, list[float]] = field(default_factory=dict)  # truth, estimate at end_time
+    accelerometer_bias: dict[str, list[float]] = field(default_factory=dict)
     gyroscope_bias_relative_error: float = float("nan")
     accelerometer_bias_relative_error: float = float("nan")
     nees_mean: float = float("nan")
     nees_fraction_inside_95: float = float("nan")
     nees_samples: int = 0
-    pose_gaps: List[List[float]] = field(default_factory=list)  # [begin, end] of pose outages > 0.5 s
+    pose_gaps: list[list[float]] = field(default_factory=list)  # [begin, end] of pose outages > 0.5 s
 
 
 def quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Hamilton product of (N, 4) w, x, y, z arrays."""
     aw, ax, ay, az = a.T
     bw, bx, by, bz = b.T
-    return np.stack([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw], axis=1)
+    return np.stack(
+        [
+            aw * bw - ax * bx - ay * by - az * bz,
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+        ],
+        axis=1,
+    )
 
 
 def quat_log(q: np.ndarray) -> np.ndarray:
@@ -94,8 +101,15 @@ def load_tracks(path: Path, mav_name: str, estimate_topic: str):
         truth_topic = bag.require(mav_name, "/ground_truth/pose", "ground truth pose")
         twist_topic = bag.require(mav_name, "/ground_truth/twist", "ground truth twist")
         est_topic = bag.require(mav_name, estimate_topic, "estimate")
-        pose_xyzw = lambda m, _: [m.pose.position.x, m.pose.position.y, m.pose.position.z, m.pose.orientation.w,
-                                  m.pose.orientation.x, m.pose.orientation.y, m.pose.orientation.z]
+        pose_xyzw = lambda m, _: [
+            m.pose.position.x,
+            m.pose.position.y,
+            m.pose.position.z,
+            m.pose.orientation.w,
+            m.pose.orientation.x,
+            m.pose.orientation.y,
+            m.pose.orientation.z,
+        ]
         t_gt, rows = _read(bag, truth_topic, pose_xyzw)
         if not len(t_gt):
             raise BagError(f"ground truth topic '{truth_topic}' has no messages")
@@ -108,22 +122,32 @@ def load_tracks(path: Path, mav_name: str, estimate_topic: str):
                 raise BagError(f"estimate topic '{est_topic}' has type {msgtype}; expected nav_msgs/Odometry")
             p, o, v = m.pose.pose.position, m.pose.pose.orientation, m.twist.twist.linear
             return [p.x, p.y, p.z, o.w, o.x, o.y, o.z, v.x, v.y, v.z]
+
         t_est, rows = _read(bag, est_topic, odom)
         if not len(t_est):
-            raise BagError(f"estimate topic '{est_topic}' has no messages in bag '{bag.path.name}' (was the "
-                           f"estimator initialised?)")
+            raise BagError(f"estimate topic '{est_topic}' has no messages in bag '{bag.path.name}' (was the " f"estimator initialised?)")
         est = np.array(rows)
         # odometry twist is in the body frame (RotorS / MSF): v_W = R(q) v_B
         estimate = Track(t_est, est[:, :3], est[:, 3:7], rotate(est[:, 3:7], est[:, 7:10]))
 
         extras = {}
         for name, topic, fn in (
-                ("cov", "/msf_core/cov_core", lambda m, _: np.array(m.data).reshape(m.rows, m.cols)),
-                ("state", "/msf_core/state_out", lambda m, _: np.array(m.data)),
-                ("bias", "/ground_truth/imu_bias", lambda m, _: [
-                    m.gyroscope_bias.x, m.gyroscope_bias.y, m.gyroscope_bias.z,
-                    m.accelerometer_bias.x, m.accelerometer_bias.y, m.accelerometer_bias.z]),
-                ("pose", "/odometry_sensor1/pose_with_covariance", lambda m, _: 0)):
+            ("cov", "/msf_core/cov_core", lambda m, _: np.array(m.data).reshape(m.rows, m.cols)),
+            ("state", "/msf_core/state_out", lambda m, _: np.array(m.data)),
+            (
+                "bias",
+                "/ground_truth/imu_bias",
+                lambda m, _: [
+                    m.gyroscope_bias.x,
+                    m.gyroscope_bias.y,
+                    m.gyroscope_bias.z,
+                    m.accelerometer_bias.x,
+                    m.accelerometer_bias.y,
+                    m.accelerometer_bias.z,
+                ],
+            ),
+            ("pose", "/odometry_sensor1/pose_with_covariance", lambda m, _: 0),
+        ):
             found = bag.resolve(mav_name, topic)
             if found:
                 t, rows = _read(bag, found, fn)
@@ -131,8 +155,7 @@ def load_tracks(path: Path, mav_name: str, estimate_topic: str):
         end = bag.flight_end(mav_name)  # what was recorded after the simulation stopped for good is left out
         if end is not None:
             truth, estimate = truth.until(end.t), estimate.until(end.t)
-            extras = {k: (t[t <= end.t], [r for r, keep in zip(rows, t <= end.t) if keep])
-                      for k, (t, rows) in extras.items()}
+            extras = {k: (t[t <= end.t], [r for r, keep in zip(rows, t <= end.t) if keep]) for k, (t, rows) in extras.items()}
         return truth, estimate, extras
     finally:
         bag.close()
@@ -146,8 +169,9 @@ def error_state(truth: Track, estimate: Track, idx: np.ndarray) -> np.ndarray:
     return np.hstack([dp, dv, dtheta])
 
 
-def evaluate_estimator(path: Path, mav_name: str, estimate_topic: str = "/msf_core/odometry",
-                       begin: Optional[float] = None, end: Optional[float] = None, loaded=None) -> EstimatorResult:
+def evaluate_estimator(
+    path: Path, mav_name: str, estimate_topic: str = "/msf_core/odometry", begin: float | None = None, end: float | None = None, loaded=None
+) -> EstimatorResult:
     """begin defaults to 5 s after the first estimate (convergence), end to the last one.
     `loaded`: the result of load_tracks, if the bag was read already."""
     truth, estimate, extras = loaded or load_tracks(Path(path), mav_name, estimate_topic)
@@ -160,10 +184,15 @@ def evaluate_estimator(path: Path, mav_name: str, estimate_topic: str = "/msf_co
         raise BagError(f"no estimate between {t0:.2f} s and {t1:.2f} s with ground truth at the same time")
     e = error_state(truth, estimate, idx)
     pos_err = np.linalg.norm(e[window, :3], axis=1)
-    result = EstimatorResult(str(path), float(t0), float(t1), float(np.sqrt(np.mean(pos_err ** 2))),
-                             float(np.sqrt(np.mean(np.sum(e[window, 3:6] ** 2, axis=1)))),
-                             float(np.degrees(np.sqrt(np.mean(np.sum(e[window, 6:9] ** 2, axis=1))))),
-                             float(pos_err.max()))
+    result = EstimatorResult(
+        str(path),
+        float(t0),
+        float(t1),
+        float(np.sqrt(np.mean(pos_err**2))),
+        float(np.sqrt(np.mean(np.sum(e[window, 3:6] ** 2, axis=1)))),
+        float(np.degrees(np.sqrt(np.mean(np.sum(e[window, 6:9] ** 2, axis=1))))),
+        float(pos_err.max()),
+    )
     if "pose" in extras and len(extras["pose"][0]) > 1:
         tp = extras["pose"][0]
         gaps = np.flatnonzero(np.diff(tp) > 0.5)
@@ -179,8 +208,7 @@ def evaluate_estimator(path: Path, mav_name: str, estimate_topic: str = "/msf_co
             result.gyroscope_bias = {"truth": b_true[:3].tolist(), "estimate": list(map(float, b_w))}
             result.accelerometer_bias = {"truth": b_true[3:].tolist(), "estimate": list(map(float, b_a))}
             result.gyroscope_bias_relative_error = float(np.linalg.norm(b_w - b_true[:3]) / np.linalg.norm(b_true[:3]))
-            result.accelerometer_bias_relative_error = float(np.linalg.norm(b_a - b_true[3:]) /
-                                                             np.linalg.norm(b_true[3:]))
+            result.accelerometer_bias_relative_error = float(np.linalg.norm(b_a - b_true[3:]) / np.linalg.norm(b_true[3:]))
     if "cov" in extras and "state" in extras and "bias" in extras:
         t, nees = _nees_series(truth, estimate, extras, idx, e)
         nees = nees[(t >= t0) & (t <= t1)]
@@ -197,13 +225,19 @@ def report(r: EstimatorResult, out=print) -> None:
     out(f"Estimator attitude RMS error: {r.attitude_rms_deg:.2f} deg")
     if r.gyroscope_bias:
         fmt = lambda v: "(" + ", ".join(f"{x:+.4f}" for x in v) + ")"
-        out(f"Gyroscope bias [rad/s]: truth {fmt(r.gyroscope_bias['truth'])}, estimate "
-            f"{fmt(r.gyroscope_bias['estimate'])}, error {100 * r.gyroscope_bias_relative_error:.1f} %")
-        out(f"Accelerometer bias [m/s^2]: truth {fmt(r.accelerometer_bias['truth'])}, estimate "
-            f"{fmt(r.accelerometer_bias['estimate'])}, error {100 * r.accelerometer_bias_relative_error:.1f} %")
+        out(
+            f"Gyroscope bias [rad/s]: truth {fmt(r.gyroscope_bias['truth'])}, estimate "
+            f"{fmt(r.gyroscope_bias['estimate'])}, error {100 * r.gyroscope_bias_relative_error:.1f} %"
+        )
+        out(
+            f"Accelerometer bias [m/s^2]: truth {fmt(r.accelerometer_bias['truth'])}, estimate "
+            f"{fmt(r.accelerometer_bias['estimate'])}, error {100 * r.accelerometer_bias_relative_error:.1f} %"
+        )
     if r.nees_samples:
-        out(f"NEES (15 states): mean {r.nees_mean:.2f}, {100 * r.nees_fraction_inside_95:.1f} % of {r.nees_samples} "
-            f"samples inside the 95 % chi-square bounds [{NEES_BOUNDS_95[0]:.2f}, {NEES_BOUNDS_95[1]:.2f}]")
+        out(
+            f"NEES (15 states): mean {r.nees_mean:.2f}, {100 * r.nees_fraction_inside_95:.1f} % of {r.nees_samples} "
+            f"samples inside the 95 % chi-square bounds [{NEES_BOUNDS_95[0]:.2f}, {NEES_BOUNDS_95[1]:.2f}]"
+        )
     for begin, end in r.pose_gaps:
         out(f"Pose outage from {begin:.2f} s to {end:.2f} s ({end - begin:.2f} s)")
 
@@ -226,9 +260,10 @@ def _nees_series(truth: Track, estimate: Track, extras, idx: np.ndarray, e9: np.
     return np.array(ts), np.array(values)
 
 
-def plot_estimator(truth: Track, estimate: Track, extras, out_dir: Path, prefix: str, save: bool) -> List[Path]:
+def plot_estimator(truth: Track, estimate: Track, extras, out_dir: Path, prefix: str, save: bool) -> list[Path]:
     from rotors_evaluation.plots import _finish, plt  # matplotlib only when plotting
-    saved: List[Path] = []
+
+    saved: list[Path] = []
     idx = _nearest(truth.t, estimate.t)
     e = error_state(truth, estimate, idx)
     fig, ax = plt.subplots(figsize=(8, 4.5))
@@ -251,8 +286,9 @@ def plot_estimator(truth: Track, estimate: Track, extras, out_dir: Path, prefix:
         t_state, states = extras["state"][0], np.array(extras["state"][1])
         t_bias, biases = extras["bias"][0], np.array(extras["bias"][1])
         fig, axes = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-        for row, (cols, name, unit) in enumerate(((slice(10, 13), "gyroscope bias", "rad/s"),
-                                                  (slice(13, 16), "accelerometer bias", "m/s^2"))):
+        for row, (cols, name, unit) in enumerate(
+            ((slice(10, 13), "gyroscope bias", "rad/s"), (slice(13, 16), "accelerometer bias", "m/s^2"))
+        ):
             truth_cols = slice(0, 3) if row == 0 else slice(3, 6)
             for k, label in enumerate("xyz"):
                 axes[row].plot(t_state, states[:, cols][:, k], color=f"C{k}", label=f"{label} estimate")
@@ -285,8 +321,10 @@ def main(argv=None) -> int:
     from dataclasses import asdict
 
     from rotors_evaluation.options import str2bool
-    p = argparse.ArgumentParser(description="Evaluate a state estimator's output against the simulator's ground "
-                                            "truth (estimator RMS, bias estimates, NEES).")
+
+    p = argparse.ArgumentParser(
+        description="Evaluate a state estimator's output against the simulator's ground " "truth (estimator RMS, bias estimates, NEES)."
+    )
     p.add_argument("-b", "--bagfile", required=True, type=Path)
     p.add_argument("-n", "--mav_name", default="")
     p.add_argument("--estimate_topic", default="/msf_core/odometry", help="nav_msgs/Odometry of the estimator")
@@ -309,6 +347,7 @@ def main(argv=None) -> int:
         saved = plot_estimator(*loaded, a.plot_dir, a.prefix, a.save_plots)
         if a.plot and not a.save_plots:
             from rotors_evaluation.plots import plt
+
             if plt.get_backend().lower() != "agg":
                 plt.show()
         if saved:

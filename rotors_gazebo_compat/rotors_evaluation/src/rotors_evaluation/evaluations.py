@@ -1,11 +1,12 @@
 """Hovering, waypoint and disturbance evaluations (RotorS' scripts, section 1.6 of the reference):
 load -> metrics -> report. Each returns a result dataclass; main() prints RotorS' lines."""
+
 import json
 import logging
 import sys
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import List, Optional, Sequence
 
 import numpy as np
 
@@ -14,18 +15,18 @@ from rotors_evaluation.bag_data import BagError, FlightBag, FlightData, load_fli
 from rotors_evaluation.options import EvalOptions, parse
 from rotors_evaluation.plots import plot_flight
 
-POSITION_SCORES = (0.0, 1.5, 3.5, 5.0)   # max 0.2 m
-ANGULAR_SCORES = (0.0, 1.0, 2.0, 3.0)    # max 0.2 rad/s
-SETTLING_SCORES = (0.0, 1.5, 3.5, 5.0)   # max 10 s
+POSITION_SCORES = (0.0, 1.5, 3.5, 5.0)  # max 0.2 m
+ANGULAR_SCORES = (0.0, 1.0, 2.0, 3.0)  # max 0.2 rad/s
+SETTLING_SCORES = (0.0, 1.5, 3.5, 5.0)  # max 10 s
 
 
 @dataclass
 class SegmentResult:
-    waypoint: List[float]            # x, y, z, yaw
-    start_time: float                # [s]
-    settling_time: Optional[float]   # [s] after start; None: not settled / not evaluated
-    position_rms: float              # [m]
-    angular_velocity_rms: float      # [rad/s]
+    waypoint: list[float]  # x, y, z, yaw
+    start_time: float  # [s]
+    settling_time: float | None  # [s] after start; None: not settled / not evaluated
+    position_rms: float  # [m]
+    angular_velocity_rms: float  # [rad/s]
 
 
 @dataclass
@@ -33,41 +34,46 @@ class EvalResult:
     bag: str
     mav_name: str
     kind: str
-    segments: List[SegmentResult] = field(default_factory=list)
-    collision_times: List[float] = field(default_factory=list)
+    segments: list[SegmentResult] = field(default_factory=list)
+    collision_times: list[float] = field(default_factory=list)
     position_rms: float = float("nan")
     angular_velocity_rms: float = float("nan")
-    settling_time: Optional[float] = None
+    settling_time: float | None = None
     scores: dict = field(default_factory=dict)
-    plots: List[str] = field(default_factory=list)
+    plots: list[str] = field(default_factory=list)
     topics: dict = field(default_factory=dict)  # what each series was read from (old bags use other names)
 
 
 def _load(opts: EvalOptions, bag: Path) -> FlightData:
-    return load_flight(bag, opts.mav_name, opts.pose_topic, opts.twist_topic, opts.waypoint_topic,
-                       opts.wrench_topic, opts.motor_velocity_topic)
+    return load_flight(
+        bag, opts.mav_name, opts.pose_topic, opts.twist_topic, opts.waypoint_topic, opts.wrench_topic, opts.motor_velocity_topic
+    )
 
 
 def _window_rms(data: FlightData, setpoint: np.ndarray, begin: float, end: float):
-    return (metrics.rms_error(data.position.window(begin, end), setpoint),
-            metrics.rms_error(data.angular_velocity.window(begin, end), np.zeros(3)))
+    return (
+        metrics.rms_error(data.position.window(begin, end), setpoint),
+        metrics.rms_error(data.angular_velocity.window(begin, end), np.zeros(3)),
+    )
 
 
 def _require_waypoints(data: FlightData, opts: EvalOptions) -> None:
     if not data.waypoints:
-        raise BagError(f"no waypoint on '{opts.waypoint_topic}' in bag '{data.path.name}'; the bag has: "
-                       f"{', '.join(sorted(data.topics.values()))}")
+        raise BagError(
+            f"no waypoint on '{opts.waypoint_topic}' in bag '{data.path.name}'; the bag has: " f"{', '.join(sorted(data.topics.values()))}"
+        )
 
 
 def evaluate_hovering(data: FlightData, opts: EvalOptions, out=print) -> EvalResult:
     _require_waypoints(data, opts)
     wp = data.waypoints[0]
-    out(f"[Waypoint 0]: [{wp.position[0]:.3f}, {wp.position[1]:.3f}, {wp.position[2]:.3f}, {wp.yaw:.3f}] "
-        f"at time {wp.t:.3f} s")
+    out(f"[Waypoint 0]: [{wp.position[0]:.3f}, {wp.position[1]:.3f}, {wp.position[2]:.3f}, {wp.yaw:.3f}] " f"at time {wp.t:.3f} s")
     start = max(wp.t + opts.delay_first_evaluation, opts.begin_time)
     end = min(start + opts.rms_calc_time, opts.end_time)
-    out(f"Setting the evaluation start time {opts.delay_first_evaluation:.1f} s after the waypoint was published "
-        f"(evaluating {start:.2f} s to {end:.2f} s).")
+    out(
+        f"Setting the evaluation start time {opts.delay_first_evaluation:.1f} s after the waypoint was published "
+        f"(evaluating {start:.2f} s to {end:.2f} s)."
+    )
     result = EvalResult(str(data.path), opts.mav_name, "hovering", topics=dict(data.topics))
     pos_rms, ang_rms = _window_rms(data, wp.position, start, end)
     result.segments.append(SegmentResult([*wp.position.tolist(), wp.yaw], wp.t, None, pos_rms, ang_rms))
@@ -83,8 +89,7 @@ def evaluate_waypoints(data: FlightData, opts: EvalOptions, out=print) -> EvalRe
     settle_times, pos_list, ang_list = [], [], []
     for i, wp in enumerate(data.waypoints):
         seg_end = data.waypoints[i + 1].t if i + 1 < len(data.waypoints) else t_last
-        out(f"[Waypoint {i}]: [{wp.position[0]:.3f}, {wp.position[1]:.3f}, {wp.position[2]:.3f}, {wp.yaw:.3f}] "
-            f"at time {wp.t:.3f} s")
+        out(f"[Waypoint {i}]: [{wp.position[0]:.3f}, {wp.position[1]:.3f}, {wp.position[2]:.3f}, {wp.yaw:.3f}] " f"at time {wp.t:.3f} s")
         settle = None
         if i == 0:
             begin = wp.t + opts.delay_first_evaluation
@@ -118,24 +123,20 @@ def evaluate_disturbance(data: FlightData, opts: EvalOptions, out=print) -> Eval
     _require_waypoints(data, opts)
     t_d = opts.disturbance_time  # 40 s by default: mav_with_wind_gust's gust
     wp = data.waypoints[-1]
-    for i, w in enumerate(data.waypoints):
+    for _i, w in enumerate(data.waypoints):
         if w.t <= t_d:
             wp = w
     result = EvalResult(str(data.path), opts.mav_name, "disturbance", topics=dict(data.topics))
-    out(f"Disturbance at {t_d:.1f} s; set point [{wp.position[0]:.3f}, {wp.position[1]:.3f}, "
-        f"{wp.position[2]:.3f}]")
+    out(f"Disturbance at {t_d:.1f} s; set point [{wp.position[0]:.3f}, {wp.position[1]:.3f}, " f"{wp.position[2]:.3f}]")
     after = data.position.window(t_d, float(data.position.t[-1]))
     settle = metrics.settling_time(after, wp.position, opts.settling_radius, opts.min_settled_time, t_d)
     begin = t_d + (settle if settle is not None else 0.0)
     pos, ang = _window_rms(data, wp.position, begin, begin + opts.rms_calc_time)
     result.settling_time = settle if settle is not None else 1.01 * 10.0
-    out(f"Settling time after the disturbance: {result.settling_time:.2f} s"
-        + ("" if settle is not None else " (did not settle)"))
+    out(f"Settling time after the disturbance: {result.settling_time:.2f} s" + ("" if settle is not None else " (did not settle)"))
     result.segments.append(SegmentResult([*wp.position.tolist(), wp.yaw], t_d, settle, pos, ang))
     result.position_rms, result.angular_velocity_rms = pos, ang
-    _report(result, metrics.collisions_after(data.collision_times, data.waypoints[0].t + opts.delay_first_evaluation,
-                                                     opts.end_time),
-            out)
+    _report(result, metrics.collisions_after(data.collision_times, data.waypoints[0].t + opts.delay_first_evaluation, opts.end_time), out)
     return result
 
 
@@ -171,14 +172,15 @@ def report_flight_end(data: FlightData, out=print) -> None:
     when lockstep did not wait for every step (the flight is not repeatable)."""
     end = data.flight_end
     if end is not None and end.dropped_s > 0.0:
-        out(f"Evaluating until {end.t:.3f} s: {end.reason} (simulation_status); the last {end.dropped_s:.3f} s "
-            f"of the bag are left out")
+        out(f"Evaluating until {end.t:.3f} s: {end.reason} (simulation_status); the last {end.dropped_s:.3f} s " f"of the bag are left out")
     if data.unwaited is not None:
-        out(f"Not repeatable: {data.unwaited.steps} steps were not waited for in lockstep, the first because "
-            f"{data.unwaited.reason} (simulation_status)")
+        out(
+            f"Not repeatable: {data.unwaited.steps} steps were not waited for in lockstep, the first because "
+            f"{data.unwaited.reason} (simulation_status)"
+        )
 
 
-def run(kind: str, description: str, argv: Optional[Sequence[str]] = None) -> int:
+def run(kind: str, description: str, argv: Sequence[str] | None = None) -> int:
     """Entry point of hovering_eval.py, waypoint(s)_eval.py and disturbance_eval.py."""
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s: %(message)s")
     opts = parse(description, argv)
@@ -190,8 +192,9 @@ def run(kind: str, description: str, argv: Optional[Sequence[str]] = None) -> in
     except BagError as e:
         print(f"{prog}: {e}", file=sys.stderr)
         return 1
-    setpoints = [np.asarray(s.waypoint[:3]) for s in result.segments] if kind != "disturbance" else \
-        [np.asarray(result.segments[0].waypoint[:3])]
+    setpoints = (
+        [np.asarray(s.waypoint[:3]) for s in result.segments] if kind != "disturbance" else [np.asarray(result.segments[0].waypoint[:3])]
+    )
     starts = [s.start_time for s in result.segments] if kind != "disturbance" else [0.0]
     marks = [None if s.settling_time is None else s.start_time + s.settling_time for s in result.segments]
     if opts.save_plots or opts.plot:
@@ -216,11 +219,12 @@ def _has_topic(path: Path, mav_name: str, topic: str) -> bool:
         bag.close()
 
 
-def compare(argv: Optional[Sequence[str]] = None) -> int:
+def compare(argv: Sequence[str] | None = None) -> int:
     """Tabulates the hovering metrics of several bags (controllers or estimators side by side); for
     bags holding an estimator's output (msf_core/odometry) also its error against ground truth over
     the same window."""
     from rotors_evaluation.estimator import evaluate_estimator
+
     opts = parse("Compare the hovering performance of several flights.", argv, many_bags=True)
     rows = []
     for bag in opts.bagfiles:
@@ -230,11 +234,9 @@ def compare(argv: Optional[Sequence[str]] = None) -> int:
             estimator = "-"
             if _has_topic(bag, opts.mav_name, "/msf_core/odometry"):
                 start = max(data.waypoints[0].t + opts.delay_first_evaluation, opts.begin_time)
-                est = evaluate_estimator(bag, opts.mav_name, begin=start, end=min(start + opts.rms_calc_time,
-                                                                                   opts.end_time))
+                est = evaluate_estimator(bag, opts.mav_name, begin=start, end=min(start + opts.rms_calc_time, opts.end_time))
                 estimator = f"{est.position_rms:.3f}"
-            rows.append((bag.name, f"{r.position_rms:.3f}", f"{r.angular_velocity_rms:.3f}",
-                         str(len(r.collision_times)), estimator))
+            rows.append((bag.name, f"{r.position_rms:.3f}", f"{r.angular_velocity_rms:.3f}", str(len(r.collision_times)), estimator))
         except BagError as e:
             rows.append((bag.name, "error", str(e), "", ""))
     header = ("bag", "position RMS [m]", "angular velocity RMS [rad/s]", "collisions", "estimator position RMS [m]")

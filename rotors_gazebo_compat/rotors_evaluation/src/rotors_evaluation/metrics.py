@@ -1,5 +1,6 @@
 """Flight metrics of RotorS' evaluation: RMS errors, settling time, collisions and scores."""
-from typing import Optional, Sequence
+
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -13,8 +14,7 @@ def rms_error(series: Series, setpoint: np.ndarray) -> float:
     return float(np.sqrt(np.mean(np.sum((series.values - setpoint) ** 2, axis=1))))
 
 
-def settling_time(series: Series, setpoint: np.ndarray, radius: float, min_settled_time: float,
-                  start: float) -> Optional[float]:
+def settling_time(series: Series, setpoint: np.ndarray, radius: float, min_settled_time: float, start: float) -> float | None:
     """First time after `start` from which the position error stays <= radius for at least
     min_settled_time, measured from `start`; None if it never settles in the series."""
     inside = np.linalg.norm(series.values - setpoint, axis=1) <= radius

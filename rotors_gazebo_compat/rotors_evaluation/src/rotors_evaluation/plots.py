@@ -1,7 +1,8 @@
 """Plots of a flight (book figures 11 and 12): position, position error and angular velocity."""
+
 import os
+from collections.abc import Sequence
 from pathlib import Path
-from typing import List, Optional, Sequence
 
 import matplotlib
 
@@ -13,7 +14,7 @@ import numpy as np  # noqa: E402
 from rotors_evaluation.bag_data import FlightData  # noqa: E402
 
 
-def _finish(fig, name: str, out_dir: Path, prefix: str, save: bool, saved: List[Path]) -> None:
+def _finish(fig, name: str, out_dir: Path, prefix: str, save: bool, saved: list[Path]) -> None:
     fig.tight_layout()
     if save:
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -22,12 +23,19 @@ def _finish(fig, name: str, out_dir: Path, prefix: str, save: bool, saved: List[
         saved.append(path)
 
 
-def plot_flight(data: FlightData, setpoints: Sequence[np.ndarray], segment_starts: Sequence[float],
-                settle_marks: Sequence[Optional[float]], out_dir: Path, prefix: str, save: bool,
-                show: bool) -> List[Path]:
+def plot_flight(
+    data: FlightData,
+    setpoints: Sequence[np.ndarray],
+    segment_starts: Sequence[float],
+    settle_marks: Sequence[float | None],
+    out_dir: Path,
+    prefix: str,
+    save: bool,
+    show: bool,
+) -> list[Path]:
     """Returns the saved files. setpoints[i] holds from segment_starts[i]; settle_marks[i] is the
     absolute settling time of segment i (None: not settled)."""
-    saved: List[Path] = []
+    saved: list[Path] = []
     t, p = data.position.t, data.position.values
     seg = np.searchsorted(np.asarray(segment_starts), t, side="right") - 1
     ref = np.array([setpoints[max(i, 0)] for i in seg]) if len(setpoints) else np.zeros_like(p)

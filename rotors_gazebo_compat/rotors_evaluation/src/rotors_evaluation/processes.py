@@ -1,11 +1,11 @@
 """Stopping a process and its process group as Ctrl-C does: SIGINT (roslaunch then stops its nodes
 and the bag plugin closes its bag), then SIGKILL after a grace time."""
+
 import os
 import re
 import signal
 import subprocess
 from pathlib import Path
-from typing import List, Optional
 
 
 def restore_sigint() -> None:
@@ -17,7 +17,7 @@ def restore_sigint() -> None:
         signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
-def stop_process_group(proc: Optional[subprocess.Popen], grace_s: float, first_signal: int = signal.SIGINT) -> bool:
+def stop_process_group(proc: subprocess.Popen | None, grace_s: float, first_signal: int = signal.SIGINT) -> bool:
     """Sends first_signal to proc's process group (proc must lead one: start_new_session=True or
     setsid) and waits up to grace_s; then SIGKILL. True when it stopped within the grace time."""
     if proc is None or proc.poll() is not None:
@@ -38,7 +38,7 @@ def stop_process_group(proc: Optional[subprocess.Popen], grace_s: float, first_s
         return True
 
 
-def graph_processes(port: int, comm: str = "") -> List[int]:
+def graph_processes(port: int, comm: str = "") -> list[int]:
     """Pids of the processes that talk to the master on this port (ROS_MASTER_URI in their
     environment; roslaunch puts every node in a session of its own, so process groups do not
     find them), optionally only those named comm."""

@@ -9,14 +9,15 @@ port.
 As a command (for shell scripts): `python3 -m rotors_evaluation.ros_master LOG_FILE` starts a
 detached master and prints "PORT PID"; stop it with `kill -INT PID`.
 """
+
 import os
 import socket
 import subprocess
 import sys
 import time
 import xmlrpc.client
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable, Dict, Optional, Tuple
 
 from rotors_evaluation.processes import stop_process_group
 
@@ -48,16 +49,20 @@ def _answers_as(port: int, proc: subprocess.Popen) -> bool:
     return False
 
 
-def start_own_master(env: Dict[str, str], log_path: Path,
-                     preexec_fn: Optional[Callable[[], None]] = None) -> Tuple[subprocess.Popen, int]:
+def start_own_master(env: dict[str, str], log_path: Path, preexec_fn: Callable[[], None] | None = None) -> tuple[subprocess.Popen, int]:
     """Starts `rosmaster --core` in its own session on a port nobody else holds; returns (process, port).
     `preexec_fn`, when given, must itself call os.setsid()."""
     for _ in range(TRIES):
         port = unused_port()
         with open(log_path, "a") as log:
-            proc = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=log,
-                                    stderr=subprocess.STDOUT, preexec_fn=preexec_fn,
-                                    start_new_session=preexec_fn is None)
+            proc = subprocess.Popen(
+                ["rosmaster", "--core", "-p", str(port)],
+                env=env,
+                stdout=log,
+                stderr=subprocess.STDOUT,
+                preexec_fn=preexec_fn,
+                start_new_session=preexec_fn is None,
+            )
         if _answers_as(port, proc):
             return proc, port
         stop_process_group(proc, 10)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import socket
 import time
 from pathlib import Path
-from typing import Any, Dict, List
+from typing import Any
 
 import numpy as np
 
@@ -24,34 +24,33 @@ SET_POINT, DUE_S, SPAWN = (0.0, 0.0, 1.0, 0.0), 5.0, (0.0, 0.0, 0.1)
 SAMPLE_S = 0.01
 
 
-def unsupported(launch_file: Path, evaluations: List[str], names: List[str]) -> str:
+def unsupported(launch_file: Path, evaluations: list[str], names: list[str]) -> str:
     """Why the batch cannot fly this sweep ("" when it can)."""
     if launch_file.name not in LAUNCH_MODELS:
-        return (f"engine batch flies {', '.join(LAUNCH_MODELS)}; '{launch_file.name}' needs the world "
-                "(engine: world)")
+        return f"engine batch flies {', '.join(LAUNCH_MODELS)}; '{launch_file.name}' needs the world " "(engine: world)"
     bad = [e for e in evaluations if e not in EVALUATIONS]
     if bad:
         return f"engine batch evaluates {', '.join(EVALUATIONS)}; '{bad[0]}' needs the world (engine: world)"
     for name in names:
         kind = name.split(".", 1)[0]
         if kind == "estimator" or (kind == "launch" and name not in LAUNCH_PARAMS):
-            return (f"engine batch takes model.*, controller.* and {', '.join(LAUNCH_PARAMS)}; '{name}' needs the "
-                    "world (engine: world)")
+            return f"engine batch takes model.*, controller.* and {', '.join(LAUNCH_PARAMS)}; '{name}' needs the " "world (engine: world)"
     return ""
 
 
-def _group_key(params: Dict[str, Any], sweep: Dict[str, Any]) -> tuple:
+def _group_key(params: dict[str, Any], sweep: dict[str, Any]) -> tuple:
     merged = {**sweep["fixed"], **params}
     return tuple(sorted((k, str(v)) for k, v in merged.items() if not k.startswith("controller.")))
 
 
-def fly_group(sweep: Dict[str, Any], flights: List[Dict[str, Any]]) -> List[Dict[str, Any]]:
+def fly_group(sweep: dict[str, Any], flights: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Flies one group of flights (the same vehicle) in one batch; returns a row per flight."""
+    from dataclasses import replace
+
     import rotors_sim as rs
     from rotors_evaluation.bag_data import FlightData, Series, WaypointSample
     from rotors_evaluation.evaluations import EVALUATORS
     from rotors_evaluation.options import EvalOptions
-    from dataclasses import replace
 
     t0 = time.monotonic()
     merged = {**sweep["fixed"], **flights[0]["params"]}
@@ -61,17 +60,44 @@ def fly_group(sweep: Dict[str, Any], flights: List[Dict[str, Any]]) -> List[Dict
     model_file = LAUNCH_MODELS[Path(sweep["launch_file"]).name]
     if model_file:
         from rotors_sim.paths import package_path
+
         xacro_args["model"] = package_path("rotors_description") / "urdf" / model_file
-    overrides = [{k.split(".", 1)[1]: v for k, v in {**sweep["fixed"], **f["params"]}.items()
-                  if k.startswith("controller.")} for f in flights]
-    rows = [{"id": f["id"], "index": f["index"], "repetition": f["repetition"], "seed": f["seed"], **f["params"],
-             "status": "failed", "reason": "", "sim_s": 0.0, "wall_s": 0.0, "unwaited_steps": 0,
-             "host": socket.gethostname(), "node": "", "bag": "", "log_tail": "", "engine": "batch"}
-            for f in flights]
+    overrides = [
+        {k.split(".", 1)[1]: v for k, v in {**sweep["fixed"], **f["params"]}.items() if k.startswith("controller.")} for f in flights
+    ]
+    rows = [
+        {
+            "id": f["id"],
+            "index": f["index"],
+            "repetition": f["repetition"],
+            "seed": f["seed"],
+            **f["params"],
+            "status": "failed",
+            "reason": "",
+            "sim_s": 0.0,
+            "wall_s": 0.0,
+            "unwaited_steps": 0,
+            "host": socket.gethostname(),
+            "node": "",
+            "bag": "",
+            "log_tail": "",
+            "engine": "batch",
+        }
+        for f in flights
+    ]
     try:
-        batch = rs.FlightBatch(mav, len(flights), step_size=None, control_divisor=1, world=world, threads=1,
-                               seeds=[int(f["seed"]) for f in flights], controller_overrides=overrides,
-                               positions=[SPAWN] * len(flights), **xacro_args)
+        batch = rs.FlightBatch(
+            mav,
+            len(flights),
+            step_size=None,
+            control_divisor=1,
+            world=world,
+            threads=1,
+            seeds=[int(f["seed"]) for f in flights],
+            controller_overrides=overrides,
+            positions=[SPAWN] * len(flights),
+            **xacro_args,
+        )
     except Exception as e:  # a bad model or controller value: every flight of the group says why
         for row in rows:
             row["reason"] = f"{type(e).__name__}: {e}".splitlines()[0]
@@ -94,15 +120,20 @@ def fly_group(sweep: Dict[str, Any], flights: List[Dict[str, Any]]) -> List[Dict
         angular_velocity[k] = truth[:, 10:13]
         contact[k] = batch.in_contact
     wall = time.monotonic() - t0
-    opts = replace(EvalOptions(), mav_name=mav, end_time=float(sweep["sim_time_s"]),
-                   **{k: float(v) for k, v in sweep["eval_options"].items()})
+    opts = replace(
+        EvalOptions(), mav_name=mav, end_time=float(sweep["sim_time_s"]), **{k: float(v) for k, v in sweep["eval_options"].items()}
+    )
     for i, row in enumerate(rows):
         # a contact that begins after the take-off is a collision (the bag's contact topic, as the world counts)
         airborne = t > DUE_S + 1.0
         begins = np.flatnonzero(contact[1:, i] & ~contact[:-1, i]) + 1
-        data = FlightData(Path(f"batch:{row['id']}"), Series(t, position[:, i]), Series(t, angular_velocity[:, i]),
-                          [WaypointSample(DUE_S, np.array(SET_POINT[:3]), SET_POINT[3])],
-                          t[begins[airborne[begins]]])
+        data = FlightData(
+            Path(f"batch:{row['id']}"),
+            Series(t, position[:, i]),
+            Series(t, angular_velocity[:, i]),
+            [WaypointSample(DUE_S, np.array(SET_POINT[:3]), SET_POINT[3])],
+            t[begins[airborne[begins]]],
+        )
         try:
             for kind in sweep["evaluations"]:
                 r = EVALUATORS[kind](data, opts, out=lambda *_: None)
@@ -119,9 +150,9 @@ def fly_group(sweep: Dict[str, Any], flights: List[Dict[str, Any]]) -> List[Dict
     return rows
 
 
-def groups(sweep: Dict[str, Any], flights: List[Dict[str, Any]]) -> List[List[Dict[str, Any]]]:
+def groups(sweep: dict[str, Any], flights: list[dict[str, Any]]) -> list[list[dict[str, Any]]]:
     """The flights by vehicle: each list flies in one batch."""
-    by_key: Dict[tuple, List[Dict[str, Any]]] = {}
+    by_key: dict[tuple, list[dict[str, Any]]] = {}
     for f in flights:
         by_key.setdefault(_group_key(f["params"], sweep), []).append(f)
     return list(by_key.values())

@@ -23,13 +23,14 @@ Parameter names: launch.<launch argument>, model.<xacro argument of the vehicle 
 sensor noise, ...>, controller.<key of the controller's gains or vehicle yaml, dots between
 levels>, estimator.<key of msf_simulator.yaml>.
 """
+
 import hashlib
 import itertools
 import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any
 
 import numpy as np
 import yaml
@@ -39,8 +40,22 @@ from rotors_evaluation.options import TUNABLE
 EVALUATIONS = ("hovering", "waypoints", "disturbance", "estimator")
 EVAL_OPTIONS = TUNABLE  # the evaluation scripts' numeric options (options.EvalOptions)
 KINDS = ("launch", "model", "controller", "estimator")
-TOP_LEVEL = ("name", "launch", "sim_time_s", "wall_limit_s", "real_time_factor", "repetitions", "seed", "evaluation", "eval_options",
-             "keep_bags", "fixed", "vary", "inject_failure", "engine")
+TOP_LEVEL = (
+    "name",
+    "launch",
+    "sim_time_s",
+    "wall_limit_s",
+    "real_time_factor",
+    "repetitions",
+    "seed",
+    "evaluation",
+    "eval_options",
+    "keep_bags",
+    "fixed",
+    "vary",
+    "inject_failure",
+    "engine",
+)
 # world: each flight a roslaunch in the full world (bag, evaluation); batch: the flights that share a
 # vehicle in one rotors_sim.FlightBatch (no ROS, no rendering; see sweep_batch.py for what it flies)
 ENGINES = ("world", "batch")
@@ -48,8 +63,7 @@ ENGINES = ("world", "batch")
 FORCED_ARGS = {"lockstep": "true", "real_time_factor": "0", "gui": "false", "enable_logging": "true"}
 # the launch argument each parameter kind travels through
 CARRIER = {"model": "xacro_args", "controller": "extra_controller_params", "estimator": "extra_msf_params"}
-RANGE_HELP = ("use a list, {linspace: [start, stop, count]}, {uniform: [low, high], draws: n} or "
-              "{normal: [mean, std], draws: n}")
+RANGE_HELP = "use a list, {linspace: [start, stop, count]}, {uniform: [low, high], draws: n} or " "{normal: [mean, std], draws: n}"
 
 
 class SweepError(Exception):
@@ -59,8 +73,9 @@ class SweepError(Exception):
 @dataclass
 class Flight:
     """One flight of a sweep: a value for every varied parameter, and a repetition with its seed."""
+
     index: int
-    params: Dict[str, Any]
+    params: dict[str, Any]
     repetition: int
     seed: int
     id: str = ""
@@ -72,46 +87,58 @@ class SweepSpec:
     source: Path
     launch_package: str
     launch_file: Path
-    launch_args: Dict[str, str]          # declared arguments and their defaults (None: no default)
+    launch_args: dict[str, str]  # declared arguments and their defaults (None: no default)
     sim_time_s: float
     wall_limit_s: float
     repetitions: int
     seed: int
-    evaluations: List[str]
-    eval_options: Dict[str, float]
+    evaluations: list[str]
+    eval_options: dict[str, float]
     keep_bags: bool
-    fixed: Dict[str, Any]
-    vary: Dict[str, List[Any]]           # expanded values, in the file's order
-    inject_failure: Optional[Dict[str, float]] = None
+    fixed: dict[str, Any]
+    vary: dict[str, list[Any]]  # expanded values, in the file's order
+    inject_failure: dict[str, float] | None = None
     real_time_factor: float = 0.0
-    flights: List[Flight] = field(default_factory=list)
+    flights: list[Flight] = field(default_factory=list)
     engine: str = "world"
 
     @property
     def mav_name(self) -> str:
         return str(self.fixed.get("launch.mav_name", self.launch_args.get("mav_name") or "firefly"))
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """What a flight needs of the sweep (sent to Ray workers; plain types only)."""
-        return {"name": self.name, "launch_package": self.launch_package, "launch_file": str(self.launch_file),
-                "launch_args": self.launch_args, "sim_time_s": self.sim_time_s, "wall_limit_s": self.wall_limit_s,
-                "evaluations": self.evaluations, "eval_options": self.eval_options, "keep_bags": self.keep_bags,
-                "fixed": self.fixed, "mav_name": self.mav_name, "inject_failure": self.inject_failure,
-                "real_time_factor": self.real_time_factor, "engine": self.engine}
+        return {
+            "name": self.name,
+            "launch_package": self.launch_package,
+            "launch_file": str(self.launch_file),
+            "launch_args": self.launch_args,
+            "sim_time_s": self.sim_time_s,
+            "wall_limit_s": self.wall_limit_s,
+            "evaluations": self.evaluations,
+            "eval_options": self.eval_options,
+            "keep_bags": self.keep_bags,
+            "fixed": self.fixed,
+            "mav_name": self.mav_name,
+            "inject_failure": self.inject_failure,
+            "real_time_factor": self.real_time_factor,
+            "engine": self.engine,
+        }
 
 
 def _fail(source: Path, message: str) -> SweepError:
     return SweepError(f"{source.name}: {message}")
 
 
-def declared_launch_args(path: Path) -> Dict[str, Optional[str]]:
+def declared_launch_args(path: Path) -> dict[str, str | None]:
     """The <arg> elements a launch file declares (name -> default; None when it has none)."""
     import xml.etree.ElementTree as ET
+
     root = ET.parse(path).getroot()
     return {a.get("name"): a.get("default", a.get("value")) for a in root.findall("arg")}
 
 
-def declared_xacro_args(description_dir: Path) -> List[str]:
+def declared_xacro_args(description_dir: Path) -> list[str]:
     """Every <xacro:arg name="..."> of the shipped vehicle descriptions."""
     names = set()
     for f in list(description_dir.glob("urdf/*.xacro")) + list(description_dir.glob("urdf/*.gazebo")):
@@ -121,13 +148,14 @@ def declared_xacro_args(description_dir: Path) -> List[str]:
 
 def _package_path(package: str) -> Path:
     import rospkg
+
     try:
         return Path(rospkg.RosPack().get_path(package))
     except rospkg.ResourceNotFound:
         raise SweepError(f"package '{package}' is not found (source scripts/env.bash first)") from None
 
 
-def _key_exists(tree: Any, path: List[str]) -> bool:
+def _key_exists(tree: Any, path: list[str]) -> bool:
     for key in path:
         if not isinstance(tree, dict):
             return False
@@ -138,11 +166,11 @@ def _key_exists(tree: Any, path: List[str]) -> bool:
     return True
 
 
-def _yaml(path: Path) -> Dict:
+def _yaml(path: Path) -> dict:
     return yaml.safe_load(path.read_text()) or {}
 
 
-def _expand_range(source: Path, name: str, spec: Any, rng_seed: int) -> List[Any]:
+def _expand_range(source: Path, name: str, spec: Any, rng_seed: int) -> list[Any]:
     bad = _fail(source, f"vary entry '{name}': malformed range {spec!r}; {RANGE_HELP}")
     if isinstance(spec, list):
         if not spec:
@@ -150,8 +178,7 @@ def _expand_range(source: Path, name: str, spec: Any, rng_seed: int) -> List[Any
         return list(spec)
     if not isinstance(spec, dict) or len(spec) not in (1, 2):
         raise bad
-    numbers = lambda xs: isinstance(xs, list) and all(isinstance(x, (int, float)) and not isinstance(x, bool)
-                                                      for x in xs)
+    numbers = lambda xs: isinstance(xs, list) and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in xs)
     if "linspace" in spec and len(spec) == 1:
         v = spec["linspace"]
         if not (numbers(v) and len(v) == 3 and float(v[2]).is_integer() and v[2] >= 1):
@@ -178,9 +205,9 @@ class _Checker:
     """Checks parameter names against what the launch file, the descriptions and the yaml files
     declare."""
 
-    def __init__(self, source: Path, launch_file: Path, launch_args: Dict[str, Optional[str]]):
+    def __init__(self, source: Path, launch_file: Path, launch_args: dict[str, str | None]):
         self.source, self.launch_file, self.launch_args = source, launch_file, launch_args
-        self._xacro: Optional[List[str]] = None
+        self._xacro: list[str] | None = None
         self._gazebo = _package_path("rotors_gazebo")
 
     def check(self, entry: str, name: str, mav_name: str) -> None:
@@ -189,25 +216,30 @@ class _Checker:
             raise _fail(self.source, f"{entry} '{name}': a parameter is one of {', '.join(k + '.<name>' for k in KINDS)}")
         if kind == "launch":
             if key not in self.launch_args:
-                raise _fail(self.source, f"{entry} '{name}': {self.launch_file.name} has no argument '{key}' (it has: "
-                                         f"{', '.join(sorted(self.launch_args))})")
+                raise _fail(
+                    self.source,
+                    f"{entry} '{name}': {self.launch_file.name} has no argument '{key}' (it has: "
+                    f"{', '.join(sorted(self.launch_args))})",
+                )
             if key in FORCED_ARGS or key in CARRIER.values() or key == "random_seed":
-                raise _fail(self.source, f"{entry} '{name}': the sweep sets '{key}' itself "
-                                         f"(lockstep, as fast as possible, logging, seeds, parameter files)")
+                raise _fail(
+                    self.source,
+                    f"{entry} '{name}': the sweep sets '{key}' itself " f"(lockstep, as fast as possible, logging, seeds, parameter files)",
+                )
             return
         carrier = CARRIER[kind]
         if carrier not in self.launch_args:
-            raise _fail(self.source, f"{entry} '{name}': {self.launch_file.name} has no '{carrier}' argument, so "
-                                     f"{kind} parameters cannot reach the flight")
+            raise _fail(
+                self.source,
+                f"{entry} '{name}': {self.launch_file.name} has no '{carrier}' argument, so " f"{kind} parameters cannot reach the flight",
+            )
         if kind == "model":
             if self._xacro is None:
                 self._xacro = declared_xacro_args(_package_path("rotors_description"))
             if key not in self._xacro:
-                raise _fail(self.source, f"{entry} '{name}': no vehicle description declares the xacro argument "
-                                         f"'{key}'")
+                raise _fail(self.source, f"{entry} '{name}': no vehicle description declares the xacro argument " f"'{key}'")
         elif kind == "controller":
-            files = [self._gazebo / "resource" / f"lee_controller_{mav_name}.yaml",
-                     self._gazebo / "resource" / f"{mav_name}.yaml"]
+            files = [self._gazebo / "resource" / f"lee_controller_{mav_name}.yaml", self._gazebo / "resource" / f"{mav_name}.yaml"]
             if not all(f.exists() for f in files):
                 raise _fail(self.source, f"{entry} '{name}': no controller parameters for the vehicle '{mav_name}'")
             if not any(_key_exists(_yaml(f), key.split(".")) for f in files):
@@ -218,7 +250,7 @@ class _Checker:
                 raise _fail(self.source, f"{entry} '{name}': '{key}' is no key of {f.name}")
 
 
-def _recorded_topics(spec_fixed: Dict[str, Any], launch_args: Dict[str, Optional[str]]) -> str:
+def _recorded_topics(spec_fixed: dict[str, Any], launch_args: dict[str, str | None]) -> str:
     return str(spec_fixed.get("launch.log_extra_topics", launch_args.get("log_extra_topics") or ""))
 
 
@@ -255,13 +287,11 @@ def load(path: Path) -> SweepSpec:
     launch_args = declared_launch_args(launch_file)
     for required in ("lockstep", "enable_logging"):
         if required not in launch_args:
-            raise _fail(path, f"launch '{launch}' has no '{required}' argument; sweeps fly in lockstep and record a "
-                              f"bag")
+            raise _fail(path, f"launch '{launch}' has no '{required}' argument; sweeps fly in lockstep and record a " f"bag")
 
     def number(key: str, default: Any, kind=float, minimum: float = 0.0) -> Any:
         value = raw.get(key, default)
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or (kind is int and int(value) != value) \
-                or value < minimum:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or (kind is int and int(value) != value) or value < minimum:
             raise _fail(path, f"'{key}': {value!r} is not a {'whole ' if kind is int else ''}number >= {minimum}")
         return kind(value)
 
@@ -298,14 +328,16 @@ def load(path: Path) -> SweepSpec:
     for name in vary_raw:
         checker.check("vary entry", str(name), mav_name)
     if "launch.mav_name" in vary_raw and any(str(n).startswith("controller.") for n in {**fixed, **vary_raw}):
-        raise _fail(path, "vary entry 'launch.mav_name': controller parameters are checked against one vehicle; "
-                          "sweep one vehicle per file")
+        raise _fail(
+            path, "vary entry 'launch.mav_name': controller parameters are checked against one vehicle; " "sweep one vehicle per file"
+        )
 
     engine = str(raw.get("engine", "world"))
     if engine not in ENGINES:
         raise _fail(path, f"engine '{engine}' is unknown (known: {', '.join(ENGINES)})")
     if engine == "batch":
         from rotors_evaluation.sweep_batch import unsupported
+
         why = unsupported(launch_file, list(evaluations), [str(n) for n in {**fixed, **vary_raw}])
         if why:
             raise _fail(path, why)
@@ -314,45 +346,74 @@ def load(path: Path) -> SweepSpec:
 
     # an evaluation needs what it reads to be in the bag
     if "estimator" in evaluations and "msf_core/odometry" not in _recorded_topics(fixed, launch_args):
-        raise _fail(path, f"evaluation 'estimator': {launch_file.name} records no msf_core/odometry (its bag holds "
-                          f"RotorS' topics and log_extra_topics '{_recorded_topics(fixed, launch_args)}')")
+        raise _fail(
+            path,
+            f"evaluation 'estimator': {launch_file.name} records no msf_core/odometry (its bag holds "
+            f"RotorS' topics and log_extra_topics '{_recorded_topics(fixed, launch_args)}')",
+        )
 
     inject = raw.get("inject_failure")
     if inject is not None:
         if not (isinstance(inject, dict) and set(inject) == {"flight", "at_sim_s"}):
-            raise _fail(path, "inject_failure: write {flight: <index>, at_sim_s: <time>} (the simulator of that "
-                              "flight is killed at that sim time, to test how a sweep records a crash)")
+            raise _fail(
+                path,
+                "inject_failure: write {flight: <index>, at_sim_s: <time>} (the simulator of that "
+                "flight is killed at that sim time, to test how a sweep records a crash)",
+            )
 
     vary = {str(n): _expand_range(path, str(n), v, seed) for n, v in vary_raw.items()}
-    spec = SweepSpec(str(raw.get("name") or path.stem), path, package, launch_file, launch_args, sim_time_s,
-                     wall_limit_s, repetitions, seed, list(evaluations), {k: float(v) for k, v in eval_options.items()},
-                     bool(raw.get("keep_bags", False)), {str(k): v for k, v in fixed.items()}, vary, inject,
-                     real_time_factor, engine=engine)
+    spec = SweepSpec(
+        str(raw.get("name") or path.stem),
+        path,
+        package,
+        launch_file,
+        launch_args,
+        sim_time_s,
+        wall_limit_s,
+        repetitions,
+        seed,
+        list(evaluations),
+        {k: float(v) for k, v in eval_options.items()},
+        bool(raw.get("keep_bags", False)),
+        {str(k): v for k, v in fixed.items()},
+        vary,
+        inject,
+        real_time_factor,
+        engine=engine,
+    )
     spec.flights = expand(spec)
     if inject is not None and not 0 <= inject["flight"] < len(spec.flights):
         raise _fail(path, f"inject_failure: flight {inject['flight']} does not exist (0 to {len(spec.flights) - 1})")
     return spec
 
 
-def expand(spec: SweepSpec) -> List[Flight]:
+def expand(spec: SweepSpec) -> list[Flight]:
     """The grid of varied values times the repetitions. A flight's id hashes everything that
     defines it (not its place in the grid), so a resumed sweep recognises finished flights and an
     edited one re-flies only what changed."""
     names = list(spec.vary)
     flights = []
-    combos: List[Tuple] = list(itertools.product(*(spec.vary[n] for n in names))) if names else [()]
+    combos: list[tuple] = list(itertools.product(*(spec.vary[n] for n in names))) if names else [()]
     for combo in combos:
         for r in range(spec.repetitions):
             params = dict(zip(names, combo))
             flight = Flight(len(flights), params, r, spec.seed + r)
-            identity = json.dumps({"launch": str(spec.launch_file), "fixed": spec.fixed, "params": params,
-                                   **({"engine": spec.engine} if spec.engine != "world" else {}),
-                                   "real_time_factor": spec.real_time_factor,
-                                   "seed": flight.seed, "sim_time_s": spec.sim_time_s,
-                                   "evaluations": spec.evaluations, "eval_options": spec.eval_options,
-                                   "inject": spec.inject_failure if spec.inject_failure and
-                                   spec.inject_failure["flight"] == flight.index else None},
-                                  sort_keys=True, default=str)
+            identity = json.dumps(
+                {
+                    "launch": str(spec.launch_file),
+                    "fixed": spec.fixed,
+                    "params": params,
+                    **({"engine": spec.engine} if spec.engine != "world" else {}),
+                    "real_time_factor": spec.real_time_factor,
+                    "seed": flight.seed,
+                    "sim_time_s": spec.sim_time_s,
+                    "evaluations": spec.evaluations,
+                    "eval_options": spec.eval_options,
+                    "inject": spec.inject_failure if spec.inject_failure and spec.inject_failure["flight"] == flight.index else None,
+                },
+                sort_keys=True,
+                default=str,
+            )
             flight.id = hashlib.sha256(identity.encode()).hexdigest()[:12]
             if any(f.id == flight.id for f in flights):  # a value listed twice: a flight of its own
                 flight.id += f"-{flight.index}"

@@ -10,10 +10,11 @@ hovering on a grid, unpauses, sim s per wall s from 2 s to END; airborne: 'ready
 sim time at which the firefly's ground truth is 0.2 m up; soak_hover: the largest offset of the nine
 swarm fireflies' heights from 1.04 m (the height at which the Lee controller holds their 1 m set
 points: the hovering example's 0.040 m offset); not a 3-D error from each set point."""
+
 import sys
 import threading
 import time
-from typing import Callable, Dict, List, Tuple
+from collections.abc import Callable
 
 import rospy
 from geometry_msgs.msg import PoseStamped
@@ -33,7 +34,7 @@ class SimClock:
     def _on_clock(self, msg: Clock) -> None:
         self.t = msg.clock.to_sec()
 
-    def wait_until(self, t_sim: float, limit_s: float = 300.0, poll_s: float = 0.005) -> Tuple[float, float]:
+    def wait_until(self, t_sim: float, limit_s: float = 300.0, poll_s: float = 0.005) -> tuple[float, float]:
         """The wall and sim time at which sim time t_sim was seen; exits naming the stuck time."""
         deadline = time.monotonic() + limit_s
         while self.t < t_sim:
@@ -63,10 +64,12 @@ def rtf(begin: str = "5", end: str = "25") -> None:
     print((s1 - s0) / (w1 - w0))
 
 
-def _counting(topic: str, count: Dict[str, int], key: str) -> rospy.Subscriber:
+def _counting(topic: str, count: dict[str, int], key: str) -> rospy.Subscriber:
     """AnyMsg: received whole but not deserialised, so the watcher's Python costs little."""
+
     def on_message(_msg) -> None:
         count[key] += 1
+
     return rospy.Subscriber(topic, rospy.AnyMsg, on_message, queue_size=5)
 
 
@@ -95,8 +98,7 @@ def lidar(topic: str) -> None:
 def swarm(n: str, end: str) -> None:
     _init("watch_swarm")
     count = int(n)
-    pubs = [rospy.Publisher(f"/firefly{i + 1}/command/pose", PoseStamped, queue_size=1, latch=True)
-            for i in range(count)]
+    pubs = [rospy.Publisher(f"/firefly{i + 1}/command/pose", PoseStamped, queue_size=1, latch=True) for i in range(count)]
     deadline = time.monotonic() + 240
     while any(p.get_num_connections() == 0 for p in pubs) or len(rospy.get_published_topics()) < 3 * count:
         if time.monotonic() > deadline:
@@ -118,12 +120,13 @@ def swarm(n: str, end: str) -> None:
 def airborne() -> None:
     _init("watch_airborne")
     up = threading.Event()
-    seen: Dict[str, float] = {}
+    seen: dict[str, float] = {}
 
     def on_odometry(m: Odometry) -> None:
         if m.pose.pose.position.z > 0.2 and not up.is_set():
             seen.update(wall=time.monotonic(), sim=m.header.stamp.to_sec())
             up.set()
+
     sub = rospy.Subscriber("/firefly/ground_truth/odometry", Odometry, on_odometry, queue_size=1)  # noqa: F841
     print("ready", flush=True)
     print(seen["wall"], seen["sim"]) if up.wait(120) else print("nan nan")
@@ -132,23 +135,29 @@ def airborne() -> None:
 
 def soak_hover() -> None:
     _init("watch_soak_hover")
-    z = [rospy.wait_for_message(f"/firefly{i}/ground_truth/odometry", Odometry, timeout=30).pose.pose.position.z
-         for i in range(1, 10)]
+    z = [rospy.wait_for_message(f"/firefly{i}/ground_truth/odometry", Odometry, timeout=30).pose.pose.position.z for i in range(1, 10)]
     print(max(abs(v - 1.04) for v in z))
 
 
-WATCHERS: Dict[str, Callable[..., None]] = {"clock": clock, "rtf": rtf, "vi": vi, "lidar": lidar, "swarm": swarm,
-                                            "airborne": airborne, "soak_hover": soak_hover}
+WATCHERS: dict[str, Callable[..., None]] = {
+    "clock": clock,
+    "rtf": rtf,
+    "vi": vi,
+    "lidar": lidar,
+    "swarm": swarm,
+    "airborne": airborne,
+    "soak_hover": soak_hover,
+}
 
 
-def command(name: str, *args: str) -> List[str]:
+def command(name: str, *args: str) -> list[str]:
     """The command line that runs watcher `name` with `args` in this Python."""
     if name not in WATCHERS:
         raise ValueError(f"unknown watcher '{name}'; one of {', '.join(WATCHERS)}")
     return [sys.executable, "-m", "rotors_evaluation.watchers", name, *args]
 
 
-def main(argv: List[str]) -> int:
+def main(argv: list[str]) -> int:
     if not argv or argv[0] not in WATCHERS:
         print(f"usage: python -m rotors_evaluation.watchers {{{','.join(WATCHERS)}}} [ARGS...]", file=sys.stderr)
         return 2

@@ -8,13 +8,13 @@ the most similar shipped vehicle (rotor count, mass, inertia), scaled to the new
 and velocity terms by the mass (a = (k_p e_p + k_v e_v) / m) and normalises the attitude gains by
 the inertia (k_R J^-1, k_omega J^-1), so k_p, k_v scale with m and k_R, k_omega with J per axis.
 """
+
 import math
 import re
 import subprocess
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 import yaml
@@ -28,8 +28,8 @@ class VehicleParamsError(Exception):
 class Rotor:
     number: int
     position_B: np.ndarray  # [m] rotor hub in the body frame, relative to the centre of mass
-    direction: int          # 1 ccw, -1 cw (seen from above)
-    force_constant: float   # [N/(rad/s)^2]
+    direction: int  # 1 ccw, -1 cw (seen from above)
+    force_constant: float  # [N/(rad/s)^2]
     moment_constant: float  # [m]
     max_rot_velocity: float  # [rad/s]
 
@@ -37,21 +37,25 @@ class Rotor:
 @dataclass
 class RigidBody:
     mass_kg: float
-    com_B: np.ndarray                    # [m] centre of mass in the body (base_link) frame
-    inertia_kg_m2: np.ndarray            # (3, 3) about the centre of mass, body axes
-    rotors: List[Rotor] = field(default_factory=list)
+    com_B: np.ndarray  # [m] centre of mass in the body (base_link) frame
+    inertia_kg_m2: np.ndarray  # (3, 3) about the centre of mass, body axes
+    rotors: list[Rotor] = field(default_factory=list)
 
 
-def _rpy_matrix(rpy: Tuple[float, float, float]) -> np.ndarray:
+def _rpy_matrix(rpy: tuple[float, float, float]) -> np.ndarray:
     """URDF fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
     r, p, y = rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
+    return np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    )
 
 
-def _origin(elem: Optional[ET.Element]) -> Tuple[np.ndarray, np.ndarray]:
+def _origin(elem: ET.Element | None) -> tuple[np.ndarray, np.ndarray]:
     if elem is None:
         return np.zeros(3), np.eye(3)
     xyz = np.array([float(v) for v in elem.get("xyz", "0 0 0").split()])
@@ -59,9 +63,9 @@ def _origin(elem: Optional[ET.Element]) -> Tuple[np.ndarray, np.ndarray]:
     return xyz, _rpy_matrix(rpy)
 
 
-def _link_poses(robot: ET.Element, root: str) -> Dict[str, Tuple[np.ndarray, np.ndarray]]:
+def _link_poses(robot: ET.Element, root: str) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Pose (p, R) of every link in the root link's frame, joints at zero."""
-    children: Dict[str, List[ET.Element]] = {}
+    children: dict[str, list[ET.Element]] = {}
     for joint in robot.findall("joint"):
         children.setdefault(joint.find("parent").get("link"), []).append(joint)
     poses = {root: (np.zeros(3), np.eye(3))}
@@ -91,9 +95,13 @@ def rigid_body_from_urdf(urdf: str, base_link: str) -> RigidBody:
         p_L, R_L = poses[link.get("name")]
         p_I, R_I = _origin(inertial.find("origin"))
         i = inertial.find("inertia")
-        I_I = np.array([[float(i.get("ixx")), float(i.get("ixy")), float(i.get("ixz"))],
-                        [float(i.get("ixy")), float(i.get("iyy")), float(i.get("iyz"))],
-                        [float(i.get("ixz")), float(i.get("iyz")), float(i.get("izz"))]])
+        I_I = np.array(
+            [
+                [float(i.get("ixx")), float(i.get("ixy")), float(i.get("ixz"))],
+                [float(i.get("ixy")), float(i.get("iyy")), float(i.get("iyz"))],
+                [float(i.get("ixz")), float(i.get("iyz")), float(i.get("izz"))],
+            ]
+        )
         R = R_L @ R_I
         masses.append(float(inertial.find("mass").get("value")))
         coms.append(p_L + R_L @ p_I)
@@ -101,8 +109,7 @@ def rigid_body_from_urdf(urdf: str, base_link: str) -> RigidBody:
     m = float(sum(masses))
     com = sum(mi * ci for mi, ci in zip(masses, coms)) / m
     # parallel-axis theorem: J = sum R_i J_i R_i^T + m_i (|d|^2 1 - d d^T), d = c_i - c
-    J = sum(Ji + mi * (np.dot(ci - com, ci - com) * np.eye(3) - np.outer(ci - com, ci - com))
-            for mi, ci, Ji in zip(masses, coms, inertias))
+    J = sum(Ji + mi * (np.dot(ci - com, ci - com) * np.eye(3) - np.outer(ci - com, ci - com)) for mi, ci, Ji in zip(masses, coms, inertias))
     body = RigidBody(m, com, J)
     for plugin in robot.iter("plugin"):
         if "motor_model" not in plugin.get("filename", ""):
@@ -116,10 +123,16 @@ def rigid_body_from_urdf(urdf: str, base_link: str) -> RigidBody:
         for key in ("motorNumber", "turningDirection", "motorConstant", "momentConstant", "maxRotVelocity"):
             if key not in text:
                 raise VehicleParamsError(f"motor plugin '{plugin.get('name')}' has no <{key}>")
-        body.rotors.append(Rotor(int(text["motorNumber"]), poses[link][0] - com,
-                                 1 if text["turningDirection"] == "ccw" else -1,
-                                 float(text["motorConstant"]), float(text["momentConstant"]),
-                                 float(text["maxRotVelocity"])))
+        body.rotors.append(
+            Rotor(
+                int(text["motorNumber"]),
+                poses[link][0] - com,
+                1 if text["turningDirection"] == "ccw" else -1,
+                float(text["motorConstant"]),
+                float(text["momentConstant"]),
+                float(text["maxRotVelocity"]),
+            )
+        )
     body.rotors.sort(key=lambda r: r.number)
     if [r.number for r in body.rotors] != list(range(len(body.rotors))) or not body.rotors:
         raise VehicleParamsError(f"motor numbers {[r.number for r in body.rotors]} are not 0..N-1")
@@ -132,26 +145,37 @@ def world_gravity(world_file: Path) -> float:
     return float(np.linalg.norm([float(v) for v in match.groups()])) if match else 9.8
 
 
-def vehicle_yaml(body: RigidBody, gravity: float) -> Dict:
+def vehicle_yaml(body: RigidBody, gravity: float) -> dict:
     J = body.inertia_kg_m2
     rotors = {}
     for r in body.rotors:
         rotors[str(r.number)] = {
             "angle": float(math.atan2(r.position_B[1], r.position_B[0])),
             "arm_length": float(math.hypot(r.position_B[0], r.position_B[1])),
-            "rotor_force_constant": r.force_constant, "rotor_moment_constant": r.moment_constant,
-            "direction": r.direction, "max_rot_velocity": r.max_rot_velocity}
-    return {"mass": round(float(body.mass_kg), 6),
-            "inertia": {k: round(float(v), 8) for k, v in zip(("xx", "xy", "xz", "yy", "yz", "zz"),
-                                                             (J[0, 0], J[0, 1], J[0, 2], J[1, 1], J[1, 2], J[2, 2]))},
-            "gravity": gravity, "rotor_configuration": rotors}
+            "rotor_force_constant": r.force_constant,
+            "rotor_moment_constant": r.moment_constant,
+            "direction": r.direction,
+            "max_rot_velocity": r.max_rot_velocity,
+        }
+    return {
+        "mass": round(float(body.mass_kg), 6),
+        "inertia": {
+            k: round(float(v), 8)
+            for k, v in zip(("xx", "xy", "xz", "yy", "yz", "zz"), (J[0, 0], J[0, 1], J[0, 2], J[1, 1], J[1, 2], J[2, 2]))
+        },
+        "gravity": gravity,
+        "rotor_configuration": rotors,
+    }
 
 
-def scaled_gains(reference_gains: Dict, reference_vehicle: Dict, body: RigidBody) -> Dict:
+def scaled_gains(reference_gains: dict, reference_vehicle: dict, body: RigidBody) -> dict:
     ratio_m = body.mass_kg / reference_vehicle["mass"]
     ref_J = reference_vehicle["inertia"]
-    ratio_J = {"x": body.inertia_kg_m2[0, 0] / ref_J["xx"], "y": body.inertia_kg_m2[1, 1] / ref_J["yy"],
-               "z": body.inertia_kg_m2[2, 2] / ref_J["zz"]}
+    ratio_J = {
+        "x": body.inertia_kg_m2[0, 0] / ref_J["xx"],
+        "y": body.inertia_kg_m2[1, 1] / ref_J["yy"],
+        "z": body.inertia_kg_m2[2, 2] / ref_J["zz"],
+    }
     out = {}
     for key in ("position_gain", "velocity_gain"):
         out[key] = {a: round(float(v) * float(ratio_m), 4) for a, v in reference_gains[key].items()}
@@ -168,7 +192,7 @@ def closest_shipped(resource: Path, body: RigidBody, exclude: str) -> str:
     J = np.diag(body.inertia_kg_m2)
     candidates = []
     for path in sorted(resource.glob("lee_controller_*.yaml")):
-        name = path.stem[len("lee_controller_"):]
+        name = path.stem[len("lee_controller_") :]
         vehicle = resource / f"{name}.yaml"
         if name == exclude or not vehicle.is_file():
             continue
@@ -182,8 +206,7 @@ def closest_shipped(resource: Path, body: RigidBody, exclude: str) -> str:
 
 
 def run_xacro(xacro_cmd: Path, model: Path, mav_name: str) -> str:
-    res = subprocess.run([str(xacro_cmd), str(model), f"mav_name:={mav_name}", f"namespace:={mav_name}"],
-                         capture_output=True, text=True)
+    res = subprocess.run([str(xacro_cmd), str(model), f"mav_name:={mav_name}", f"namespace:={mav_name}"], capture_output=True, text=True)
     if res.returncode != 0:
         lines = (res.stderr or res.stdout).strip().splitlines()
         raise VehicleParamsError(f"xacro failed on {model}: {lines[-1] if lines else 'exit ' + str(res.returncode)}")
@@ -191,9 +214,9 @@ def run_xacro(xacro_cmd: Path, model: Path, mav_name: str) -> str:
 
 
 # ---- checking a controller yaml against the URDF (one source of truth) ------------------------
-RELATIVE_TOLERANCE = 1e-3        # masses, inertias, rotor constants, gravity
+RELATIVE_TOLERANCE = 1e-3  # masses, inertias, rotor constants, gravity
 ROTOR_POSITION_TOLERANCE_M = 5e-3  # rotor hub in the xy plane (a centre of mass a few mm off is fine)
-ROTOR_SPEED_TOLERANCE = 1e-6     # max_rot_velocity [rad/s]
+ROTOR_SPEED_TOLERANCE = 1e-6  # max_rot_velocity [rad/s]
 DEFAULT_CONTROLLER_GRAVITY = 9.81  # what the controller nodes assume when the yaml gives none
 
 
@@ -201,8 +224,9 @@ def _differs(a: float, b: float, rel: float = RELATIVE_TOLERANCE) -> bool:
     return abs(a - b) > rel * max(abs(a), abs(b), 1e-12)
 
 
-def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_s2: float,
-                      overrides: Dict[str, str], yaml_name: str = "") -> List[str]:
+def compare_with_urdf(
+    mav: str, vehicle: dict, body: RigidBody, world_gravity_m_s2: float, overrides: dict[str, str], yaml_name: str = ""
+) -> list[str]:
     """The parameters where the controller yaml `vehicle` (the layout of resource/<mav>.yaml) and the
     parsed URDF disagree, one line each naming the vehicle and the parameter; `overrides` maps the
     names that may differ (mass, inertia, gravity, rotor_configuration/<i>/<field>) to the reason.
@@ -210,7 +234,7 @@ def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_
     the lines name the yaml (default <mav>.yaml)."""
     yaml_name = yaml_name or f"{mav}.yaml"
     urdf = vehicle_yaml(body, world_gravity_m_s2)
-    found: List[Tuple[str, str]] = []  # (parameter, description)
+    found: list[tuple[str, str]] = []  # (parameter, description)
 
     def check(name: str, yaml_value: float, urdf_value: float, differs: bool) -> None:
         if differs:
@@ -221,8 +245,12 @@ def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_
     check("mass", float(vehicle["mass"]), urdf["mass"], _differs(float(vehicle["mass"]), urdf["mass"]))
     J_yaml, J_urdf = vehicle["inertia"], urdf["inertia"]
     scale = max(abs(J_urdf[k]) for k in ("xx", "yy", "zz"))
-    inertia_differs = [k for k in J_urdf if abs(float(J_yaml.get(k, 0.0)) - J_urdf[k]) > RELATIVE_TOLERANCE * scale
-                       and (k in ("xy", "xz", "yz") or _differs(float(J_yaml.get(k, 0.0)), J_urdf[k]))]
+    inertia_differs = [
+        k
+        for k in J_urdf
+        if abs(float(J_yaml.get(k, 0.0)) - J_urdf[k]) > RELATIVE_TOLERANCE * scale
+        and (k in ("xy", "xz", "yz") or _differs(float(J_yaml.get(k, 0.0)), J_urdf[k]))
+    ]
     if inertia_differs or "inertia" in overrides:
         k = inertia_differs[0] if inertia_differs else "xx"
         check("inertia", float(J_yaml.get(k, 0.0)), J_urdf[k], bool(inertia_differs))
@@ -231,8 +259,9 @@ def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_
 
     rotors_yaml = {str(k): v for k, v in vehicle["rotor_configuration"].items()}
     if sorted(rotors_yaml) != sorted(urdf["rotor_configuration"]):
-        found.append(("rotor_configuration", f"rotors {sorted(rotors_yaml)} in {yaml_name}, "
-                                             f"{sorted(urdf['rotor_configuration'])} in the URDF"))
+        found.append(
+            ("rotor_configuration", f"rotors {sorted(rotors_yaml)} in {yaml_name}, " f"{sorted(urdf['rotor_configuration'])} in the URDF")
+        )
     for i, u in urdf["rotor_configuration"].items():
         r = rotors_yaml.get(i)
         if r is None:
@@ -242,17 +271,26 @@ def compare_with_urdf(mav: str, vehicle: Dict, body: RigidBody, world_gravity_m_
         p_urdf = u["arm_length"] * np.array([math.cos(u["angle"]), math.sin(u["angle"])])
         distance = float(np.linalg.norm(p_yaml - p_urdf))
         if distance > ROTOR_POSITION_TOLERANCE_M:
-            found.append((base + "position", f"angle {float(r['angle']):.4f} rad, arm {float(r['arm_length']):.4f} m "
-                                             f"in {yaml_name}, {u['angle']:.4f} rad, {u['arm_length']:.4f} m in the URDF "
-                                             f"({distance * 1000:.1f} mm apart)"))
+            found.append(
+                (
+                    base + "position",
+                    f"angle {float(r['angle']):.4f} rad, arm {float(r['arm_length']):.4f} m "
+                    f"in {yaml_name}, {u['angle']:.4f} rad, {u['arm_length']:.4f} m in the URDF "
+                    f"({distance * 1000:.1f} mm apart)",
+                )
+            )
         elif base + "position" in overrides:
             found.append((base + "position", "named override, but the positions agree: remove it"))
         for field_name in ("rotor_force_constant", "rotor_moment_constant"):
             check(base + field_name, float(r[field_name]), u[field_name], _differs(float(r[field_name]), u[field_name]))
         check(base + "direction", int(r["direction"]), u["direction"], int(r["direction"]) != u["direction"])
         if "max_rot_velocity" in r:
-            check(base + "max_rot_velocity", float(r["max_rot_velocity"]), u["max_rot_velocity"],
-                  abs(float(r["max_rot_velocity"]) - u["max_rot_velocity"]) > ROTOR_SPEED_TOLERANCE)
+            check(
+                base + "max_rot_velocity",
+                float(r["max_rot_velocity"]),
+                u["max_rot_velocity"],
+                abs(float(r["max_rot_velocity"]) - u["max_rot_velocity"]) > ROTOR_SPEED_TOLERANCE,
+            )
     lines = []
     for name, text in found:
         if name in overrides and not text.startswith("named override"):

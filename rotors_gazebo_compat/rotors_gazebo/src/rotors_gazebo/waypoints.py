@@ -1,11 +1,12 @@
 """Waypoints as MultiDOFJointTrajectory messages, the waypoint file format, and the small ROS
 helpers the example nodes share (unpausing the simulator, waiting for a subscriber)."""
+
 import math
 import threading
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import List, Optional, Sequence, Set
 
 import rosgraph
 import rospy
@@ -28,8 +29,9 @@ def trajectory_point(wp: Waypoint, time_from_start_s: float) -> MultiDOFJointTra
     t = Transform()
     t.translation.x, t.translation.y, t.translation.z = wp.x, wp.y, wp.z
     t.rotation.z, t.rotation.w = math.sin(wp.yaw_rad / 2.0), math.cos(wp.yaw_rad / 2.0)
-    return MultiDOFJointTrajectoryPoint(transforms=[t], velocities=[Twist()], accelerations=[Twist()],
-                                        time_from_start=rospy.Duration(time_from_start_s))
+    return MultiDOFJointTrajectoryPoint(
+        transforms=[t], velocities=[Twist()], accelerations=[Twist()], time_from_start=rospy.Duration(time_from_start_s)
+    )
 
 
 def trajectory(waypoints: Sequence[Waypoint]) -> MultiDOFJointTrajectory:
@@ -44,13 +46,13 @@ def trajectory(waypoints: Sequence[Waypoint]) -> MultiDOFJointTrajectory:
     return msg
 
 
-def read_waypoint_file(path: Path) -> List[Waypoint]:
+def read_waypoint_file(path: Path) -> list[Waypoint]:
     """Whitespace-separated 5-tuples: wait_time[s] x[m] y[m] z[m] yaw[deg]; stops at the first
     incomplete tuple, as RotorS."""
     values = Path(path).read_text().split()
     out = []
     for i in range(0, len(values) - 4, 5):
-        wait, x, y, z, yaw_deg = (float(v) for v in values[i:i + 5])
+        wait, x, y, z, yaw_deg = (float(v) for v in values[i : i + 5])
         out.append(Waypoint(x, y, z, math.radians(yaw_deg), wait))
     return out
 
@@ -89,7 +91,7 @@ def unpause_simulation(attempts: int = 12) -> bool:
     return False
 
 
-def registered_subscribers(topic: str) -> Set[str]:
+def registered_subscribers(topic: str) -> set[str]:
     """Nodes the master lists as subscribers of `topic` (resolved name)."""
     try:
         _, subscribers, _ = rosgraph.Master(rospy.get_name()).getSystemState()
@@ -98,7 +100,7 @@ def registered_subscribers(topic: str) -> Set[str]:
     return next((set(nodes) for name, nodes in subscribers if name == topic), set())
 
 
-def unconnected(pub: rospy.Publisher, registered: Set[str]) -> Set[str]:
+def unconnected(pub: rospy.Publisher, registered: set[str]) -> set[str]:
     """The nodes of `registered` that have no connection to `pub` yet."""
     return registered - {c.endpoint_id for c in pub.impl.connections}
 
@@ -110,7 +112,7 @@ class SubscriberWatch:
 
     def __init__(self, pub: rospy.Publisher, period_s: float = 0.25):
         self.topic = pub.resolved_name
-        self.registered: Set[str] = registered_subscribers(self.topic)
+        self.registered: set[str] = registered_subscribers(self.topic)
         self._period_s = period_s
         threading.Thread(target=self._poll, daemon=True).start()
 
@@ -120,8 +122,9 @@ class SubscriberWatch:
             self.registered = registered_subscribers(self.topic)
 
 
-def wait_for_subscriber(pub: rospy.Publisher, announce: bool = True, watch: Optional[SubscriberWatch] = None,
-                        others_timeout_s: float = 5.0) -> bool:
+def wait_for_subscriber(
+    pub: rospy.Publisher, announce: bool = True, watch: SubscriberWatch | None = None, others_timeout_s: float = 5.0
+) -> bool:
     """Blocks (wall clock) until someone subscribes, so the one message is not lost (RotorS #358),
     then until every subscriber the master knows of is connected too (a bag recorder that registered
     beside the controller must not miss the waypoint); a registered node that does not connect within
@@ -151,12 +154,13 @@ def publish_to_all(pub: rospy.Publisher, msg, linger_s: float = 3.0) -> None:
     registered after the last SubscriberWatch poll still gets it when it connects."""
     pub.publish(msg)
     deadline = time.monotonic() + linger_s
-    missing: Set[str] = set()
+    missing: set[str] = set()
     while not rospy.is_shutdown() and time.monotonic() < deadline:
         missing = unconnected(pub, registered_subscribers(pub.resolved_name))
         if not missing:
             return
         time.sleep(0.05)
     if missing:
-        rospy.logwarn("%s: %s did not connect within %.0f s and may not have the message", pub.resolved_name,
-                      ", ".join(sorted(missing)), linger_s)
+        rospy.logwarn(
+            "%s: %s did not connect within %.0f s and may not have the message", pub.resolved_name, ", ".join(sorted(missing)), linger_s
+        )

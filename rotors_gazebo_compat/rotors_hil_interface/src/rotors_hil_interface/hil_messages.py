@@ -5,11 +5,13 @@ HIL_CONTROLS / HIL_ACTUATOR_CONTROLS back to the normalized actuator command. Fr
 standard atmosphere are the autopilot codecs' own (rotors_sim.frames and rotors_sim.atmosphere, bound
 from rotors_plugins' autopilot/frames.h and models/standard_atmosphere.h): one conversion for the
 simulator's interfaces and this node."""
+
 from __future__ import annotations
 
 import math
 
 import numpy as np
+
 from rotors_sim import atmosphere, frames
 
 STANDARD_GRAVITY = 9.80665
@@ -35,51 +37,85 @@ def pressure_altitude(pressure_pa: float) -> float:
     return atmosphere.pressure_altitude_m(pressure_pa)
 
 
-def hil_sensor_fields(R_BS: np.ndarray, accel_B, gyro_B, mag_B_T, pressure_pa: float, new_mag: bool,
-                      new_baro: bool) -> dict:
+def hil_sensor_fields(R_BS: np.ndarray, accel_B, gyro_B, mag_B_T, pressure_pa: float, new_mag: bool, new_baro: bool) -> dict:
     """HIL_SENSOR's fields: body readings turned into the sensor frame (v_S = R_BS^T v_B)."""
     a, w, m = (R_BS.T @ np.asarray(v, float) for v in (accel_B, gyro_B, mag_B_T))
     altitude = pressure_altitude(pressure_pa)
-    return dict(xacc=a[0], yacc=a[1], zacc=a[2], xgyro=w[0], ygyro=w[1], zgyro=w[2],
-                xmag=m[0] * 1e4, ymag=m[1] * 1e4, zmag=m[2] * 1e4,  # T -> gauss
-                abs_pressure=pressure_pa / 100.0, diff_pressure=0.0, pressure_alt=altitude,
-                temperature=atmosphere.temperature_C(altitude),
-                fields_updated=FIELDS_IMU | (FIELDS_MAG if new_mag else 0) | (FIELDS_BARO if new_baro else 0))
+    return dict(
+        xacc=a[0],
+        yacc=a[1],
+        zacc=a[2],
+        xgyro=w[0],
+        ygyro=w[1],
+        zgyro=w[2],
+        xmag=m[0] * 1e4,
+        ymag=m[1] * 1e4,
+        zmag=m[2] * 1e4,  # T -> gauss
+        abs_pressure=pressure_pa / 100.0,
+        diff_pressure=0.0,
+        pressure_alt=altitude,
+        temperature=atmosphere.temperature_C(altitude),
+        fields_updated=FIELDS_IMU | (FIELDS_MAG if new_mag else 0) | (FIELDS_BARO if new_baro else 0),
+    )
 
 
-def hil_gps_fields(latitude: float, longitude: float, altitude: float, hor_std: float, ver_std: float,
-                   velocity_W) -> dict:
+def hil_gps_fields(latitude: float, longitude: float, altitude: float, hor_std: float, ver_std: float, velocity_W) -> dict:
     v = ned_from_enu(velocity_W)
     speed = math.hypot(v[0], v[1])
     course = math.degrees(math.atan2(v[1], v[0])) % 360.0
-    return dict(fix_type=3, lat=round(latitude * 1e7), lon=round(longitude * 1e7), alt=round(altitude * 1000),
-                eph=min(65535, round(hor_std * 100)), epv=min(65535, round(ver_std * 100)),
-                vel=min(65535, round(speed * 100)), vn=round(v[0] * 100), ve=round(v[1] * 100), vd=round(v[2] * 100),
-                cog=min(35999, round(course * 100)) if speed > 0 else 65535, satellites_visible=10)
+    return dict(
+        fix_type=3,
+        lat=round(latitude * 1e7),
+        lon=round(longitude * 1e7),
+        alt=round(altitude * 1000),
+        eph=min(65535, round(hor_std * 100)),
+        epv=min(65535, round(ver_std * 100)),
+        vel=min(65535, round(speed * 100)),
+        vn=round(v[0] * 100),
+        ve=round(v[1] * 100),
+        vd=round(v[2] * 100),
+        cog=min(35999, round(course * 100)) if speed > 0 else 65535,
+        satellites_visible=10,
+    )
 
 
 def world_from_body(q_WB_wxyz, v_B) -> np.ndarray:
     """v_W = R_WB v_B for q_WB = (w, x, y, z)."""
     qw, qx, qy, qz = q_WB_wxyz
-    R_WB = np.array([[1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qw * qz), 2 * (qx * qz + qw * qy)],
-                     [2 * (qx * qy + qw * qz), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qw * qx)],
-                     [2 * (qx * qz - qw * qy), 2 * (qy * qz + qw * qx), 1 - 2 * (qx * qx + qy * qy)]])
+    R_WB = np.array(
+        [
+            [1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qw * qz), 2 * (qx * qz + qw * qy)],
+            [2 * (qx * qy + qw * qz), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qw * qx)],
+            [2 * (qx * qz - qw * qy), 2 * (qy * qz + qw * qx), 1 - 2 * (qx * qx + qy * qy)],
+        ]
+    )
     return R_WB @ np.asarray(v_B, float)
 
 
-def hil_state_fields(q_WB_wxyz, omega_B, v_W, latitude: float, longitude: float, altitude: float,
-                     specific_force_B) -> dict:
+def hil_state_fields(q_WB_wxyz, omega_B, v_W, latitude: float, longitude: float, altitude: float, specific_force_B) -> dict:
     """HIL_STATE_QUATERNION: q NED <- FRD; the acceleration in NED as m/s^2 * 1000 (PX4 reads xacc /
     1000 as m/s^2): a_W = R_WB f_B + g_W."""
     q = np.asarray(frames.ned_frd_from_enu_flu(np.asarray(q_WB_wxyz, float)))
     w = frames.frd_from_flu(np.asarray(omega_B, float))
     v = ned_from_enu(v_W)
     a_NED = ned_from_enu(world_from_body(q_WB_wxyz, specific_force_B) - np.array([0.0, 0.0, STANDARD_GRAVITY])) * 1000.0
-    return dict(attitude_quaternion=[float(x) for x in q], rollspeed=w[0], pitchspeed=w[1], yawspeed=w[2],
-                lat=round(latitude * 1e7), lon=round(longitude * 1e7), alt=round(altitude * 1000),
-                vx=round(v[0] * 100), vy=round(v[1] * 100), vz=round(v[2] * 100),
-                ind_airspeed=round(float(np.linalg.norm(v_W)) * 100), true_airspeed=round(float(np.linalg.norm(v_W)) * 100),
-                xacc=round(a_NED[0]), yacc=round(a_NED[1]), zacc=round(a_NED[2]))
+    return dict(
+        attitude_quaternion=[float(x) for x in q],
+        rollspeed=w[0],
+        pitchspeed=w[1],
+        yawspeed=w[2],
+        lat=round(latitude * 1e7),
+        lon=round(longitude * 1e7),
+        alt=round(altitude * 1000),
+        vx=round(v[0] * 100),
+        vy=round(v[1] * 100),
+        vz=round(v[2] * 100),
+        ind_airspeed=round(float(np.linalg.norm(v_W)) * 100),
+        true_airspeed=round(float(np.linalg.norm(v_W)) * 100),
+        xacc=round(a_NED[0]),
+        yacc=round(a_NED[1]),
+        zacc=round(a_NED[2]),
+    )
 
 
 def normalized_from_hil_controls(m) -> list[float]:

@@ -1,7 +1,6 @@
 """Gamepads through evdev (python3-evdev; Debian has no joy driver): an EV_ABS value to a Joy
 axis in [-1, 1] as joy_node reports it (joy_node negates every axis, so a stick's left and up are
 +1), EV_KEY buttons to 0/1, axes and buttons in the order of their event codes."""
-from typing import Dict, List, Tuple
 
 
 def normalise(value: int, minimum: int, maximum: int, flip: bool = True) -> float:
@@ -16,7 +15,7 @@ def normalise(value: int, minimum: int, maximum: int, flip: bool = True) -> floa
 class GamepadLayout:
     """The axes and buttons of one device, in the order Joy lists them."""
 
-    def __init__(self, abs_infos: Dict[int, Tuple[int, int]], keys: List[int]):
+    def __init__(self, abs_infos: dict[int, tuple[int, int]], keys: list[int]):
         self.axis_codes = sorted(abs_infos)
         self.ranges = abs_infos
         self.button_codes = sorted(keys)

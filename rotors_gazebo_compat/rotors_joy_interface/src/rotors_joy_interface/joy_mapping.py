@@ -4,9 +4,10 @@
     multirotor: thrust.z = (axis_thrust + 1) max_thrust / 2 * dir_thrust
     fixed wing: thrust.x = max(axis_thrust * dir_thrust, 0)
 ROS-free: the node (scripts/rotors_joy_interface) reads the parameters and moves the messages."""
+
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, fields
-from typing import Dict, Sequence, Tuple
 
 
 class JoyError(ValueError):
@@ -22,10 +23,10 @@ class JoyMapping:
     axis_direction_roll: float = -1.0
     axis_direction_pitch: float = 1.0
     axis_direction_thrust: float = 1.0
-    max_roll: float = math.radians(10.0)       # [rad]
-    max_pitch: float = math.radians(10.0)      # [rad]
-    max_yaw_rate: float = math.radians(45.0)   # [rad/s]
-    max_thrust: float = 30.0                   # [N]
+    max_roll: float = math.radians(10.0)  # [rad]
+    max_pitch: float = math.radians(10.0)  # [rad]
+    max_yaw_rate: float = math.radians(45.0)  # [rad/s]
+    max_thrust: float = 30.0  # [N]
     is_fixed_wing: bool = False
     button_yaw_left_: int = 3
     button_yaw_right_: int = 4
@@ -40,7 +41,7 @@ class JoyMapping:
     UNUSED = ("max_v_xy", "v_yaw_step", "button_ctrl_enable_", "button_ctrl_mode_", "button_takeoff_", "button_land_")
 
     @classmethod
-    def from_params(cls, params: Dict[str, object]) -> "JoyMapping":
+    def from_params(cls, params: dict[str, object]) -> "JoyMapping":
         mapping = cls()
         names = {f.name: f.type for f in fields(cls)}
         for key, value in params.items():
@@ -59,10 +60,9 @@ class JoyMapping:
             if not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
                 raise JoyError(f"parameter {name} = {value!r} must be a finite number >= 0")
 
-    def command(self, axes: Sequence[float], buttons: Sequence[int]) -> Tuple[float, float, float, Tuple[float, float, float]]:
+    def command(self, axes: Sequence[float], buttons: Sequence[int]) -> tuple[float, float, float, tuple[float, float, float]]:
         """(roll [rad], pitch [rad], yaw_rate [rad/s], thrust [N] as (x, y, z)) for one Joy message."""
-        for what, index in (("axis_roll_", self.axis_roll_), ("axis_pitch_", self.axis_pitch_),
-                            ("axis_thrust_", self.axis_thrust_)):
+        for what, index in (("axis_roll_", self.axis_roll_), ("axis_pitch_", self.axis_pitch_), ("axis_thrust_", self.axis_thrust_)):
             if index >= len(axes):
                 raise JoyError(f"Joy has {len(axes)} axes; {what} = {index} needs at least {index + 1}")
         for what, index in (("button_yaw_left_", self.button_yaw_left_), ("button_yaw_right_", self.button_yaw_right_)):
@@ -70,8 +70,7 @@ class JoyMapping:
                 raise JoyError(f"Joy has {len(buttons)} buttons; {what} = {index} needs at least {index + 1}")
         a_roll, a_pitch, a_thrust = axes[self.axis_roll_], axes[self.axis_pitch_], axes[self.axis_thrust_]
         if not all(math.isfinite(a) and -1.0 - 1e-6 <= a <= 1.0 + 1e-6 for a in (a_roll, a_pitch, a_thrust)):
-            raise JoyError(f"Joy axes must be finite and in [-1, 1], got roll {a_roll}, pitch {a_pitch}, "
-                           f"thrust {a_thrust}")
+            raise JoyError(f"Joy axes must be finite and in [-1, 1], got roll {a_roll}, pitch {a_pitch}, " f"thrust {a_thrust}")
         roll = a_roll * self.max_roll * self.axis_direction_roll
         pitch = a_pitch * self.max_pitch * self.axis_direction_pitch
         yaw_rate = 0.0

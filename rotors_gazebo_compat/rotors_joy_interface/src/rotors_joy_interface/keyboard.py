@@ -13,8 +13,9 @@ A terminal sends no key-up events: an axis or button counts as released `hold_s`
 key press (the terminal's auto-repeat keeps a held key pressed), then roll and pitch spring back to
 0 at `spring_back_per_s`. Joy convention: left and up are positive (as joy_node reports a stick).
 ROS-free; scripts/key_joystick.py reads the terminal and publishes."""
+
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Iterable, List, Optional, Tuple
 
 ROLL, PITCH, THRUST, YAW = 0, 1, 2, 3
 BUTTON_YAW_LEFT, BUTTON_YAW_RIGHT = 3, 4
@@ -22,16 +23,24 @@ BUTTON_CTRL_ENABLE, BUTTON_CTRL_MODE = 5, 10
 N_AXES, N_BUTTONS = 4, 12
 
 # escape sequences of the arrow keys (xterm and the Linux console; SS3 form from application mode)
-ARROWS = {"\x1b[A": "up", "\x1b[B": "down", "\x1b[C": "right", "\x1b[D": "left",
-          "\x1bOA": "up", "\x1bOB": "down", "\x1bOC": "right", "\x1bOD": "left"}
+ARROWS = {
+    "\x1b[A": "up",
+    "\x1b[B": "down",
+    "\x1b[C": "right",
+    "\x1b[D": "left",
+    "\x1bOA": "up",
+    "\x1bOB": "down",
+    "\x1bOC": "right",
+    "\x1bOD": "left",
+}
 
 
-def decode_keys(text: str) -> Tuple[List[str], str]:
+def decode_keys(text: str) -> tuple[list[str], str]:
     """Key names in `text` ('up', 'w', ' ', ...), and an incomplete escape sequence left over."""
     keys, i = [], 0
     while i < len(text):
         if text[i] == "\x1b":
-            seq = text[i:i + 3]
+            seq = text[i : i + 3]
             if len(seq) < 3 and seq in ("\x1b", "\x1b[", "\x1bO"):
                 return keys, text[i:]
             keys.append(ARROWS.get(seq, "escape"))
@@ -48,15 +57,17 @@ class KeyJoystick:
     thrust_step: float = 0.05
     hold_s: float = 0.5
     spring_back_per_s: float = 2.0
-    axes: List[float] = field(default_factory=lambda: [0.0, 0.0, -1.0, 0.0])
-    _last_press: dict = field(default_factory=dict)   # axis / button -> time of its last key [s]
-    _last_update: Optional[float] = None
+    axes: list[float] = field(default_factory=lambda: [0.0, 0.0, -1.0, 0.0])
+    _last_press: dict = field(default_factory=dict)  # axis / button -> time of its last key [s]
+    _last_update: float | None = None
 
     def press(self, key: str, t: float) -> bool:
         """Applies one key at time t [s]; False for a key that does nothing."""
+
         def step(axis: int, delta: float, limit: float = 1.0) -> None:
             self.axes[axis] = max(-limit, min(limit, self.axes[axis] + delta))
             self._last_press[("axis", axis)] = t
+
         if key == "left":
             step(ROLL, self.roll_pitch_step)
         elif key == "right":
@@ -83,7 +94,7 @@ class KeyJoystick:
             return False
         return True
 
-    def state(self, t: float) -> Tuple[List[float], List[int]]:
+    def state(self, t: float) -> tuple[list[float], list[int]]:
         """Axes and buttons at time t [s] (after releasing what was not pressed for hold_s)."""
         dt = 0.0 if self._last_update is None else max(t - self._last_update, 0.0)
         self._last_update = t
@@ -99,6 +110,6 @@ class KeyJoystick:
             buttons[b] = int(last is not None and t - last <= self.hold_s)
         return list(self.axes), buttons
 
-    def press_all(self, keys: Iterable[str], t: float) -> List[str]:
+    def press_all(self, keys: Iterable[str], t: float) -> list[str]:
         """Applies keys; returns those that do nothing."""
         return [k for k in keys if not self.press(k, t)]

@@ -17,8 +17,9 @@ from rotors_sim.envs.vector import BatchedEnv
 from rotors_sim.envs.waypoints import WaypointsEnv
 
 for _id, _entry, _vector in (
-        ("RotorS/Hover-v0", "rotors_sim.envs.hover:HoverEnv", "rotors_sim.envs.batched:hover_vector_env"),
-        ("RotorS/Waypoints-v0", "rotors_sim.envs.waypoints:WaypointsEnv", "rotors_sim.envs.batched:waypoints_vector_env")):
+    ("RotorS/Hover-v0", "rotors_sim.envs.hover:HoverEnv", "rotors_sim.envs.batched:hover_vector_env"),
+    ("RotorS/Waypoints-v0", "rotors_sim.envs.waypoints:WaypointsEnv", "rotors_sim.envs.batched:waypoints_vector_env"),
+):
     if _id not in gym.registry:
         gym.register(id=_id, entry_point=_entry, vector_entry_point=_vector)
 

@@ -12,7 +12,8 @@ first observation of the next one, its last observation in infos["final_obs"].
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
@@ -44,13 +45,27 @@ class FlightBatchEnv(VectorEnv):
 
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP}
 
-    def __init__(self, task: str = "hover", num_envs: int = 16, *, mav_name: str = "firefly",
-                 action_type: str = "motor", physics_hz: float = 500.0, control_hz: float = 100.0,
-                 episode_s: float | None = None, target: Sequence[float] = (0.0, 0.0, 1.0),
-                 waypoint_list: Sequence[Sequence[float]] = waypoints.SQUARE[1:],
-                 start: Sequence[float] = waypoints.SQUARE[0], reach_m: float = 0.3, sensor_seed: int = 0,
-                 threads: int = 0, max_tilt_rad: float = 0.6, max_yaw_rate_rad_s: float = 2.0,
-                 autoreset: bool = True, alive_bonus: float = 0.0):
+    def __init__(
+        self,
+        task: str = "hover",
+        num_envs: int = 16,
+        *,
+        mav_name: str = "firefly",
+        action_type: str = "motor",
+        physics_hz: float = 500.0,
+        control_hz: float = 100.0,
+        episode_s: float | None = None,
+        target: Sequence[float] = (0.0, 0.0, 1.0),
+        waypoint_list: Sequence[Sequence[float]] = waypoints.SQUARE[1:],
+        start: Sequence[float] = waypoints.SQUARE[0],
+        reach_m: float = 0.3,
+        sensor_seed: int = 0,
+        threads: int = 0,
+        max_tilt_rad: float = 0.6,
+        max_yaw_rate_rad_s: float = 2.0,
+        autoreset: bool = True,
+        alive_bonus: float = 0.0,
+    ):
         if task not in TASKS:
             raise SimError(f"task '{task}' is not known; use one of: {', '.join(TASKS)}")
         if action_type not in ACTION_TYPES:
@@ -63,9 +78,15 @@ class FlightBatchEnv(VectorEnv):
         step_size = 1.0 / physics_hz
         self.substeps = max(1, round(1.0 / control_hz / step_size))
         mode = "rotor_speeds" if action_type == "motor" else "roll_pitch_yawrate_thrust"
-        self.batch = FlightBatch(mav_name, self.num_envs, mode=mode, step_size=step_size,
-                                 control_divisor=self.substeps, threads=threads,
-                                 seeds=[sensor_seed + i for i in range(self.num_envs)])
+        self.batch = FlightBatch(
+            mav_name,
+            self.num_envs,
+            mode=mode,
+            step_size=step_size,
+            control_divisor=self.substeps,
+            threads=threads,
+            seeds=[sensor_seed + i for i in range(self.num_envs)],
+        )
         d = self.batch.description
         self.max_rot_velocity = np.array([r["max_rot_velocity"] for r in d.rotors])
         self.hover_thrust_N = d.mass_kg * -d.gravity_W[2]
@@ -110,9 +131,14 @@ class FlightBatchEnv(VectorEnv):
         if self.action_type == "motor":
             self.batch.commands[:] = (a + 1.0) / 2.0 * self.max_rot_velocity
         else:
-            self.batch.commands[:] = np.column_stack([a[:, 0] * self.max_tilt_rad, a[:, 1] * self.max_tilt_rad,
-                                                      a[:, 2] * self.max_yaw_rate_rad_s,
-                                                      (a[:, 3] + 1.0) * self.hover_thrust_N])
+            self.batch.commands[:] = np.column_stack(
+                [
+                    a[:, 0] * self.max_tilt_rad,
+                    a[:, 1] * self.max_tilt_rad,
+                    a[:, 2] * self.max_yaw_rate_rad_s,
+                    (a[:, 3] + 1.0) * self.hover_thrust_N,
+                ]
+            )
         self.batch.step(self.substeps)
         self.steps += 1
         p = self.batch.odometry[:, 0:3]
@@ -120,8 +146,11 @@ class FlightBatchEnv(VectorEnv):
         if self.task == "hover":
             obs = self._observe()
             terminated = collided | np.any(np.abs(obs[:, 0:3]) > hover.BOUND_M, axis=1)
-            reward = (-np.linalg.norm(obs[:, 0:3], axis=1) - 0.1 * np.linalg.norm(obs[:, 3:6], axis=1)
-                      - 0.05 * np.linalg.norm(obs[:, 10:13], axis=1))
+            reward = (
+                -np.linalg.norm(obs[:, 0:3], axis=1)
+                - 0.1 * np.linalg.norm(obs[:, 3:6], axis=1)
+                - 0.05 * np.linalg.norm(obs[:, 10:13], axis=1)
+            )
             reward = np.where(terminated, hover.TERMINATION_REWARD, reward + self.alive_bonus)
             success = np.zeros(self.num_envs, dtype=bool)
         else:
@@ -226,5 +255,10 @@ class SingleVehicleEnv(gym.Env):
 
     def step(self, action):
         obs, reward, terminated, truncated, info = self.vector.step(np.asarray(action)[None, :])
-        return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), {
-            "time_s": float(info["time_s"][0]), "collided": bool(info["collided"][0])}
+        return (
+            obs[0],
+            float(reward[0]),
+            bool(terminated[0]),
+            bool(truncated[0]),
+            {"time_s": float(info["time_s"][0]), "collided": bool(info["collided"][0])},
+        )

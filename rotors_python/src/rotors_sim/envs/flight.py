@@ -15,10 +15,10 @@ from dataclasses import dataclass
 import gymnasium as gym
 import numpy as np
 
-from rotors_sim.controllers import AttitudeLevelController, LeePositionController
-from rotors_sim.world import Odometry, World
 from rotors_sim._engine import SimError
+from rotors_sim.controllers import AttitudeLevelController, LeePositionController
 from rotors_sim.paths import resource
+from rotors_sim.world import Odometry, World
 
 ACTION_TYPES = ("motor", "attitude")
 
@@ -54,15 +54,16 @@ class Flight:
         self.ns = config.mav_name
         self.substeps = max(1, round(1.0 / config.control_hz / self.world.step_size))
         # the odometry sensor publishes at the control rate
-        self.world.spawn_mav(config.mav_name, xyz=(0.0, 0.0, 0.1), random_seed=config.sensor_seed,
-                             odometry_divisor=self.substeps)
+        self.world.spawn_mav(config.mav_name, xyz=(0.0, 0.0, 0.1), random_seed=config.sensor_seed, odometry_divisor=self.substeps)
         self.world.listen([f"/{self.ns}/odometry_sensor1/odometry"])
         self.attitude: AttitudeLevelController | None = None
         if config.action_type == "attitude":
             gains = resource(f"roll_pitch_yawrate_thrust_controller_{config.mav_name}.yaml")
             if not gains.exists():
-                raise SimError(f"attitude actions need {gains.name}, which {config.mav_name} does not have "
-                               "(RotorS ships none); use action_type='motor'")
+                raise SimError(
+                    f"attitude actions need {gains.name}, which {config.mav_name} does not have "
+                    "(RotorS ships none); use action_type='motor'"
+                )
             self.attitude = AttitudeLevelController.for_mav(config.mav_name)
         vehicle = (self.attitude or LeePositionController.for_mav(config.mav_name)).vehicle
         self.rotor_count = len(vehicle["rotors"])
@@ -90,16 +91,20 @@ class Flight:
         """Rotor speeds [rad/s] for a normalized action (checked: shape, finite)."""
         a = np.asarray(action, dtype=np.float64)
         if a.shape != (self.action_size,):
-            raise SimError(f"action has shape {a.shape}, the '{self.config.action_type}' action space of "
-                           f"{self.ns} needs ({self.action_size},)")
+            raise SimError(
+                f"action has shape {a.shape}, the '{self.config.action_type}' action space of " f"{self.ns} needs ({self.action_size},)"
+            )
         if not np.all(np.isfinite(a)):
             raise SimError(f"action {a.tolist()} has NaN or inf")
         a = np.clip(a, -1.0, 1.0)
         if self.config.action_type == "motor":
             return (a + 1.0) / 2.0 * self.max_rot_velocity
-        self.attitude.set_roll_pitch_yawrate_thrust(a[0] * self.config.max_tilt_rad, a[1] * self.config.max_tilt_rad,
-                                                    a[2] * self.config.max_yaw_rate_rad_s,
-                                                    (a[3] + 1.0) * self.hover_thrust_N)
+        self.attitude.set_roll_pitch_yawrate_thrust(
+            a[0] * self.config.max_tilt_rad,
+            a[1] * self.config.max_tilt_rad,
+            a[2] * self.config.max_yaw_rate_rad_s,
+            (a[3] + 1.0) * self.hover_thrust_N,
+        )
         return np.clip(self.attitude.rotor_speeds(self.odometry), 0.0, self.max_rot_velocity)
 
     def apply(self, action: np.ndarray) -> None:

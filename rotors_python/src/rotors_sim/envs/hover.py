@@ -36,10 +36,19 @@ def hover_reward(obs: np.ndarray) -> float:
 
 
 class HoverEnv(FlightEnv):
-    def __init__(self, mav_name: str = "firefly", action_type: str = "motor", target=(0.0, 0.0, 1.0),
-                 episode_s: float = 10.0, physics_hz: float = 500.0, control_hz: float = 100.0, sensor_seed: int = 0):
-        self.flight = Flight(FlightConfig(mav_name=mav_name, action_type=action_type, physics_hz=physics_hz,
-                                          control_hz=control_hz, sensor_seed=sensor_seed))
+    def __init__(
+        self,
+        mav_name: str = "firefly",
+        action_type: str = "motor",
+        target=(0.0, 0.0, 1.0),
+        episode_s: float = 10.0,
+        physics_hz: float = 500.0,
+        control_hz: float = 100.0,
+        sensor_seed: int = 0,
+    ):
+        self.flight = Flight(
+            FlightConfig(mav_name=mav_name, action_type=action_type, physics_hz=physics_hz, control_hz=control_hz, sensor_seed=sensor_seed)
+        )
         self.target = np.asarray(target, dtype=np.float64)
         self.max_steps = int(round(episode_s / self.flight.dt))
         self.action_space = gym.spaces.Box(-1.0, 1.0, (self.flight.action_size,), np.float32)

@@ -5,7 +5,8 @@ first observation of the next one, its last observation in infos["final_obs"].""
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 import gymnasium as gym
 import numpy as np

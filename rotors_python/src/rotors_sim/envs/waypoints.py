@@ -13,7 +13,8 @@ truncated: episode_s of simulated time (default 20 s).
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
@@ -25,11 +26,21 @@ SQUARE = ((0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 1.0, 1.0), (0.0, 1.0, 1.0), (0
 
 
 class WaypointsEnv(FlightEnv):
-    def __init__(self, waypoints: Sequence[Sequence[float]] = SQUARE[1:], start=SQUARE[0], mav_name: str = "firefly",
-                 action_type: str = "motor", reach_m: float = 0.3, episode_s: float = 20.0,
-                 physics_hz: float = 500.0, control_hz: float = 100.0, sensor_seed: int = 0):
-        self.flight = Flight(FlightConfig(mav_name=mav_name, action_type=action_type, physics_hz=physics_hz,
-                                          control_hz=control_hz, sensor_seed=sensor_seed))
+    def __init__(
+        self,
+        waypoints: Sequence[Sequence[float]] = SQUARE[1:],
+        start=SQUARE[0],
+        mav_name: str = "firefly",
+        action_type: str = "motor",
+        reach_m: float = 0.3,
+        episode_s: float = 20.0,
+        physics_hz: float = 500.0,
+        control_hz: float = 100.0,
+        sensor_seed: int = 0,
+    ):
+        self.flight = Flight(
+            FlightConfig(mav_name=mav_name, action_type=action_type, physics_hz=physics_hz, control_hz=control_hz, sensor_seed=sensor_seed)
+        )
         self.waypoints = np.asarray(waypoints, dtype=np.float64).reshape(-1, 3)
         self.start = np.asarray(start, dtype=np.float64)
         self.reach_m = reach_m
@@ -73,6 +84,5 @@ class WaypointsEnv(FlightEnv):
             reward = -10.0
         terminated = success or crashed
         truncated = not terminated and self.steps >= self.max_steps
-        info = {"waypoint": min(self.index, len(self.waypoints)), "success": success, "collided": collided,
-                "time_s": odometry.time_s}
+        info = {"waypoint": min(self.index, len(self.waypoints)), "success": success, "collided": collided, "time_s": odometry.time_s}
         return self._observe(odometry), reward, terminated, truncated, info
