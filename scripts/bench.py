@@ -616,7 +616,7 @@ def batched_flight() -> dict:
             continue
         for n in counts:
             sim_s = 20.0 if key.startswith("crazyflow") and n <= 64 else max(drone_s / n, 2.0 if n > 1 else drone_s)
-            runs = [hover_drone_s_per_s(script, n, sim_s, mode="one_call" if script == "rotors_sim" else "") for _ in range(3)]
+            runs = [hover_drone_s_per_s(script, n, sim_s, mode="one_call" if script in ("rotors_sim", "crazyflow") else "") for _ in range(3)]
             table.setdefault(key, {})[str(n)] = max(r["drone_s_per_s"] for r in runs)
     extra = {}
     for label, args in (

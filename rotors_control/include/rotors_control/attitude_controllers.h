@@ -28,7 +28,7 @@ class AttitudeLevelController {
   /// Desired body rates [rad/s] and thrust.
   void SetRateThrust(const Eigen::Vector3d& omega_des_B, double thrust_N);
   bool HasCommand() const { return mode_ != Mode::kNone; }
-  Eigen::VectorXd RotorSpeeds(const VehicleState& state) const;
+  RotorVector RotorSpeeds(const VehicleState& state) const;
 
  private:
   enum class Mode { kNone, kRollPitchYawrate, kAttitude, kRate };

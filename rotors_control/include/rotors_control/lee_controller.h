@@ -77,7 +77,7 @@ class LeeController {
   bool YawReleased() const { return yaw_released_; }
   bool HasReference() const { return has_reference_; }
   /// Rotor speeds [rad/s]; zeros until the first reference (the rotors stay stopped).
-  Eigen::VectorXd RotorSpeeds(const VehicleState& state) const;
+  RotorVector RotorSpeeds(const VehicleState& state) const;
   /// The thrust [N] and desired attitude of the last RotorSpeeds() call (diagnostics/tests).
   void ComputeThrustAndAttitude(const VehicleState& state, double* thrust_N, Eigen::Matrix3d* R_WD) const;
 

@@ -27,8 +27,8 @@ void AttitudeLevelController::SetRateThrust(const Eigen::Vector3d& omega_des_B, 
   mode_ = Mode::kRate;
 }
 
-Eigen::VectorXd AttitudeLevelController::RotorSpeeds(const VehicleState& s) const {
-  if (mode_ == Mode::kNone) return Eigen::VectorXd::Zero(mixer_.Allocation().cols());
+RotorVector AttitudeLevelController::RotorSpeeds(const VehicleState& s) const {
+  if (mode_ == Mode::kNone) return RotorVector::Zero(mixer_.Allocation().cols());
   const Eigen::Matrix3d R = s.orientation_W_B.toRotationMatrix();
   Eigen::Vector3d alpha;
   if (mode_ == Mode::kRate) {

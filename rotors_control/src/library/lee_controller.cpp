@@ -111,8 +111,8 @@ void LeeController::ComputeThrustAndAttitude(const VehicleState& s, double* thru
   R_WD->col(2) = b3_d;
 }
 
-Eigen::VectorXd LeeController::RotorSpeeds(const VehicleState& s) const {
-  if (!has_reference_) return Eigen::VectorXd::Zero(params_.vehicle.rotors.size());
+RotorVector LeeController::RotorSpeeds(const VehicleState& s) const {
+  if (!has_reference_) return RotorVector::Zero(params_.vehicle.rotors.size());
   double thrust_N = 0.0;
   Eigen::Matrix3d R_WD;
   ComputeThrustAndAttitude(s, &thrust_N, &R_WD);

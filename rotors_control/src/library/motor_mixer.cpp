@@ -64,7 +64,7 @@ double MotorMixer::FeasibleYaw(const RotorVector& without_yaw, const RotorVector
   return lo <= hi ? std::clamp(yaw, lo, hi) : yaw;  // empty: yaw cannot help, the rotors clip
 }
 
-Eigen::VectorXd MotorMixer::RotorSpeeds(const Eigen::Vector3d& alpha_B, double thrust_N) const {
+RotorVector MotorMixer::RotorSpeeds(const Eigen::Vector3d& alpha_B, double thrust_N) const {
   // omega^2 = A^T (A A^T)^-1 blockdiag(J, 1) [alpha; T] = without_yaw + per_yaw alpha_z
   const RotorVector per_yaw = A_pinv_J_.col(2);
   const auto without_yaw = [&](double thrust) {
@@ -73,10 +73,12 @@ Eigen::VectorXd MotorMixer::RotorSpeeds(const Eigen::Vector3d& alpha_B, double t
   // A rotor cannot push downwards: when one would have to, the yaw acceleration gives way (moves to
   // the nearest feasible value), so roll, pitch and thrust stay exact. A hexacopter with a failed
   // rotor gives up yaw this way and keeps its position. The thrust limit then uses that yaw.
-  double alpha_z = FeasibleYaw(without_yaw(thrust_N), per_yaw, alpha_B.z());
+  const RotorVector first = without_yaw(thrust_N);
+  double alpha_z = FeasibleYaw(first, per_yaw, alpha_B.z());
   const double thrust = FeasibleThrust({alpha_B.x(), alpha_B.y(), alpha_z}, thrust_N);
-  const RotorVector base = without_yaw(thrust);
-  alpha_z = FeasibleYaw(base, per_yaw, alpha_z);
+  // with the thrust kept, the first pass stands: FeasibleYaw is a clamp, a second one changes nothing
+  const RotorVector base = thrust == thrust_N ? first : without_yaw(thrust);
+  if (thrust != thrust_N) alpha_z = FeasibleYaw(base, per_yaw, alpha_z);
   return (base + per_yaw * alpha_z).cwiseMax(0.0).cwiseSqrt();
 }
 

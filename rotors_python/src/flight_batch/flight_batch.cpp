@@ -542,7 +542,7 @@ void FlightBatch::ApplyCommand(int i) {
   state.velocity_B = {o[7], o[8], o[9]};
   state.angular_velocity_B = {o[10], o[11], o[12]};
   Controller& ctrl = *controllers_[i];
-  Eigen::VectorXd speeds;
+  rotors_control::RotorVector speeds;
   switch (options_.mode) {
     case CommandMode::kLeePosition: {
       if (!std::isnan(c[0])) {  // a row of NaN: no set point yet, or the last one kept
@@ -625,21 +625,29 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
     }
     m.v_S = {v_S[0], v_S[1], v_S[2]};
     m.omega_S = {w_S[0], w_S[1], w_S[2]};
-    sensors.queue.push_back({step + od.delay_steps, t_s + od.unknown_delay_s, m});
+    const Sensors::Pending pending{step + od.delay_steps, t_s + od.unknown_delay_s, m};
+    if (od.delay_steps == 0 && sensors.queue.empty()) {
+      Publish(i, pending.stamp_s, pending.truth);  // due now: no queue
+    } else {
+      sensors.queue.push_back(pending);
+    }
   }
   while (!sensors.queue.empty() && sensors.queue.front().publish_at_step <= step) {
-    const Sensors::Pending& pending = sensors.queue.front();
-    const rgp::OdometryMeasurement m =
-        sensors.odometry_noise ? sensors.odometry_noise->Corrupt(pending.truth) : pending.truth;
-    double* o = &odometry_out_[i * 14];
-    o[0] = m.p_W.x(), o[1] = m.p_W.y(), o[2] = m.p_W.z();
-    o[3] = m.q_WS.x(), o[4] = m.q_WS.y(), o[5] = m.q_WS.z(), o[6] = m.q_WS.w();
-    o[7] = m.v_S.x(), o[8] = m.v_S.y(), o[9] = m.v_S.z();
-    o[10] = m.omega_S.x(), o[11] = m.omega_S.y(), o[12] = m.omega_S.z();
-    o[13] = pending.stamp_s;
-    ++odometry_count_[i];
+    Publish(i, sensors.queue.front().stamp_s, sensors.queue.front().truth);
     sensors.queue.pop_front();
   }
+}
+
+void FlightBatch::Publish(int i, double stamp_s, const rgp::OdometryMeasurement& truth) {
+  Sensors& sensors = *sensors_[i];
+  const rgp::OdometryMeasurement m = sensors.odometry_noise ? sensors.odometry_noise->Corrupt(truth) : truth;
+  double* o = &odometry_out_[i * 14];
+  o[0] = m.p_W.x(), o[1] = m.p_W.y(), o[2] = m.p_W.z();
+  o[3] = m.q_WS.x(), o[4] = m.q_WS.y(), o[5] = m.q_WS.z(), o[6] = m.q_WS.w();
+  o[7] = m.v_S.x(), o[8] = m.v_S.y(), o[9] = m.v_S.z();
+  o[10] = m.omega_S.x(), o[11] = m.omega_S.y(), o[12] = m.omega_S.z();
+  o[13] = stamp_s;
+  ++odometry_count_[i];
 }
 
 double* FlightBatch::RotorSpeeds() {

@@ -111,6 +111,8 @@ class FlightBatch {
   void StepGroup(int i0);
   void ApplyCommand(int i);
   void Observe(int i, const double v_before_W[3], const double omega_before_W[3], const double R_before[9]);
+  /// The odometry plugin's Publish: the noise drawn, the message written to the vehicle's row.
+  void Publish(int i, double stamp_s, const rotors_gazebo_plugins::OdometryMeasurement& truth);
 
   VehicleDescription d_;
   FlightBatchOptions options_;
