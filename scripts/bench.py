@@ -616,7 +616,9 @@ def batched_flight() -> dict:
             continue
         for n in counts:
             sim_s = 20.0 if key.startswith("crazyflow") and n <= 64 else max(drone_s / n, 2.0 if n > 1 else drone_s)
-            runs = [hover_drone_s_per_s(script, n, sim_s, mode="one_call" if script in ("rotors_sim", "crazyflow") else "") for _ in range(3)]
+            runs = [
+                hover_drone_s_per_s(script, n, sim_s, mode="one_call" if script in ("rotors_sim", "crazyflow") else "") for _ in range(3)
+            ]
             table.setdefault(key, {})[str(n)] = max(r["drone_s_per_s"] for r in runs)
     extra = {}
     for label, args in (
@@ -672,6 +674,17 @@ def batched_flight_rows(b: dict) -> list:
         )
     ]
     rows += [("  where one vehicle's step goes (perf, self time)", line, "") for line in b["profile"]]
+    kernel = sum(float(line.split("%")[0]) for line in b["profile"] if "StepLanes" in line or "StepFreeBody" in line)
+    rows += [
+        (
+            "  what bounds the next factor",
+            f"one vehicle: the physics kernel ({kernel:.0f} % of its step: the rotors' forces and ODE's free-body step, "
+            "in scalar code) - lanes over its rotors, or fused multiply-add (which would end the bit-for-bit equality "
+            "with the full world); many: the controllers (rotors_control's library, one vehicle at a time) and the "
+            "lane width (AVX2's four)",
+            "",
+        )
+    ]
     return rows
 
 

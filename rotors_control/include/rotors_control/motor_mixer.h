@@ -21,8 +21,8 @@ class MotorMixer {
  public:
   /// Throws std::invalid_argument if A does not have rank 4 (the vehicle is not controllable).
   explicit MotorMixer(const MultirotorParameters& vehicle);
-  /// omega = sqrt(max(0, A^T (A A^T)^-1 [J alpha; T])) (on the stack: no allocation per call): alpha [rad/s^2] body frame, thrust [N].
-  /// When every rotor has a max_rot_velocity and the thrust would push one beyond it, the thrust is
+  /// omega = sqrt(max(0, A^T (A A^T)^-1 [J alpha; T])) (on the stack: no allocation per call): alpha [rad/s^2] body
+  /// frame, thrust [N]. When every rotor has a max_rot_velocity and the thrust would push one beyond it, the thrust is
   /// lowered until none is (the torques keep priority: attitude control survives saturation).
   /// When a rotor would need a negative omega^2, the yaw acceleration moves to the nearest value
   /// that needs none (roll, pitch and thrust keep priority, as in PX4's mixer).
