@@ -117,7 +117,7 @@ def test_multirotors_take_autopilot_interface_before_its_sensors(mav_name):
 
 
 def test_launch_files_with_lee_or_attitude_offer_in_process():
-    """README: in_process:=true on every launch file that starts lee_position_controller_node or
+    """docs/rotors_compatibility.md: in_process:=true on every launch file that starts lee_position_controller_node or
     roll_pitch_yawrate_thrust_controller_node (they can run as nodelets in the simulator)."""
     nodelet_nodes = {"lee_position_controller_node", "roll_pitch_yawrate_thrust_controller_node"}
     lacking, checked = [], 0

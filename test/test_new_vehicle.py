@@ -1,4 +1,4 @@
-"""README "Adding a vehicle", done step by step as a user would: an X quadrotor of 1.0 kg body mass,
+"""docs/vehicles.md "Adding a vehicle", done step by step as a user would: an X quadrotor of 1.0 kg body mass,
 its vehicle yaml and gains from `rosrun rotors_gazebo vehicle_params`, flown by the hovering
 example. It must hover within 0.01 m of its set point first time (the simulated vehicle weighs
 more than its body: rotors and sensors; the computed yaml knows it)."""

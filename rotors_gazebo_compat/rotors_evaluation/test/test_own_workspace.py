@@ -1,4 +1,4 @@
-"""README's "own catkin workspace" recipe, as a new user runs it: the package folder linked into a
+"""The "own catkin workspace" recipe of docs/rotors_compatibility.md, as a new user runs it: the package folder linked into a
 fresh workspace's src, `catkin_make -DPYTHON_EXECUTABLE=<venv python>`, and the evaluation started
 with `rosrun` from that workspace's devel space. (The recipe links every package; this links
 rotors_evaluation, whose wrappers are what the recipe's PYTHON_EXECUTABLE is for, so that the test
