@@ -169,26 +169,8 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   const int cores = std::max(1u, std::thread::hardware_concurrency());
   threads_ = std::clamp(options_.threads > 0 ? options_.threads : cores, 1, n_);
 
-  inv_mass_ = 1.0 / d_.mass_kg;
-  const Eigen::Matrix3d inv_I = d_.inertia_B_kg_m2.inverse();
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      I_B_[i * 3 + j] = d_.inertia_B_kg_m2(i, j);
-      inv_I_B_[i * 3 + j] = inv_I(i, j);
-    }
   dt_ns_ = std::llround(dt_ * 1e9);
-  for (const auto& corner : d_.contact_points_B) contact_reach_m_ = std::max(contact_reach_m_, corner.norm());
   if (d_.imu) R_BI_ = d_.imu->mount.q_BS.toRotationMatrix();
-  for (const auto& rotor : d_.rotors) {
-    rotor_cog_on_origin_.push_back(rotor.p_B_cog == rotor.p_B_origin);
-    a_up_.push_back(std::exp(-dt_ / rotor.params.time_constant_up_s));
-    a_down_.push_back(std::exp(-dt_ / rotor.params.time_constant_down_s));
-  }
-  // Ground contact: a spring and damper at each corner below z = 0, stiff enough that the vehicle
-  // sinks g / w^2 (0.4 mm at 500 Hz), soft enough for the explicit step (w dt = 0.3).
-  const double w = 0.3 / dt_ * std::sqrt(options_.contact_stiffness_scale);
-  contact_k_ = d_.mass_kg * w * w / 4.0;
-  contact_c_ = d_.mass_kg * w / 2.0;
 
   n_pad_ = (n_ + kLanes - 1) / kLanes * kLanes;
   const size_t n = n_pad_;
@@ -414,8 +396,8 @@ void FlightBatch::BuildKernelModel() {
     kr.rolling_moment_coefficient = rotor.params.rolling_moment_coefficient;
     kr.reaction_factor = -rotor.params.turning_direction * rotor.params.moment_constant;
     kr.max_rot_velocity = rotor.params.max_rot_velocity;
-    kr.a_up = a_up_[r];
-    kr.a_down = a_down_[r];
+    kr.a_up = std::exp(-dt_ / rotor.params.time_constant_up_s);  // FirstOrderFilter's factors, once
+    kr.a_down = std::exp(-dt_ / rotor.params.time_constant_down_s);
     kr.spin_inertia = rotor.spin_inertia_kg_m2;
     kr.direction = rotor.params.turning_direction;
     kr.slowdown = rotor.slowdown;
@@ -423,16 +405,24 @@ void FlightBatch::BuildKernelModel() {
   k.contacts = static_cast<int>(std::min<size_t>(d_.contact_points_B.size(), kMaxContacts));
   for (int c = 0; c < k.contacts; ++c)
     for (int j = 0; j < 3; ++j) k.corner_B[c][j] = d_.contact_points_B[c][j];
-  k.contact_k = contact_k_;
-  k.contact_c = contact_c_;
-  k.contact_reach_m = contact_reach_m_;
+  // Ground contact: a spring and damper at each corner below z = 0, stiff enough that the vehicle
+  // sinks g / w^2 (0.4 mm at 500 Hz), soft enough for the explicit step (w dt = 0.3).
+  const double w = 0.3 / dt_ * std::sqrt(options_.contact_stiffness_scale);
+  k.contact_k = d_.mass_kg * w * w / 4.0;
+  k.contact_c = d_.mass_kg * w / 2.0;
+  k.contact_reach_m = 0.0;  // no corner is farther from the CoG: above it, no contact
+  for (const auto& corner : d_.contact_points_B) k.contact_reach_m = std::max(k.contact_reach_m, corner.norm());
   k.dt = dt_;
   k.inv_dt = 1.0 / dt_;
   k.mass = d_.mass_kg;
   for (int c = 0; c < 3; ++c) k.gravity_W[c] = d_.gravity_W[c];
-  k.body.inv_mass_kg = inv_mass_;
-  std::copy(I_B_, I_B_ + 9, k.body.I_B);
-  std::copy(inv_I_B_, inv_I_B_ + 9, k.body.inv_I_B);
+  k.body.inv_mass_kg = 1.0 / d_.mass_kg;
+  const Eigen::Matrix3d inv_I = d_.inertia_B_kg_m2.inverse();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      k.body.I_B[i * 3 + j] = d_.inertia_B_kg_m2(i, j);
+      k.body.inv_I_B[i * 3 + j] = inv_I(i, j);
+    }
   k.wind_before_motors = d_.wind && d_.wind->before_motors;
 }
 

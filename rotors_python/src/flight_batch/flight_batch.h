@@ -123,14 +123,9 @@ class FlightBatch {
   StepFourLanes kernel_ = nullptr;
   double dt_;
   // constants
-  double inv_mass_, I_B_[9], inv_I_B_[9];
-  std::vector<double> a_up_, a_down_;  ///< per rotor: exp(-dt / tau_up), exp(-dt / tau_down)
-  std::vector<bool> rotor_cog_on_origin_;
   int64_t dt_ns_ = 0;
-  double contact_k_ = 0, contact_c_ = 0;
-  double contact_reach_m_ = 0;  ///< no corner is farther from the CoG: above it, no contact
   Eigen::Matrix3d R_BI_ = Eigen::Matrix3d::Identity();
-  // state, structure of arrays: component k of vehicle i at [k * n_ + i]
+  // state, structure of arrays: component k of vehicle i at [k * n_pad_ + i]
   std::vector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;           ///< the body (CoG), as the solver keeps it
   std::vector<double> omega_rotor_, qdot_applied_, motor_command_;  ///< R per vehicle
   std::vector<double> wind_velocity_W_;                             ///< the wind speed the motors see

@@ -11,6 +11,7 @@
 #include <cstring>
 
 #include "rotors_core/physics/free_body_step.h"
+#include "rotors_gazebo_plugins/models/first_order_filter.h"
 
 namespace rotors_flight_batch {
 
@@ -180,7 +181,7 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
     const V zero = {}, max = Splat<V>(p.max_rot_velocity);
     const V u = cmd < zero ? zero : (max < cmd ? max : cmd);
     const V k = u > omega ? Splat<V>(p.a_up) : Splat<V>(p.a_down);
-    const V y = k * omega + (1.0 - k) * u;
+    const V y = rotors_gazebo_plugins::FirstOrderFilter::Blend(omega, u, k);
     Store(&a.omega_rotor[r * n + i0], y);
     qdot[r] = p.direction * y / p.slowdown;
   }

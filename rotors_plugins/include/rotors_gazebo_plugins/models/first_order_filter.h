@@ -18,14 +18,16 @@ class FirstOrderFilter {
     y_ = Blend(y_, u, std::exp(-dt_s / tau_s));
     return y_;
   }
-  /// The same step with the factors exp(-dt / tau_up) and exp(-dt / tau_down) computed once
-  /// (the batched flight engine's form, equal to Update bit for bit).
-  static double Step(double y, double u, double a_up, double a_down) { return Blend(y, u, u > y ? a_up : a_down); }
+  /// y_k = a y_{k-1} + (1 - a) u for a = exp(-dt / tau) computed by the caller; T is double or a
+  /// vector of lanes (the batched flight engine steps many filters at once, each equal to Update).
+  template <class T>
+  static T Blend(const T& y, const T& u, const T& a) {
+    return a * y + (1.0 - a) * u;
+  }
   double Output() const { return y_; }
   void Reset(double y = 0.0) { y_ = y; }
 
  private:
-  static double Blend(double y, double u, double a) { return a * y + (1.0 - a) * u; }
   double tau_up_s_, tau_down_s_, y_;
 };
 
