@@ -98,7 +98,7 @@ def test_attitude_controller_flies_as_in_the_full_world():
     assert np.linalg.norm(p_world - truth[:3]) < 1e-3 and angle_deg(q_world, truth[3:7]) < 0.1
 
 
-def noisy_batch(count: int, seeds: list[int], threads: int = 1) -> rs.FlightBatch:
+def noisy_batch(count: int, seeds: list[int], threads: int = 1, kernel: str = "") -> rs.FlightBatch:
     batch = rs.FlightBatch(
         "firefly",
         count,
@@ -106,6 +106,7 @@ def noisy_batch(count: int, seeds: list[int], threads: int = 1) -> rs.FlightBatc
         control_divisor=DIVISOR,
         seeds=seeds,
         threads=threads,
+        kernel=kernel,
         odometry_noise_position="0.01 0.01 0.01",
         model=GUST["model"],
         wind_gust_start=0.5,
@@ -135,6 +136,21 @@ def test_batch_of_n_equals_n_single_runs_on_any_thread_count():
     together = record(noisy_batch(5, seeds, threads=2))
     alone = np.vstack([record(noisy_batch(1, [s])) for s in seeds])
     assert np.array_equal(together, alone)
+
+
+def test_every_kernel_flies_the_same_bits():
+    """Four vehicles in lanes and a fifth alone (its rotors in lanes): AVX2, SSE2 and no lanes at all
+    give the same flight bit for bit, so a CPU without AVX2 flies what this one flies."""
+    seeds = [31, 32, 33, 34, 35]
+    fastest = noisy_batch(5, seeds)
+    assert fastest.kernel in ("avx2", "sse2")
+    flights = {fastest.kernel: record(fastest)}
+    for kernel in ("sse2", "scalar"):
+        flights[kernel] = record(noisy_batch(5, seeds, kernel=kernel))
+    assert all(np.array_equal(flights["scalar"], f) for f in flights.values()), list(flights)
+    assert np.isfinite(flights["scalar"]).all() and abs(flights["scalar"][:, 2].mean() - 1.2) < 0.05
+    with pytest.raises(rs.SimError, match="unknown kernel 'avx512'; use avx2, sse2 or scalar"):
+        rs.FlightBatch("firefly", 1, kernel="avx512")
 
 
 def test_takes_off_from_the_ground_and_lands_again():

@@ -41,7 +41,8 @@ std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, c
                                        const std::vector<std::string>& others, const std::string& source, int threads,
                                        bool imu, bool noise, const std::vector<uint64_t>& seeds,
                                        uint64_t description_seed, double contact_stiffness_scale,
-                                       const std::vector<std::map<std::string, double>>& numbers_each) {
+                                       const std::vector<std::map<std::string, double>>& numbers_each,
+                                       const std::string& kernel) {
   FlightBatchOptions o;
   o.count = count;
   o.threads = threads;
@@ -51,6 +52,7 @@ std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, c
   o.seeds = seeds;
   o.description_seed = description_seed;
   o.contact_stiffness_scale = contact_stiffness_scale;
+  o.kernel = kernel;
   if (!(contact_stiffness_scale > 0.0)) throw SimError("contact_stiffness_scale must be > 0");
   if (o.mode != CommandMode::kRotorSpeeds && o.mode != CommandMode::kNormalizedThrust) {
     rotors_params::MapParamReader reader(numbers, std::set<std::string>(others.begin(), others.end()), source);
@@ -112,7 +114,7 @@ void BindFlightBatch(py::module_& m) {
            py::arg("others"), py::arg("source"), py::arg("threads") = 0, py::arg("imu") = true, py::arg("noise") = true,
            py::arg("seeds") = std::vector<uint64_t>(), py::arg("description_seed") = 0,
            py::arg("contact_stiffness_scale") = 1.0,
-           py::arg("numbers_each") = std::vector<std::map<std::string, double>>())
+           py::arg("numbers_each") = std::vector<std::map<std::string, double>>(), py::arg("kernel") = "")
       .def(
           "step",
           [](FlightBatch& b, long n) {
@@ -136,6 +138,7 @@ void BindFlightBatch(py::module_& m) {
       .def_property_readonly("count", &FlightBatch::Count)
       .def_property_readonly("rotor_count", &FlightBatch::Rotors)
       .def_property_readonly("threads", &FlightBatch::Threads)
+      .def_property_readonly("kernel", &FlightBatch::Kernel)
       .def_property_readonly("step_size", &FlightBatch::StepSize)
       .def_property_readonly("command_columns", [](const FlightBatch& b) { return b.CommandColumns(); })
       .def_property_readonly("state_bytes_per_vehicle", &FlightBatch::StateBytesPerVehicle)

@@ -6,6 +6,7 @@
 #include <deque>
 #include <exception>
 #include <functional>
+#include <iterator>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -199,7 +200,7 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   kernel_arrays_ = {
       n_pad_,          p_W_.data(),         v_W_.data(),          q_WB_.data(),          R_WB_.data(),
       omega_W_.data(), omega_rotor_.data(), qdot_applied_.data(), motor_command_.data(), wind_velocity_W_.data()};
-  kernel_ = FourLaneKernel();
+  kernels_ = ChooseKernels(options_.kernel);
 
   if (!options_.lee_each.empty() && static_cast<int>(options_.lee_each.size()) != n_)
     throw SimError("FlightBatch: " + std::to_string(options_.lee_each.size()) + " controller parameter sets for " +
@@ -402,6 +403,27 @@ void FlightBatch::BuildKernelModel() {
     kr.direction = rotor.params.turning_direction;
     kr.slowdown = rotor.slowdown;
   }
+  KernelModel::RotorColumns& col = k.columns;
+  col = KernelModel::RotorColumns{};
+  std::fill(std::begin(col.slowdown), std::end(col.slowdown), 1.0);  // rotors past the last: all zero
+  for (int r = 0; r < r_; ++r) {
+    const KernelModel::Rotor& kr = k.rotor[r];
+    for (int c = 0; c < 3; ++c) {
+      col.axis_B[c][r] = kr.axis_B[c];
+      col.p_origin_B[c][r] = kr.p_origin_B[c];
+      col.p_cog_B[c][r] = kr.cog_on_origin ? kr.p_origin_B[c] : kr.p_cog_B[c];
+    }
+    col.motor_constant[r] = kr.motor_constant;
+    col.rotor_drag_coefficient[r] = kr.rotor_drag_coefficient;
+    col.rolling_moment_coefficient[r] = kr.rolling_moment_coefficient;
+    col.reaction_factor[r] = kr.reaction_factor;
+    col.max_rot_velocity[r] = kr.max_rot_velocity;
+    col.a_up[r] = kr.a_up;
+    col.a_down[r] = kr.a_down;
+    col.spin_inertia[r] = kr.spin_inertia;
+    col.direction[r] = kr.direction;
+    col.slowdown[r] = kr.slowdown;
+  }
   k.contacts = static_cast<int>(std::min<size_t>(d_.contact_points_B.size(), kMaxContacts));
   for (int c = 0; c < k.contacts; ++c)
     for (int j = 0; j < 3; ++j) k.corner_B[c][j] = d_.contact_points_B[c][j];
@@ -423,6 +445,8 @@ void FlightBatch::BuildKernelModel() {
       k.body.I_B[i * 3 + j] = d_.inertia_B_kg_m2(i, j);
       k.body.inv_I_B[i * 3 + j] = inv_I(i, j);
     }
+  k.has_wind = d_.wind.has_value();
+  k.keep_state_before = d_.imu && options_.imu;
   k.wind_before_motors = d_.wind && d_.wind->before_motors;
 }
 
@@ -456,7 +480,7 @@ void FlightBatch::StepRange(int begin, int end, long steps) {
 void FlightBatch::StepGroup(int i0) {
   const size_t n = n_pad_;
   const int lanes = std::min(kLanes, n_ - i0);  // vehicles in this group (the rest are padding)
-  double wind_force[3 * kLanes] = {}, wind_moment[3 * kLanes] = {}, wind_velocity[3 * kLanes] = {};
+  double wind_force[3 * kLanes], wind_moment[3 * kLanes], wind_velocity[3 * kLanes];  // read only with a wind
   double v_before[3 * kLanes], w_before[3 * kLanes], R_before[9 * kLanes];
   for (int l = 0; l < lanes; ++l) {
     const int i = i0 + l;
@@ -490,21 +514,16 @@ void FlightBatch::StepGroup(int i0) {
   const KernelBefore before{v_before, w_before, R_before};
   unsigned touching = 0;
   if (lanes == kLanes) {
-    touching = kernel_(kernel_model_, kernel_arrays_, i0, wind, before);
+    touching = kernels_.four_vehicles(kernel_model_, kernel_arrays_, i0, wind, before);
   } else {  // a last group of fewer vehicles: each alone (the same step as a lane's, bit for bit)
-    for (int l = 0; l < lanes; ++l) touching |= StepOneOfFour(kernel_model_, kernel_arrays_, i0 + l, l, wind, before);
+    for (int l = 0; l < lanes; ++l)
+      touching |= StepOneOfFour(kernels_, kernel_model_, kernel_arrays_, i0 + l, l, wind, before);
   }
   for (int l = 0; l < lanes; ++l) {
     const int i = i0 + l;
     in_contact_[i] = (touching >> l) & 1u;
     ++steps_[i];
-    double v[3], w[3], R[9];
-    for (int c = 0; c < 3; ++c) {
-      v[c] = v_before[c * kLanes + l];
-      w[c] = w_before[c * kLanes + l];
-    }
-    for (int c = 0; c < 9; ++c) R[c] = R_before[c * kLanes + l];
-    Observe(i, v, w, R);
+    Observe(i, before, l);
   }
 }
 
@@ -561,7 +580,7 @@ void FlightBatch::ApplyCommand(int i) {
   for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = std::max(0.0, speeds[r]);
 }
 
-void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_before_W[3], const double R_before[9]) {
+void FlightBatch::Observe(int i, const KernelBefore& before, int lane) {
   const size_t n = n_pad_;
   Sensors& sensors = *sensors_[i];
   const OdometryDescription& od = *d_.odometry;
@@ -579,6 +598,12 @@ void FlightBatch::Observe(int i, const double v_before_W[3], const double omega_
 
   // the IMU plugin: specific force from the velocity change of its point over the step
   if (imu) {
+    double v_before_W[3], omega_before_W[3], R_before[9];
+    for (int c = 0; c < 3; ++c) {
+      v_before_W[c] = before.v_W[c * kLanes + lane];
+      omega_before_W[c] = before.omega_W[c * kLanes + lane];
+    }
+    for (int c = 0; c < 9; ++c) R_before[c] = before.R_WB[c * kLanes + lane];
     const Mount& m = d_.imu->mount;
     double r_now[3], r_then[3], wxr_now[3], wxr_then[3];
     Rotate(R, m.p_B, r_now);

@@ -54,6 +54,9 @@ struct FlightBatchOptions {
   std::vector<uint64_t> seeds;
   uint64_t description_seed = 0;
   double contact_stiffness_scale = 1.0;  ///< of the ground contact's spring (see Contact())
+  /// The kernels' instruction set: "" the fastest this CPU runs, or avx2, sse2, scalar (the same
+  /// step bit for bit; ChooseKernels).
+  std::string kernel;
 };
 
 class FlightBatch {
@@ -68,6 +71,8 @@ class FlightBatch {
   CommandMode Mode() const { return options_.mode; }
   int CommandColumns() const { return command_columns_; }
   int Threads() const { return threads_; }
+  /// The instruction set the kernels step with: avx2, sse2 or scalar.
+  std::string Kernel() const { return kernels_.instruction_set; }
   const VehicleDescription& Description() const { return d_; }
   double StepSize() const { return dt_; }
 
@@ -110,7 +115,8 @@ class FlightBatch {
   void StepRange(int begin, int end, long steps);
   void StepGroup(int i0);
   void ApplyCommand(int i);
-  void Observe(int i, const double v_before_W[3], const double omega_before_W[3], const double R_before[9]);
+  /// The sensors of vehicle i after its step; `before` holds the state before it in row `lane`.
+  void Observe(int i, const KernelBefore& before, int lane);
   /// The odometry plugin's Publish: the noise drawn, the message written to the vehicle's row.
   void Publish(int i, double stamp_s, const rotors_gazebo_plugins::OdometryMeasurement& truth);
 
@@ -120,7 +126,7 @@ class FlightBatch {
   size_t n_pad_ = 0;  ///< n_ rounded up to whole groups of lanes (the structure of arrays' stride)
   KernelModel kernel_model_;
   KernelArrays kernel_arrays_{};
-  StepFourLanes kernel_ = nullptr;
+  Kernels kernels_{};
   double dt_;
   // constants
   int64_t dt_ns_ = 0;

@@ -9,6 +9,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <string>
+#include <type_traits>
 
 #include "rotors_core/physics/free_body_step.h"
 #include "rotors_gazebo_plugins/models/first_order_filter.h"
@@ -28,13 +30,26 @@ struct KernelModel {
     double max_rot_velocity, a_up, a_down;
     double spin_inertia, direction, slowdown;  ///< J_a; epsilon; the joint turns epsilon omega / slowdown
   };
+  /// The same constants as one array over the rotors each, for the kernel that steps one vehicle
+  /// with a lane per rotor. Rotors past the last add nothing (zero constants, slowdown 1); p_cog_B
+  /// is p_origin_B where the two coincide, so R p_cog_B is bit for bit the R p_origin_B of Rotor.
+  struct RotorColumns {
+    alignas(32) double axis_B[3][kMaxRotors], p_origin_B[3][kMaxRotors], p_cog_B[3][kMaxRotors];
+    alignas(32) double motor_constant[kMaxRotors], rotor_drag_coefficient[kMaxRotors];
+    alignas(32) double rolling_moment_coefficient[kMaxRotors], reaction_factor[kMaxRotors];
+    alignas(32) double max_rot_velocity[kMaxRotors], a_up[kMaxRotors], a_down[kMaxRotors];
+    alignas(32) double spin_inertia[kMaxRotors], direction[kMaxRotors], slowdown[kMaxRotors];
+  };
   int rotors = 0, contacts = 0;
   Rotor rotor[kMaxRotors];
+  RotorColumns columns;
   double corner_B[kMaxContacts][3];
   double contact_k = 0, contact_c = 0, contact_reach_m = 0;
   double dt = 0, inv_dt = 0, mass = 0, gravity_W[3] = {0, 0, 0};
   rotors_sim::physics::FreeBodyInertia body;
+  bool has_wind = false;  ///< a wind plugin: KernelWind holds its draws (else no wind is read)
   bool wind_before_motors = false;
+  bool keep_state_before = false;  ///< write KernelBefore (the IMU measures from it)
 };
 
 /// The batch's arrays, component k of vehicle i at [k * n + i] (n a multiple of the lane count).
@@ -112,13 +127,109 @@ inline V Hypot(const V& x, const V& y) {
   for (size_t k = 0; k < sizeof(V) / sizeof(double); ++k) r[k] = std::hypot(x[k], y[k]);
   return r;
 }
+/// {x[(r0 + l) n + i] for the lanes l < count, 0 for the rest}
+template <class V>
+inline V Gather(const double* x, int r0, int count, size_t n, size_t i) {
+  auto at = [&](int l) { return l < count ? x[(r0 + l) * n + i] : 0.0; };
+  if constexpr (LaneCount<V>::value == 4) {
+    return V{at(0), at(1), at(2), at(3)};
+  } else {
+    static_assert(LaneCount<V>::value == 2, "rotor lanes are AVX2's four or SSE2's two");
+    return V{at(0), at(1)};
+  }
+}
 }  // namespace kernel_detail
 
+/// Each rotor's share of one vehicle's step, computed with a lane per rotor (RotorLanes): the
+/// motor plugin's force and moment (eqs. 1-5) and the joint's spin moment, [3][kMaxRotors] each.
+struct RotorTerms {
+  alignas(32) double force_W[3][kMaxRotors], moment_W[3][kMaxRotors], spin_moment_W[3][kMaxRotors];
+};
+
+/// The body's state before the step, one vehicle (the input of RotorLanes).
+struct OneBody {
+  const double *R_WB, *v_W, *omega_W, *wind_velocity_W;
+};
+
+/// The motor plugins of vehicle i with a lane per rotor (V a GCC vector of doubles): each rotor's
+/// terms, its new speed (omega_rotor) and its joint speed (qdot_applied). The same operations per
+/// rotor as StepLanesStrided's per vehicle, so the sums of the terms in rotor order are its F and T
+/// bit for bit.
+template <class V>
+inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out) {
+  using namespace kernel_detail;
+  constexpr int L = static_cast<int>(LaneCount<V>::value);
+  const KernelModel::RotorColumns& k = m.columns;
+  const size_t n = a.n;
+  const double* R = b.R_WB;
+  const double* w = b.omega_W;
+  for (int r0 = 0; r0 < m.rotors; r0 += L) {
+    const int count = m.rotors - r0 < L ? m.rotors - r0 : L;
+    V ax[3], r_o[3], r_c[3];
+    {
+      V axis_B[3], p_o_B[3], p_c_B[3];
+      for (int c = 0; c < 3; ++c) {
+        axis_B[c] = Load<V>(&k.axis_B[c][r0]);
+        p_o_B[c] = Load<V>(&k.p_origin_B[c][r0]);
+        p_c_B[c] = Load<V>(&k.p_cog_B[c][r0]);
+      }
+      for (int c = 0; c < 3; ++c) {  // R v, as Rotate (a product of doubles is commutative)
+        ax[c] = R[c * 3 + 0] * axis_B[0] + R[c * 3 + 1] * axis_B[1] + R[c * 3 + 2] * axis_B[2];
+        r_o[c] = R[c * 3 + 0] * p_o_B[0] + R[c * 3 + 1] * p_o_B[1] + R[c * 3 + 2] * p_o_B[2];
+        r_c[c] = R[c * 3 + 0] * p_c_B[0] + R[c * 3 + 1] * p_c_B[1] + R[c * 3 + 2] * p_c_B[2];
+      }
+    }
+    // the rotors' columns of vehicle i, built in registers (lane by lane through memory would stall
+    // on store forwarding)
+    const V omega = Gather<V>(a.omega_rotor, r0, count, n, i);
+    const V cmd = Gather<V>(a.motor_command, r0, count, n, i);
+    const V qdot_before = Gather<V>(a.qdot_applied, r0, count, n, i);
+    const V w_x_r[3] = {w[1] * r_o[2] - w[2] * r_o[1], w[2] * r_o[0] - w[0] * r_o[2], w[0] * r_o[1] - w[1] * r_o[0]};
+    V air[3];
+    for (int c = 0; c < 3; ++c) air[c] = b.v_W[c] + w_x_r[c] - b.wind_velocity_W[c];
+    const V thrust = omega * omega * Load<V>(&k.motor_constant[r0]);
+    const V v_par = air[0] * ax[0] + air[1] * ax[1] + air[2] * ax[2];
+    const V drag = Load<V>(&k.rotor_drag_coefficient[r0]), rolling = Load<V>(&k.rolling_moment_coefficient[r0]);
+    V f[3], v_perp[3];
+    for (int c = 0; c < 3; ++c) {
+      v_perp[c] = air[c] - v_par * ax[c];
+      f[c] = thrust * ax[c] - omega * drag * v_perp[c];
+    }
+    V torque[3];
+    Cross(r_c, f, torque);
+    const V reaction = Load<V>(&k.reaction_factor[r0]) * thrust;
+    for (int c = 0; c < 3; ++c) {
+      Store(&out.force_W[c][r0], f[c]);
+      Store(&out.moment_W[c][r0], torque[c] + reaction * ax[c] + omega * rolling * v_perp[c]);
+    }
+    // the speed dynamics, as StepLanesStrided
+    const V zero = {}, max = Load<V>(&k.max_rot_velocity[r0]);
+    const V u = cmd < zero ? zero : (max < cmd ? max : cmd);
+    const V blend = u > omega ? Load<V>(&k.a_up[r0]) : Load<V>(&k.a_down[r0]);
+    const V y = rotors_gazebo_plugins::FirstOrderFilter::Blend(omega, u, blend);
+    const V qdot = Load<V>(&k.direction[r0]) * y / Load<V>(&k.slowdown[r0]);
+    // the spin moment: M = -(omega x h) - J_a qddot a,  h = J_a qdot a
+    const V J = Load<V>(&k.spin_inertia[r0]);
+    const V h[3] = {ax[0] * (J * qdot), ax[1] * (J * qdot), ax[2] * (J * qdot)};
+    const V qddot = (qdot - qdot_before) * m.inv_dt;
+    const V w_x_h[3] = {w[1] * h[2] - w[2] * h[1], w[2] * h[0] - w[0] * h[2], w[0] * h[1] - w[1] * h[0]};
+    for (int c = 0; c < 3; ++c) Store(&out.spin_moment_W[c][r0], -w_x_h[c] - ax[c] * (J * qddot));
+    for (int l = 0; l < count; ++l) {
+      a.omega_rotor[(r0 + l) * n + i] = y[l];
+      a.qdot_applied[(r0 + l) * n + i] = qdot[l];
+    }
+  }
+}
+
+using RotorLanesFn = void (*)(const KernelModel&, const KernelArrays&, size_t, const OneBody&, RotorTerms&);
+
 /// One physics step of lanes i0 .. i0 + L - 1; returns a contact mask bit per lane. The wind and
-/// state-before buffers hold rows of Stride lanes (this call's first).
+/// state-before buffers hold rows of Stride lanes (this call's first). With V = double and
+/// rotor_lanes set, the vehicle's rotors are stepped by rotor_lanes, a lane per rotor, and summed
+/// here in rotor order: the same step bit for bit.
 template <class V, size_t Stride>
 inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                                 const KernelBefore& before) {
+                                 const KernelBefore& before, RotorLanesFn rotor_lanes = nullptr) {
   using namespace kernel_detail;
   constexpr size_t L = LaneCount<V>::value;
   static_assert(Stride >= L, "a row holds at least the call's lanes");
@@ -134,20 +245,34 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
   const V* R = s.R_WB;
   const V* w = s.omega_W;
   V F[3] = {}, T[3] = {};
-  V wind_v[3];
-  for (int c = 0; c < 3; ++c)
+  V wind_v[3] = {};
+  for (int c = 0; c < 3 && m.has_wind; ++c)
     wind_v[c] = m.wind_before_motors ? Load<V>(&wind.velocity_W[c * Stride]) : Load<V>(&a.wind_velocity_W[c * n + i0]);
   auto add_wind = [&] {
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 3 && m.has_wind; ++c) {
       F[c] += Load<V>(&wind.force_W[c * Stride]);
       T[c] += Load<V>(&wind.moment_W[c * Stride]);
     }
   };
   if (m.wind_before_motors) add_wind();
 
-  // the motor plugins: eqs. 1-5 from the speed of the last step, then the speed dynamics
+  // the motor plugins: eqs. 1-5 from the speed of the last step, then the speed dynamics; the
+  // rotors' spin moments (kinematic joints): M = -(omega x h) - J_a qddot a,  h = J_a qdot a
   V axis_W[kMaxRotors][3], qdot[kMaxRotors];
-  for (int r = 0; r < m.rotors; ++r) {
+  RotorTerms terms;
+  bool in_lanes = false;
+  if constexpr (std::is_same_v<V, double>) {
+    if (rotor_lanes) {
+      rotor_lanes(m, a, i0, OneBody{s.R_WB, s.v_W, s.omega_W, wind_v}, terms);
+      for (int r = 0; r < m.rotors; ++r)
+        for (int c = 0; c < 3; ++c) {
+          F[c] += terms.force_W[c][r];
+          T[c] += terms.moment_W[c][r];
+        }
+      in_lanes = true;
+    }
+  }
+  for (int r = 0; r < m.rotors && !in_lanes; ++r) {
     const KernelModel::Rotor& p = m.rotor[r];
     V* ax = axis_W[r];
     Rotate(R, p.axis_B, ax);
@@ -186,11 +311,16 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
     qdot[r] = p.direction * y / p.slowdown;
   }
   if (!m.wind_before_motors) add_wind();
-  for (int c = 0; c < 3; ++c) Store(&a.wind_velocity_W[c * n + i0], Load<V>(&wind.velocity_W[c * Stride]));
+  for (int c = 0; c < 3 && m.has_wind; ++c)
+    Store(&a.wind_velocity_W[c * n + i0], Load<V>(&wind.velocity_W[c * Stride]));
 
-  // the rotors' spin moments (kinematic joints): M = -(omega x h) - J_a qddot a,  h = J_a qdot a
   for (int r = 0; r < m.rotors; ++r) {
     const double J = m.rotor[r].spin_inertia;
+    if (in_lanes) {
+      if (J > 0.0)
+        for (int c = 0; c < 3; ++c) T[c] += terms.spin_moment_W[c][r];
+      continue;
+    }
     const V qdot_before = Load<V>(&a.qdot_applied[r * n + i0]);
     if (J > 0.0) {
       const V* ax = axis_W[r];
@@ -237,11 +367,13 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
   for (int c = 0; c < 3; ++c)
     if (m.gravity_W[c] != 0.0) F[c] += m.mass * m.gravity_W[c];
 
-  for (int c = 0; c < 3; ++c) {
-    Store(&before.v_W[c * Stride], s.v_W[c]);
-    Store(&before.omega_W[c * Stride], s.omega_W[c]);
+  if (m.keep_state_before) {
+    for (int c = 0; c < 3; ++c) {
+      Store(&before.v_W[c * Stride], s.v_W[c]);
+      Store(&before.omega_W[c * Stride], s.omega_W[c]);
+    }
+    for (int c = 0; c < 9; ++c) Store(&before.R_WB[c * Stride], s.R_WB[c]);
   }
-  for (int c = 0; c < 9; ++c) Store(&before.R_WB[c * Stride], s.R_WB[c]);
   rotors_sim::physics::StepFreeBody(m.dt, m.body, F, T, s);
   for (int c = 0; c < 3; ++c) {
     Store(&a.p_W[c * n + i0], s.p_W[c]);
@@ -259,14 +391,26 @@ inline unsigned StepLanes(const KernelModel& m, const KernelArrays& a, size_t i0
   return StepLanesStrided<V, kernel_detail::LaneCount<V>::value>(m, a, i0, wind, before);
 }
 
-/// One vehicle (the last group's vehicles when there are fewer than four) with rows of 4 lanes.
-unsigned StepOneOfFour(const KernelModel& m, const KernelArrays& a, size_t i, size_t lane, const KernelWind& wind,
-                       const KernelBefore& before);
-
-/// StepLanes over 4 vehicles, as compiled for this CPU: AVX2 lanes where it has them (its own
-/// translation unit), else two SSE2 pairs.
+/// StepLanes over 4 vehicles as compiled for one instruction set.
 using StepFourLanes = unsigned (*)(const KernelModel&, const KernelArrays&, size_t, const KernelWind&,
                                    const KernelBefore&);
-StepFourLanes FourLaneKernel();
+
+/// The kernels a batch steps with: four vehicles at once, and one vehicle's rotors in lanes.
+struct Kernels {
+  const char* instruction_set;  ///< "avx2", "sse2" or "scalar"
+  StepFourLanes four_vehicles;
+  RotorLanesFn rotor_lanes;  ///< nullptr: a vehicle alone steps its rotors one at a time
+};
+
+/// The kernels for `instruction_set`: "avx2" (four AVX2 lanes; the CPU must have them), "sse2"
+/// (x86-64's baseline: two pairs of SSE2 lanes), "scalar" (no lanes), or "" for the fastest this
+/// CPU runs. All give the same step bit for bit. SimError for another name, or avx2 on a CPU
+/// without it.
+Kernels ChooseKernels(const std::string& instruction_set);
+
+/// One vehicle (a batch of fewer than four, or the last group's vehicles) with rows of 4 lanes:
+/// its rotors by kernels.rotor_lanes, the rest scalar.
+unsigned StepOneOfFour(const Kernels& kernels, const KernelModel& m, const KernelArrays& a, size_t i, size_t lane,
+                       const KernelWind& wind, const KernelBefore& before);
 
 }  // namespace rotors_flight_batch

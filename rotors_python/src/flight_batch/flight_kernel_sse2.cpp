@@ -1,5 +1,8 @@
-// The kernel as two pairs of SSE2 lanes (x86-64's baseline), and the choice of kernel for this CPU.
+// The kernel as two pairs of SSE2 lanes (x86-64's baseline) or without lanes, and the choice of
+// kernels for this CPU.
 #include "flight_kernel.h"
+
+#include "rotors_core/error.h"
 
 namespace rotors_flight_batch {
 
@@ -7,6 +10,7 @@ typedef double Sse2Lanes __attribute__((vector_size(16)));
 
 unsigned StepFourAvx2(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
                       const KernelBefore& before);
+void RotorLanesAvx2(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out);
 
 namespace {
 unsigned StepFourSse2(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
@@ -18,18 +22,37 @@ unsigned StepFourSse2(const KernelModel& m, const KernelArrays& a, size_t i0, co
   const unsigned high = StepLanesStrided<Sse2Lanes, 4>(m, a, i0 + 2, w2, b2);
   return low | (high << 2);
 }
+
+unsigned StepFourScalar(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                        const KernelBefore& before) {
+  unsigned touching = 0;
+  for (size_t l = 0; l < 4; ++l) {
+    const KernelWind w{wind.force_W + l, wind.moment_W + l, wind.velocity_W + l};
+    const KernelBefore b{before.v_W + l, before.omega_W + l, before.R_WB + l};
+    touching |= StepLanesStrided<double, 4>(m, a, i0 + l, w, b) << l;
+  }
+  return touching;
+}
 }  // namespace
 
-unsigned StepOneOfFour(const KernelModel& m, const KernelArrays& a, size_t i, size_t lane, const KernelWind& wind,
-                       const KernelBefore& before) {
+unsigned StepOneOfFour(const Kernels& kernels, const KernelModel& m, const KernelArrays& a, size_t i, size_t lane,
+                       const KernelWind& wind, const KernelBefore& before) {
   const KernelWind w{wind.force_W + lane, wind.moment_W + lane, wind.velocity_W + lane};
   const KernelBefore b{before.v_W + lane, before.omega_W + lane, before.R_WB + lane};
-  return StepLanesStrided<double, 4>(m, a, i, w, b) << lane;
+  return StepLanesStrided<double, 4>(m, a, i, w, b, kernels.rotor_lanes) << lane;
 }
 
-StepFourLanes FourLaneKernel() {
+Kernels ChooseKernels(const std::string& instruction_set) {
   __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") ? &StepFourAvx2 : &StepFourSse2;
+  const bool avx2 = __builtin_cpu_supports("avx2");
+  const std::string set = instruction_set.empty() ? (avx2 ? "avx2" : "sse2") : instruction_set;
+  if (set == "avx2") {
+    if (!avx2) throw rotors_sim::SimError("FlightBatch: kernel 'avx2' asked for, but this CPU has no AVX2; use sse2");
+    return {"avx2", &StepFourAvx2, &RotorLanesAvx2};
+  }
+  if (set == "sse2") return {"sse2", &StepFourSse2, &RotorLanes<Sse2Lanes>};
+  if (set == "scalar") return {"scalar", &StepFourScalar, nullptr};
+  throw rotors_sim::SimError("FlightBatch: unknown kernel '" + set + "'; use avx2, sse2 or scalar");
 }
 
 }  // namespace rotors_flight_batch

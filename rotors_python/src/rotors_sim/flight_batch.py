@@ -61,7 +61,9 @@ class FlightBatch:
     (as the ROS node before its first trajectory). `controller_overrides` (one dict per vehicle)
     changes Lee's yaml values per vehicle, e.g. {"position_gain/x": 4.0}, for sweeps. `seeds` (one per vehicle) seed
     the sensor and wind noise as spawn_mav's random_seed does; `noise=False` turns it off,
-    `imu=False` skips the IMU. `controller_params` replaces the controller's yaml files.
+    `imu=False` skips the IMU. `controller_params` replaces the controller's yaml files. `kernel`
+    picks the physics' instruction set (avx2, sse2, scalar; default the fastest this CPU runs):
+    each gives the same flight bit for bit.
     Further keywords go to the xacro (enable_wind=True, ...).
     """
 
@@ -82,6 +84,7 @@ class FlightBatch:
         yaws: Any = None,
         controller_params: Sequence[str | Path] | None = None,
         controller_overrides: Sequence[dict[str, float]] | None = None,
+        kernel: str = "",
         **xacro_args: Any,
     ):
         if mode not in COMMAND_MODES:
@@ -120,6 +123,7 @@ class FlightBatch:
             seeds=seeds,
             description_seed=seeds[0],
             numbers_each=each,
+            kernel=kernel,
         )
         self.commands: np.ndarray = self._b.commands
         """Writable view of the engine's command array (count x command_columns)."""
@@ -161,6 +165,11 @@ class FlightBatch:
     @property
     def threads(self) -> int:
         return self._b.threads
+
+    @property
+    def kernel(self) -> str:
+        """The instruction set the physics steps with: avx2, sse2 or scalar (the same bits)."""
+        return self._b.kernel
 
     @property
     def odometry(self) -> np.ndarray:
