@@ -423,6 +423,7 @@ void FlightBatch::BuildKernelModel() {
     col.spin_inertia[r] = kr.spin_inertia;
     col.direction[r] = kr.direction;
     col.slowdown[r] = kr.slowdown;
+    col.every_cog_on_origin = col.every_cog_on_origin && kr.cog_on_origin;
   }
   k.contacts = static_cast<int>(std::min<size_t>(d_.contact_points_B.size(), kMaxContacts));
   for (int c = 0; c < k.contacts; ++c)

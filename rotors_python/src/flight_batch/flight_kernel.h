@@ -34,6 +34,7 @@ struct KernelModel {
   /// with a lane per rotor. Rotors past the last add nothing (zero constants, slowdown 1); p_cog_B
   /// is p_origin_B where the two coincide, so R p_cog_B is bit for bit the R p_origin_B of Rotor.
   struct RotorColumns {
+    bool every_cog_on_origin = true;  ///< R p_cog_B need not be computed apart
     alignas(32) double axis_B[3][kMaxRotors], p_origin_B[3][kMaxRotors], p_cog_B[3][kMaxRotors];
     alignas(32) double motor_constant[kMaxRotors], rotor_drag_coefficient[kMaxRotors];
     alignas(32) double rolling_moment_coefficient[kMaxRotors], reaction_factor[kMaxRotors];
@@ -176,7 +177,9 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
       for (int c = 0; c < 3; ++c) {  // R v, as Rotate (a product of doubles is commutative)
         ax[c] = R[c * 3 + 0] * axis_B[0] + R[c * 3 + 1] * axis_B[1] + R[c * 3 + 2] * axis_B[2];
         r_o[c] = R[c * 3 + 0] * p_o_B[0] + R[c * 3 + 1] * p_o_B[1] + R[c * 3 + 2] * p_o_B[2];
-        r_c[c] = R[c * 3 + 0] * p_c_B[0] + R[c * 3 + 1] * p_c_B[1] + R[c * 3 + 2] * p_c_B[2];
+        r_c[c] = k.every_cog_on_origin
+                     ? r_o[c]
+                     : R[c * 3 + 0] * p_c_B[0] + R[c * 3 + 1] * p_c_B[1] + R[c * 3 + 2] * p_c_B[2];
       }
     }
     // the rotors' columns of vehicle i, built in registers (lane by lane through memory would stall
