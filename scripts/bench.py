@@ -674,13 +674,14 @@ def batched_flight_rows(b: dict) -> list:
         )
     ]
     rows += [("  where one vehicle's step goes (perf, self time)", line, "") for line in b["profile"]]
-    kernel = sum(float(line.split("%")[0]) for line in b["profile"] if "StepLanes" in line or "StepFreeBody" in line)
+    kernel = sum(float(line.split("%")[0]) for line in b["profile"] if any(k in line for k in ("StepLanes", "RotorLanes", "StepFreeBody")))
     rows += [
         (
             "  what bounds the next factor",
-            f"one vehicle: the physics kernel ({kernel:.0f} % of its step: the rotors' forces and ODE's free-body step, "
-            "in scalar code) - lanes over its rotors, or fused multiply-add (which would end the bit-for-bit equality "
-            "with the full world); many: the controllers (rotors_control's library, one vehicle at a time) and the "
+            f"one vehicle: the physics kernel ({kernel:.0f} % of the samples: its rotors in lanes, ODE's free-body step "
+            "in scalar code) - the free-body step is one chain of dependent operations (two divisions and a square "
+            "root in turn) that lanes cannot shorten, and fused multiply-add would end the bit-for-bit equality with "
+            "the full world; many: the controllers (rotors_control's library, one vehicle at a time) and the "
             "lane width (AVX2's four)",
             "",
         )

@@ -162,10 +162,18 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
   constexpr int L = static_cast<int>(LaneCount<V>::value);
   const KernelModel::RotorColumns& k = m.columns;
   const size_t n = a.n;
-  const double* R = b.R_WB;
-  const double* w = b.omega_W;
-  for (int r0 = 0; r0 < m.rotors; r0 += L) {
-    const int count = m.rotors - r0 < L ? m.rotors - r0 : L;
+  // the body's state and the model's scalars in locals: the stores below may alias them, and every
+  // group of rotors would read them again
+  double R[9], w[3], v_W[3], wind_W[3];
+  std::memcpy(R, b.R_WB, sizeof(R));
+  std::memcpy(w, b.omega_W, sizeof(w));
+  std::memcpy(v_W, b.v_W, sizeof(v_W));
+  std::memcpy(wind_W, b.wind_velocity_W, sizeof(wind_W));
+  const int rotors = m.rotors;
+  const double inv_dt = m.inv_dt;
+  const bool every_cog_on_origin = k.every_cog_on_origin;
+  for (int r0 = 0; r0 < rotors; r0 += L) {
+    const int count = rotors - r0 < L ? rotors - r0 : L;
     V ax[3], r_o[3], r_c[3];
     {
       V axis_B[3], p_o_B[3], p_c_B[3];
@@ -177,9 +185,8 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
       for (int c = 0; c < 3; ++c) {  // R v, as Rotate (a product of doubles is commutative)
         ax[c] = R[c * 3 + 0] * axis_B[0] + R[c * 3 + 1] * axis_B[1] + R[c * 3 + 2] * axis_B[2];
         r_o[c] = R[c * 3 + 0] * p_o_B[0] + R[c * 3 + 1] * p_o_B[1] + R[c * 3 + 2] * p_o_B[2];
-        r_c[c] = k.every_cog_on_origin
-                     ? r_o[c]
-                     : R[c * 3 + 0] * p_c_B[0] + R[c * 3 + 1] * p_c_B[1] + R[c * 3 + 2] * p_c_B[2];
+        r_c[c] =
+            every_cog_on_origin ? r_o[c] : R[c * 3 + 0] * p_c_B[0] + R[c * 3 + 1] * p_c_B[1] + R[c * 3 + 2] * p_c_B[2];
       }
     }
     // the rotors' columns of vehicle i, built in registers (lane by lane through memory would stall
@@ -189,7 +196,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     const V qdot_before = Gather<V>(a.qdot_applied, r0, count, n, i);
     const V w_x_r[3] = {w[1] * r_o[2] - w[2] * r_o[1], w[2] * r_o[0] - w[0] * r_o[2], w[0] * r_o[1] - w[1] * r_o[0]};
     V air[3];
-    for (int c = 0; c < 3; ++c) air[c] = b.v_W[c] + w_x_r[c] - b.wind_velocity_W[c];
+    for (int c = 0; c < 3; ++c) air[c] = v_W[c] + w_x_r[c] - wind_W[c];
     const V thrust = omega * omega * Load<V>(&k.motor_constant[r0]);
     const V v_par = air[0] * ax[0] + air[1] * ax[1] + air[2] * ax[2];
     const V drag = Load<V>(&k.rotor_drag_coefficient[r0]), rolling = Load<V>(&k.rolling_moment_coefficient[r0]);
@@ -214,7 +221,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     // the spin moment: M = -(omega x h) - J_a qddot a,  h = J_a qdot a
     const V J = Load<V>(&k.spin_inertia[r0]);
     const V h[3] = {ax[0] * (J * qdot), ax[1] * (J * qdot), ax[2] * (J * qdot)};
-    const V qddot = (qdot - qdot_before) * m.inv_dt;
+    const V qddot = (qdot - qdot_before) * inv_dt;
     const V w_x_h[3] = {w[1] * h[2] - w[2] * h[1], w[2] * h[0] - w[0] * h[2], w[0] * h[1] - w[1] * h[0]};
     for (int c = 0; c < 3; ++c) Store(&out.spin_moment_W[c][r0], -w_x_h[c] - ax[c] * (J * qddot));
     for (int l = 0; l < count; ++l) {
