@@ -270,16 +270,15 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
   // rotors' spin moments (kinematic joints): M = -(omega x h) - J_a qddot a,  h = J_a qdot a
   V axis_W[kMaxRotors][3], qdot[kMaxRotors];
   RotorTerms terms;
-  bool in_lanes = false;
+  const bool in_lanes = std::is_same_v<V, double> && rotor_lanes != nullptr;  // a lone vehicle only
   if constexpr (std::is_same_v<V, double>) {
-    if (rotor_lanes) {
+    if (in_lanes) {
       rotor_lanes(m, a, i0, OneBody{s.R_WB, s.v_W, s.omega_W, wind_v}, terms);
       for (int r = 0; r < m.rotors; ++r)
         for (int c = 0; c < 3; ++c) {
           F[c] += terms.force_W[c][r];
           T[c] += terms.moment_W[c][r];
         }
-      in_lanes = true;
     }
   }
   for (int r = 0; r < m.rotors && !in_lanes; ++r) {
