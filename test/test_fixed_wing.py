@@ -181,9 +181,7 @@ def test_fixed_wing_with_joy_flies_techpod_on_joystick_commands(ros):
     launch_x = [x for t, x in poses if t <= t0 + 1.0]
     x_m = [x for _, x in poses]
     launched = launch_x[-1] - x0  # m flown in the first second
-    print(
-        f"bag {bags[-1].name}: {len(x_m)} ground-truth poses, launched at {launched:.1f} m/s, x up to {max(x_m):.0f} m"
-    )
+    print(f"bag {bags[-1].name}: {len(x_m)} ground-truth poses, launched at {launched:.1f} m/s, x up to {max(x_m):.0f} m")
     assert launched > 10.0  # the launcher's 15 m/s
     assert max(x_m) > 120.0
 
