@@ -85,6 +85,7 @@ struct FlightBatch::Sensors {
   std::unique_ptr<rgp::WindModel> wind;
   std::deque<Pending> queue;
   uint64_t odometry_step = 0;
+  int steps_to_odometry = 0;  ///< odometry_step % divisor counted down (no division per step)
 };
 
 class FlightBatch::Pool {
@@ -303,6 +304,7 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     const uint64_t seed_odometry = SeedFor(d_.odometry->seed, i);
     s.queue.clear();
     s.odometry_step = 0;
+    s.steps_to_odometry = 0;
     const auto& on = d_.odometry->noise;
     const bool odometry_noisy =
         options_.noise &&
@@ -542,7 +544,12 @@ void FlightBatch::ApplyCommand(int i) {
     default: break;
   }
   // a controller answers a new odometry message, as World.attach_controller (and the ROS node) does
-  if (odometry_count_[i] == controller_seen_[i]) return;
+  if (odometry_count_[i] != controller_seen_[i]) RunController(i);
+}
+
+void FlightBatch::RunController(int i) {
+  const size_t n = n_pad_;
+  const double* c = &commands_[i * command_columns_];
   controller_seen_[i] = odometry_count_[i];
   const double* o = &odometry_out_[i * 14];
   rotors_control::VehicleState state;
@@ -586,7 +593,8 @@ void FlightBatch::Observe(int i, const KernelBefore& before, int lane) {
   Sensors& sensors = *sensors_[i];
   const OdometryDescription& od = *d_.odometry;
   const uint64_t step = sensors.odometry_step++;
-  const bool odometry_due = step % od.divisor == 0;
+  const bool odometry_due = sensors.steps_to_odometry == 0;  // step % divisor == 0
+  sensors.steps_to_odometry = (odometry_due ? od.divisor : sensors.steps_to_odometry) - 1;
   const bool imu = d_.imu && options_.imu;
   if (!imu && !odometry_due && sensors.queue.empty()) return;  // most steps: nothing to measure
   double p[3], v[3], w[3], R[9];

@@ -54,8 +54,8 @@ struct FlightBatchOptions {
   std::vector<uint64_t> seeds;
   uint64_t description_seed = 0;
   double contact_stiffness_scale = 1.0;  ///< of the ground contact's spring (see Contact())
-  /// The kernels' instruction set: "" the fastest this CPU runs, or avx2, sse2, scalar (the same
-  /// step bit for bit; ChooseKernels).
+  /// The kernels' instruction set: "" the fastest this CPU runs, or avx512, avx2, sse2, scalar
+  /// (the same step bit for bit; ChooseKernels).
   std::string kernel;
 };
 
@@ -71,7 +71,7 @@ class FlightBatch {
   CommandMode Mode() const { return options_.mode; }
   int CommandColumns() const { return command_columns_; }
   int Threads() const { return threads_; }
-  /// The instruction set the kernels step with: avx2, sse2 or scalar.
+  /// The instruction set the kernels step with: avx512, avx2, sse2 or scalar.
   std::string Kernel() const { return kernels_.instruction_set; }
   const VehicleDescription& Description() const { return d_; }
   double StepSize() const { return dt_; }
@@ -115,6 +115,7 @@ class FlightBatch {
   void StepRange(int begin, int end, long steps);
   void StepGroup(int i0);
   void ApplyCommand(int i);
+  void RunController(int i);  ///< the controller of vehicle i on its latest odometry
   /// The sensors of vehicle i after its step; `before` holds the state before it in row `lane`.
   void Observe(int i, const KernelBefore& before, int lane);
   /// The odometry plugin's Publish: the noise drawn, the message written to the vehicle's row.

@@ -132,10 +132,12 @@ inline V Hypot(const V& x, const V& y) {
 template <class V>
 inline V Gather(const double* x, int r0, int count, size_t n, size_t i) {
   auto at = [&](int l) { return l < count ? x[(r0 + l) * n + i] : 0.0; };
-  if constexpr (LaneCount<V>::value == 4) {
+  if constexpr (LaneCount<V>::value == 8) {
+    return V{at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7)};
+  } else if constexpr (LaneCount<V>::value == 4) {
     return V{at(0), at(1), at(2), at(3)};
   } else {
-    static_assert(LaneCount<V>::value == 2, "rotor lanes are AVX2's four or SSE2's two");
+    static_assert(LaneCount<V>::value == 2, "rotor lanes are AVX-512's eight, AVX2's four or SSE2's two");
     return V{at(0), at(1)};
   }
 }
@@ -208,6 +210,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     V torque[3];
     Cross(r_c, f, torque);
     const V reaction = Load<V>(&k.reaction_factor[r0]) * thrust;
+    #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
       Store(&out.force_W[c][r0], f[c]);
       Store(&out.moment_W[c][r0], torque[c] + reaction * ax[c] + omega * rolling * v_perp[c]);
@@ -223,6 +226,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     const V h[3] = {ax[0] * (J * qdot), ax[1] * (J * qdot), ax[2] * (J * qdot)};
     const V qddot = (qdot - qdot_before) * inv_dt;
     const V w_x_h[3] = {w[1] * h[2] - w[2] * h[1], w[2] * h[0] - w[0] * h[2], w[0] * h[1] - w[1] * h[0]};
+    #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) Store(&out.spin_moment_W[c][r0], -w_x_h[c] - ax[c] * (J * qddot));
     for (int l = 0; l < count; ++l) {
       a.omega_rotor[(r0 + l) * n + i] = y[l];
@@ -254,6 +258,9 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
   for (int c = 0; c < 9; ++c) s.R_WB[c] = Load<V>(&a.R_WB[c * n + i0]);
   const V* R = s.R_WB;
   const V* w = s.omega_W;
+  // the free-body step's half that needs no force, first: the core runs its chain (a division) while
+  // it steps the rotors
+  const rotors_sim::physics::FreeBodyStateTerms<V> body_terms = rotors_sim::physics::FreeBodyTermsOf(m.dt, m.body, s);
   V F[3] = {}, T[3] = {};
   V wind_v[3] = {};
   for (int c = 0; c < 3 && m.has_wind; ++c)
@@ -383,7 +390,7 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
     }
     for (int c = 0; c < 9; ++c) Store(&before.R_WB[c * Stride], s.R_WB[c]);
   }
-  rotors_sim::physics::StepFreeBody(m.dt, m.body, F, T, s);
+  rotors_sim::physics::StepFreeBody(m.dt, m.body, F, T, body_terms, s);
   for (int c = 0; c < 3; ++c) {
     Store(&a.p_W[c * n + i0], s.p_W[c]);
     Store(&a.v_W[c * n + i0], s.v_W[c]);
@@ -406,15 +413,16 @@ using StepFourLanes = unsigned (*)(const KernelModel&, const KernelArrays&, size
 
 /// The kernels a batch steps with: four vehicles at once, and one vehicle's rotors in lanes.
 struct Kernels {
-  const char* instruction_set;  ///< "avx2", "sse2" or "scalar"
+  const char* instruction_set;  ///< "avx512", "avx2", "sse2" or "scalar"
   StepFourLanes four_vehicles;
   RotorLanesFn rotor_lanes;  ///< nullptr: a vehicle alone steps its rotors one at a time
 };
 
-/// The kernels for `instruction_set`: "avx2" (four AVX2 lanes; the CPU must have them), "sse2"
-/// (x86-64's baseline: two pairs of SSE2 lanes), "scalar" (no lanes), or "" for the fastest this
-/// CPU runs. All give the same step bit for bit. SimError for another name, or avx2 on a CPU
-/// without it.
+/// The kernels for `instruction_set`: "avx512" (a lone vehicle's rotors in eight AVX-512 lanes, the
+/// groups of four vehicles as avx2; the CPU must have AVX-512F), "avx2" (four AVX2 lanes; the CPU
+/// must have them), "sse2" (x86-64's baseline: two pairs of SSE2 lanes), "scalar" (no lanes), or ""
+/// for the fastest this CPU runs. All give the same step bit for bit. SimError for another name, or
+/// for a set this CPU lacks.
 Kernels ChooseKernels(const std::string& instruction_set);
 
 /// One vehicle (a batch of fewer than four, or the last group's vehicles) with rows of 4 lanes:

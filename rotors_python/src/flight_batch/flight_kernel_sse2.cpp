@@ -11,6 +11,7 @@ typedef double Sse2Lanes __attribute__((vector_size(16)));
 unsigned StepFourAvx2(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
                       const KernelBefore& before);
 void RotorLanesAvx2(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out);
+void RotorLanesAvx512(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out);
 
 namespace {
 unsigned StepFourSse2(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
@@ -45,14 +46,20 @@ unsigned StepOneOfFour(const Kernels& kernels, const KernelModel& m, const Kerne
 Kernels ChooseKernels(const std::string& instruction_set) {
   __builtin_cpu_init();
   const bool avx2 = __builtin_cpu_supports("avx2");
-  const std::string set = instruction_set.empty() ? (avx2 ? "avx2" : "sse2") : instruction_set;
+  const bool avx512 = avx2 && __builtin_cpu_supports("avx512f");
+  const std::string set = instruction_set.empty() ? (avx512 ? "avx512" : avx2 ? "avx2" : "sse2") : instruction_set;
+  if (set == "avx512") {
+    if (!avx512)
+      throw rotors_sim::SimError("FlightBatch: kernel 'avx512' asked for, but this CPU has no AVX-512F; use avx2 or sse2");
+    return {"avx512", &StepFourAvx2, &RotorLanesAvx512};
+  }
   if (set == "avx2") {
     if (!avx2) throw rotors_sim::SimError("FlightBatch: kernel 'avx2' asked for, but this CPU has no AVX2; use sse2");
     return {"avx2", &StepFourAvx2, &RotorLanesAvx2};
   }
   if (set == "sse2") return {"sse2", &StepFourSse2, &RotorLanes<Sse2Lanes>};
   if (set == "scalar") return {"scalar", &StepFourScalar, nullptr};
-  throw rotors_sim::SimError("FlightBatch: unknown kernel '" + set + "'; use avx2, sse2 or scalar");
+  throw rotors_sim::SimError("FlightBatch: unknown kernel '" + set + "'; use avx512, avx2, sse2 or scalar");
 }
 
 }  // namespace rotors_flight_batch

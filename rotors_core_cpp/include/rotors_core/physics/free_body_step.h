@@ -64,14 +64,22 @@ inline bool AnyNonZero(const T&) {
   return true;
 }
 
-/// Advances `s` by h under the force F_W (gravity included) and torque T_W about the CoG.
+/// What one step needs of the body's state alone, before any force is known: the inverse inertia in
+/// the world frame and ODE's implicit gyroscopic moment. A caller may compute it first and step the
+/// forces in meanwhile: the two halves are StepFreeBody's operations, in its order.
 template <class T>
-inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], const T T_W_in[3],
-                         FreeBodyStateT<T>& s) {
+struct FreeBodyStateTerms {
+  T inv_I_W[9];
+  T tau_gyro_W[3];  ///< added to the external torque (an IEEE sum is the same either way round)
+};
+
+/// The first half of a step: FreeBodyStateTerms of `s` for the step h.
+template <class T>
+inline FreeBodyStateTerms<T> FreeBodyTermsOf(double h, const FreeBodyInertia& body, const FreeBodyStateT<T>& s) {
   constexpr bool kScalar = std::is_same_v<T, double>;
-  T T_W[3] = {T_W_in[0], T_W_in[1], T_W_in[2]};
-  T inv_I_W[9], I_W[9];
-  TensorToWorld(s.R_WB, body.inv_I_B, inv_I_W);
+  FreeBodyStateTerms<T> out;
+  T I_W[9];
+  TensorToWorld(s.R_WB, body.inv_I_B, out.inv_I_W);
   TensorToWorld(s.R_WB, body.I_B, I_W);
   const T* w = s.omega_W;
 
@@ -87,22 +95,34 @@ inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], 
   for (T& l : L) l *= inv_h;
   const T det = m0 * (m5 * m10 - m9 * m6) - m1 * (m4 * m10 - m8 * m6) + m2 * (m4 * m9 - m8 * m5);
   // det(I_W - h [L]x) >= det(I_W) > 0 for an inertia (positive definite) and any L: ODE's test for
-  // 0 never fails for a body with mass, so the lanes skip it
+  // 0 never fails for a body with mass, so the lanes skip it (and a scalar 0 leaves no moment)
+  for (T& tau : out.tau_gyro_W) tau = T{};
   if (!kScalar || AnyNonZero(det)) {
     const T d = 1.0 / det;
     const T inv[9] = {(m5 * m10 - m6 * m9) * d, (m9 * m2 - m1 * m10) * d, (m1 * m6 - m5 * m2) * d,
                       (m6 * m8 - m4 * m10) * d, (m0 * m10 - m8 * m2) * d, (m4 * m2 - m0 * m6) * d,
                       (m4 * m9 - m8 * m5) * d,  (m8 * m1 - m0 * m9) * d,  (m0 * m5 - m1 * m4) * d};
-    T M[9];
-    for (int i = 0; i < 3; ++i)
+    for (int i = 0; i < 3; ++i) {  // row i of M = I_W I~^-1 - 1, then tau_i = M_i . L
+      T M_i[3];
       for (int j = 0; j < 3; ++j)
-        M[i * 3 + j] =
-            I_W[i * 3 + 0] * inv[0 * 3 + j] + I_W[i * 3 + 1] * inv[1 * 3 + j] + I_W[i * 3 + 2] * inv[2 * 3 + j];
-    M[0] -= 1.0;
-    M[4] -= 1.0;
-    M[8] -= 1.0;
-    for (int i = 0; i < 3; ++i) T_W[i] = T_W[i] + (M[i * 3 + 0] * L[0] + M[i * 3 + 1] * L[1] + M[i * 3 + 2] * L[2]);
+        M_i[j] = I_W[i * 3 + 0] * inv[0 * 3 + j] + I_W[i * 3 + 1] * inv[1 * 3 + j] + I_W[i * 3 + 2] * inv[2 * 3 + j];
+      M_i[i] -= 1.0;
+      out.tau_gyro_W[i] = M_i[0] * L[0] + M_i[1] * L[1] + M_i[2] * L[2];
+    }
   }
+  return out;
+}
+
+/// The second half: advances `s` by h under the force F_W (gravity included) and torque T_W about
+/// the CoG, with the terms FreeBodyTermsOf computed from `s` as it is.
+template <class T>
+inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], const T T_W_in[3],
+                         const FreeBodyStateTerms<T>& terms, FreeBodyStateT<T>& s) {
+  constexpr bool kScalar = std::is_same_v<T, double>;
+  const T* w = s.omega_W;
+  const T* inv_I_W = terms.inv_I_W;
+  // (with det 0 ODE adds no gyroscopic moment; a + 0 is a, so adding the zero is the same)
+  const T T_W[3] = {T_W_in[0] + terms.tau_gyro_W[0], T_W_in[1] + terms.tau_gyro_W[1], T_W_in[2] + terms.tau_gyro_W[2]};
 
   // v += h/m F;  w += I_W^-1 (h T)
   const double s_lin = h * body.inv_mass_kg;
@@ -132,6 +152,13 @@ inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], 
     for (int j = 0; j < 4; ++j) q[j] *= l;
   }
   RotationFromQuaternion(q, s.R_WB);
+}
+
+/// Advances `s` by h under the force F_W (gravity included) and torque T_W about the CoG.
+template <class T>
+inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], const T T_W_in[3],
+                         FreeBodyStateT<T>& s) {
+  StepFreeBody(h, body, F_W, T_W_in, FreeBodyTermsOf(h, body, s), s);
 }
 
 }  // namespace physics

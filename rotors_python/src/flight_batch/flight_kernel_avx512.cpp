@@ -1,0 +1,16 @@
+// One vehicle's rotors eight at a time in AVX-512 lanes (compiled with -mavx512f -ffp-contract=off:
+// no fused multiply-add, so that each lane equals the scalar step): a vehicle of up to eight rotors
+// in one pass. Called only where the CPU has AVX-512F (ChooseKernels). Only templates of the
+// AVX-512 lane type are instantiated here, so no function compiled for AVX-512 stands in for a
+// baseline one.
+#include "flight_kernel.h"
+
+namespace rotors_flight_batch {
+
+typedef double Avx512Lanes __attribute__((vector_size(64)));
+
+void RotorLanesAvx512(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out) {
+  RotorLanes<Avx512Lanes>(m, a, i, b, out);
+}
+
+}  // namespace rotors_flight_batch
