@@ -24,7 +24,8 @@ clang_tidy() {
   # the workspace's commands without GCC's precompiled headers (clang cannot read a .gch; every
   # file includes what it uses, the headers only make GCC faster) and without GCC's warning
   # switches: clang does not know -Wno-maybe-uninitialized, and under CI's -Werror (ROTORS_WERROR)
-  # an unknown option is an error; .clang-tidy decides what is an error here
+  # an unknown option is an error; .clang-tidy decides what is an error here. Nor does it know GCC's
+  # tuning switches -m(no-)avx256-split-unaligned-load/store (the AVX2 kernel's code generation).
   local db="$root/build/lint"
   mkdir -p "$db"
   python3 - "$compile_db/compile_commands.json" "$db/compile_commands.json" <<'PY'
@@ -32,7 +33,8 @@ import json, re, sys
 entries = json.load(open(sys.argv[1]))
 for e in entries:
     e["command"] = re.sub(
-        r"(?<!\S)(-include \S*cmake_pch\.hxx|-Winvalid-pch|-Werror|-Wno-maybe-uninitialized)(?!\S)",
+        r"(?<!\S)(-include \S*cmake_pch\.hxx|-Winvalid-pch|-Werror|-Wno-maybe-uninitialized"
+        r"|-m(no-)?avx256-split-unaligned-(load|store))(?!\S)",
         "", e["command"])
 json.dump(entries, open(sys.argv[2], "w"))
 PY

@@ -210,7 +210,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     V torque[3];
     Cross(r_c, f, torque);
     const V reaction = Load<V>(&k.reaction_factor[r0]) * thrust;
-    #pragma GCC unroll 3
+#pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
       Store(&out.force_W[c][r0], f[c]);
       Store(&out.moment_W[c][r0], torque[c] + reaction * ax[c] + omega * rolling * v_perp[c]);
@@ -226,7 +226,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     const V h[3] = {ax[0] * (J * qdot), ax[1] * (J * qdot), ax[2] * (J * qdot)};
     const V qddot = (qdot - qdot_before) * inv_dt;
     const V w_x_h[3] = {w[1] * h[2] - w[2] * h[1], w[2] * h[0] - w[0] * h[2], w[0] * h[1] - w[1] * h[0]};
-    #pragma GCC unroll 3
+#pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) Store(&out.spin_moment_W[c][r0], -w_x_h[c] - ax[c] * (J * qddot));
     for (int l = 0; l < count; ++l) {
       a.omega_rotor[(r0 + l) * n + i] = y[l];

@@ -50,7 +50,8 @@ Kernels ChooseKernels(const std::string& instruction_set) {
   const std::string set = instruction_set.empty() ? (avx512 ? "avx512" : avx2 ? "avx2" : "sse2") : instruction_set;
   if (set == "avx512") {
     if (!avx512)
-      throw rotors_sim::SimError("FlightBatch: kernel 'avx512' asked for, but this CPU has no AVX-512F; use avx2 or sse2");
+      throw rotors_sim::SimError(
+          "FlightBatch: kernel 'avx512' asked for, but this CPU has no AVX-512F; use avx2 or sse2");
     return {"avx512", &StepFourAvx2, &RotorLanesAvx512};
   }
   if (set == "avx2") {
