@@ -678,11 +678,12 @@ def batched_flight_rows(b: dict) -> list:
     rows += [
         (
             "  what bounds the next factor",
-            f"one vehicle: the physics kernel ({kernel:.0f} % of the samples: its rotors in lanes, ODE's free-body step "
-            "in scalar code) - the free-body step is one chain of dependent operations (two divisions and a square "
-            "root in turn) that lanes cannot shorten, and fused multiply-add would end the bit-for-bit equality with "
-            "the full world; many: the controllers (rotors_control's library, one vehicle at a time) and the "
-            "lane width (AVX2's four)",
+            f"one vehicle: the physics kernel ({kernel:.0f} % of the samples: its rotors in AVX-512 lanes, ODE's "
+            "free-body step in scalar code, its force-free half beside the rotors) - what is left is one chain of "
+            "dependent operations from the rotor forces to the next state (the sums in plugin order, then a square "
+            "root and a division in turn), which lanes cannot shorten and fused multiply-add would change (ending "
+            "the bit-for-bit equality with the full world); many: the controllers (rotors_control's library, one "
+            "vehicle at a time) and the lane width (AVX2's four vehicles)",
             "",
         )
     ]
