@@ -269,3 +269,49 @@ def test_batch_engine_refuses_what_needs_the_world(tmp_path: Path, edit: str, sa
     res = sweep(str(tmp_path / "bad.yaml"), "-o", str(tmp_path / "out"))
     lines = res.stderr.strip().splitlines()
     assert res.returncode == 2 and len(lines) == 1 and says in lines[0], res.stderr
+
+
+def test_unwaited_steps_after_the_flights_end_do_not_count(tmp_path: Path):
+    # a bag as the bag plugin writes it when roslaunch stops the controller before the simulator at
+    # the end of a 14 s flight: the marker of the first step not waited for is stamped 14.85 s (CI
+    # saw this once: the sweep called a lockstep flight "not repeatable"). Up to 14 s: every step
+    # was waited for; over the whole bag: 1 step was not; a marker inside the span still counts
+    from rosbags.rosbag1 import Writer
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+    from rotors_evaluation.bag_data import FlightBag
+
+    store = get_typestore(Stores.ROS1_NOETIC)
+    msgdef = (REPO / "rotors_gazebo_compat" / "rotors_comm" / "msg" / "SimulationStatus.msg").read_text()
+    store.register(get_types_from_msg(msgdef, "rotors_comm/msg/SimulationStatus"))
+    Status, Header, Time = (
+        store.types["rotors_comm/msg/SimulationStatus"],
+        store.types["std_msgs/msg/Header"],
+        store.types["builtin_interfaces/msg/Time"],
+    )
+
+    def write(path: Path, markers: list) -> Path:
+        with Writer(path) as w:
+            conn = w.add_connection("/firefly/simulation_status", "rotors_comm/msg/SimulationStatus", typestore=store)
+            for t_s, state, steps, reason in markers:
+                stamp = Time(sec=int(t_s), nanosec=round((t_s % 1) * 1e9))
+                msg = Status(header=Header(seq=0, stamp=stamp, frame_id=""), state=state, reason=reason, unwaited_steps=steps)
+                w.write(conn, int(t_s * 1e9), store.serialize_ros1(msg, conn.msgtype))
+        return path
+
+    gone = "not repeatable: lockstep did not wait for /firefly/command/motor_speed at t = 14.850 s (gone)"
+    late = write(tmp_path / "late.bag", [(14.85, 0, 1, gone), (14.9, 2, 3, "simulator shut down; " + gone)])
+    bag = FlightBag(late)
+    try:
+        assert bag.unwaited("firefly", until_s=14.0) is None
+        whole = bag.unwaited("firefly")
+        assert whole is not None and whole.steps == 3 and whole.reason.startswith("lockstep did not wait")
+    finally:
+        bag.close()
+    early = write(tmp_path / "early.bag", [(6.5, 0, 1, gone.replace("14.850", "6.500")), (14.9, 2, 3, "simulator shut down")])
+    bag = FlightBag(early)
+    try:
+        within = bag.unwaited("firefly", until_s=14.0)
+        assert within is not None and within.steps == 1 and "6.500" in within.reason
+    finally:
+        bag.close()

@@ -239,12 +239,17 @@ class FlightBag:
                 )
         return end
 
-    def unwaited(self, mav_name: str) -> Unwaited | None:
+    def unwaited(self, mav_name: str, until_s: float | None = None) -> Unwaited | None:
         """The count of steps lockstep did not wait for (the largest a status marker reports) and
-        why the first was not; None when every step was waited for or the bag has no markers."""
+        why the first was not; None when every step was waited for or the bag has no markers.
+        until_s: only the markers stamped up to that sim time count (the bag plugin writes one at
+        the first step not waited for): a sweep judges the span it evaluates, not the steps the
+        simulator takes while the nodes are stopped after it, when a controller may already be gone."""
         topic = self.resolve(mav_name, STATUS_TOPIC)
         found = None
-        for msg, _, _ in self.messages(topic) if topic else ():
+        for msg, _, t_ns in self.messages(topic) if topic else ():
+            if until_s is not None and _stamp(msg, t_ns) > until_s:
+                continue
             steps = int(getattr(msg, "unwaited_steps", 0))  # older bags: no such field
             if steps > 0 and (found is None or steps > found.steps):
                 reason = msg.reason.split("not repeatable: ", 1)[-1]

@@ -189,13 +189,15 @@ def _fly(sweep: dict[str, Any], flight: dict[str, Any], flight_dir: Path, row: d
     return bags[-1]
 
 
-def _repeatability(bag: Path, mav_name: str) -> dict[str, Any]:
-    """unwaited_steps: steps lockstep did not wait for (simulation_status); > 0: not repeatable."""
+def _repeatability(bag: Path, mav_name: str, until_s: float) -> dict[str, Any]:
+    """unwaited_steps: steps up to sim time until_s (the flight's end) that lockstep did not wait for
+    (simulation_status); > 0: not repeatable. The steps the simulator takes while roslaunch stops
+    the nodes after the flight do not count: the controller may be gone before the simulator."""
     from rotors_evaluation.bag_data import FlightBag
 
     b = FlightBag(bag)
     try:
-        unwaited = b.unwaited(mav_name)
+        unwaited = b.unwaited(mav_name, until_s=until_s)
     finally:
         b.close()
     return {"unwaited_steps": unwaited.steps if unwaited else 0, "unwaited_reason": unwaited.reason if unwaited else ""}
@@ -284,7 +286,7 @@ def run_flight(sweep: dict[str, Any], flight: dict[str, Any], out_dir: str) -> d
     try:
         bag = _fly(sweep, flight, flight_dir, row)
         row.update(_evaluate(sweep, bag, flight_dir))
-        repeatability = _repeatability(bag, sweep["mav_name"])
+        repeatability = _repeatability(bag, sweep["mav_name"], float(sweep["sim_time_s"]))
         row["unwaited_steps"] = repeatability["unwaited_steps"]
         row["status"] = "ok" if row["unwaited_steps"] == 0 else "not repeatable"
         if row["unwaited_steps"]:
