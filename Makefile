@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test test-long test-all test-sanitize lint demo demo-msf bench clean train-example
+.PHONY: setup build test test-long test-all test-sanitize test-arm64 lint demo demo-msf bench clean train-example
 
 setup:
 	@bash scripts/setup.sh
@@ -24,6 +24,11 @@ test-all: build
 # (own workspaces in build/sanitize; scripts/test_sanitize.sh)
 test-sanitize: build
 	@bash scripts/test_sanitize.sh
+
+# the ROS-free libraries and their gtests cross-built for arm64 and run under qemu-user
+# (scripts/test_arm64.sh; installs Debian's cross toolchain and qemu-user when missing)
+test-arm64: setup
+	@bash scripts/test_arm64.sh
 
 lint: build
 	@bash scripts/lint.sh

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "rotors_gazebo_plugins/models/rotor_model.h"
 
 using namespace rotors_gazebo_plugins;
@@ -100,6 +102,51 @@ TEST(RotorModel, WindChangesDragAsEquation2Predicts) {
   EXPECT_NEAR(w.drag_R.x(), 543.3 * 8.06428e-5 * 5.0, 1e-9);  // pushed downwind
   const RotorWrench still = m.ComputeWrench(Eigen::Vector3d(-5.0, 0, 0));
   EXPECT_TRUE(w.drag_R.isApprox(still.drag_R));
+}
+
+// One model in any frame: RotorLoads with the axis and airspeed in the world (as the batch calls it)
+// is the plugin's rotor-frame wrench rotated into the world, to rounding; and lanes of it (a GCC
+// vector, as the batch's kernels) equal the scalar bit for bit.
+TEST(RotorModel, TheEquationsGiveTheSameLoadsInAnyFrameAndInLanes) {
+  const RotorModel m = AtSpeed(Firefly(-1), 612.0);
+  const Eigen::Matrix3d R_WR =
+      (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.7, Eigen::Vector3d(1, 2, 3).normalized()))
+          .toRotationMatrix();
+  const Eigen::Vector3d v_A_W(2.5, -1.5, 0.8);
+  const RotorWrench w_R = m.ComputeWrench(R_WR.transpose() * v_A_W);
+  const Eigen::Vector3d e_W = R_WR.col(2);
+  const double e[3] = {e_W.x(), e_W.y(), e_W.z()}, v[3] = {v_A_W.x(), v_A_W.y(), v_A_W.z()};
+  const RotorParams& p = m.Params();
+  const RotorLoadsT<double> l = RotorLoads(m.Omega(), e, v, p.motor_constant, p.rotor_drag_coefficient,
+                                           p.rolling_moment_coefficient, m.ReactionFactor());
+  EXPECT_TRUE(Eigen::Vector3d(l.thrust_F[0], l.thrust_F[1], l.thrust_F[2]).isApprox(R_WR * w_R.thrust_R, 1e-12));
+  EXPECT_TRUE(Eigen::Vector3d(l.drag_F[0], l.drag_F[1], l.drag_F[2]).isApprox(R_WR * w_R.drag_R, 1e-12));
+  EXPECT_TRUE(Eigen::Vector3d(l.rolling_moment_F[0], l.rolling_moment_F[1], l.rolling_moment_F[2])
+                  .isApprox(R_WR * w_R.rolling_moment_R, 1e-12));
+  EXPECT_TRUE(Eigen::Vector3d(l.reaction_moment_F[0], l.reaction_moment_F[1], l.reaction_moment_F[2])
+                  .isApprox(R_WR * w_R.reaction_moment_R, 1e-12));
+
+  typedef double Pair __attribute__((vector_size(16)));
+  const Pair omega = {m.Omega(), 300.0}, e2[3] = {{e[0], e[0]}, {e[1], e[1]}, {e[2], e[2]}},
+             v2[3] = {{v[0], -v[0]}, {v[1], -v[1]}, {v[2], -v[2]}};
+  const RotorLoadsT<Pair> lanes = RotorLoads(omega, e2, v2, p.motor_constant, p.rotor_drag_coefficient,
+                                             p.rolling_moment_coefficient, m.ReactionFactor());
+  const double e_again[3] = {e[0], e[1], e[2]}, v_flipped[3] = {-v[0], -v[1], -v[2]};
+  const RotorLoadsT<double> second = RotorLoads(300.0, e_again, v_flipped, p.motor_constant, p.rotor_drag_coefficient,
+                                                p.rolling_moment_coefficient, m.ReactionFactor());
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(lanes.drag_F[c][0], l.drag_F[c]);
+    EXPECT_EQ(lanes.drag_F[c][1], second.drag_F[c]);
+    EXPECT_EQ(lanes.rolling_moment_F[c][1], second.rolling_moment_F[c]);
+    EXPECT_EQ(lanes.reaction_moment_F[c][0], l.reaction_moment_F[c]);
+  }
+  // the speed dynamics in lanes: each lane is RotorModel::UpdateSpeed
+  RotorModel a = AtSpeed(Firefly(1), 400.0), b = AtSpeed(Firefly(1), 700.0);
+  const double dt = 0.002, a_up = std::exp(-dt / p.time_constant_up_s), a_down = std::exp(-dt / p.time_constant_down_s);
+  const Pair y = RotorSpeedStep(Pair{a.Omega(), b.Omega()}, Pair{650.0, -5.0}, Pair{838.0, 838.0}, Pair{a_up, a_up},
+                                Pair{a_down, a_down});
+  EXPECT_EQ(y[0], a.UpdateSpeed(650.0, dt));
+  EXPECT_EQ(y[1], b.UpdateSpeed(-5.0, dt));
 }
 
 TEST(RotorModel, ValidateNamesTheBadParameter) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "rotors_core/physics/model.h"
+#include "rotors_core/physics/spin_moment.h"
 #include "physics/ode_convert.h"
 #include "physics/ode_handles.h"
 #include "physics/pose_math.h"
@@ -113,12 +114,11 @@ void Joint::ResetKinematic() {
 
 void Joint::ApplySpinMoment(double dt_s) {
   if (spin_inertia_ > 0.0 && dt_s > 0.0) {
-    const Vector3d a_W = GlobalAxis(0);
-    // h = J_a qdot a: the child's spin momentum, carried by the body
-    const Vector3d h_W = a_W * (spin_inertia_ * qdot_);
-    const double qddot = (qdot_ - qdot_applied_) / dt_s;
-    // M = -dh/dt = -(omega_B x h) - J_a qddot a
-    parent_->AddTorque(-parent_->WorldAngularVel().Cross(h_W) - a_W * (spin_inertia_ * qddot));
+    const Vector3d a_W = GlobalAxis(0), omega_W = parent_->WorldAngularVel();
+    const double axis_W[3] = {a_W.X(), a_W.Y(), a_W.Z()}, w_W[3] = {omega_W.X(), omega_W.Y(), omega_W.Z()};
+    double M_W[3];
+    SpinMoment(axis_W, spin_inertia_, qdot_, qdot_applied_, 1.0 / dt_s, w_W, M_W);
+    parent_->AddTorque(Vector3d(M_W[0], M_W[1], M_W[2]));
   }
   qdot_applied_ = qdot_;
 }

@@ -1,6 +1,5 @@
 #include "rotors_gazebo_plugins/models/rotor_model.h"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -26,29 +25,26 @@ std::string RotorParams::Validate() const {
   return why.str();
 }
 
-RotorModel::RotorModel(const RotorParams& params)
-    : params_(params), speed_(params.time_constant_up_s, params.time_constant_down_s) {}
+RotorModel::RotorModel(const RotorParams& params) : params_(params) {}
 
 RotorWrench RotorModel::ComputeWrench(const Eigen::Vector3d& airspeed_R) const {
-  const double omega = Omega();
-  const Eigen::Vector3d e_z = Eigen::Vector3d::UnitZ();
+  const double e_z[3] = {0.0, 0.0, 1.0};
+  const double v_A_R[3] = {airspeed_R.x(), airspeed_R.y(), airspeed_R.z()};
+  const RotorLoadsT<double> loads =
+      RotorLoads(omega_, e_z, v_A_R, params_.motor_constant, params_.rotor_drag_coefficient,
+                 params_.rolling_moment_coefficient, ReactionFactor());
   RotorWrench w;
-  // eq. 1: F_T = omega^2 C_T e_z
-  w.thrust_R = omega * omega * params_.motor_constant * e_z;
-  // eq. 5: v_perp = v - (v . e_z) e_z, the airspeed in the rotor plane
-  const Eigen::Vector3d v_perp_R = airspeed_R - airspeed_R.dot(e_z) * e_z;
-  // eq. 2: F_D = -omega C_D v_perp
-  w.drag_R = -omega * params_.rotor_drag_coefficient * v_perp_R;
-  // eq. 3: M_R = omega C_R v_perp  (the book's sign; RotorS applies the opposite one)
-  w.rolling_moment_R = omega * params_.rolling_moment_coefficient * v_perp_R;
-  // eq. 4: M_D = -epsilon C_M F_T
-  w.reaction_moment_R = -params_.turning_direction * params_.moment_constant * w.thrust_R;
+  w.thrust_R = Eigen::Map<const Eigen::Vector3d>(loads.thrust_F);
+  w.drag_R = Eigen::Map<const Eigen::Vector3d>(loads.drag_F);
+  w.rolling_moment_R = Eigen::Map<const Eigen::Vector3d>(loads.rolling_moment_F);
+  w.reaction_moment_R = Eigen::Map<const Eigen::Vector3d>(loads.reaction_moment_F);
   return w;
 }
 
 double RotorModel::UpdateSpeed(double omega_cmd, double dt_s) {
-  const double u = std::clamp(omega_cmd, 0.0, params_.max_rot_velocity);
-  return speed_.Update(u, dt_s);
+  omega_ = RotorSpeedStep(omega_, omega_cmd, params_.max_rot_velocity, std::exp(-dt_s / params_.time_constant_up_s),
+                          std::exp(-dt_s / params_.time_constant_down_s));
+  return omega_;
 }
 
 }  // namespace rotors_gazebo_plugins

@@ -405,28 +405,7 @@ void FlightBatch::BuildKernelModel() {
     kr.direction = rotor.params.turning_direction;
     kr.slowdown = rotor.slowdown;
   }
-  KernelModel::RotorColumns& col = k.columns;
-  col = KernelModel::RotorColumns{};
-  std::fill(std::begin(col.slowdown), std::end(col.slowdown), 1.0);  // rotors past the last: all zero
-  for (int r = 0; r < r_; ++r) {
-    const KernelModel::Rotor& kr = k.rotor[r];
-    for (int c = 0; c < 3; ++c) {
-      col.axis_B[c][r] = kr.axis_B[c];
-      col.p_origin_B[c][r] = kr.p_origin_B[c];
-      col.p_cog_B[c][r] = kr.cog_on_origin ? kr.p_origin_B[c] : kr.p_cog_B[c];
-    }
-    col.motor_constant[r] = kr.motor_constant;
-    col.rotor_drag_coefficient[r] = kr.rotor_drag_coefficient;
-    col.rolling_moment_coefficient[r] = kr.rolling_moment_coefficient;
-    col.reaction_factor[r] = kr.reaction_factor;
-    col.max_rot_velocity[r] = kr.max_rot_velocity;
-    col.a_up[r] = kr.a_up;
-    col.a_down[r] = kr.a_down;
-    col.spin_inertia[r] = kr.spin_inertia;
-    col.direction[r] = kr.direction;
-    col.slowdown[r] = kr.slowdown;
-    col.every_cog_on_origin = col.every_cog_on_origin && kr.cog_on_origin;
-  }
+  FillRotorColumns(k);
   k.contacts = static_cast<int>(std::min<size_t>(d_.contact_points_B.size(), kMaxContacts));
   for (int c = 0; c < k.contacts; ++c)
     for (int j = 0; j < 3; ++j) k.corner_B[c][j] = d_.contact_points_B[c][j];

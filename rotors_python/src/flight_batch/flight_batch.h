@@ -54,7 +54,8 @@ struct FlightBatchOptions {
   std::vector<uint64_t> seeds;
   uint64_t description_seed = 0;
   double contact_stiffness_scale = 1.0;  ///< of the ground contact's spring (see Contact())
-  /// The kernels' instruction set: "" the fastest this CPU runs, or avx512, avx2, sse2, scalar
+  /// The kernels' instruction set: "" the fastest this CPU runs, or avx512, avx2, sse2 (x86-64),
+  /// neon (arm64), scalar
   /// (the same step bit for bit; ChooseKernels).
   std::string kernel;
 };
@@ -71,7 +72,7 @@ class FlightBatch {
   CommandMode Mode() const { return options_.mode; }
   int CommandColumns() const { return command_columns_; }
   int Threads() const { return threads_; }
-  /// The instruction set the kernels step with: avx512, avx2, sse2 or scalar.
+  /// The instruction set the kernels step with: avx512, avx2, sse2, neon or scalar.
   std::string Kernel() const { return kernels_.instruction_set; }
   const VehicleDescription& Description() const { return d_; }
   double StepSize() const { return dt_; }

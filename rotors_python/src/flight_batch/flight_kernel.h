@@ -13,7 +13,8 @@
 #include <type_traits>
 
 #include "rotors_core/physics/free_body_step.h"
-#include "rotors_gazebo_plugins/models/first_order_filter.h"
+#include "rotors_core/physics/spin_moment.h"
+#include "rotors_gazebo_plugins/models/rotor_equations.h"
 
 namespace rotors_flight_batch {
 
@@ -53,6 +54,9 @@ struct KernelModel {
   bool keep_state_before = false;  ///< write KernelBefore (the IMU measures from it)
 };
 
+/// m.columns from m.rotor[0 .. m.rotors - 1] (the rotors past the last add nothing).
+void FillRotorColumns(KernelModel& m);
+
 /// The batch's arrays, component k of vehicle i at [k * n + i] (n a multiple of the lane count).
 struct KernelArrays {
   size_t n;
@@ -73,6 +77,11 @@ struct KernelBefore {
 };
 
 namespace kernel_detail {
+using rotors_gazebo_plugins::RotorLoads;
+using rotors_gazebo_plugins::RotorSpeedStep;
+using rotors_sim::physics::SpinMoment;
+template <class V>
+using Loads = rotors_gazebo_plugins::RotorLoadsT<V>;
 /// Lanes of V: 1 for double, the vector's width for a GCC vector of doubles.
 template <class V>
 struct LaneCount {
@@ -199,35 +208,25 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     const V w_x_r[3] = {w[1] * r_o[2] - w[2] * r_o[1], w[2] * r_o[0] - w[0] * r_o[2], w[0] * r_o[1] - w[1] * r_o[0]};
     V air[3];
     for (int c = 0; c < 3; ++c) air[c] = v_W[c] + w_x_r[c] - wind_W[c];
-    const V thrust = omega * omega * Load<V>(&k.motor_constant[r0]);
-    const V v_par = air[0] * ax[0] + air[1] * ax[1] + air[2] * ax[2];
-    const V drag = Load<V>(&k.rotor_drag_coefficient[r0]), rolling = Load<V>(&k.rolling_moment_coefficient[r0]);
-    V f[3], v_perp[3];
-    for (int c = 0; c < 3; ++c) {
-      v_perp[c] = air[c] - v_par * ax[c];
-      f[c] = thrust * ax[c] - omega * drag * v_perp[c];
-    }
+    const Loads<V> loads =
+        RotorLoads(omega, ax, air, Load<V>(&k.motor_constant[r0]), Load<V>(&k.rotor_drag_coefficient[r0]),
+                   Load<V>(&k.rolling_moment_coefficient[r0]), Load<V>(&k.reaction_factor[r0]));
+    V f[3];
+    for (int c = 0; c < 3; ++c) f[c] = loads.thrust_F[c] + loads.drag_F[c];
     V torque[3];
     Cross(r_c, f, torque);
-    const V reaction = Load<V>(&k.reaction_factor[r0]) * thrust;
 #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
       Store(&out.force_W[c][r0], f[c]);
-      Store(&out.moment_W[c][r0], torque[c] + reaction * ax[c] + omega * rolling * v_perp[c]);
+      Store(&out.moment_W[c][r0], torque[c] + loads.reaction_moment_F[c] + loads.rolling_moment_F[c]);
     }
     // the speed dynamics, as StepLanesStrided
-    const V zero = {}, max = Load<V>(&k.max_rot_velocity[r0]);
-    const V u = cmd < zero ? zero : (max < cmd ? max : cmd);
-    const V blend = u > omega ? Load<V>(&k.a_up[r0]) : Load<V>(&k.a_down[r0]);
-    const V y = rotors_gazebo_plugins::FirstOrderFilter::Blend(omega, u, blend);
+    const V y = RotorSpeedStep(omega, cmd, Load<V>(&k.max_rot_velocity[r0]), Load<V>(&k.a_up[r0]), Load<V>(&k.a_down[r0]));
     const V qdot = Load<V>(&k.direction[r0]) * y / Load<V>(&k.slowdown[r0]);
-    // the spin moment: M = -(omega x h) - J_a qddot a,  h = J_a qdot a
-    const V J = Load<V>(&k.spin_inertia[r0]);
-    const V h[3] = {ax[0] * (J * qdot), ax[1] * (J * qdot), ax[2] * (J * qdot)};
-    const V qddot = (qdot - qdot_before) * inv_dt;
-    const V w_x_h[3] = {w[1] * h[2] - w[2] * h[1], w[2] * h[0] - w[0] * h[2], w[0] * h[1] - w[1] * h[0]};
+    V spin_moment[3];
+    SpinMoment(ax, Load<V>(&k.spin_inertia[r0]), qdot, qdot_before, inv_dt, w, spin_moment);
 #pragma GCC unroll 3
-    for (int c = 0; c < 3; ++c) Store(&out.spin_moment_W[c][r0], -w_x_h[c] - ax[c] * (J * qddot));
+    for (int c = 0; c < 3; ++c) Store(&out.spin_moment_W[c][r0], spin_moment[c]);
     for (int l = 0; l < count; ++l) {
       a.omega_rotor[(r0 + l) * n + i] = y[l];
       a.qdot_applied[(r0 + l) * n + i] = qdot[l];
@@ -273,8 +272,8 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
   };
   if (m.wind_before_motors) add_wind();
 
-  // the motor plugins: eqs. 1-5 from the speed of the last step, then the speed dynamics; the
-  // rotors' spin moments (kinematic joints): M = -(omega x h) - J_a qddot a,  h = J_a qdot a
+  // the motor plugins (RotorLoads from the speed of the last step, then RotorSpeedStep) and the
+  // rotors' spin moments (kinematic joints, SpinMoment)
   V axis_W[kMaxRotors][3], qdot[kMaxRotors];
   RotorTerms terms;
   const bool in_lanes = std::is_same_v<V, double> && rotor_lanes != nullptr;  // a lone vehicle only
@@ -298,31 +297,22 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
     V air[3];
     for (int c = 0; c < 3; ++c) air[c] = s.v_W[c] + w_x_r[c] - wind_v[c];
     const V omega = Load<V>(&a.omega_rotor[r * n + i0]);
-    const V thrust = omega * omega * p.motor_constant;
-    const V v_par = air[0] * ax[0] + air[1] * ax[1] + air[2] * ax[2];
-    V f[3], v_perp[3];
-    for (int c = 0; c < 3; ++c) {
-      v_perp[c] = air[c] - v_par * ax[c];
-      f[c] = thrust * ax[c] - omega * p.rotor_drag_coefficient * v_perp[c];
-    }
-    V r_c[3], torque[3];
+    const Loads<V> loads = RotorLoads(omega, ax, air, p.motor_constant, p.rotor_drag_coefficient,
+                                      p.rolling_moment_coefficient, p.reaction_factor);
+    V r_c[3], torque[3], f[3];
+    for (int c = 0; c < 3; ++c) f[c] = loads.thrust_F[c] + loads.drag_F[c];
     if (p.cog_on_origin) {
       for (int c = 0; c < 3; ++c) r_c[c] = r_o[c];
     } else {
       Rotate(R, p.p_cog_B, r_c);
     }
     Cross(r_c, f, torque);
-    const V reaction = p.reaction_factor * thrust;
     for (int c = 0; c < 3; ++c) {
       F[c] += f[c];
-      T[c] += torque[c] + reaction * ax[c] + omega * p.rolling_moment_coefficient * v_perp[c];
+      T[c] += torque[c] + loads.reaction_moment_F[c] + loads.rolling_moment_F[c];
     }
-    // u = clamp(command, 0, max);  y = a y + (1 - a) u, a = exp(-dt / tau_up or tau_down)
-    const V cmd = Load<V>(&a.motor_command[r * n + i0]);
-    const V zero = {}, max = Splat<V>(p.max_rot_velocity);
-    const V u = cmd < zero ? zero : (max < cmd ? max : cmd);
-    const V k = u > omega ? Splat<V>(p.a_up) : Splat<V>(p.a_down);
-    const V y = rotors_gazebo_plugins::FirstOrderFilter::Blend(omega, u, k);
+    const V y = RotorSpeedStep(omega, Load<V>(&a.motor_command[r * n + i0]), Splat<V>(p.max_rot_velocity),
+                               Splat<V>(p.a_up), Splat<V>(p.a_down));
     Store(&a.omega_rotor[r * n + i0], y);
     qdot[r] = p.direction * y / p.slowdown;
   }
@@ -339,12 +329,9 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
     }
     const V qdot_before = Load<V>(&a.qdot_applied[r * n + i0]);
     if (J > 0.0) {
-      const V* ax = axis_W[r];
-      const V h[3] = {ax[0] * (J * qdot[r]), ax[1] * (J * qdot[r]), ax[2] * (J * qdot[r])};
-      const V qddot = (qdot[r] - qdot_before) * m.inv_dt;
-      V w_x_h[3];
-      Cross(w, h, w_x_h);
-      for (int c = 0; c < 3; ++c) T[c] += -w_x_h[c] - ax[c] * (J * qddot);
+      V spin_moment[3];
+      rotors_sim::physics::SpinMoment(axis_W[r], J, qdot[r], qdot_before, m.inv_dt, w, spin_moment);
+      for (int c = 0; c < 3; ++c) T[c] += spin_moment[c];
     }
     Store(&a.qdot_applied[r * n + i0], qdot[r]);
   }
@@ -413,16 +400,16 @@ using StepFourLanes = unsigned (*)(const KernelModel&, const KernelArrays&, size
 
 /// The kernels a batch steps with: four vehicles at once, and one vehicle's rotors in lanes.
 struct Kernels {
-  const char* instruction_set;  ///< "avx512", "avx2", "sse2" or "scalar"
+  const char* instruction_set;  ///< "avx512", "avx2", "sse2" (x86-64), "neon" (arm64) or "scalar"
   StepFourLanes four_vehicles;
   RotorLanesFn rotor_lanes;  ///< nullptr: a vehicle alone steps its rotors one at a time
 };
 
-/// The kernels for `instruction_set`: "avx512" (a lone vehicle's rotors in eight AVX-512 lanes, the
-/// groups of four vehicles as avx2; the CPU must have AVX-512F), "avx2" (four AVX2 lanes; the CPU
-/// must have them), "sse2" (x86-64's baseline: two pairs of SSE2 lanes), "scalar" (no lanes), or ""
-/// for the fastest this CPU runs. All give the same step bit for bit. SimError for another name, or
-/// for a set this CPU lacks.
+/// The kernels for `instruction_set`. On x86-64: "avx512" (a lone vehicle's rotors in eight AVX-512
+/// lanes, the groups of four vehicles as avx2; the CPU must have AVX-512F), "avx2" (four AVX2 lanes;
+/// the CPU must have them), "sse2" (x86-64's baseline: two pairs of lanes); on arm64 "neon" (two
+/// pairs of lanes); everywhere "scalar" (no lanes), or "" for the fastest this CPU runs. All give the
+/// same step bit for bit. SimError for another name, or for a set this CPU lacks.
 Kernels ChooseKernels(const std::string& instruction_set);
 
 /// One vehicle (a batch of fewer than four, or the last group's vehicles) with rows of 4 lanes:

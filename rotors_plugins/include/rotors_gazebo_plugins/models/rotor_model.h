@@ -1,12 +1,13 @@
-// Forces and moments of one rotor (book section 2.1, eqs. 1-5) and its speed dynamics, free of
-// any engine: the motor plugin feeds it the rotor's state and applies what it returns.
+// One rotor (book section 2.1, eqs. 1-5) with its speed dynamics, free of any engine: the motor
+// plugin feeds it the rotor's state and applies what it returns. The equations themselves are in
+// rotor_equations.h, which the batched flight engine steps too.
 #pragma once
 
 #include <string>
 
 #include <Eigen/Core>
 
-#include "rotors_gazebo_plugins/models/first_order_filter.h"
+#include "rotors_gazebo_plugins/models/rotor_equations.h"
 
 namespace rotors_gazebo_plugins {
 
@@ -36,21 +37,23 @@ class RotorModel {
   explicit RotorModel(const RotorParams& params);
 
   /// Forces and moments at the current rotor speed omega [rad/s, >= 0 spins in turning_direction]
-  /// for the airspeed v_A = v_hub - v_wind, expressed in the rotor frame.
+  /// for the airspeed v_A = v_hub - v_wind, expressed in the rotor frame (RotorLoads with e = e_z).
   RotorWrench ComputeWrench(const Eigen::Vector3d& airspeed_R) const;
 
-  /// Advances the speed dynamics towards the command (clamped to [0, max]) over dt; returns omega.
+  /// Advances the speed dynamics towards the command over dt (RotorSpeedStep); returns omega.
   double UpdateSpeed(double omega_cmd, double dt_s);
 
-  double Omega() const { return speed_.Output(); }
+  double Omega() const { return omega_; }
   /// Signed real speed: turning_direction * omega [rad/s] (what RotorS publishes on motor_speed).
-  double SignedOmega() const { return params_.turning_direction * speed_.Output(); }
+  double SignedOmega() const { return params_.turning_direction * omega_; }
   const RotorParams& Params() const { return params_; }
-  void Reset() { speed_.Reset(0.0); }
+  /// -epsilon C_M: M_D = reaction_factor F_T (eq. 4).
+  double ReactionFactor() const { return -params_.turning_direction * params_.moment_constant; }
+  void Reset() { omega_ = 0.0; }
 
  private:
   RotorParams params_;
-  FirstOrderFilter speed_;
+  double omega_ = 0.0;  ///< [rad/s], >= 0
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -1,0 +1,100 @@
+// The kernels every target has (two pairs of 16-byte lanes, and no lanes at all), one vehicle of a
+// group of four, and the choice of kernels: the instruction sets this build's target offers
+// (TargetKernels: flight_kernel_x86.cpp, flight_kernel_arm64.cpp or flight_kernel_other.cpp, one of
+// them compiled) and what this CPU runs.
+#include "flight_kernel.h"
+
+#include <algorithm>
+#include <iterator>
+#include <vector>
+
+#include "flight_kernel_target.h"
+#include "rotors_core/error.h"
+
+namespace rotors_flight_batch {
+
+void FillRotorColumns(KernelModel& m) {
+  KernelModel::RotorColumns& col = m.columns;
+  col = KernelModel::RotorColumns{};
+  std::fill(std::begin(col.slowdown), std::end(col.slowdown), 1.0);  // rotors past the last: all zero
+  for (int r = 0; r < m.rotors; ++r) {
+    const KernelModel::Rotor& kr = m.rotor[r];
+    for (int c = 0; c < 3; ++c) {
+      col.axis_B[c][r] = kr.axis_B[c];
+      col.p_origin_B[c][r] = kr.p_origin_B[c];
+      col.p_cog_B[c][r] = kr.cog_on_origin ? kr.p_origin_B[c] : kr.p_cog_B[c];
+    }
+    col.motor_constant[r] = kr.motor_constant;
+    col.rotor_drag_coefficient[r] = kr.rotor_drag_coefficient;
+    col.rolling_moment_coefficient[r] = kr.rolling_moment_coefficient;
+    col.reaction_factor[r] = kr.reaction_factor;
+    col.max_rot_velocity[r] = kr.max_rot_velocity;
+    col.a_up[r] = kr.a_up;
+    col.a_down[r] = kr.a_down;
+    col.spin_inertia[r] = kr.spin_inertia;
+    col.direction[r] = kr.direction;
+    col.slowdown[r] = kr.slowdown;
+    col.every_cog_on_origin = col.every_cog_on_origin && kr.cog_on_origin;
+  }
+}
+
+unsigned StepFourPairs(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                       const KernelBefore& before) {
+  // lanes 2 and 3 read their wind and write their state-before at offset 2 of each [3][4] row
+  const KernelWind w2{wind.force_W + 2, wind.moment_W + 2, wind.velocity_W + 2};
+  const KernelBefore b2{before.v_W + 2, before.omega_W + 2, before.R_WB + 2};
+  const unsigned low = StepLanesStrided<PairLanes, 4>(m, a, i0, wind, before);
+  const unsigned high = StepLanesStrided<PairLanes, 4>(m, a, i0 + 2, w2, b2);
+  return low | (high << 2);
+}
+
+void RotorLanesPairs(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out) {
+  RotorLanes<PairLanes>(m, a, i, b, out);
+}
+
+namespace {
+unsigned StepFourScalar(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                        const KernelBefore& before) {
+  unsigned touching = 0;
+  for (size_t l = 0; l < 4; ++l) {
+    const KernelWind w{wind.force_W + l, wind.moment_W + l, wind.velocity_W + l};
+    const KernelBefore b{before.v_W + l, before.omega_W + l, before.R_WB + l};
+    touching |= StepLanesStrided<double, 4>(m, a, i0 + l, w, b) << l;
+  }
+  return touching;
+}
+
+std::string Names(const std::vector<TargetKernel>& kernels) {
+  std::string names;
+  for (size_t k = 0; k < kernels.size(); ++k)
+    names += (k == 0 ? "" : k + 1 == kernels.size() ? " or " : ", ") + std::string(kernels[k].kernels.instruction_set);
+  return names;
+}
+}  // namespace
+
+unsigned StepOneOfFour(const Kernels& kernels, const KernelModel& m, const KernelArrays& a, size_t i, size_t lane,
+                       const KernelWind& wind, const KernelBefore& before) {
+  const KernelWind w{wind.force_W + lane, wind.moment_W + lane, wind.velocity_W + lane};
+  const KernelBefore b{before.v_W + lane, before.omega_W + lane, before.R_WB + lane};
+  return StepLanesStrided<double, 4>(m, a, i, w, b, kernels.rotor_lanes) << lane;
+}
+
+Kernels ChooseKernels(const std::string& instruction_set) {
+  std::vector<TargetKernel> kernels = TargetKernels();  // fastest first
+  kernels.push_back({{"scalar", &StepFourScalar, nullptr}, true, ""});
+  std::vector<TargetKernel> runnable;
+  for (const TargetKernel& k : kernels)
+    if (k.cpu_has_it) runnable.push_back(k);
+  if (instruction_set.empty()) return runnable.front().kernels;
+  for (const TargetKernel& k : kernels) {
+    if (instruction_set != k.kernels.instruction_set) continue;
+    if (!k.cpu_has_it)
+      throw rotors_sim::SimError("FlightBatch: kernel '" + instruction_set + "' asked for, but this CPU has no " +
+                                 k.needs + "; use " + Names(runnable));
+    return k.kernels;
+  }
+  throw rotors_sim::SimError("FlightBatch: unknown kernel '" + instruction_set + "'; use " + Names(runnable) + " (" +
+                             kTargetName + ")");
+}
+
+}  // namespace rotors_flight_batch

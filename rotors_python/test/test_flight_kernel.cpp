@@ -1,0 +1,224 @@
+// The batch's kernels alone (no world, no ROS): every kernel this build's target offers steps the
+// same bits as the scalar step, and the step holds a hover and falls as gravity says. Built for the
+// host by catkin and for arm64 by make test-arm64 (run under qemu-user there).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "flight_kernel.h"
+#include "flight_kernel_target.h"
+#include "rotors_core/error.h"
+
+namespace rotors_flight_batch {
+namespace {
+
+constexpr double kDt = 0.002, kMassKg = 1.56779, kG = 9.81;
+constexpr double kMotorConstant = 8.54858e-06;  // the firefly's C_T [N/(rad/s)^2]
+
+/// A hexacopter with the firefly's numbers (arm 0.215 m, C_T, C_M 0.016, tau 1/80 and 1/40 s), one
+/// rotor with its CoG off its origin, spin inertia on, four ground-contact corners.
+KernelModel Hexacopter() {
+  KernelModel m;
+  m.rotors = 6;
+  for (int r = 0; r < m.rotors; ++r) {
+    KernelModel::Rotor& k = m.rotor[r];
+    const double angle = M_PI / 6.0 + r * M_PI / 3.0;
+    const double p[3] = {0.215 * std::cos(angle), 0.215 * std::sin(angle), 0.037};
+    for (int c = 0; c < 3; ++c) k.p_origin_B[c] = k.p_cog_B[c] = p[c];
+    k.axis_B[0] = k.axis_B[1] = 0.0;
+    k.axis_B[2] = 1.0;
+    k.direction = r % 2 ? -1.0 : 1.0;
+    k.motor_constant = kMotorConstant;
+    k.rotor_drag_coefficient = 8.06428e-05;
+    k.rolling_moment_coefficient = 1e-06;
+    k.reaction_factor = -k.direction * 0.016;
+    k.max_rot_velocity = 838.0;
+    k.a_up = std::exp(-kDt * 80.0);
+    k.a_down = std::exp(-kDt * 40.0);
+    k.spin_inertia = 1e-5;
+    k.slowdown = 10.0;
+    k.cog_on_origin = true;
+  }
+  m.rotor[2].p_cog_B[2] += 0.01;
+  m.rotor[2].cog_on_origin = false;
+  FillRotorColumns(m);
+  m.contacts = 4;
+  for (int c = 0; c < 4; ++c) {
+    m.corner_B[c][0] = c % 2 ? 0.2 : -0.2;
+    m.corner_B[c][1] = c / 2 ? 0.2 : -0.2;
+    m.corner_B[c][2] = -0.1;
+  }
+  const double w = 0.3 / kDt;
+  m.contact_k = kMassKg * w * w / 4.0;
+  m.contact_c = kMassKg * w / 2.0;
+  m.contact_reach_m = std::sqrt(0.2 * 0.2 * 2 + 0.1 * 0.1);
+  m.dt = kDt;
+  m.inv_dt = 1.0 / kDt;
+  m.mass = kMassKg;
+  m.gravity_W[2] = -kG;
+  const double I[3] = {0.0347563, 0.0458929, 0.0977};
+  m.body.inv_mass_kg = 1.0 / kMassKg;
+  for (int k = 0; k < 9; ++k) m.body.I_B[k] = m.body.inv_I_B[k] = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    m.body.I_B[k * 4] = I[k];
+    m.body.inv_I_B[k * 4] = 1.0 / I[k];
+  }
+  m.keep_state_before = true;
+  return m;
+}
+
+/// The state of n vehicles (structure of arrays, as the batch keeps it) and their buffers.
+struct Fleet {
+  size_t n;
+  std::vector<double> p, v, q, R, w, omega_rotor, qdot, command, wind_v, before_v, before_w, before_R;
+  explicit Fleet(size_t count, unsigned seed) : n(count) {
+    p.resize(3 * n), v.resize(3 * n), q.resize(4 * n), R.resize(9 * n), w.resize(3 * n);
+    omega_rotor.resize(kMaxRotors * n), qdot.resize(kMaxRotors * n), command.resize(kMaxRotors * n);
+    wind_v.assign(3 * n, 0.0), before_v.resize(12), before_w.resize(12), before_R.resize(36);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (size_t i = 0; i < n; ++i) {
+      double quat[4], norm = 0.0;
+      for (double& c : quat) {
+        c = u(rng);
+        norm += c * c;
+      }
+      for (int c = 0; c < 4; ++c) q[c * n + i] = quat[c] / std::sqrt(norm);
+      double qi[4], Ri[9];
+      for (int c = 0; c < 4; ++c) qi[c] = q[c * n + i];
+      rotors_sim::physics::RotationFromQuaternion(qi, Ri);
+      for (int c = 0; c < 9; ++c) R[c * n + i] = Ri[c];
+      for (int c = 0; c < 3; ++c) {
+        p[c * n + i] = c == 2 ? 0.05 + 0.3 * (u(rng) + 1.0) : u(rng);  // some start touching the ground
+        v[c * n + i] = u(rng);
+        w[c * n + i] = 2.0 * u(rng);
+      }
+      for (int r = 0; r < kMaxRotors; ++r) {
+        omega_rotor[r * n + i] = 500.0 + 300.0 * u(rng);
+        command[r * n + i] = 500.0 + 400.0 * u(rng);  // some past the maximum, some below 0 after the clamp
+      }
+    }
+  }
+  KernelArrays Arrays() {
+    return {n, p.data(), v.data(), q.data(), R.data(), w.data(), omega_rotor.data(), qdot.data(), command.data(),
+            wind_v.data()};
+  }
+  /// steps every vehicle: groups of four in the kernel's lanes, the rest one by one with the rotors in lanes
+  void Step(const Kernels& kernels, const KernelModel& m) {
+    const KernelArrays a = Arrays();
+    const KernelWind wind{nullptr, nullptr, nullptr};
+    const KernelBefore before{before_v.data(), before_w.data(), before_R.data()};
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4) kernels.four_vehicles(m, a, i, wind, before);
+    for (size_t l = 0; i < n; ++i, ++l) StepOneOfFour(kernels, m, a, i, l, wind, before);
+  }
+  bool SameBits(const Fleet& o) const {
+    auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
+      return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
+    };
+    return same(p, o.p) && same(v, o.v) && same(q, o.q) && same(R, o.R) && same(w, o.w) &&
+           same(omega_rotor, o.omega_rotor) && same(qdot, o.qdot);
+  }
+};
+
+std::vector<std::string> KernelNames() {
+  std::vector<std::string> names;
+  for (const TargetKernel& k : TargetKernels())
+    if (k.cpu_has_it) names.push_back(k.kernels.instruction_set);
+  return names;
+}
+
+TEST(FlightKernel, EveryKernelOfThisTargetStepsTheScalarBits) {
+  const KernelModel m = Hexacopter();
+  // 8 vehicles in two groups of four, 3 alone (a batch's last, incomplete group)
+  Fleet scalar(11, 7);
+  const Kernels none = ChooseKernels("scalar");
+  for (int s = 0; s < 500; ++s) scalar.Step(none, m);
+  for (double z : scalar.p) ASSERT_TRUE(std::isfinite(z));
+  const std::vector<std::string> names = KernelNames();
+  ASSERT_FALSE(names.empty());
+  std::string flown;
+  for (const std::string& name : names) {
+    Fleet lanes(11, 7);
+    const Kernels kernels = ChooseKernels(name);
+    for (int s = 0; s < 500; ++s) lanes.Step(kernels, m);
+    EXPECT_TRUE(lanes.SameBits(scalar)) << "kernel " << name << " differs from the scalar step";
+    flown += name + " ";
+  }
+  std::printf("kernels of %s on this CPU, each equal to the scalar step bit for bit over 500 steps: %s\n",
+              kTargetName, flown.c_str());
+  EXPECT_EQ(ChooseKernels("").instruction_set, names.front());
+}
+
+TEST(FlightKernel, UnknownKernelIsOneLineNamingTheChoices) {
+  try {
+    ChooseKernels("mmx");
+    FAIL() << "no error";
+  } catch (const rotors_sim::SimError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("unknown kernel 'mmx'; use "), std::string::npos) << what;
+    EXPECT_NE(what.find("scalar"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+/// At omega_h = sqrt(m g / (6 C_T)) on every rotor, level and at rest, the thrust is the weight
+/// (eq. 1: F = 6 C_T omega_h^2 = m g) and the reaction moments cancel (eq. 4, three each way).
+TEST(FlightKernel, HoverSpeedHoldsTheBodyStill) {
+  KernelModel m = Hexacopter();
+  m.gravity_W[2] = -kG;
+  m.rotor[2].p_cog_B[2] = m.rotor[2].p_origin_B[2];
+  m.rotor[2].cog_on_origin = true;
+  FillRotorColumns(m);
+  const double omega_h = std::sqrt(kMassKg * kG / (6.0 * kMotorConstant));
+  for (const std::string& name : KernelNames()) {
+    Fleet f(5, 3);
+    for (size_t i = 0; i < f.n; ++i) {
+      const double level[4] = {1, 0, 0, 0}, I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+      for (int c = 0; c < 4; ++c) f.q[c * f.n + i] = level[c];
+      for (int c = 0; c < 9; ++c) f.R[c * f.n + i] = I3[c];
+      for (int c = 0; c < 3; ++c) f.v[c * f.n + i] = f.w[c * f.n + i] = 0.0;
+      f.p[0 * f.n + i] = f.p[1 * f.n + i] = 0.0;
+      f.p[2 * f.n + i] = 2.0;
+      for (int r = 0; r < m.rotors; ++r) {
+        f.omega_rotor[r * f.n + i] = f.command[r * f.n + i] = omega_h;
+        f.qdot[r * f.n + i] = m.rotor[r].direction * omega_h / m.rotor[r].slowdown;
+      }
+    }
+    const Kernels kernels = ChooseKernels(name);
+    for (int s = 0; s < 500; ++s) f.Step(kernels, m);  // 1 s
+    for (size_t i = 0; i < f.n; ++i) {
+      EXPECT_NEAR(f.p[2 * f.n + i], 2.0, 1e-9) << name;
+      EXPECT_NEAR(f.v[2 * f.n + i], 0.0, 1e-9) << name;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(f.w[c * f.n + i], 0.0, 1e-9) << name;
+    }
+  }
+}
+
+/// Rotors stopped, high above the ground: semi-implicit Euler gives v_N = -g N dt and
+/// z_N = z_0 - g dt^2 N (N + 1) / 2 exactly (to rounding).
+TEST(FlightKernel, StoppedRotorsFallAsGravitySays) {
+  const KernelModel m = Hexacopter();
+  for (const std::string& name : KernelNames()) {
+    Fleet f(5, 4);
+    for (size_t i = 0; i < f.n; ++i) {
+      for (int c = 0; c < 3; ++c) f.v[c * f.n + i] = f.w[c * f.n + i] = 0.0;
+      f.p[2 * f.n + i] = 100.0;
+      for (int r = 0; r < kMaxRotors; ++r) f.omega_rotor[r * f.n + i] = f.command[r * f.n + i] = f.qdot[r * f.n + i] = 0.0;
+    }
+    const Kernels kernels = ChooseKernels(name);
+    const int N = 1000;
+    for (int s = 0; s < N; ++s) f.Step(kernels, m);
+    for (size_t i = 0; i < f.n; ++i) {
+      EXPECT_NEAR(f.v[2 * f.n + i], -kG * N * kDt, 1e-10) << name;
+      EXPECT_NEAR(f.p[2 * f.n + i], 100.0 - kG * kDt * kDt * N * (N + 1) / 2.0, 1e-9) << name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rotors_flight_batch
