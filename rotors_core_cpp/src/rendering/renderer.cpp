@@ -130,16 +130,15 @@ std::string DistortionKey(const CameraSpec& camera) {
   return key;
 }
 
-/// Gaussian pixel noise on a remapped image (the shader's noise would be blurred by the remap):
-/// deterministic in the seed.
-void AddNoise(const CameraSpec& camera, uint64_t seed, std::vector<uint8_t>* image) {
+}  // namespace
+
+void AddGaussianNoise(const CameraSpec& camera, uint64_t seed, std::vector<uint8_t>* image) {
   if (camera.noise_stddev <= 0.0 && camera.noise_mean == 0.0) return;
   std::mt19937_64 random(seed);
   std::normal_distribution<double> gaussian(camera.noise_mean, camera.noise_stddev);
   for (uint8_t& value : *image)
     value = static_cast<uint8_t>(std::clamp(std::lround(value + 255.0 * gaussian(random)), 0L, 255L));
 }
-}  // namespace
 
 void Renderer::Render(const physics::World& world, const ignition::math::Pose3d& X_WC, const CameraSpec& camera,
                       uint64_t noise_seed, bool want_image, bool want_depth, RenderedFrame* out) {
@@ -167,7 +166,7 @@ void Renderer::Render(const physics::World& world, const ignition::math::Pose3d&
   out->depth_m.clear();
   if (want_image) {
     map->RemapImage(r.pinhole_frame.image, BytesPerPixel(camera.format), &out->image);
-    AddNoise(camera, noise_seed, &out->image);
+    AddGaussianNoise(camera, noise_seed, &out->image);
   }
   if (want_depth) map->RemapDepth(r.pinhole_frame.depth_m, &out->depth_m);
 }

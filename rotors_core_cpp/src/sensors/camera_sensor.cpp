@@ -7,6 +7,7 @@
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
+#include "sensors/camera_image_sensor.h"
 
 namespace rotors_sim {
 namespace sensors {
@@ -71,6 +72,8 @@ void CameraSensor::CheckAll(const sdf::ElementPtr& element, const std::string& m
     CheckAll(child, in_model);
 }
 
+CameraSensor::~CameraSensor() = default;
+
 physics::Pose3d CameraSensor::CameraWorldPose(size_t i) const { return cameras_.at(i).X_SC + WorldPose(); }
 
 void CameraSensor::OnUpdate(const common::Time& /*sim_time*/) { ++update_count_; }
@@ -85,16 +88,21 @@ const rendering::RenderedFrame& CameraSensor::Frame(size_t i) {
   if (rendered_update_.at(i) != update_count_) {
     // the cameras asked for at the last update too (a stereo pair's other one) are rendered with
     // this one, in one batch
-    std::vector<rendering::FrameRequest> requests;
+    std::vector<size_t> wanted;
     for (size_t j = 0; j < cameras_.size(); ++j) {
       const bool asked_last = asked_update_[j] != kNever && asked_update_[j] + 1 == update_count_;
-      const bool wanted = j == i || (asked_last && rendered_update_[j] != update_count_);
-      if (!wanted) continue;
-      requests.push_back({CameraWorldPose(j), &cameras_[j], NoiseSeedOf(j), true, RendersDepth(), &frames_[j]});
-      rendered_update_[j] = update_count_;
+      if (j == i || (asked_last && rendered_update_[j] != update_count_)) wanted.push_back(j);
     }
-    physics::World& world = *ParentLink()->GetModel()->GetWorldRaw();
-    rendering::Renderer::Of(world).RenderAll(world, requests);
+    if (!image_sensors_.empty()) {
+      for (size_t j : wanted) RenderThroughImageSensor(j);
+    } else {
+      std::vector<rendering::FrameRequest> requests;
+      for (size_t j : wanted)
+        requests.push_back({CameraWorldPose(j), &cameras_[j], NoiseSeedOf(j), true, RendersDepth(), &frames_[j]});
+      physics::World& world = *ParentLink()->GetModel()->GetWorldRaw();
+      rendering::Renderer::Of(world).RenderAll(world, requests);
+    }
+    for (size_t j : wanted) rendered_update_[j] = update_count_;
   }
   asked_update_[i] = update_count_;
   return frames_[i];

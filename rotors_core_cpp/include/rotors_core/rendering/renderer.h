@@ -34,6 +34,11 @@ struct FrameRequest {
   RenderedFrame* out = nullptr;
 };
 
+/// Gazebo's <noise> (Gaussian, in units of full scale) on an image read back from the GPU: for a
+/// distorted camera's remapped image and a frame the image sensor model made (the shader's noise
+/// would be blurred by the remap, or averaged over an exposure). Deterministic in the seed.
+void AddGaussianNoise(const CameraSpec& camera, uint64_t seed, std::vector<uint8_t>* image);
+
 class Renderer {
  public:
   /// The world's renderer; creates its GL context on first use. Throws SimError when no headless

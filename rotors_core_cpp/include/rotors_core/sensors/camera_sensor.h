@@ -6,11 +6,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <sdf/Element.hh>
 
 #include "rotors_core/rendering/camera_model.h"
+#include "rotors_core/rendering/image_sensor_model.h"
 #include "rotors_core/rendering/renderer.h"
 #include "rotors_core/sensors/sensor.h"
 
@@ -22,6 +24,7 @@ class CameraSensor : public Sensor {
   /// Reads the <camera> elements of `sensor_sdf`; throws SimError naming the sensor and the problem.
   CameraSensor(std::string name, std::string type, physics::LinkPtr parent, const physics::Pose3d& pose_in_link,
                double update_rate_hz, const sdf::ElementPtr& sensor_sdf);
+  ~CameraSensor() override;
 
   /// Checks every camera sensor under `element` (a world or model description) and throws SimError
   /// for the first bad one, naming its model, sensor and camera. For descriptions sdformat refuses.
@@ -48,11 +51,34 @@ class CameraSensor : public Sensor {
   uint64_t NoiseSeedOf(size_t i) const { return seed_ * 1000003u + update_count_ * 16u + i; }
   void SetNoiseSeed(uint64_t seed) { seed_ = seed; }
 
+  /// The image sensor of every camera of this sensor: exposure and motion blur, rolling shutter,
+  /// auto exposure and gain, photon-transfer noise, vignetting, stamp offset and jitter
+  /// (docs/sensor_realism.md). Throws SimError naming a bad parameter. Default: none of them.
+  void SetImageSensor(const rendering::ImageSensorParams& params);
+  const rendering::ImageSensorParams& ImageSensorSettings() const { return image_sensor_params_; }
+  /// Camera i's exposure [s] and analog gain of its last frame (0 s: an instant).
+  double ExposureS(size_t i) const;
+  double AnalogGain(size_t i) const;
+  /// Renders of the last frame of camera i (1 without exposure effects).
+  int SubframesOf(size_t i) const;
+  /// The stamp of camera i's frame at the last update minus that update's time [s] (eq. S6): the
+  /// middle of the exposure is the update's time; <timeOffset> and the frame's jitter are added.
+  double StampOffsetS(size_t i) const;
+
  protected:
   void OnUpdate(const common::Time& sim_time) override;
+  /// A world reset: the auto exposure back at its power-on values (a reset flight repeats its frames).
+  void OnReset() override;
 
  private:
+  /// Camera i through the image sensor model: renders at the exposure plan's instants, exposes and
+  /// digitises them into frames_[i], and steps its auto exposure.
+  void RenderThroughImageSensor(size_t i);
+
   std::vector<rendering::CameraSpec> cameras_;
+  rendering::ImageSensorParams image_sensor_params_;
+  struct ImageSensorState;  // per camera: auto exposure, the sensor model, the last frame's settings
+  std::vector<std::unique_ptr<ImageSensorState>> image_sensors_;  ///< empty: RotorS' images
   std::vector<rendering::RenderedFrame> frames_;
   std::vector<uint64_t> rendered_update_;  ///< update count of frames_[i]; 0 = never
   static constexpr uint64_t kNever = UINT64_MAX;

@@ -1,0 +1,141 @@
+// CameraSensor's image sensor (docs/sensor_realism.md): which instants of a frame to render, the
+// camera's pose at each (the link's twist at the update, held over the frame's window), the frame
+// made from the renders by rendering::ImageSensor, and the auto exposure stepped after it.
+#include <algorithm>
+#include <cmath>
+
+#include "rotors_core/error.h"
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/sensors/camera_sensor.h"
+#include "sensors/camera_image_sensor.h"
+
+namespace rotors_sim {
+namespace sensors {
+
+
+void CameraSensor::SetImageSensor(const rendering::ImageSensorParams& params) {
+  const std::string label = Type() + " sensor '" + Name() + "'";
+  const std::string why = params.Validate();
+  if (!why.empty()) throw SimError(label + ": " + why);
+  image_sensor_params_ = params;
+  image_sensors_.clear();
+  rendered_update_.assign(cameras_.size(), 0);  // this update's frames again, through the sensor
+  if (!params.AnyEffect()) return;
+  for (size_t i = 0; i < cameras_.size(); ++i) {
+    const rendering::CameraIntrinsics& in = cameras_[i].intrinsics;
+    auto state = std::unique_ptr<ImageSensorState>(new ImageSensorState{
+        rendering::AutoExposure(params),
+        rendering::ImageSensor(params, in.width_px, in.height_px, rendering::BytesPerPixel(cameras_[i].format),
+                               in.FocalLengthPx(), in.Cx(), in.Cy(), seed_ * 31u + i),
+        params.exposure_s, 1.0, 0.0, 1.0, 1, 0.0, {}});
+    if (params.auto_exposure) state->exposure_s = state->auto_exposure.ExposureS();
+    image_sensors_.push_back(std::move(state));
+  }
+}
+
+void CameraSensor::OnReset() {
+  for (auto& s : image_sensors_) {
+    s->auto_exposure.Reset();
+    s->exposure_s = image_sensor_params_.auto_exposure ? s->auto_exposure.ExposureS() : image_sensor_params_.exposure_s;
+    s->gain = 1.0;
+    s->near_depth_m = 0.0;
+  }
+}
+
+double CameraSensor::ExposureS(size_t i) const {
+  return image_sensors_.empty() ? 0.0 : image_sensors_.at(i)->frame_exposure_s;
+}
+
+double CameraSensor::AnalogGain(size_t i) const {
+  return image_sensors_.empty() ? 1.0 : image_sensors_.at(i)->frame_gain;
+}
+
+int CameraSensor::SubframesOf(size_t i) const {
+  return image_sensors_.empty() ? 1 : image_sensors_.at(i)->frame_subframes;
+}
+
+double CameraSensor::StampOffsetS(size_t i) const {
+  return rendering::StampOffsetS(image_sensor_params_, NoiseSeedOf(i) ^ 0x5eed5eed5eedULL);
+}
+
+void CameraSensor::RenderThroughImageSensor(size_t i) {
+  ImageSensorState& s = *image_sensors_.at(i);
+  const rendering::ImageSensorParams& p = image_sensor_params_;
+  const rendering::CameraSpec& camera = cameras_[i];
+  const rendering::CameraIntrinsics& in = camera.intrinsics;
+  const double f = in.FocalLengthPx();
+
+  // The camera's twist at the update, held over the frame's window (tens of ms at most):
+  // p_C(t) = p_C + v_C t,  R_WC(t) = exp([omega]x t) R_WC,  v_C = v_L + omega x (p_C - p_L)
+  const physics::LinkPtr link = ParentLink();
+  const physics::Pose3d X_WC = CameraWorldPose(i);
+  const physics::Vector3d omega_W = link->WorldAngularVel();
+  const physics::Vector3d v_C_W = link->WorldLinearVel() + omega_W.Cross(X_WC.Pos() - link->WorldPose().Pos());
+  // the image's fastest point: a turn moves a point at angle theta off the axis by f omega / cos^2
+  // theta (at most the corner's); a translation by f |v| / Z, Z the scene's near depth
+  const double corner2 = (std::pow(std::max(in.Cx(), in.width_px - 1 - in.Cx()), 2) +
+                          std::pow(std::max(in.Cy(), in.height_px - 1 - in.Cy()), 2)) /
+                         (f * f);
+  const double near_m = s.near_depth_m > 0.0 ? s.near_depth_m : in.far_m;
+  const double image_speed_px_s = f * omega_W.Length() * (1.0 + corner2) + f * v_C_W.Length() / near_m;
+  const rendering::ExposurePlan plan = rendering::ExposurePlan::Make(
+      s.exposure_s, p.line_delay_s, in.height_px, image_speed_px_s, p.subframes_per_pixel, p.max_subframes);
+
+  // the renders, without Gazebo's <noise> (added to the frame below), a few at a time (the
+  // renderer's targets are bounded); the middle one with depth (the frame's depth image and the
+  // next frame's near depth)
+  rendering::CameraSpec noiseless = camera;
+  noiseless.noise_mean = noiseless.noise_stddev = 0.0;
+  const size_t n = plan.times_s.size(), middle = n / 2;
+  s.renders.resize(n);
+  physics::World& world = *link->GetModel()->GetWorldRaw();
+  rendering::Renderer& renderer = rendering::Renderer::Of(world);
+  constexpr size_t kRendersPerCall = 8;
+  for (size_t k0 = 0; k0 < n; k0 += kRendersPerCall) {
+    std::vector<rendering::FrameRequest> requests;
+    for (size_t k = k0; k < std::min(n, k0 + kRendersPerCall); ++k) {
+      const double t = plan.times_s[k];
+      const physics::Vector3d turn = omega_W * t;
+      const double angle = turn.Length();
+      const physics::Quaterniond q_turn =
+          angle > 0.0 ? physics::Quaterniond(turn / angle, angle) : physics::Quaterniond::Identity;
+      const physics::Pose3d X_WC_t(X_WC.Pos() + v_C_W * t, q_turn * X_WC.Rot());
+      requests.push_back({X_WC_t, &noiseless, 0, true, k == middle, &s.renders[k]});
+    }
+    renderer.RenderAll(world, requests);
+  }
+  std::vector<const std::vector<uint8_t>*> images;
+  for (const rendering::RenderedFrame& r : s.renders) images.push_back(&r.image);
+
+  rendering::RenderedFrame& out = frames_[i];
+  out.width_px = in.width_px;
+  out.height_px = in.height_px;
+  s.sensor.Expose(images, plan, s.exposure_s, s.gain, NoiseSeedOf(i), &out.image);
+  rendering::AddGaussianNoise(camera, NoiseSeedOf(i), &out.image);
+  out.depth_m.clear();
+  if (RendersDepth()) out.depth_m = s.renders[middle].depth_m;
+  // a near depth of the scene: the 2nd percentile of the middle render's depths
+  std::vector<float> depths;
+  for (size_t k = 0; k < s.renders[middle].depth_m.size(); k += 37)
+    if (std::isfinite(s.renders[middle].depth_m[k])) depths.push_back(s.renders[middle].depth_m[k]);
+  if (!depths.empty()) {
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 50, depths.end());
+    s.near_depth_m = std::max(static_cast<double>(depths[depths.size() / 50]), in.near_m);
+  }
+
+  s.frame_exposure_s = s.exposure_s;
+  s.frame_gain = s.gain;
+  s.frame_subframes = static_cast<int>(n);
+  if (p.auto_exposure) {
+    double sum = 0.0;
+    for (uint8_t value : out.image) sum += value;
+    s.auto_exposure.Update(out.image.empty() ? 0.0 : sum / (255.0 * out.image.size()));
+    s.exposure_s = s.auto_exposure.ExposureS();
+    s.gain = s.auto_exposure.Gain();
+  }
+}
+
+}  // namespace sensors
+}  // namespace rotors_sim

@@ -1,0 +1,25 @@
+// CameraSensor's per-camera image sensor state (camera_image_sensor.cpp); complete wherever a
+// CameraSensor is made or destroyed.
+#pragma once
+
+#include <vector>
+
+#include "rotors_core/rendering/image_sensor_model.h"
+#include "rotors_core/rendering/renderer.h"
+#include "rotors_core/sensors/camera_sensor.h"
+
+namespace rotors_sim {
+namespace sensors {
+
+struct CameraSensor::ImageSensorState {
+  rendering::AutoExposure auto_exposure;
+  rendering::ImageSensor sensor;
+  double exposure_s, gain = 1.0;        ///< for the next frame
+  double frame_exposure_s = 0.0, frame_gain = 1.0;  ///< of the last frame
+  int frame_subframes = 1;
+  double near_depth_m = 0.0;  ///< a near depth of the last frame's scene (0: none yet)
+  std::vector<rendering::RenderedFrame> renders;
+};
+
+}  // namespace sensors
+}  // namespace rotors_sim
