@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <numeric>
 #include <sstream>
 #include <vector>
@@ -184,6 +186,26 @@ TEST(ImageSensor, AutoExposureReturnsToTheDesiredBinAfterABrightnessStep) {
   EXPECT_EQ(ae.Gain(), 1.0);
 }
 
+// each camera its own auto exposure: a stereo pair seeing different brightness settles on
+// different exposures, each with its mean at the desired bin
+TEST(ImageSensor, TwoCamerasSeeingDifferentBrightnessSettleOnDifferentExposures) {
+  ImageSensorParams p;
+  p.auto_exposure = true;
+  p.desired_bin = 32;
+  rendering::AutoExposure left(p), right(p);
+  auto mean_of = [&](const rendering::AutoExposure& ae, double light) {
+    return std::min(1.0, light * ae.ExposureS() / p.reference_exposure_s * ae.Gain());
+  };
+  for (int k = 0; k < 30; ++k) {
+    left.Update(mean_of(left, 0.6));
+    right.Update(mean_of(right, 0.9));
+  }
+  std::printf("stereo auto exposure: left %.2f ms, right %.2f ms\n", left.ExposureS() * 1e3, right.ExposureS() * 1e3);
+  EXPECT_NEAR(mean_of(left, 0.6), 0.5, 0.01);
+  EXPECT_NEAR(mean_of(right, 0.9), 0.5, 0.01);
+  EXPECT_NEAR(left.ExposureS() / right.ExposureS(), 1.5, 0.01);
+}
+
 TEST(ImageSensor, BadParametersAreOneLineErrors) {
   ImageSensorParams p;
   p.exposure_s = -0.01;
@@ -232,6 +254,15 @@ struct TurningCamera {
   double F() const { return cam->Camera(0).intrinsics.FocalLengthPx(); }
 };
 
+/// With ROTORS_FIGURE_DIR set, the frame as <dir>/<name>.pgm (docs/sensor_realism.md's figure).
+void SaveFigure(const rendering::RenderedFrame& f, const std::string& name) {
+  const char* dir = std::getenv("ROTORS_FIGURE_DIR");
+  if (!dir) return;
+  std::ofstream out(std::string(dir) + "/" + name + ".pgm", std::ios::binary);
+  out << "P5\n" << f.width_px << " " << f.height_px << "\n255\n";
+  out.write(reinterpret_cast<const char*>(f.image.data()), static_cast<std::streamsize>(f.image.size()));
+}
+
 /// Where row v of an L8 frame crosses `level` (0..255) going right, with linear interpolation.
 double Crossing(const rendering::RenderedFrame& f, int v, double level) {
   const uint8_t* row = f.image.data() + static_cast<size_t>(v) * f.width_px;
@@ -257,12 +288,14 @@ TEST(ImageSensor, MotionBlurOfATurningCameraIsOmegaTauF) {
               blurred.cam->SubframesOf(0));
   EXPECT_NEAR(std::abs(width_px), expected_px, 0.1 * expected_px);
   EXPECT_NEAR(blurred.cam->ExposureS(0), 0.02, 1e-12);
+  SaveFigure(f, "blur");
 
   // no exposure: the edge as sharp as RotorS' (the same image, bit for bit)
   TurningCamera sharp(ImageSensorParams{});
   const rendering::RenderedFrame& s = sharp.cam->Frame(0);
   EXPECT_LE(std::abs(Crossing(s, 240, 0.9 * 255) - Crossing(s, 240, 0.1 * 255)), 1.0);
   EXPECT_EQ(sharp.cam->SubframesOf(0), 1);
+  SaveFigure(s, "sharp");
 }
 
 // eq. S2: row r is read (r - (H - 1) / 2) line_delay after the middle row; a vertical edge moving
@@ -277,6 +310,7 @@ TEST(ImageSensor, RollingShutterSkewsAVerticalEdgeAndAGlobalShutterDoesNot) {
   std::printf("rolling shutter: skew %.2f px, line delay x rows x omega x f = %.2f px, %d renders\n",
               std::abs(skew_px), expected_px, rolling.cam->SubframesOf(0));
   EXPECT_NEAR(std::abs(skew_px), expected_px, 0.1 * expected_px);
+  SaveFigure(f, "rolling");
 
   ImageSensorParams global;
   global.exposure_s = 0.001;

@@ -56,8 +56,9 @@ int CameraSensor::SubframesOf(size_t i) const {
   return image_sensors_.empty() ? 1 : image_sensors_.at(i)->frame_subframes;
 }
 
-double CameraSensor::StampOffsetS(size_t i) const {
-  return rendering::StampOffsetS(image_sensor_params_, NoiseSeedOf(i) ^ 0x5eed5eed5eedULL);
+double CameraSensor::StampOffsetS(size_t /*i*/) const {
+  // one trigger for every camera of the sensor (a stereo pair's frames share their stamp)
+  return rendering::StampOffsetS(image_sensor_params_, NoiseSeedOf(0) ^ 0x5eed5eed5eedULL);
 }
 
 void CameraSensor::RenderThroughImageSensor(size_t i) {

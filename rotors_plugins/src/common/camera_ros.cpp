@@ -1,5 +1,6 @@
 #include "rotors_gazebo_plugins/ros/camera_ros.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -60,7 +61,53 @@ CameraRosParams CameraRosParams::Read(rotors_sim::SdfParams& params, const rotor
       throw SimError("baseline and pointCloudCutoff(Max) must be >= 0");
   }
   if (p.update_rate_hz < 0) throw SimError("<updateRate> must be >= 0");
+  p.image_sensor = ReadImageSensorParams(params);
   return p;
+}
+
+rotors_sim::rendering::ImageSensorParams ReadImageSensorParams(rotors_sim::SdfParams& params) {
+  using rotors_sim::rendering::ImageSensorParams;
+  ImageSensorParams s;
+  ReadParam(params, "exposureTime", &s.exposure_s);
+  ReadParam(params, "maxSubframes", &s.max_subframes);
+  ReadParam(params, "subframesPerPixel", &s.subframes_per_pixel);
+  ReadParam(params, "lineDelay", &s.line_delay_s);
+  ReadParam(params, "autoExposure", &s.auto_exposure);
+  ReadParam(params, "autoExposureDesiredBin", &s.desired_bin);
+  ReadParam(params, "autoExposureLowPass", &s.aec_low_pass);
+  ReadParam(params, "autoGainLowPass", &s.agc_low_pass);
+  ReadParam(params, "autoExposureUpdateInterval", &s.update_interval_frames);
+  ReadParam(params, "rowTime", &s.row_time_s);
+  ReadParam(params, "maxShutterWidth", &s.max_shutter_rows);
+  ReadParam(params, "maxAnalogGain", &s.max_analog_gain);
+  ReadParam(params, "photonNoise", &s.noise);
+  ReadParam(params, "fullWellCapacity", &s.full_well_e);
+  ReadParam(params, "readNoise", &s.read_noise_e);
+  ReadParam(params, "photoResponseNonUniformity", &s.prnu);
+  ReadParam(params, "darkSignalNonUniformity", &s.dsnu_e);
+  ReadParam(params, "adcBits", &s.adc_bits);
+  ReadParam(params, "referenceExposure", &s.reference_exposure_s);
+  std::string vignetting = "none";
+  ReadParam(params, "vignetting", &vignetting);
+  if (vignetting == "cos4") {
+    s.vignetting = ImageSensorParams::Vignetting::kCos4;
+  } else if (vignetting == "polynomial") {
+    s.vignetting = ImageSensorParams::Vignetting::kPolynomial;
+  } else if (vignetting != "none") {
+    throw SimError("<vignetting> '" + vignetting + "' is not known; use none, cos4 or polynomial");
+  }
+  ignition::math::Vector3d coefficients;
+  if (ReadParam(params, "vignettingCoefficients", &coefficients)) {
+    if (s.vignetting != ImageSensorParams::Vignetting::kPolynomial)
+      throw SimError("<vignettingCoefficients> belongs to <vignetting>polynomial</vignetting> (this one is '" +
+                     vignetting + "')");
+    for (int k = 0; k < 3; ++k) s.vignetting_coefficients[k] = coefficients[k];
+  }
+  ReadParam(params, "timeOffset", &s.time_offset_s);
+  ReadParam(params, "stampJitter", &s.stamp_jitter_s);
+  const std::string why = s.Validate();
+  if (!why.empty()) throw SimError(why);
+  return s;
 }
 
 sensor_msgs::CameraInfo CameraInfoMsg(const CameraSpec& camera, double baseline_m) {
@@ -188,7 +235,9 @@ CameraChannel::CameraChannel(ros::NodeHandle& node, const CameraRosParams& param
 }
 
 void CameraChannel::Publish(rotors_sim::sensors::CameraSensor& sensor, const ros::Time& stamp) {
-  info_.header.stamp = stamp;
+  // eq. S6: the middle of the exposure (the update's time) plus the offset and jitter
+  const double stamp_s = std::max(0.0, stamp.toSec() + sensor.StampOffsetS(index_));
+  info_.header.stamp = sensor.StampOffsetS(index_) == 0.0 ? stamp : ros::Time(stamp_s);
   info_pub_.publish(info_);
   if (image_pub_.getNumSubscribers() > 0) {
     sensor_msgs::ImagePtr image(new sensor_msgs::Image);

@@ -22,6 +22,7 @@ class DepthCameraRosPlugin : public rotors_sim::SensorPlugin {
       throw rotors_sim::SimError(GetFilename() + " belongs in a <sensor type=\"depth\">, not type '" + sensor->Type() +
                                  "'");
     params_ = ReadParams(Params());
+    params_.Apply(*sensor_);
     limiter_ = RateLimiter(params_.update_rate_hz);
     node_ = MakeNode(params_.robot_namespace);
     if (!node_) return;

@@ -17,6 +17,7 @@ class GazeboRosCamera : public rotors_sim::SensorPlugin {
                                  sensor->Type() + "'");
     const CameraRosParams params = CameraRosParams::Read(Params(), *sensor_, false);
     sensor_->SetGroundTruthDepth(params.ground_truth_depth);
+    params.Apply(*sensor_);
     limiter_ = RateLimiter(params.update_rate_hz);
     node_ = MakeNode(params.robot_namespace);
     if (!node_) return;  // no ROS in this process: nothing to publish

@@ -19,6 +19,7 @@ class GazeboRosMultiCamera : public rotors_sim::SensorPlugin {
                                  sensor->Type() + "'");
     const CameraRosParams params = CameraRosParams::Read(Params(), *sensor_, false);
     sensor_->SetGroundTruthDepth(params.ground_truth_depth);
+    params.Apply(*sensor_);
     for (size_t i = 0; i < sensor_->CameraCount(); ++i)
       if (sensor_->Camera(i).name.empty())
         throw rotors_sim::SimError("camera " + std::to_string(i) + " of multicamera '" + sensor_->Name() +

@@ -37,12 +37,21 @@ struct CameraRosParams {
   std::string depth_topic = "depth/image_raw", depth_info_topic = "depth/camera_info";
   std::string points_topic = "depth/points", disparity_topic;
   double baseline_m = 0.0, cloud_cutoff_min_m = 0.0, cloud_cutoff_max_m = 0.0;
+  /// ours: the image sensor (exposure, blur, rolling shutter, auto exposure, noise, vignetting,
+  /// stamp offset and jitter; docs/sensor_realism.md), all off unless set
+  rotors_sim::rendering::ImageSensorParams image_sensor;
 
   /// Reads and checks the plugin's <plugin> element; throws SimError naming a bad or unknown one.
+  /// The image sensor's parameters are checked here and set on the sensor by Apply.
   /// `extra_known`: further parameters the calling plugin reads itself.
   static CameraRosParams Read(rotors_sim::SdfParams& params, const rotors_sim::sensors::CameraSensor& sensor,
                               bool depth_plugin);
+  /// Sets what the plugin's parameters say on the sensor (the image sensor).
+  void Apply(rotors_sim::sensors::CameraSensor& sensor) const { sensor.SetImageSensor(image_sensor); }
 };
+
+/// The image sensor's <plugin> parameters (docs/sensor_realism.md); SimError for a bad one.
+rotors_sim::rendering::ImageSensorParams ReadImageSensorParams(rotors_sim::SdfParams& params);
 
 /// K from the intrinsics (principal point at the <distortion><center>), P = [K | (-f b, 0, 0)], R = I,
 /// D = the camera's plumb_bob coefficients (k1 k2 p1 p2 k3; zeros without <distortion>).
