@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+#include <thread>
 
 namespace rotors_sim {
 namespace rendering {
@@ -142,6 +144,17 @@ double StampOffsetS(const ImageSensorParams& p, uint64_t seed) {
   return p.time_offset_s + p.stamp_jitter_s * NormalQuantiles()[Mix(seed) & 0xffff];
 }
 
+void AddGazeboNoise(double mean, double stddev, uint64_t seed, std::vector<uint8_t>* image) {
+  if (stddev <= 0.0 && mean == 0.0) return;
+  const float* normal = NormalQuantiles().data();
+  const uint64_t key = Mix(seed);
+  const float m = static_cast<float>(255.0 * mean), sigma = static_cast<float>(255.0 * stddev);
+  for (size_t i = 0; i < image->size(); ++i) {
+    const float value = (*image)[i] + m + sigma * normal[Mix(key + i) & 0xffff] + 0.5f;
+    (*image)[i] = static_cast<uint8_t>(std::min(std::max(value, 0.0f), 255.0f));
+  }
+}
+
 ImageSensor::ImageSensor(const ImageSensorParams& p, int width_px, int height_px, int channels,
                          double focal_length_px, double cx_px, double cy_px, uint64_t pattern_seed)
     : p_(p), width_(width_px), height_(height_px), channels_(channels) {
@@ -186,45 +199,157 @@ inline uint8_t ToOutput(double dn_full_scale, double dn, int adc_bits) {
 
 void ImageSensor::Expose(const std::vector<const std::vector<uint8_t>*>& renders, const ExposurePlan& plan,
                          double exposure_s, double gain, uint64_t noise_seed, std::vector<uint8_t>* out) const {
+  // eq. S1: each row the mean of its renders (the midpoint rule)
+  const size_t row_values = static_cast<size_t>(width_) * channels_;
+  std::vector<float> light(row_values * height_, 0.0f);
+  for (int r = 0; r < height_; ++r) {
+    const int first = plan.row_first[r], count = plan.row_count[r];
+    float* row_light = light.data() + r * row_values;
+    for (int k = first; k < first + count; ++k) {
+      const uint8_t* row = renders[k]->data() + r * row_values;
+      for (size_t i = 0; i < row_values; ++i) row_light[i] += row[i];
+    }
+    const float inv_count = 1.0f / static_cast<float>(count);
+    for (size_t i = 0; i < row_values; ++i) row_light[i] *= inv_count;
+  }
+  Digitise(light, exposure_s, gain, noise_seed, out);
+}
+
+void ImageSensor::Digitise(const std::vector<float>& light, double exposure_s, double gain, uint64_t noise_seed,
+                           std::vector<uint8_t>* out) const {
   const size_t row_values = static_cast<size_t>(width_) * channels_;
   out->assign(row_values * height_, 0);
   // eq. S1 and S4: the well fills in proportion to the light and the exposure (an instant counts as
-  // the reference exposure)
+  // the reference exposure); single precision: the output has 8 bits
   const double exposure_scale = (exposure_s > 0.0 ? exposure_s : p_.reference_exposure_s) / p_.reference_exposure_s;
-  const double full_scale = (1 << p_.adc_bits) - 1;
-  const double k_dn_per_e = p_.noise ? ConversionGainDnPerE(gain) : 0.0;
-  const auto& normal = NormalQuantiles();
-  std::vector<float> light(row_values);
+  const int shift = p_.adc_bits - 8;
+  const float full_scale = static_cast<float>((1 << p_.adc_bits) - 1);
+  const float to_fraction = static_cast<float>(exposure_scale / 255.0);
+  const float signal_to_dn = static_cast<float>(gain) * full_scale;  // without noise: DN = well fraction g (2^b - 1)
+  const float full_well = static_cast<float>(p_.full_well_e), read_noise = static_cast<float>(p_.read_noise_e);
+  const float k_dn_per_e = p_.noise ? static_cast<float>(ConversionGainDnPerE(gain)) : 0.0f;
+  const float* normal = NormalQuantiles().data();
+  const uint64_t seed = Mix(noise_seed);
+  auto to_output = [&](float dn) {
+    const float code = std::min(std::max(dn + 0.5f, 0.0f), full_scale);  // round, clamp to the ADC's range
+    return static_cast<uint8_t>(static_cast<uint32_t>(code) >> shift);
+  };
   for (int r = 0; r < height_; ++r) {
-    const int first = plan.row_first[r], count = plan.row_count[r];
-    std::fill(light.begin(), light.end(), 0.0f);
-    for (int k = first; k < first + count; ++k) {
-      const uint8_t* row = renders[k]->data() + r * row_values;
-      for (size_t i = 0; i < row_values; ++i) light[i] += row[i];
-    }
-    const float to_fraction = static_cast<float>(exposure_scale / (255.0 * count));
+    const float* row_light = light.data() + r * row_values;
+    const float* row_vignetting = vignetting_.data() + static_cast<size_t>(r) * width_;
     uint8_t* out_row = out->data() + r * row_values;
+    const size_t row_start = static_cast<size_t>(r) * row_values;
     for (int u = 0; u < width_; ++u) {
-      const float vignette = vignetting_[static_cast<size_t>(r) * width_ + u] * to_fraction;
+      const float vignette = row_vignetting[u] * to_fraction;
       for (int c = 0; c < channels_; ++c) {
         const size_t i = static_cast<size_t>(u) * channels_ + c;
-        const double well_fraction = light[i] * vignette;
+        const float well_fraction = row_light[i] * vignette;
         if (!p_.noise) {
-          out_row[i] = ToOutput(full_scale, well_fraction * gain * full_scale, p_.adc_bits);
+          out_row[i] = to_output(well_fraction * signal_to_dn);
           continue;
         }
-        const size_t pixel = static_cast<size_t>(r) * row_values + i;
-        const uint64_t bits = Mix(noise_seed ^ Mix(pixel));
-        const double prnu = prnu_gain_.empty() ? 1.0 : prnu_gain_[pixel];
-        const double dsnu = dsnu_e_.empty() ? 0.0 : dsnu_e_[pixel];
+        const size_t pixel = row_start + i;
+        const uint64_t bits = Mix(seed + pixel);
+        const float prnu = prnu_gain_.empty() ? 1.0f : prnu_gain_[pixel];
+        const float dsnu = dsnu_e_.empty() ? 0.0f : dsnu_e_[pixel];
         // shot noise: Poisson, as a Gaussian of variance = mean (the mean is many electrons)
-        const double mean_e = well_fraction * p_.full_well_e * prnu;
-        const double e = std::min(std::max(0.0, mean_e + std::sqrt(mean_e) * normal[bits & 0xffff]), p_.full_well_e);
-        const double read_e = e + dsnu + p_.read_noise_e * normal[(bits >> 16) & 0xffff];
-        out_row[i] = ToOutput(full_scale, read_e * k_dn_per_e, p_.adc_bits);
+        const float mean_e = std::max(0.0f, well_fraction * full_well * prnu);
+        const float e = std::min(std::max(0.0f, mean_e + std::sqrt(mean_e) * normal[bits & 0xffff]), full_well);
+        const float read_e = e + dsnu + read_noise * normal[(bits >> 16) & 0xffff];
+        out_row[i] = to_output(read_e * k_dn_per_e);
       }
     }
   }
+}
+
+namespace {
+/// Rows [row_begin, row_end) of VelocityBufferExposure, for C channels.
+template <int channels>
+void VelocityBufferRows(const std::vector<uint8_t>& image, const std::vector<float>& depth_m, int width_px,
+                        int height_px, float f, float cx, float cy, const float v[3], const float w[3],
+                        float tau, double line_delay_s, float subframes_per_pixel, int max_subframes, int row_begin,
+                        int row_end, float* light) {
+  const size_t row_values = static_cast<size_t>(width_px) * channels;
+  const float x_max = static_cast<float>(width_px - 1), y_max = static_cast<float>(height_px - 1);
+  const int x_last = std::max(width_px - 2, 0), y_last = std::max(height_px - 2, 0);
+  const size_t dx = width_px > 1 ? channels : 0, dy = height_px > 1 ? row_values : 0;
+  float sum[4];
+  for (int r = row_begin; r < row_end; ++r) {
+    const float t_row = static_cast<float>((r - (height_px - 1) / 2.0) * line_delay_s);  // eq. S2
+    const float y = r - cy;
+    for (int u = 0; u < width_px; ++u) {
+      const size_t px = static_cast<size_t>(r) * width_px + u;
+      const float x = u - cx;
+      const float z = depth_m.empty() ? NAN : depth_m[px];
+      const float inv_z = std::isfinite(z) && z > 0.0f ? 1.0f / z : 0.0f;
+      // P / Z = (x / f, y / f, 1);  P' / Z = -v / Z - omega x (P / Z)
+      const float q0 = x / f, q1 = y / f;
+      const float d0 = -v[0] * inv_z - (w[1] - w[2] * q1), d1 = -v[1] * inv_z - (w[2] * q0 - w[0]),
+                  d2 = -v[2] * inv_z - (w[0] * q1 - w[1] * q0);
+      const float du = f * d0 - x * d2, dv = f * d1 - y * d2;  // [px/s]
+      const float motion_px = std::sqrt(du * du + dv * dv) * tau;
+      const int n = tau > 0.0f ? std::min(std::max(static_cast<int>(std::ceil(motion_px * subframes_per_pixel)), 1),
+                                          max_subframes)
+                               : 1;
+      // the samples along the motion: p - p' t, t = t_row - tau / 2 + (k + 1/2) tau / n, bilinear in
+      // fixed point (1/256 pixel), clamped to the image where the segment leaves it
+      const float t0 = t_row - tau / 2.0f + 0.5f * tau / n, dt = tau / n;
+      const float sx0 = u - du * t0, sy0 = r - dv * t0, step_x = -du * dt, step_y = -dv * dt;
+      const float sx1 = sx0 + step_x * (n - 1), sy1 = sy0 + step_y * (n - 1);
+      const bool inside = std::min(sx0, sx1) >= 0.0f && std::max(sx0, sx1) < x_last + 1.0f &&
+                          std::min(sy0, sy1) >= 0.0f && std::max(sy0, sy1) < y_last + 1.0f;
+      int32_t acc[4] = {0, 0, 0, 0};
+      int32_t fx = static_cast<int32_t>(std::min(std::max(sx0, 0.0f), x_max) * 256.0f + 0.5f);
+      int32_t fy = static_cast<int32_t>(std::min(std::max(sy0, 0.0f), y_max) * 256.0f + 0.5f);
+      const int32_t fdx = static_cast<int32_t>(std::nearbyint(step_x * 256.0f)),
+                    fdy = static_cast<int32_t>(std::nearbyint(step_y * 256.0f));
+      const int32_t fx_max = x_last * 256 + 255, fy_max = y_last * 256 + 255;
+      for (int k = 0; k < n; ++k, fx += fdx, fy += fdy) {
+        const int32_t qx = inside ? fx : std::min(std::max(fx, 0), fx_max);
+        const int32_t qy = inside ? fy : std::min(std::max(fy, 0), fy_max);
+        const int x0 = qx >> 8, y0 = qy >> 8, ax = qx & 255, ay = qy & 255;
+        const uint8_t* p00 = image.data() + (static_cast<size_t>(y0) * width_px + x0) * channels;
+        for (int c = 0; c < channels; ++c) {
+          const int32_t top = p00[c] * (256 - ax) + p00[c + dx] * ax;
+          const int32_t bottom = p00[c + dy] * (256 - ax) + p00[c + dy + dx] * ax;
+          acc[c] += top * (256 - ay) + bottom * ay;  // 16 fractional bits
+        }
+      }
+      for (int c = 0; c < channels; ++c) sum[c] = acc[c] * (1.0f / 65536.0f);
+      const float inv_n = 1.0f / static_cast<float>(n);
+      for (int c = 0; c < channels; ++c) light[px * channels + c] = sum[c] * inv_n;
+    }
+  }
+}
+}  // namespace
+
+void VelocityBufferExposure(const std::vector<uint8_t>& image, const std::vector<float>& depth_m, int width_px,
+                            int height_px, int channels, double f_px, double cx_px, double cy_px,
+                            const CameraTwist& twist, double exposure_s, double line_delay_s,
+                            double subframes_per_pixel, int max_subframes, std::vector<float>* light) {
+  light->assign(static_cast<size_t>(width_px) * channels * height_px, 0.0f);
+  const float v[3] = {static_cast<float>(twist.v_O[0]), static_cast<float>(twist.v_O[1]),
+                      static_cast<float>(twist.v_O[2])};
+  const float w[3] = {static_cast<float>(twist.omega_O[0]), static_cast<float>(twist.omega_O[1]),
+                      static_cast<float>(twist.omega_O[2])};
+  if (channels != 1 && channels != 3)
+    throw std::invalid_argument("VelocityBufferExposure: " + std::to_string(channels) + " channels; 1 or 3");
+  auto rows = [&](int begin, int end) {
+    auto run = [&](auto rows_of) {
+      rows_of(image, depth_m, width_px, height_px, static_cast<float>(f_px), static_cast<float>(cx_px),
+              static_cast<float>(cy_px), v, w, static_cast<float>(exposure_s), line_delay_s,
+              static_cast<float>(subframes_per_pixel), max_subframes, begin, end, light->data());
+    };
+    if (channels == 1) {
+      run(VelocityBufferRows<1>);
+    } else {
+      run(VelocityBufferRows<3>);
+    }
+  };
+  // two halves of the rows at once: the renderer's threads are idle by now
+  std::thread top([&] { rows(0, height_px / 2); });
+  rows(height_px / 2, height_px);
+  top.join();
 }
 
 }  // namespace rendering

@@ -29,7 +29,7 @@ void CameraSensor::SetImageSensor(const rendering::ImageSensorParams& params) {
         rendering::AutoExposure(params),
         rendering::ImageSensor(params, in.width_px, in.height_px, rendering::BytesPerPixel(cameras_[i].format),
                                in.FocalLengthPx(), in.Cx(), in.Cy(), seed_ * 31u + i),
-        params.exposure_s, 1.0, 0.0, 1.0, 1, 0.0, {}});
+        params.exposure_s, 1.0, 0.0, 1.0, 1, 0.0, {}, {}, {}, {}, {}});
     if (params.auto_exposure) state->exposure_s = state->auto_exposure.ExposureS();
     image_sensors_.push_back(std::move(state));
   }
@@ -61,12 +61,26 @@ double CameraSensor::StampOffsetS(size_t /*i*/) const {
   return rendering::StampOffsetS(image_sensor_params_, NoiseSeedOf(0) ^ 0x5eed5eed5eedULL);
 }
 
-void CameraSensor::RenderThroughImageSensor(size_t i) {
+void CameraSensor::RenderThroughImageSensor(const std::vector<size_t>& cameras) {
+  // every camera's renders first, drawn together (the renderer overlaps them), then each frame
+  std::vector<rendering::FrameRequest> requests;
+  for (size_t i : cameras) PlanImageSensorRenders(i, &requests);
+  physics::World& world = *ParentLink()->GetModel()->GetWorldRaw();
+  rendering::Renderer& renderer = rendering::Renderer::Of(world);
+  constexpr size_t kRendersPerCall = 8;  // the renderer's targets are bounded
+  for (size_t k0 = 0; k0 < requests.size(); k0 += kRendersPerCall)
+    renderer.RenderAll(world, std::vector<rendering::FrameRequest>(
+                                  requests.begin() + k0, requests.begin() + std::min(requests.size(), k0 + kRendersPerCall)));
+  for (size_t i : cameras) FinishImageSensorFrame(i);
+}
+
+void CameraSensor::PlanImageSensorRenders(size_t i, std::vector<rendering::FrameRequest>* requests) {
   ImageSensorState& s = *image_sensors_.at(i);
   const rendering::ImageSensorParams& p = image_sensor_params_;
-  const rendering::CameraSpec& camera = cameras_[i];
-  const rendering::CameraIntrinsics& in = camera.intrinsics;
+  const rendering::CameraIntrinsics& in = cameras_[i].intrinsics;
   const double f = in.FocalLengthPx();
+  s.noiseless = cameras_[i];  // Gazebo's <noise> is added to the frame, not to each render
+  s.noiseless.noise_mean = s.noiseless.noise_stddev = 0.0;
 
   // The camera's twist at the update, held over the frame's window (tens of ms at most):
   // p_C(t) = p_C + v_C t,  R_WC(t) = exp([omega]x t) R_WC,  v_C = v_L + omega x (p_C - p_L)
@@ -74,47 +88,62 @@ void CameraSensor::RenderThroughImageSensor(size_t i) {
   const physics::Pose3d X_WC = CameraWorldPose(i);
   const physics::Vector3d omega_W = link->WorldAngularVel();
   const physics::Vector3d v_C_W = link->WorldLinearVel() + omega_W.Cross(X_WC.Pos() - link->WorldPose().Pos());
-  // the image's fastest point: a turn moves a point at angle theta off the axis by f omega / cos^2
-  // theta (at most the corner's); a translation by f |v| / Z, Z the scene's near depth
-  const double corner2 = (std::pow(std::max(in.Cx(), in.width_px - 1 - in.Cx()), 2) +
-                          std::pow(std::max(in.Cy(), in.height_px - 1 - in.Cy()), 2)) /
-                         (f * f);
-  const double near_m = s.near_depth_m > 0.0 ? s.near_depth_m : in.far_m;
-  const double image_speed_px_s = f * omega_W.Length() * (1.0 + corner2) + f * v_C_W.Length() / near_m;
-  const rendering::ExposurePlan plan = rendering::ExposurePlan::Make(
-      s.exposure_s, p.line_delay_s, in.height_px, image_speed_px_s, p.subframes_per_pixel, p.max_subframes);
-
-  // the renders, without Gazebo's <noise> (added to the frame below), a few at a time (the
-  // renderer's targets are bounded); the middle one with depth (the frame's depth image and the
-  // next frame's near depth)
-  rendering::CameraSpec noiseless = camera;
-  noiseless.noise_mean = noiseless.noise_stddev = 0.0;
-  const size_t n = plan.times_s.size(), middle = n / 2;
-  s.renders.resize(n);
-  physics::World& world = *link->GetModel()->GetWorldRaw();
-  rendering::Renderer& renderer = rendering::Renderer::Of(world);
-  constexpr size_t kRendersPerCall = 8;
-  for (size_t k0 = 0; k0 < n; k0 += kRendersPerCall) {
-    std::vector<rendering::FrameRequest> requests;
-    for (size_t k = k0; k < std::min(n, k0 + kRendersPerCall); ++k) {
-      const double t = plan.times_s[k];
-      const physics::Vector3d turn = omega_W * t;
-      const double angle = turn.Length();
-      const physics::Quaterniond q_turn =
-          angle > 0.0 ? physics::Quaterniond(turn / angle, angle) : physics::Quaterniond::Identity;
-      const physics::Pose3d X_WC_t(X_WC.Pos() + v_C_W * t, q_turn * X_WC.Rot());
-      requests.push_back({X_WC_t, &noiseless, 0, true, k == middle, &s.renders[k]});
-    }
-    renderer.RenderAll(world, requests);
+  const physics::Quaterniond q_WO = X_WC.Rot() * rendering::OpticalInCamera().Rot();
+  const physics::Vector3d v_O = q_WO.RotateVectorReverse(v_C_W), w_O = q_WO.RotateVectorReverse(omega_W);
+  for (int k = 0; k < 3; ++k) {
+    s.twist.v_O[k] = v_O[k];
+    s.twist.omega_O[k] = w_O[k];
   }
-  std::vector<const std::vector<uint8_t>*> images;
-  for (const rendering::RenderedFrame& r : s.renders) images.push_back(&r.image);
+  if (p.blur_method == rendering::ImageSensorParams::BlurMethod::kVelocityBuffer) {
+    // one render at the middle of the exposure, with depth: each pixel is averaged along its motion
+    s.plan = rendering::ExposurePlan::Make(0.0, 0.0, in.height_px, 0.0, 1.0, 1);
+  } else {
+    // the image's fastest point: a turn moves a point at angle theta off the axis by f omega /
+    // cos^2 theta (at most the corner's); a translation by f |v| / Z, Z the scene's near depth
+    const double corner2 = (std::pow(std::max(in.Cx(), in.width_px - 1 - in.Cx()), 2) +
+                            std::pow(std::max(in.Cy(), in.height_px - 1 - in.Cy()), 2)) /
+                           (f * f);
+    const double near_m = s.near_depth_m > 0.0 ? s.near_depth_m : in.far_m;
+    const double image_speed_px_s = f * omega_W.Length() * (1.0 + corner2) + f * v_C_W.Length() / near_m;
+    s.plan = rendering::ExposurePlan::Make(s.exposure_s, p.line_delay_s, in.height_px, image_speed_px_s,
+                                           p.subframes_per_pixel, p.max_subframes);
+  }
+  const size_t n = s.plan.times_s.size(), middle = n / 2;
+  s.renders.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const double t = s.plan.times_s[k];
+    const physics::Vector3d turn = omega_W * t;
+    const double angle = turn.Length();
+    const physics::Quaterniond q_turn =
+        angle > 0.0 ? physics::Quaterniond(turn / angle, angle) : physics::Quaterniond::Identity;
+    const physics::Pose3d X_WC_t(X_WC.Pos() + v_C_W * t, q_turn * X_WC.Rot());
+    // the middle one with depth: the frame's depth image, the velocity buffer, the next near depth
+    requests->push_back({X_WC_t, &s.noiseless, 0, true, k == middle, &s.renders[k]});
+  }
+}
 
+void CameraSensor::FinishImageSensorFrame(size_t i) {
+  ImageSensorState& s = *image_sensors_.at(i);
+  const rendering::ImageSensorParams& p = image_sensor_params_;
+  const rendering::CameraSpec& camera = cameras_[i];
+  const rendering::CameraIntrinsics& in = camera.intrinsics;
   rendering::RenderedFrame& out = frames_[i];
   out.width_px = in.width_px;
   out.height_px = in.height_px;
-  s.sensor.Expose(images, plan, s.exposure_s, s.gain, NoiseSeedOf(i), &out.image);
-  rendering::AddGaussianNoise(camera, NoiseSeedOf(i), &out.image);
+  const size_t renders = s.renders.size(), middle = renders / 2;
+  if (p.blur_method == rendering::ImageSensorParams::BlurMethod::kVelocityBuffer) {
+    rendering::VelocityBufferExposure(s.renders[0].image, s.renders[0].depth_m, in.width_px, in.height_px,
+                                      rendering::BytesPerPixel(camera.format), in.FocalLengthPx(), in.Cx(), in.Cy(),
+                                      s.twist, s.exposure_s, p.line_delay_s, p.subframes_per_pixel, p.max_subframes,
+                                      &s.light);
+    s.sensor.Digitise(s.light, s.exposure_s, s.gain, NoiseSeedOf(i), &out.image);
+  } else {
+    std::vector<const std::vector<uint8_t>*> images;
+    for (const rendering::RenderedFrame& r : s.renders) images.push_back(&r.image);
+    s.sensor.Expose(images, s.plan, s.exposure_s, s.gain, NoiseSeedOf(i), &out.image);
+  }
+  // with photon noise, the photon-transfer model is the sensor's noise
+  if (!p.noise) rendering::AddGazeboNoise(camera.noise_mean, camera.noise_stddev, NoiseSeedOf(i), &out.image);
   out.depth_m.clear();
   if (RendersDepth()) out.depth_m = s.renders[middle].depth_m;
   // a near depth of the scene: the 2nd percentile of the middle render's depths
@@ -128,7 +157,7 @@ void CameraSensor::RenderThroughImageSensor(size_t i) {
 
   s.frame_exposure_s = s.exposure_s;
   s.frame_gain = s.gain;
-  s.frame_subframes = static_cast<int>(n);
+  s.frame_subframes = static_cast<int>(renders);
   if (p.auto_exposure) {
     double sum = 0.0;
     for (uint8_t value : out.image) sum += value;

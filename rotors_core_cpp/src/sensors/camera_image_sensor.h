@@ -19,6 +19,10 @@ struct CameraSensor::ImageSensorState {
   int frame_subframes = 1;
   double near_depth_m = 0.0;  ///< a near depth of the last frame's scene (0: none yet)
   std::vector<rendering::RenderedFrame> renders;
+  std::vector<float> light;  ///< the velocity buffer's exposed light
+  rendering::CameraSpec noiseless;  ///< the camera without Gazebo's <noise>, as the renders draw it
+  rendering::ExposurePlan plan;     ///< this frame's instants
+  rendering::CameraTwist twist;     ///< the camera's twist at the update, optical frame
 };
 
 }  // namespace sensors

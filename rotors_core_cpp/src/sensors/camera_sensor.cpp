@@ -94,7 +94,7 @@ const rendering::RenderedFrame& CameraSensor::Frame(size_t i) {
       if (j == i || (asked_last && rendered_update_[j] != update_count_)) wanted.push_back(j);
     }
     if (!image_sensors_.empty()) {
-      for (size_t j : wanted) RenderThroughImageSensor(j);
+      RenderThroughImageSensor(wanted);
     } else {
       std::vector<rendering::FrameRequest> requests;
       for (size_t j : wanted)

@@ -71,6 +71,14 @@ rotors_sim::rendering::ImageSensorParams ReadImageSensorParams(rotors_sim::SdfPa
   ReadParam(params, "exposureTime", &s.exposure_s);
   ReadParam(params, "maxSubframes", &s.max_subframes);
   ReadParam(params, "subframesPerPixel", &s.subframes_per_pixel);
+  std::string blur = "subframes";
+  ReadParam(params, "blurMethod", &blur);
+  if (blur == "velocity") {
+    s.blur_method = ImageSensorParams::BlurMethod::kVelocityBuffer;
+  } else if (blur != "subframes") {
+    throw SimError("<blurMethod> '" + blur + "' is not known; use subframes (renders across the exposure) or velocity "
+                   "(one render, blurred along each pixel's motion)");
+  }
   ReadParam(params, "lineDelay", &s.line_delay_s);
   ReadParam(params, "autoExposure", &s.auto_exposure);
   ReadParam(params, "autoExposureDesiredBin", &s.desired_bin);

@@ -19,6 +19,12 @@ struct ImageSensorParams {
   // --- exposure (eq. S1): E(u, v) = 1/tau int_{t_r - tau/2}^{t_r + tau/2} L(u, v, t) dt
   double exposure_s = 0.0;  ///< <exposureTime> [s], fixed exposure (no auto exposure); 0: an instant
   int max_subframes = 32;   ///< <maxSubframes>: renders per frame at most (the blur's cost cap)
+  /// <blurMethod>: how the exposure window is rendered. kSubframes: renders at instants across it
+  /// (the reference); kVelocityBuffer: one render, each pixel averaged along its image motion
+  /// (the motion field of a static scene from the depth and the camera's twist; faster, exact for a
+  /// turning camera, approximate at depth edges and for moving objects)
+  enum class BlurMethod { kSubframes, kVelocityBuffer };
+  BlurMethod blur_method = BlurMethod::kSubframes;
   /// <subframesPerPixel>: renders per pixel of predicted image motion over the frame's window
   double subframes_per_pixel = 1.0;
   // --- rolling shutter (eq. S2): row r is exposed around t_r = t_c + (r - (H - 1) / 2) line_delay
@@ -70,6 +76,27 @@ struct ExposurePlan {
                            double subframes_per_pixel, int max_subframes);
 };
 
+/// A camera's twist in its optical frame O (x right, y down, z forward): v_O [m/s], omega_O [rad/s].
+struct CameraTwist {
+  double v_O[3] = {0, 0, 0}, omega_O[3] = {0, 0, 0};
+};
+
+/// eq. S1 and S2 by a velocity buffer: one render (image, W x H x C bytes, and its optical-axis
+/// depth, NaN for the sky) made at the middle of the exposure; each pixel's image velocity is the
+/// motion field of a static scene, u' = (f P'_x - x P'_z) / Z, v' = (f P'_y - y P'_z) / Z,
+/// P' = -v_O - omega_O x P (x, y from the principal point, 1/Z = 0 for the sky); pixel p of row r
+/// averages the render at p - p' t over its row's window t in [t_r - tau/2, t_r + tau/2] (bilinear,
+/// samples spaced by 1 / subframes_per_pixel pixel, at most max_subframes). light: 0..255 per value.
+void VelocityBufferExposure(const std::vector<uint8_t>& image, const std::vector<float>& depth_m, int width_px,
+                            int height_px, int channels, double f_px, double cx_px, double cy_px,
+                            const CameraTwist& twist, double exposure_s, double line_delay_s,
+                            double subframes_per_pixel, int max_subframes, std::vector<float>* light);
+
+/// Gazebo's <noise> on a frame the image sensor made without photon noise: value + 255 N(mean,
+/// stddev), rounded and clamped, from a counter-based generator (deterministic in the seed). With
+/// photon noise on, the photon-transfer model is the sensor's noise and <noise> is not added.
+void AddGazeboNoise(double mean, double stddev, uint64_t seed, std::vector<uint8_t>* image);
+
 /// The stamp of a frame minus the middle of its exposure (eq. S6): <timeOffset> plus a Gaussian of
 /// sigma <stampJitter> drawn from `seed` (deterministic).
 double StampOffsetS(const ImageSensorParams& p, uint64_t seed);
@@ -105,6 +132,9 @@ class ImageSensor {
   /// digitised (with noise when on, drawn from `noise_seed`).
   void Expose(const std::vector<const std::vector<uint8_t>*>& renders, const ExposurePlan& plan, double exposure_s,
               double gain, uint64_t noise_seed, std::vector<uint8_t>* out) const;
+  /// The same from the light already averaged over each pixel's exposure (0..255 per value).
+  void Digitise(const std::vector<float>& light, double exposure_s, double gain, uint64_t noise_seed,
+                std::vector<uint8_t>* out) const;
 
   /// The vignetting factor V(u, v) (eq. S5).
   double Vignetting(int u, int v) const { return vignetting_[static_cast<size_t>(v) * width_ + u]; }

@@ -71,9 +71,11 @@ class CameraSensor : public Sensor {
   void OnReset() override;
 
  private:
-  /// Camera i through the image sensor model: renders at the exposure plan's instants, exposes and
-  /// digitises them into frames_[i], and steps its auto exposure.
-  void RenderThroughImageSensor(size_t i);
+  /// The cameras through the image sensor model: renders at their exposure plans' instants, drawn
+  /// together; each frame exposed and digitised into frames_[i]; each auto exposure stepped.
+  void RenderThroughImageSensor(const std::vector<size_t>& cameras);
+  void PlanImageSensorRenders(size_t i, std::vector<rendering::FrameRequest>* requests);
+  void FinishImageSensorFrame(size_t i);
 
   std::vector<rendering::CameraSpec> cameras_;
   rendering::ImageSensorParams image_sensor_params_;
