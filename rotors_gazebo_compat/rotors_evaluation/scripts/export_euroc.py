@@ -3,11 +3,16 @@
 Kalibr-style tools run on simulated data unchanged:
 
   <out>/mav0/cam0, cam1/   data.csv (#timestamp [ns],filename), data/<ns>.png, sensor.yaml
-  <out>/mav0/imu0/         data.csv (gyro [rad/s], accel [m/s^2]), sensor.yaml (ADIS16448 noise)
+  <out>/mav0/imu0/         data.csv (gyro [rad/s], accel [m/s^2]), sensor.yaml (the IMU plugin's noise)
   <out>/mav0/state_groundtruth_estimate0/data.csv   IMU-frame pose and velocity in the world
 
-The body frame B is the VI-sensor's IMU, as in EuRoC; each sensor.yaml holds T_BS (the sensor in B)
-for the VI-sensor geometry that rotors_description's vi_sensor_macro builds.
+The body frame B is the VI-sensor's IMU, as in EuRoC. Everything comes from the bag, for the vehicle
+actually flown: the cameras' intrinsics and distortion from camera_info, each sensor.yaml's T_BS
+(the sensor in B) from the robot description the bag plugin records (<ns>/robot_description: the
+IMU's and cameras' links), the IMU's noise densities and random walks from its IMU plugin's
+parameters there, and each camera's image sensor parameters (exposure, noise, rolling shutter;
+docs/sensor_realism.md) from its camera plugin's, written under `rotors_image_sensor` beside
+EuRoC's keys.
 
     rosrun rotors_evaluation export_euroc.py -b <bag> -o <dir> [--mav_name firefly]
 """
@@ -21,19 +26,33 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))  # plain `python3 scripts/...` use
 
 from rotors_evaluation.bag_data import BagError, FlightBag  # noqa: E402
+from rotors_evaluation.robot_description import DescriptionError, RobotDescription  # noqa: E402
 
-# vi_sensor_macro geometry in the VI-sensor link frame L (x forward, z up)
-P_L_IMU = np.array([0.015, 0.0, 0.0113])
-P_L_CAM = {"left": np.array([0.015, 0.055, 0.0065]), "right": np.array([0.015, -0.055, 0.0065])}
-# optical frame (x right, y down, z forward) in the camera link frame: rpy (-pi/2, 0, -pi/2)
-R_L_OPTICAL = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
-# the ADIS16448 model of default_imu / vi_sensor_macro (continuous-time densities)
-ADIS16448 = {
-    "gyroscope_noise_density": 0.0003394,
-    "gyroscope_random_walk": 0.000038785,
-    "accelerometer_noise_density": 0.004,
-    "accelerometer_random_walk": 0.006,
-}
+IMU_PLUGIN = "librotors_gazebo_imu_plugin.so"
+ODOMETRY_PLUGIN = "librotors_gazebo_odometry_plugin.so"
+CAMERA_PLUGIN = "libgazebo_ros_multicamera.so"
+# the image sensor's plugin parameters (docs/sensor_realism.md), as the camera plugins read them
+IMAGE_SENSOR_PARAMS = (
+    "exposureTime", "blurMethod", "maxSubframes", "subframesPerPixel", "lineDelay", "autoExposure", "autoExposureDesiredBin",
+    "autoExposureLowPass", "autoGainLowPass", "autoExposureUpdateInterval", "rowTime", "maxShutterWidth", "maxAnalogGain",
+    "referenceExposure", "photonNoise", "fullWellCapacity", "readNoise", "photoResponseNonUniformity",
+    "darkSignalNonUniformity", "adcBits", "vignetting", "vignettingCoefficients", "timeOffset", "stampJitter",
+)
+
+
+def _description(bag: FlightBag, mav: str) -> RobotDescription:
+    topic = f"{mav}/robot_description"
+    if topic not in bag.topics:
+        raise BagError(
+            f"{bag.path.name} has no {topic}: the calibration and noise figures come from the robot description "
+            "the bag plugin records; record the flight again (enable_logging:=true)"
+        )
+    return RobotDescription.parse(next(msg for msg, _, _ in bag.messages(topic)).data)
+
+
+def _imu_frame(bag: FlightBag, mav: str) -> str:
+    topic = bag.require(mav, "vi_sensor/imu", "VI-sensor IMU")
+    return next(msg for msg, _, _ in bag.messages(topic)).header.frame_id
 
 
 def _ns(stamp) -> int:
@@ -51,12 +70,31 @@ def _rotation(q) -> np.ndarray:
     )
 
 
+def _quaternion(R: np.ndarray) -> list[float]:
+    """(w, x, y, z) of a rotation matrix, w >= 0 (Shepperd's method)."""
+    t = np.trace(R)
+    if t > 0:
+        s = 2.0 * np.sqrt(1.0 + t)
+        q = [0.25 * s, (R[2, 1] - R[1, 2]) / s, (R[0, 2] - R[2, 0]) / s, (R[1, 0] - R[0, 1]) / s]
+    else:
+        i = int(np.argmax(np.diag(R)))
+        j, k = (i + 1) % 3, (i + 2) % 3
+        s = 2.0 * np.sqrt(1.0 + R[i, i] - R[j, j] - R[k, k])
+        q = [0.0] * 4
+        q[0] = (R[k, j] - R[j, k]) / s
+        q[1 + i] = 0.25 * s
+        q[1 + j] = (R[j, i] + R[i, j]) / s
+        q[1 + k] = (R[k, i] + R[i, k]) / s
+    q = np.array(q)
+    return list(q if q[0] >= 0 else -q)
+
+
 def _matrix_yaml(T: np.ndarray) -> str:
     rows = ",\n         ".join(", ".join(f"{v:.9f}" for v in row) for row in T)
     return f"  cols: 4\n  rows: 4\n  data: [{rows}]\n"
 
 
-def _write_camera(bag: FlightBag, mav: str, side: str, out: Path, from_png) -> int:
+def _write_camera(bag: FlightBag, mav: str, side: str, out: Path, from_png, urdf: RobotDescription) -> int:
     image_topic = bag.require(mav, f"vi_sensor/{side}/image_raw", f"{side} image")
     info_topic = bag.require(mav, f"vi_sensor/{side}/camera_info", f"{side} camera_info")
     info = next(msg for msg, _, _ in bag.messages(info_topic))
@@ -75,9 +113,10 @@ def _write_camera(bag: FlightBag, mav: str, side: str, out: Path, from_png) -> i
     if not rows:
         raise BagError(f"no images on {image_topic}")
     (folder / "data.csv").write_text("#timestamp [ns],filename\n" + "\n".join(rows) + "\n")
-    T_BS = np.eye(4)  # camera (optical) in the IMU frame; both rigid in L
-    T_BS[:3, :3] = R_L_OPTICAL
-    T_BS[:3, 3] = P_L_CAM[side] - P_L_IMU
+    T_BS = urdf.transform(_imu_frame(bag, mav), info.header.frame_id)  # the camera's optical frame in B
+    camera = urdf.plugin_params(CAMERA_PLUGIN, robotNamespace=mav, cameraName="vi_sensor")
+    image_sensor = {k: camera[k] for k in IMAGE_SENSOR_PARAMS if k in camera}
+    image_sensor_yaml = "\n" + "".join(f"  {k}: {v}\n" for k, v in image_sensor.items()) if image_sensor else " none\n"
     rate = (len(stamps) - 1) / ((stamps[-1] - stamps[0]) * 1e-9) if len(stamps) > 1 else 0.0
     K = info.K
     D = list(info.D) + [0.0] * (5 - len(info.D))  # plumb_bob: k1 k2 p1 p2 k3
@@ -88,11 +127,12 @@ def _write_camera(bag: FlightBag, mav: str, side: str, out: Path, from_png) -> i
         f"T_BS:\n{_matrix_yaml(T_BS)}rate_hz: {rate:.3f}\nresolution: [{info.width}, {info.height}]\n"
         f"camera_model: pinhole\nintrinsics: [{K[0]!r}, {K[4]!r}, {K[2]!r}, {K[5]!r}]\n"
         f"distortion_model: radial-tangential\ndistortion_coefficients: [{D[0]!r}, {D[1]!r}, {D[2]!r}, {D[3]!r}]\n"
+        f"rotors_image_sensor:{image_sensor_yaml}"
     )
     return len(rows)
 
 
-def _write_imu(bag: FlightBag, mav: str, out: Path) -> int:
+def _write_imu(bag: FlightBag, mav: str, out: Path, urdf: RobotDescription) -> int:
     topic = bag.require(mav, "vi_sensor/imu", "VI-sensor IMU")
     folder = out / "mav0" / "imu0"
     folder.mkdir(parents=True, exist_ok=True)
@@ -109,15 +149,30 @@ def _write_imu(bag: FlightBag, mav: str, out: Path) -> int:
         "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n" + "\n".join(lines) + "\n"
     )
     rate = (len(stamps) - 1) / ((stamps[-1] - stamps[0]) * 1e-9) if len(stamps) > 1 else 0.0
-    noise = "".join(f"{k}: {v!r}\n" for k, v in ADIS16448.items())
+    # the IMU plugin's continuous-time densities (RotorS' xacro spells the gyroscope's random walk
+    # gyroscopeRandomWalk, the plugin also takes gyroscopeBiasRandomWalk)
+    p = urdf.plugin_params(IMU_PLUGIN, robotNamespace=f"{mav}/vi_sensor", imuTopic="imu")
+    walk_g = p.get("gyroscopeRandomWalk", p.get("gyroscopeBiasRandomWalk"))
+    walk_a = p.get("accelerometerRandomWalk", p.get("accelerometerBiasRandomWalk"))
+    if walk_g is None or walk_a is None or "gyroscopeNoiseDensity" not in p or "accelerometerNoiseDensity" not in p:
+        raise DescriptionError(f"the VI-sensor's {IMU_PLUGIN} lacks a noise density or random walk: {sorted(p)}")
+    noise = (
+        f"gyroscope_noise_density: {float(p['gyroscopeNoiseDensity'])!r}\ngyroscope_random_walk: {float(walk_g)!r}\n"
+        f"accelerometer_noise_density: {float(p['accelerometerNoiseDensity'])!r}\naccelerometer_random_walk: {float(walk_a)!r}\n"
+    )
     (folder / "sensor.yaml").write_text(
-        f"sensor_type: imu\ncomment: VI-sensor ADIS16448 (simulated)\nT_BS:\n{_matrix_yaml(np.eye(4))}" f"rate_hz: {rate:.3f}\n{noise}"
+        f"sensor_type: imu\ncomment: VI-sensor IMU (simulated, {bag.path.name})\nT_BS:\n{_matrix_yaml(np.eye(4))}"
+        f"rate_hz: {rate:.3f}\n{noise}"
     )
     return len(lines)
 
 
-def _write_ground_truth(bag: FlightBag, mav: str, out: Path) -> int:
+def _write_ground_truth(bag: FlightBag, mav: str, out: Path, urdf: RobotDescription) -> int:
     topic = bag.require(mav, "vi_sensor/ground_truth/odometry", "VI-sensor ground truth")
+    # the ground truth's link L (its odometry plugin's) and the IMU B in it
+    odometry = urdf.plugin_params(ODOMETRY_PLUGIN, robotNamespace=f"{mav}/vi_sensor", odometryTopic="ground_truth/odometry")
+    T_LB = urdf.transform(odometry["linkName"], _imu_frame(bag, mav))
+    p_L_B, R_LB = T_LB[:3, 3], T_LB[:3, :3]
     folder = out / "mav0" / "state_groundtruth_estimate0"
     folder.mkdir(parents=True, exist_ok=True)
     lines = []
@@ -125,13 +180,13 @@ def _write_ground_truth(bag: FlightBag, mav: str, out: Path) -> int:
         pose, twist = msg.pose.pose, msg.twist.twist
         R_WL = _rotation(pose.orientation)
         p_WL = np.array([pose.position.x, pose.position.y, pose.position.z])
-        # the IMU origin: p_WB = p_WL + R_WL p_L_IMU; v_WB = R_WL (v_L + w_L x p_L_IMU)
-        p_WB = p_WL + R_WL @ P_L_IMU
+        # the IMU origin: p_WB = p_WL + R_WL p_L_B; v_WB = R_WL (v_L + w_L x p_L_B); R_WB = R_WL R_LB
+        p_WB = p_WL + R_WL @ p_L_B
         v_L = np.array([twist.linear.x, twist.linear.y, twist.linear.z])
         w_L = np.array([twist.angular.x, twist.angular.y, twist.angular.z])
-        v_WB = R_WL @ (v_L + np.cross(w_L, P_L_IMU))
-        q = pose.orientation  # B is parallel to L
-        values = [*p_WB, q.w, q.x, q.y, q.z, *v_WB, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+        v_WB = R_WL @ (v_L + np.cross(w_L, p_L_B))
+        q = _quaternion(R_WL @ R_LB)
+        values = [*p_WB, *q, *v_WB, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
         lines.append(f"{_ns(msg.header.stamp)}," + ",".join(repr(float(v)) for v in values))
     if not lines:
         raise BagError(f"no messages on {topic}")
@@ -155,15 +210,16 @@ def main(argv=None) -> int:
         bag = FlightBag(Path(args.bag))
         out = Path(args.output)
         try:
+            urdf = _description(bag, args.mav_name)
             counts = {
-                "cam0": _write_camera(bag, args.mav_name, "left", out, Image),
-                "cam1": _write_camera(bag, args.mav_name, "right", out, Image),
-                "imu0": _write_imu(bag, args.mav_name, out),
-                "state_groundtruth_estimate0": _write_ground_truth(bag, args.mav_name, out),
+                "cam0": _write_camera(bag, args.mav_name, "left", out, Image, urdf),
+                "cam1": _write_camera(bag, args.mav_name, "right", out, Image, urdf),
+                "imu0": _write_imu(bag, args.mav_name, out, urdf),
+                "state_groundtruth_estimate0": _write_ground_truth(bag, args.mav_name, out, urdf),
             }
         finally:
             bag.close()
-    except BagError as e:
+    except (BagError, DescriptionError) as e:
         print(f"export_euroc.py: {e}", file=sys.stderr)
         return 1
     (out / "mav0" / "body.yaml").write_text("comment: body frame B = the VI-sensor IMU (as in EuRoC)\n")

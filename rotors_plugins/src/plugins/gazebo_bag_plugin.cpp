@@ -6,6 +6,9 @@
 // Ours: <ns>/simulation_status (rotors_comm/SimulationStatus) when the simulation is paused, resumes
 // or stops, so that the evaluation knows where the flight ended, and at the first step lockstep did
 // not wait for (with the count of such steps), so that it knows whether the flight is repeatable.
+// Ours: <ns>/robot_description (std_msgs/String), the vehicle's robot description as the parameter
+// server holds it, at the bag's start: the calibration, noise figures and sensor parameters of the
+// vehicle flown (export_euroc.py reads them).
 // File: <ROS_HOME or ~/.ros>/<bagFileName>_YYYY-MM-DD-HH-MM-SS.bag; service record_rosbag.
 #include <ctime>
 #include <sstream>
@@ -22,6 +25,7 @@
 #include <rotors_comm/SimulationStatus.h>
 #include <rotors_comm/WindSpeed.h>
 #include <sensor_msgs/Imu.h>
+#include <std_msgs/String.h>
 #include <topic_tools/shape_shifter.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
@@ -136,6 +140,10 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     }
     recording_ = true;
     ROS_INFO("[bag_plugin] recording %s", path_.c_str());
+    std::string key;
+    std_msgs::String description;
+    if (node_->searchParam("robot_description", key) && node_->getParam(key, description.data))
+      Write(ns_ + "/robot_description", ros::TIME_MIN, description);
   }
 
   void Close() {
