@@ -243,7 +243,8 @@ def sensor_realism_rows(r: dict) -> list:
     rows = [
         (
             f"VI-sensor frames, {r['world']}, moving 1 m/s and 0.75 rad/s, image sensor {preset}",
-            f"{fps[preset]:.1f} frames/s ({r['renders_per_frame'][preset]:.1f} renders a frame, {fps['off'] / fps[preset]:.2f} x the plain frame's cost)",
+            f"{fps[preset]:.1f} frames/s ({r['renders_per_frame'][preset]:.1f} renders a frame, "
+            f"{fps['off'] / fps[preset]:.2f} x the plain frame's cost)",
             "all: <= 2 x" if preset == "all" else "",
         )
         for preset in IMAGE_SENSOR_PRESETS
@@ -1146,7 +1147,10 @@ def main() -> int:
             json.dumps(
                 {
                     "sensor_realism": {
-                        "vi_sensor_fps": {**{k: r["vi_sensor_fps"][k] for k in ("off", "blur", "auto_exposure", "noise", "rolling_shutter", "all")}, "vibration": None},
+                        "vi_sensor_fps": {
+                            **{k: r["vi_sensor_fps"][k] for k in ("off", "blur", "auto_exposure", "noise", "rolling_shutter", "all")},
+                            "vibration": None,
+                        },
                         "vi_hover_real_time_factor": {k: r["vi_hover"][k]["as_fast_as_possible"] for k in ("off", "all")},
                     }
                 }

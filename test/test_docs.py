@@ -1,6 +1,8 @@
-"""The front page and the docs: every relative link and anchor in README.md and docs/ resolves, every
-docs page is in the index, README stays a front page (under 250 lines), and no line names a commit
-hash (figures carry the date and machine of their run, nothing else)."""
+"""The front page and the docs: every relative link and anchor in README.md and docs/ resolves and
+stays inside the repository, every docs page is in the index, README stays a front page (under 250
+lines), and the pages read as reference, not diary: no line names a commit hash, one of our issue
+numbers, a "round" of work, "this session" or a "(before ...)" figure (figures carry the date and
+machine of their run, nothing else)."""
 
 import re
 from pathlib import Path
@@ -42,6 +44,34 @@ def test_every_link_and_anchor_resolves(page: Path):
         elif anchor and resolved.suffix == ".md" and anchor not in anchors(resolved):
             broken.append(f"{target} (no heading '{anchor}' in {resolved.name})")
     assert not broken, f"{page.relative_to(REPO)}: " + "; ".join(broken)
+
+
+DIARY = re.compile(
+    r"\bround (one|two|three|four)\b|\b(earlier|later|this|that|next|the) rounds?\b|\brounds? (one|two)\b"
+    r"|\bthis session\b|\bsession's\b|(?<!RotorS )(?<!RotorS' )\bissues? \d+|\(issue \d+|\(before[: ]",
+    re.I,
+)
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_pages_read_as_reference_not_diary(page: Path):
+    text = re.sub(r"```.*?```", "", page.read_text(), flags=re.S)
+    found = [f"{i + 1}: {m.group(0)!r}" for i, line in enumerate(text.splitlines()) for m in DIARY.finditer(line)]
+    assert not found, f"{page.relative_to(REPO)}: diary words (rounds, sessions, our issue numbers, before-figures): " + "; ".join(found)
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_no_link_or_path_leaves_the_repository(page: Path):
+    outside = []
+    for target in links(page):
+        if re.match(r"[a-z]+://|mailto:", target):
+            continue
+        path = target.partition("#")[0]
+        if path and REPO not in (page.parent / path).resolve().parents and (page.parent / path).resolve() != REPO:
+            outside.append(target)
+    text = page.read_text()
+    outside += re.findall(r"\.\./shared/\S*|/work/\S*", text)
+    assert not outside, f"{page.relative_to(REPO)} points outside the repository: {outside}"
 
 
 def test_every_docs_page_is_in_the_index():

@@ -1,4 +1,4 @@
-"""Images a feature-based VIO front end can use (issue 27): VI-sensor flights through RotorS'
+"""Images a feature-based VIO front end can use: VI-sensor flights through RotorS'
 warehouse (textured Collada boxes and pallets, shelves, tarmac) and the textured power plant (cast
 concrete, tarmac), with the sun's shadows. Every 0.5 s of flight after take-off the left camera's
 frame goes through OpenCV as a VIO front end would:

@@ -1,4 +1,4 @@
-"""RotorS' remaining sensor files (issue 42 item 9): rgbd_base.xacro (a RealSense D435),
+"""RotorS' remaining sensor files: rgbd_base.xacro (a RealSense D435),
 pmd_monstar.xacro (a time-of-flight camera), asymmetric_quadrotor_two_cameras.gazebo and the
 flow_cam model publish the ROS topics, types, image sizes and rates of RotorS' files, and the
 noisy-depth plugin honours depthNoiseMinDist / depthNoiseMaxDist (one roslaunch:

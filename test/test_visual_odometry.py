@@ -1,5 +1,5 @@
 """A stereo visual odometry made only of OpenCV calls, run on the EuRoC export of a VI-sensor flight
-through RotorS' warehouse (issue 27). It checks in one go what a VIO user depends on: the images,
+through RotorS' warehouse. It checks in one go what a VIO user depends on: the images,
 the intrinsics in cam0/cam1 sensor.yaml, the camera-IMU extrinsics T_BS, the stamps and the ground
 truth. The flight is RotorS' VI hovering example (ROS, lockstep) with enable_logging:=true, given a
 39.5 m loop through the aisles (test/flight_paths.py) on command/trajectory; export_euroc.py makes

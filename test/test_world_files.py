@@ -1,4 +1,4 @@
-"""RotorS' remaining worlds (issue 42 item 8), from Python without ROS: each loads, its terrain or
+"""RotorS' remaining worlds, from Python without ROS: each loads, its terrain or
 room stands where RotorS' files put it, and the firefly hovers in it with the Lee controller.
 (The ROS hovering example in the waypoint world: test_worlds.py.)"""
 

@@ -137,8 +137,10 @@ int main(int argc, char** argv) {
   if (!image_sensor.empty()) {
     rendering::ImageSensorParams p;
     if (!ImageSensorPreset(image_sensor, &p)) {
-      std::fprintf(stderr, "rotors_camera_bench: --image-sensor '%s' is not known: off, blur, blur_subframes, "
-                           "auto_exposure, noise, rolling_shutter or all\n", image_sensor.c_str());
+      std::fprintf(stderr,
+                   "rotors_camera_bench: --image-sensor '%s' is not known: off, blur, blur_subframes, "
+                   "auto_exposure, noise, rolling_shutter or all\n",
+                   image_sensor.c_str());
       return 2;
     }
     stereo->SetImageSensor(p);
@@ -180,10 +182,10 @@ int main(int argc, char** argv) {
       grey[i] = std::isnan(d[i]) ? 0 : static_cast<uint8_t>(255 - std::min(d[i], 10.0f) * 25);
     write("depth.pgm", 640, 480, grey);
   }
-  std::printf("{\"stereo_pairs_per_s\": %.1f, \"depth_frames_per_s\": %.1f, \"triangles\": %zu, "
-              "\"renders_per_frame\": %.2f}\n",
-              pair_fps, depth_fps, rendering::Renderer::Of(*world).CachedTriangles(),
-              pairs ? subframes / (2.0 * pairs) : 1.0);
+  std::printf(
+      "{\"stereo_pairs_per_s\": %.1f, \"depth_frames_per_s\": %.1f, \"triangles\": %zu, "
+      "\"renders_per_frame\": %.2f}\n",
+      pair_fps, depth_fps, rendering::Renderer::Of(*world).CachedTriangles(), pairs ? subframes / (2.0 * pairs) : 1.0);
   world->Fini();
   return 0;
 }

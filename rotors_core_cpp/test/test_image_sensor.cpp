@@ -168,7 +168,9 @@ TEST(ImageSensor, AutoExposureReturnsToTheDesiredBinAfterABrightnessStep) {
   rendering::AutoExposure ae(p);
   const double target = 32 / 64.0;
   // a linear sensor: mean = light x exposure / reference exposure x gain
-  auto mean_of = [&](double light) { return std::min(1.0, light * ae.ExposureS() / p.reference_exposure_s * ae.Gain()); };
+  auto mean_of = [&](double light) {
+    return std::min(1.0, light * ae.ExposureS() / p.reference_exposure_s * ae.Gain());
+  };
   double light = 0.6;  // 400 rows at unit gain
   for (int k = 0; k < 30; ++k) ae.Update(mean_of(light));
   EXPECT_NEAR(mean_of(light), target, 0.01);
@@ -179,8 +181,9 @@ TEST(ImageSensor, AutoExposureReturnsToTheDesiredBinAfterABrightnessStep) {
     ae.Update(mean_of(light));
     ++frames;
   }
-  std::printf("auto exposure: a 1.5x brighter scene back at the desired bin after %d frames (exposure %.2f -> %.2f ms)\n",
-              frames, settled_exposure * 1e3, ae.ExposureS() * 1e3);
+  std::printf(
+      "auto exposure: a 1.5x brighter scene back at the desired bin after %d frames (exposure %.2f -> %.2f ms)\n",
+      frames, settled_exposure * 1e3, ae.ExposureS() * 1e3);
   EXPECT_LE(frames, p.update_interval_frames + 2);
   EXPECT_NEAR(ae.ExposureS(), settled_exposure / 1.5, p.row_time_s);
   EXPECT_EQ(ae.Gain(), 1.0);
@@ -227,8 +230,7 @@ constexpr double kOmega = 2.5;  // [rad/s]
 std::string TurningCameraWorld() {
   std::ostringstream s;
   std::string w = WorldSdf(0.001, 0.0, false, "world");
-  s << w.substr(0, w.find("</world>"))
-    << "<scene><ambient>1 1 1 1</ambient><background>0 0 0 1</background></scene>"
+  s << w.substr(0, w.find("</world>")) << "<scene><ambient>1 1 1 1</ambient><background>0 0 0 1</background></scene>"
     << "<light name='sun' type='directional'><diffuse>0 0 0 1</diffuse><direction>0 0 -1</direction></light>"
     << "<model name='wall'><static>true</static><pose>5 -2.5 0 0 0 0</pose><link name='link'><visual name='v'>"
     << "<geometry><box><size>0.1 5 20</size></box></geometry><material><diffuse>1 1 1 1</diffuse></material>"
@@ -269,7 +271,8 @@ double Crossing(const rendering::RenderedFrame& f, int v, double level) {
   const bool rising = row[f.width_px - 1] > row[0];
   for (int u = 1; u < f.width_px; ++u) {
     const double a = row[u - 1], b = row[u];
-    if ((rising && a < level && b >= level) || (!rising && a > level && b <= level)) return u - 1 + (level - a) / (b - a);
+    if ((rising && a < level && b >= level) || (!rising && a > level && b <= level))
+      return u - 1 + (level - a) / (b - a);
   }
   return NAN;
 }
@@ -307,8 +310,8 @@ TEST(ImageSensor, RollingShutterSkewsAVerticalEdgeAndAGlobalShutterDoesNot) {
   const rendering::RenderedFrame& f = rolling.cam->Frame(0);
   const double skew_px = Crossing(f, kH - 1, 127.5) - Crossing(f, 0, 127.5);
   const double expected_px = p.line_delay_s * (kH - 1) * kOmega * rolling.F();
-  std::printf("rolling shutter: skew %.2f px, line delay x rows x omega x f = %.2f px, %d renders\n",
-              std::abs(skew_px), expected_px, rolling.cam->SubframesOf(0));
+  std::printf("rolling shutter: skew %.2f px, line delay x rows x omega x f = %.2f px, %d renders\n", std::abs(skew_px),
+              expected_px, rolling.cam->SubframesOf(0));
   EXPECT_NEAR(std::abs(skew_px), expected_px, 0.1 * expected_px);
   SaveFigure(f, "rolling");
 
@@ -339,9 +342,10 @@ TEST(ImageSensor, VelocityBufferIsWithinItsStatedErrorOfTheSubframes) {
   const double width_px = (Crossing(f, 240, 0.9 * 255) - Crossing(f, 240, 0.1 * 255)) / 0.8;
   const double expected_px = kOmega * p.exposure_s * fast.F();
   const double blur_difference = mean_abs_difference(f, reference.cam->Frame(0));
-  std::printf("velocity buffer: edge spread %.2f px (omega tau f %.2f px), %d render, mean |difference| from the "
-              "sub-frames %.2f levels\n",
-              std::abs(width_px), expected_px, fast.cam->SubframesOf(0), blur_difference);
+  std::printf(
+      "velocity buffer: edge spread %.2f px (omega tau f %.2f px), %d render, mean |difference| from the "
+      "sub-frames %.2f levels\n",
+      std::abs(width_px), expected_px, fast.cam->SubframesOf(0), blur_difference);
   EXPECT_NEAR(std::abs(width_px), expected_px, 0.1 * expected_px);
   EXPECT_EQ(fast.cam->SubframesOf(0), 1);
   EXPECT_LT(blur_difference, 3.0);

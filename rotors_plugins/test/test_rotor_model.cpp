@@ -109,9 +109,9 @@ TEST(RotorModel, WindChangesDragAsEquation2Predicts) {
 // vector, as the batch's kernels) equal the scalar bit for bit.
 TEST(RotorModel, TheEquationsGiveTheSameLoadsInAnyFrameAndInLanes) {
   const RotorModel m = AtSpeed(Firefly(-1), 612.0);
-  const Eigen::Matrix3d R_WR =
-      (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.7, Eigen::Vector3d(1, 2, 3).normalized()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d R_WR = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(-0.7, Eigen::Vector3d(1, 2, 3).normalized()))
+                                   .toRotationMatrix();
   const Eigen::Vector3d v_A_W(2.5, -1.5, 0.8);
   const RotorWrench w_R = m.ComputeWrench(R_WR.transpose() * v_A_W);
   const Eigen::Vector3d e_W = R_WR.col(2);

@@ -104,8 +104,8 @@ struct Fleet {
     }
   }
   KernelArrays Arrays() {
-    return {n, p.data(), v.data(), q.data(), R.data(), w.data(), omega_rotor.data(), qdot.data(), command.data(),
-            wind_v.data()};
+    return {n,        p.data(),           v.data(),    q.data(),       R.data(),
+            w.data(), omega_rotor.data(), qdot.data(), command.data(), wind_v.data()};
   }
   /// steps every vehicle: groups of four in the kernel's lanes, the rest one by one with the rotors in lanes
   void Step(const Kernels& kernels, const KernelModel& m) {
@@ -149,8 +149,8 @@ TEST(FlightKernel, EveryKernelOfThisTargetStepsTheScalarBits) {
     EXPECT_TRUE(lanes.SameBits(scalar)) << "kernel " << name << " differs from the scalar step";
     flown += name + " ";
   }
-  std::printf("kernels of %s on this CPU, each equal to the scalar step bit for bit over 500 steps: %s\n",
-              kTargetName, flown.c_str());
+  std::printf("kernels of %s on this CPU, each equal to the scalar step bit for bit over 500 steps: %s\n", kTargetName,
+              flown.c_str());
   EXPECT_EQ(ChooseKernels("").instruction_set, names.front());
 }
 
@@ -208,7 +208,8 @@ TEST(FlightKernel, StoppedRotorsFallAsGravitySays) {
     for (size_t i = 0; i < f.n; ++i) {
       for (int c = 0; c < 3; ++c) f.v[c * f.n + i] = f.w[c * f.n + i] = 0.0;
       f.p[2 * f.n + i] = 100.0;
-      for (int r = 0; r < kMaxRotors; ++r) f.omega_rotor[r * f.n + i] = f.command[r * f.n + i] = f.qdot[r * f.n + i] = 0.0;
+      for (int r = 0; r < kMaxRotors; ++r)
+        f.omega_rotor[r * f.n + i] = f.command[r * f.n + i] = f.qdot[r * f.n + i] = 0.0;
     }
     const Kernels kernels = ChooseKernels(name);
     const int N = 1000;

@@ -10,9 +10,7 @@
 namespace rotors_sim {
 namespace rendering {
 
-bool ImageSensorParams::AnyEffect() const {
-  return TimeWindow() || noise || vignetting != Vignetting::kNone;
-}
+bool ImageSensorParams::AnyEffect() const { return TimeWindow() || noise || vignetting != Vignetting::kNone; }
 
 std::string ImageSensorParams::Validate() const {
   std::ostringstream why;
@@ -42,8 +40,7 @@ std::string ImageSensorParams::Validate() const {
     check(std::isfinite(dsnu_e) && dsnu_e >= 0.0, "darkSignalNonUniformity", dsnu_e, ">= 0 e-");
   }
   check(adc_bits >= 8 && adc_bits <= 16, "adcBits", adc_bits, "in 8 .. 16");
-  for (double a : vignetting_coefficients)
-    check(std::isfinite(a), "vignettingCoefficients", a, "finite");
+  for (double a : vignetting_coefficients) check(std::isfinite(a), "vignettingCoefficients", a, "finite");
   check(std::isfinite(time_offset_s), "timeOffset", time_offset_s, "finite");
   check(std::isfinite(stamp_jitter_s) && stamp_jitter_s >= 0.0, "stampJitter", stamp_jitter_s, ">= 0 s");
   return why.str();
@@ -55,9 +52,8 @@ ExposurePlan ExposurePlan::Make(double exposure_s, double line_delay_s, int rows
   // the frame's window: from the first row's exposure start to the last row's end
   const double window_s = exposure_s + (rows - 1) * line_delay_s;
   const double motion_px = std::abs(image_speed_px_s) * window_s;
-  const int n = window_s > 0.0 ? std::clamp(static_cast<int>(std::ceil(motion_px * subframes_per_pixel)), 1,
-                                            max_subframes)
-                               : 1;
+  const int n =
+      window_s > 0.0 ? std::clamp(static_cast<int>(std::ceil(motion_px * subframes_per_pixel)), 1, max_subframes) : 1;
   // midpoints of n equal parts of the window: the midpoint rule for eq. S1's integral
   for (int k = 0; k < n; ++k) plan.times_s.push_back(-window_s / 2.0 + (k + 0.5) * window_s / n);
   plan.row_first.resize(rows);
@@ -155,8 +151,8 @@ void AddGazeboNoise(double mean, double stddev, uint64_t seed, std::vector<uint8
   }
 }
 
-ImageSensor::ImageSensor(const ImageSensorParams& p, int width_px, int height_px, int channels,
-                         double focal_length_px, double cx_px, double cy_px, uint64_t pattern_seed)
+ImageSensor::ImageSensor(const ImageSensorParams& p, int width_px, int height_px, int channels, double focal_length_px,
+                         double cx_px, double cy_px, uint64_t pattern_seed)
     : p_(p), width_(width_px), height_(height_px), channels_(channels) {
   vignetting_.resize(static_cast<size_t>(width_px) * height_px);
   for (int v = 0; v < height_px; ++v)
@@ -185,9 +181,7 @@ ImageSensor::ImageSensor(const ImageSensorParams& p, int width_px, int height_px
   }
 }
 
-double ImageSensor::ConversionGainDnPerE(double gain) const {
-  return gain * ((1 << p_.adc_bits) - 1) / p_.full_well_e;
-}
+double ImageSensor::ConversionGainDnPerE(double gain) const { return gain * ((1 << p_.adc_bits) - 1) / p_.full_well_e; }
 
 namespace {
 /// eq. S4 for one pixel: electrons, the well's limit, read noise, the ADC, the 8-bit output
@@ -266,9 +260,9 @@ namespace {
 /// Rows [row_begin, row_end) of VelocityBufferExposure, for C channels.
 template <int channels>
 void VelocityBufferRows(const std::vector<uint8_t>& image, const std::vector<float>& depth_m, int width_px,
-                        int height_px, float f, float cx, float cy, const float v[3], const float w[3],
-                        float tau, double line_delay_s, float subframes_per_pixel, int max_subframes, int row_begin,
-                        int row_end, float* light) {
+                        int height_px, float f, float cx, float cy, const float v[3], const float w[3], float tau,
+                        double line_delay_s, float subframes_per_pixel, int max_subframes, int row_begin, int row_end,
+                        float* light) {
   const size_t row_values = static_cast<size_t>(width_px) * channels;
   const float x_max = static_cast<float>(width_px - 1), y_max = static_cast<float>(height_px - 1);
   const int x_last = std::max(width_px - 2, 0), y_last = std::max(height_px - 2, 0);

@@ -14,7 +14,6 @@
 namespace rotors_sim {
 namespace sensors {
 
-
 void CameraSensor::SetImageSensor(const rendering::ImageSensorParams& params) {
   const std::string label = Type() + " sensor '" + Name() + "'";
   const std::string why = params.Validate();
@@ -29,7 +28,17 @@ void CameraSensor::SetImageSensor(const rendering::ImageSensorParams& params) {
         rendering::AutoExposure(params),
         rendering::ImageSensor(params, in.width_px, in.height_px, rendering::BytesPerPixel(cameras_[i].format),
                                in.FocalLengthPx(), in.Cx(), in.Cy(), seed_ * 31u + i),
-        params.exposure_s, 1.0, 0.0, 1.0, 1, 0.0, {}, {}, {}, {}, {}});
+        params.exposure_s,
+        1.0,
+        0.0,
+        1.0,
+        1,
+        0.0,
+        {},
+        {},
+        {},
+        {},
+        {}});
     if (params.auto_exposure) state->exposure_s = state->auto_exposure.ExposureS();
     image_sensors_.push_back(std::move(state));
   }
@@ -69,8 +78,9 @@ void CameraSensor::RenderThroughImageSensor(const std::vector<size_t>& cameras) 
   rendering::Renderer& renderer = rendering::Renderer::Of(world);
   constexpr size_t kRendersPerCall = 8;  // the renderer's targets are bounded
   for (size_t k0 = 0; k0 < requests.size(); k0 += kRendersPerCall)
-    renderer.RenderAll(world, std::vector<rendering::FrameRequest>(
-                                  requests.begin() + k0, requests.begin() + std::min(requests.size(), k0 + kRendersPerCall)));
+    renderer.RenderAll(world,
+                       std::vector<rendering::FrameRequest>(
+                           requests.begin() + k0, requests.begin() + std::min(requests.size(), k0 + kRendersPerCall)));
   for (size_t i : cameras) FinishImageSensorFrame(i);
 }
 

@@ -14,12 +14,12 @@ namespace sensors {
 struct CameraSensor::ImageSensorState {
   rendering::AutoExposure auto_exposure;
   rendering::ImageSensor sensor;
-  double exposure_s, gain = 1.0;        ///< for the next frame
+  double exposure_s, gain = 1.0;                    ///< for the next frame
   double frame_exposure_s = 0.0, frame_gain = 1.0;  ///< of the last frame
   int frame_subframes = 1;
   double near_depth_m = 0.0;  ///< a near depth of the last frame's scene (0: none yet)
   std::vector<rendering::RenderedFrame> renders;
-  std::vector<float> light;  ///< the velocity buffer's exposed light
+  std::vector<float> light;         ///< the velocity buffer's exposed light
   rendering::CameraSpec noiseless;  ///< the camera without Gazebo's <noise>, as the renders draw it
   rendering::ExposurePlan plan;     ///< this frame's instants
   rendering::CameraTwist twist;     ///< the camera's twist at the update, optical frame

@@ -33,10 +33,30 @@ ODOMETRY_PLUGIN = "librotors_gazebo_odometry_plugin.so"
 CAMERA_PLUGIN = "libgazebo_ros_multicamera.so"
 # the image sensor's plugin parameters (docs/sensor_realism.md), as the camera plugins read them
 IMAGE_SENSOR_PARAMS = (
-    "exposureTime", "blurMethod", "maxSubframes", "subframesPerPixel", "lineDelay", "autoExposure", "autoExposureDesiredBin",
-    "autoExposureLowPass", "autoGainLowPass", "autoExposureUpdateInterval", "rowTime", "maxShutterWidth", "maxAnalogGain",
-    "referenceExposure", "photonNoise", "fullWellCapacity", "readNoise", "photoResponseNonUniformity",
-    "darkSignalNonUniformity", "adcBits", "vignetting", "vignettingCoefficients", "timeOffset", "stampJitter",
+    "exposureTime",
+    "blurMethod",
+    "maxSubframes",
+    "subframesPerPixel",
+    "lineDelay",
+    "autoExposure",
+    "autoExposureDesiredBin",
+    "autoExposureLowPass",
+    "autoGainLowPass",
+    "autoExposureUpdateInterval",
+    "rowTime",
+    "maxShutterWidth",
+    "maxAnalogGain",
+    "referenceExposure",
+    "photonNoise",
+    "fullWellCapacity",
+    "readNoise",
+    "photoResponseNonUniformity",
+    "darkSignalNonUniformity",
+    "adcBits",
+    "vignetting",
+    "vignettingCoefficients",
+    "timeOffset",
+    "stampJitter",
 )
 
 

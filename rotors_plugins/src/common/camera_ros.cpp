@@ -76,7 +76,8 @@ rotors_sim::rendering::ImageSensorParams ReadImageSensorParams(rotors_sim::SdfPa
   if (blur == "velocity") {
     s.blur_method = ImageSensorParams::BlurMethod::kVelocityBuffer;
   } else if (blur != "subframes") {
-    throw SimError("<blurMethod> '" + blur + "' is not known; use subframes (renders across the exposure) or velocity "
+    throw SimError("<blurMethod> '" + blur +
+                   "' is not known; use subframes (renders across the exposure) or velocity "
                    "(one render, blurred along each pixel's motion)");
   }
   ReadParam(params, "lineDelay", &s.line_delay_s);

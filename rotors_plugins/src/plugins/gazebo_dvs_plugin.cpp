@@ -29,9 +29,10 @@ class GazeboDvsPlugin : public rotors_sim::SensorPlugin {
       throw rotors_sim::SimError("librotors_gazebo_dvs_plugin.so belongs in a <sensor type=\"camera\">, not type '" +
                                  sensor->Type() + "'");
     if (sensor_->UpdateRate() != 0.0)
-      throw rotors_sim::SimError("an event camera's <sensor> needs <update_rate>0</update_rate> (it looks at every "
-                                 "physics step and renders when the image has moved), not " +
-                                 std::to_string(sensor_->UpdateRate()));
+      throw rotors_sim::SimError(
+          "an event camera's <sensor> needs <update_rate>0</update_rate> (it looks at every "
+          "physics step and renders when the image has moved), not " +
+          std::to_string(sensor_->UpdateRate()));
     EventCameraParams p;
     ReadParam(Params(), "contrastThresholdPositive", &p.contrast_threshold_pos);
     ReadParam(Params(), "contrastThresholdNegative", &p.contrast_threshold_neg);
@@ -59,9 +60,10 @@ class GazeboDvsPlugin : public rotors_sim::SensorPlugin {
     image_limiter_ = RateLimiter(image_rate_hz);
     node_ = MakeNode(params.robot_namespace);
     if (!node_) return;
-    const std::string frame = !params.frame_name.empty()
-                                  ? params.frame_name
-                                  : JoinTopic(JoinTopic(params.robot_namespace, params.camera_name), "camera_optical_link");
+    const std::string frame =
+        !params.frame_name.empty()
+            ? params.frame_name
+            : JoinTopic(JoinTopic(params.robot_namespace, params.camera_name), "camera_optical_link");
     msg_.header.frame_id = frame;
     msg_.width = in.width_px;
     msg_.height = in.height_px;

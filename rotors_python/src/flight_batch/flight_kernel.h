@@ -221,7 +221,8 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
       Store(&out.moment_W[c][r0], torque[c] + loads.reaction_moment_F[c] + loads.rolling_moment_F[c]);
     }
     // the speed dynamics, as StepLanesStrided
-    const V y = RotorSpeedStep(omega, cmd, Load<V>(&k.max_rot_velocity[r0]), Load<V>(&k.a_up[r0]), Load<V>(&k.a_down[r0]));
+    const V y =
+        RotorSpeedStep(omega, cmd, Load<V>(&k.max_rot_velocity[r0]), Load<V>(&k.a_up[r0]), Load<V>(&k.a_down[r0]));
     const V qdot = Load<V>(&k.direction[r0]) * y / Load<V>(&k.slowdown[r0]);
     V spin_moment[3];
     SpinMoment(ax, Load<V>(&k.spin_inertia[r0]), qdot, qdot_before, inv_dt, w, spin_moment);

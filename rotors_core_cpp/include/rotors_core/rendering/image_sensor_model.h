@@ -30,26 +30,26 @@ struct ImageSensorParams {
   // --- rolling shutter (eq. S2): row r is exposed around t_r = t_c + (r - (H - 1) / 2) line_delay
   double line_delay_s = 0.0;  ///< <lineDelay> [s]; 0: a global shutter
   // --- auto exposure and gain (eq. S3), the MT9V034's AEC/AGC
-  bool auto_exposure = false;       ///< <autoExposure>
-  int desired_bin = 58;             ///< <autoExposureDesiredBin> 1..64: target mean = bin / 64 of full scale
-  int aec_low_pass = 0;             ///< <autoExposureLowPass> 0..2: a step moves 1 / 2^n of the way
-  int agc_low_pass = 2;             ///< <autoGainLowPass> 0..2
-  int update_interval_frames = 2;   ///< <autoExposureUpdateInterval>: frames skipped between updates
-  double row_time_s = 31.333e-6;    ///< <rowTime> [s]: the exposure's unit (846 pixel clocks at 27 MHz)
-  int max_shutter_rows = 480;       ///< <maxShutterWidth> [rows]: the longest exposure auto exposure sets
-  double max_analog_gain = 4.0;     ///< <maxAnalogGain>: 1 .. this
+  bool auto_exposure = false;      ///< <autoExposure>
+  int desired_bin = 58;            ///< <autoExposureDesiredBin> 1..64: target mean = bin / 64 of full scale
+  int aec_low_pass = 0;            ///< <autoExposureLowPass> 0..2: a step moves 1 / 2^n of the way
+  int agc_low_pass = 2;            ///< <autoGainLowPass> 0..2
+  int update_interval_frames = 2;  ///< <autoExposureUpdateInterval>: frames skipped between updates
+  double row_time_s = 31.333e-6;   ///< <rowTime> [s]: the exposure's unit (846 pixel clocks at 27 MHz)
+  int max_shutter_rows = 480;      ///< <maxShutterWidth> [rows]: the longest exposure auto exposure sets
+  double max_analog_gain = 4.0;    ///< <maxAnalogGain>: 1 .. this
   // --- photon transfer (eq. S4)
-  bool noise = false;                ///< <photonNoise>
-  double full_well_e = 0.0;          ///< <fullWellCapacity> [e-]
-  double read_noise_e = 0.0;         ///< <readNoise> [e-], referred to the pixel (before the gain)
-  double prnu = 0.0;                 ///< <photoResponseNonUniformity>: sigma of the per-pixel gain, fraction
-  double dsnu_e = 0.0;               ///< <darkSignalNonUniformity> [e-]: sigma of the per-pixel offset
-  int adc_bits = 10;                 ///< <adcBits>; the output keeps the 8 most significant bits
+  bool noise = false;         ///< <photonNoise>
+  double full_well_e = 0.0;   ///< <fullWellCapacity> [e-]
+  double read_noise_e = 0.0;  ///< <readNoise> [e-], referred to the pixel (before the gain)
+  double prnu = 0.0;          ///< <photoResponseNonUniformity>: sigma of the per-pixel gain, fraction
+  double dsnu_e = 0.0;        ///< <darkSignalNonUniformity> [e-]: sigma of the per-pixel offset
+  int adc_bits = 10;          ///< <adcBits>; the output keeps the 8 most significant bits
   /// <referenceExposure> [s]: the exposure at which the rendered image is the output at unit gain
   double reference_exposure_s = 480 * 31.333e-6;
   // --- vignetting (eq. S5)
   enum class Vignetting { kNone, kCos4, kPolynomial };
-  Vignetting vignetting = Vignetting::kNone;  ///< <vignetting>: none, cos4 or polynomial
+  Vignetting vignetting = Vignetting::kNone;            ///< <vignetting>: none, cos4 or polynomial
   double vignetting_coefficients[3] = {0.0, 0.0, 0.0};  ///< <vignettingCoefficients> a1 a2 a3
   // --- timing (eq. S6): stamp = t_c + offset + jitter
   double time_offset_s = 0.0;   ///< <timeOffset> [s]: stamp minus the middle of the exposure
@@ -144,8 +144,8 @@ class ImageSensor {
  private:
   ImageSensorParams p_;
   int width_, height_, channels_;
-  std::vector<float> vignetting_;             ///< W x H
-  std::vector<float> prnu_gain_, dsnu_e_;     ///< per pixel, when on
+  std::vector<float> vignetting_;          ///< W x H
+  std::vector<float> prnu_gain_, dsnu_e_;  ///< per pixel, when on
 };
 
 }  // namespace rendering

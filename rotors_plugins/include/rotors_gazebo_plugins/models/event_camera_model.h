@@ -19,7 +19,7 @@ struct EventCameraParams {
   /// (<contrastThresholdSigma>)
   double contrast_threshold_sigma = 0.021;
   double refractory_period_s = 0.0;  ///< a pixel fires no event sooner after its last (<refractoryPeriod>)
-  double log_epsilon = 1e-3;  ///< L = ln(I + eps), I in [0, 1] (<logEpsilon>): no log of 0
+  double log_epsilon = 1e-3;         ///< L = ln(I + eps), I in [0, 1] (<logEpsilon>): no log of 0
   /// Empty when valid, else one line naming the bad parameter.
   std::string Validate() const;
 };

@@ -51,8 +51,7 @@ inline RotorLoadsT<T> RotorLoads(const T& omega, const T e_F[3], const T v_A_F[3
 /// omega_k = a omega_{k-1} + (1 - a) u,  a = exp(-dt / tau_up) while u > omega, else exp(-dt / tau_down).
 /// T is double or lanes; max, a_up and a_down of the same type.
 template <class T>
-inline T RotorSpeedStep(const T& omega, const T& omega_cmd, const T& max_rot_velocity, const T& a_up,
-                        const T& a_down) {
+inline T RotorSpeedStep(const T& omega, const T& omega_cmd, const T& max_rot_velocity, const T& a_up, const T& a_down) {
   const T zero = {};
   const T u = omega_cmd < zero ? zero : (max_rot_velocity < omega_cmd ? max_rot_velocity : omega_cmd);
   const T a = u > omega ? a_up : a_down;
