@@ -133,3 +133,40 @@ def test_launch_files_with_lee_or_attitude_offer_in_process():
             lacking.append(path.name)
     print(f"{checked} launch files start a Lee or attitude controller; without in_process: {lacking or 'none'}")
     assert checked >= 10 and lacking == []
+
+
+def test_px4_profile_flies_px4s_iris_body_and_unbiased_imu():
+    """PX4's own iris (PX4-SITL_gazebo-classic models/iris/iris.sdf.jinja: base link 1.5 kg, inertia
+    0.029125 / 0.029125 / 0.055225 kg m^2) and its IMU plugin's biases, which start at 0; the rotors
+    profile keeps RotorS' iris (0.0347563 / 0.0458929 / 0.0977) and RotorS' turn-on biases."""
+
+    def expand(profile: str) -> ET.Element:
+        res = subprocess.run(
+            [
+                "xacro", str(package_path("rotors_description") / "urdf" / "iris_base.xacro"), "mav_name:=iris",
+                "namespace:=iris", "enable_mavlink_interface:=true", f"autopilot_profile:={profile}",
+            ],
+            capture_output=True, text=True,
+        )  # fmt: skip
+        assert res.returncode == 0, res.stderr
+        return ET.fromstring(res.stdout)
+
+    def body(urdf: ET.Element) -> tuple:
+        link = next(lk for lk in urdf.iter("link") if lk.get("name") == "iris/base_link_inertia")
+        inertia = link.find("inertial/inertia")
+        return (
+            float(link.find("inertial/mass").get("value")),
+            *(float(inertia.get(k)) for k in ("ixx", "iyy", "izz")),
+        )
+
+    def turn_on_biases(urdf: ET.Element) -> tuple:
+        imu = next(
+            p for p in urdf.iter("plugin") if p.get("filename") == "librotors_gazebo_imu_plugin.so" and p.find("imuTopic").text == "imu"
+        )
+        return float(imu.find("gyroscopeTurnOnBiasSigma").text), float(imu.find("accelerometerTurnOnBiasSigma").text)
+
+    px4, rotors = expand("px4"), expand("rotors")
+    assert body(px4) == (1.5, 0.029125, 0.029125, 0.055225)
+    assert turn_on_biases(px4) == (0.0, 0.0)
+    assert body(rotors) == (1.5, 0.0347563, 0.0458929, 0.0977)
+    assert turn_on_biases(rotors) == (0.0087, 0.196)
