@@ -3,6 +3,8 @@ VI-sensor on the hovering firefly (mav_hovering_example_with_vi_sensor.launch en
 dvs_msgs/EventArray arrives on <mav>/dvs/events with events of both polarities inside the
 346 x 260 array, in time order, none after its array's stamp, and frames on image_raw beside."""
 
+import os
+
 from conftest import RosGraph, launch, stop_launch
 
 
@@ -12,7 +14,9 @@ def test_event_camera_fires_while_the_firefly_climbs(ros: RosGraph):
         "lockstep:=true", "real_time_factor:=0",
     )  # fmt: skip
     try:
-        r = ros.run_client("clients.event_camera:events_while_flying", until_s=7.0, timeout=400)
+        # ROTORS_FIGURE_DIR: docs/sensor_realism.md's figure
+        figure = os.path.join(os.environ["ROTORS_FIGURE_DIR"], "dvs.png") if "ROTORS_FIGURE_DIR" in os.environ else ""
+        r = ros.run_client("clients.event_camera:events_while_flying", until_s=7.0, figure=figure, timeout=400)
     finally:
         stop_launch(proc)
     print(r)

@@ -8,8 +8,8 @@ from sensor_msgs.msg import Image
 def events_while_flying(until_s: float, figure: str = "") -> dict:
     """The event arrays of /firefly/dvs/events until sim time until_s (the firefly takes off at 5 s
     and climbs: the camera moves) and one image_raw: counts, stamps and the events' fields. With
-    `figure`, a PNG there: the last frame beside the events of the busiest 50 ms of the last second
-    (white brighter, black darker, on grey)."""
+    `figure`, a PNG there: the last frame beside the events of the busiest 50 ms (white brighter,
+    black darker, on grey)."""
     arrays = []
     sub = rospy.Subscriber("/firefly/dvs/events", EventArray, arrays.append, queue_size=1000)
     image = rospy.wait_for_message("/firefly/dvs/image_raw", Image, timeout=120)
@@ -28,8 +28,7 @@ def events_while_flying(until_s: float, figure: str = "") -> dict:
         frame = np.frombuffer(bytes(last.data), np.uint8).reshape(last.height, last.width)
         shown = np.full((last.height, last.width), 128, np.uint8)
         bins = np.floor(np.array([e.ts.to_sec() for e in events]) / 0.05)
-        recent = bins[bins >= np.floor((until_s - 1.0) / 0.05)]
-        busiest = np.bincount((recent - recent.min()).astype(int)).argmax() + recent.min() if len(recent) else -1
+        busiest = np.bincount((bins - bins.min()).astype(int)).argmax() + bins.min() if len(bins) else -1
         for e, b in zip(events, bins):
             if b == busiest:
                 shown[e.y, e.x] = 255 if e.polarity else 0
