@@ -4,6 +4,7 @@ where they exist, propellers scaled by radius_rotor), and a broken xacro is one 
 
 import subprocess
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import pytest
 
@@ -170,3 +171,30 @@ def test_px4_profile_flies_px4s_iris_body_and_unbiased_imu():
     assert turn_on_biases(px4) == (0.0, 0.0)
     assert body(rotors) == (1.5, 0.0347563, 0.0458929, 0.0977)
     assert turn_on_biases(rotors) == (0.0087, 0.196)
+
+
+def test_image_sensor_options_reach_the_camera_plugins(tmp_path: Path):
+    """sensor_realism:=true gives the VI-sensor's stereo plugin the MT9V034's image sensor, the D435's
+    colour camera takes a rolling shutter (rgb_line_delay), and an unknown image sensor is one error."""
+
+    def expand(path: Path, *args: str) -> subprocess.CompletedProcess:
+        return subprocess.run(["xacro", str(path), "mav_name:=firefly", *args], capture_output=True, text=True)
+
+    urdf = package_path("rotors_description") / "urdf"
+    vi = ET.fromstring(expand(urdf / "mav_with_vi_sensor.gazebo", "sensor_realism:=true").stdout)
+    stereo = next(p for p in vi.iter("plugin") if p.get("filename") == "libgazebo_ros_multicamera.so")
+    assert stereo.find("autoExposure").text == "true" and stereo.find("photonNoise").text == "true"
+    assert stereo.find("lineDelay") is None  # the MT9V034 is a global shutter
+    plain = ET.fromstring(expand(urdf / "mav_with_vi_sensor.gazebo").stdout)
+    assert next(p for p in plain.iter("plugin") if p.get("filename") == "libgazebo_ros_multicamera.so").find("autoExposure") is None
+    rgbd = Path(__file__).parent / "descriptions" / "firefly_with_depth_sensor.gazebo"
+    colour = [p for p in ET.fromstring(expand(rgbd, "rgb_line_delay:=3e-5").stdout).iter("plugin") if p.find("lineDelay") is not None]
+    assert len(colour) == 1 and float(colour[0].find("lineDelay").text) == 3e-5
+    wrong = tmp_path / "wrong.xacro"
+    wrong.write_text(
+        '<robot name="w" xmlns:xacro="http://ros.org/wiki/xacro"><xacro:include filename="'
+        + str(urdf / "component_snippets.xacro")
+        + '"/><xacro:image_sensor_params image_sensor="mt9v032"/></robot>'
+    )
+    bad = expand(wrong)
+    assert bad.returncode != 0 and "image_sensor=mt9v032 is not known: use none, rolling, mt9v034 or mt9v034_rolling" in bad.stderr
