@@ -145,7 +145,7 @@ def test_keyboard_flight_climbs_rolls_and_yaws(ros: RosGraph, tmp_path: Path):
     log, odom, cmd, (t_climb, t_roll, t_yaw) = keyboard_flight(
         ros, tmp_path, ["mav_with_keyboard.launch", "gui:=false"], ready, 60, RECORDER, 14, fly
     )
-    assert "keys: arrows roll/pitch" in log, log[-3000:]
+    assert "keys: arrows roll/pitch" in log and "R arm" in log and "M mode" in log and "32 presses of W" in log, log[-3000:]
 
     assert cmd[:, 4].max() == pytest.approx(16.5, abs=1e-5)  # W x 22
     assert cmd[:, 1].max() == pytest.approx(math.radians(10), abs=1e-6)  # right arrow: roll right
