@@ -230,3 +230,15 @@ def test_a_new_heartbeat_system_id_is_followed(capfd):
         if link.recv_match(type="HIL_SENSOR", blocking=True, timeout=1.0) is not None:
             link.write(other.hil_actuator_controls_encode(0, [0.5] * 16, 129, 1).pack(other))
     stepper.join()
+
+
+def test_a_lockstep_rate_other_than_the_firmwares_is_refused_with_one_line():
+    """The lockstep Betaflight firmware runs its loops at a compiled-in 500 Hz state rate
+    (SIMULATOR_LOCKSTEP_HZ in betaflight_lockstep.patch): another lockstep_rate is one line at spawn."""
+    world = rs.World("basic", step_size=1.0 / 400)
+    with pytest.raises(rs.SimError) as e:
+        world.spawn_mav("iris", enable_betaflight_interface=True, betaflight_lockstep_rate=400)
+    print(e.value)
+    assert "lockstep_rate 400" in str(e.value) and "built for 500 Hz" in str(e.value) and "\n" not in str(e.value)
+    world.spawn_mav("firefly", namespace="other")  # the world still works
+    world.step(10)

@@ -54,6 +54,13 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     double lockstep_rate_hz = 500.0;
     ReadParam(Params(), "lockstep_rate", &lockstep_rate_hz);
     if (!(link_timeout_s_ > 0.0)) throw rotors_sim::SimError("link_timeout must be > 0 s of wall time");
+    // the lockstep firmware's state rate is compiled in (SIMULATOR_LOCKSTEP_HZ in
+    // betaflight_lockstep.patch): another rate would run its loops at the wrong period
+    constexpr double kFirmwareLockstepHz = 500.0;
+    if (firmware_lockstep_ && lockstep_rate_hz != kFirmwareLockstepHz)
+      throw rotors_sim::SimError("lockstep_rate " + std::to_string(lockstep_rate_hz) +
+                                 " Hz: the lockstep firmware is built for 500 Hz (SIMULATOR_LOCKSTEP_HZ in "
+                                 "betaflight_lockstep.patch); use 500, or rebuild it with another rate");
     if (firmware_lockstep_ && std::abs(PhysicsStep_s() * lockstep_rate_hz - 1.0) > 1e-6)
       throw rotors_sim::SimError("physics step " + std::to_string(PhysicsStep_s()) +
                                  " s: Betaflight's lockstep firmware runs one gyro/PID loop per state at " +
