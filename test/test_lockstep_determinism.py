@@ -34,14 +34,15 @@ INPUT_TOPIC = "firefly/command/pose"  # the test's own input; rospy numbers its 
 
 
 def messages(bag: Path, until_s: float):
-    """(topic, time, payload) of everything recorded; the input command and the waypoint node's set
+    """(topic, time, payload) of everything the flight recorded (not the robot description the bag
+    plugin writes first: it names the run's bag file); the input command and the waypoint node's set
     point without their headers (seq and stamp are the publishing node's, which is not a lockstep
     participant: it stamps with the sim time it has seen when it wakes, which a busy machine can
     delay by a step; the Lee controller's due time, and so the flight, does not depend on it)."""
     out = []
     with Reader(bag) as r:
         for conn, t, raw in r.messages():
-            if t <= until_s * 1e9:
+            if t <= until_s * 1e9 and not conn.topic.endswith("robot_description"):
                 payload = bytes(raw)
                 if conn.topic == INPUT_TOPIC or conn.topic in SETPOINT_TOPICS:  # Header = seq, sec, nsec, frame_id (uint32 length + bytes)
                     frame_len = int.from_bytes(payload[12:16], "little")
