@@ -31,14 +31,20 @@ def links(page: Path) -> list:
     return [a or b for a, b in LINK.findall(text)]
 
 
+def local_links(page: Path) -> list[tuple[str, Path, str]]:
+    """(link, the file it names resolved, its anchor) of the page's links into the file system."""
+    out = []
+    for target in links(page):
+        if not re.match(r"[a-z]+://|mailto:", target):
+            path, _, anchor = target.partition("#")
+            out.append((target, (page.parent / path).resolve() if path else page, anchor))
+    return out
+
+
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
 def test_every_link_and_anchor_resolves(page: Path):
     broken = []
-    for target in links(page):
-        if re.match(r"[a-z]+://|mailto:", target):
-            continue
-        path, _, anchor = target.partition("#")
-        resolved = (page.parent / path).resolve() if path else page
+    for target, resolved, anchor in local_links(page):
         if not resolved.exists():
             broken.append(f"{target} (no such file)")
         elif anchor and resolved.suffix == ".md" and anchor not in anchors(resolved):
@@ -62,13 +68,7 @@ def test_pages_read_as_reference_not_diary(page: Path):
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
 def test_no_link_or_path_leaves_the_repository(page: Path):
-    outside = []
-    for target in links(page):
-        if re.match(r"[a-z]+://|mailto:", target):
-            continue
-        path = target.partition("#")[0]
-        if path and REPO not in (page.parent / path).resolve().parents and (page.parent / path).resolve() != REPO:
-            outside.append(target)
+    outside = [target for target, resolved, _ in local_links(page) if resolved != REPO and REPO not in resolved.parents]
     text = page.read_text()
     outside += re.findall(r"\.\./shared/\S*|/work/\S*", text)
     assert not outside, f"{page.relative_to(REPO)} points outside the repository: {outside}"
