@@ -104,21 +104,29 @@ void CameraSensor::PlanImageSensorRenders(size_t i, std::vector<rendering::Frame
     s.twist.v_O[k] = v_O[k];
     s.twist.omega_O[k] = w_O[k];
   }
+  // the image's fastest point: a turn moves a point at angle theta off the axis by f omega / cos^2
+  // theta (at most the corner's); a translation by f |v| / Z, Z the scene's near depth
+  const double corner2 = (std::pow(std::max(in.Cx(), in.width_px - 1 - in.Cx()), 2) +
+                          std::pow(std::max(in.Cy(), in.height_px - 1 - in.Cy()), 2)) /
+                         (f * f);
+  const double near_m = s.near_depth_m > 0.0 ? s.near_depth_m : in.far_m;
+  s.image_speed_px_s = f * omega_W.Length() * (1.0 + corner2) + f * v_C_W.Length() / near_m;
   if (p.blur_method == rendering::ImageSensorParams::BlurMethod::kVelocityBuffer) {
     // one render at the middle of the exposure, with depth: each pixel is averaged along its motion
     s.plan = rendering::ExposurePlan::Make(0.0, 0.0, in.height_px, 0.0, 1.0, 1);
   } else {
-    // the image's fastest point: a turn moves a point at angle theta off the axis by f omega /
-    // cos^2 theta (at most the corner's); a translation by f |v| / Z, Z the scene's near depth
-    const double corner2 = (std::pow(std::max(in.Cx(), in.width_px - 1 - in.Cx()), 2) +
-                            std::pow(std::max(in.Cy(), in.height_px - 1 - in.Cy()), 2)) /
-                           (f * f);
-    const double near_m = s.near_depth_m > 0.0 ? s.near_depth_m : in.far_m;
-    const double image_speed_px_s = f * omega_W.Length() * (1.0 + corner2) + f * v_C_W.Length() / near_m;
-    s.plan = rendering::ExposurePlan::Make(s.exposure_s, p.line_delay_s, in.height_px, image_speed_px_s,
+    s.plan = rendering::ExposurePlan::Make(s.exposure_s, p.line_delay_s, in.height_px, s.image_speed_px_s,
                                            p.subframes_per_pixel, p.max_subframes);
   }
   const size_t n = s.plan.times_s.size(), middle = n / 2;
+  // the middle render's depth is read back (a cost of its own) when the frame needs it: the depth
+  // image, the velocity buffer of an image that may move half a pixel, or, once a second of frames,
+  // the scene's near depth for the next frames' motion bound
+  const double window_s = s.exposure_s + (in.height_px - 1) * p.line_delay_s;
+  const bool blurs = p.blur_method == rendering::ImageSensorParams::BlurMethod::kVelocityBuffer &&
+                     s.image_speed_px_s * window_s * p.subframes_per_pixel >= 0.5;
+  const bool want_depth = RendersDepth() || blurs || s.frames_since_depth >= 30 || s.near_depth_m <= 0.0;
+  s.frames_since_depth = want_depth ? 0 : s.frames_since_depth + 1;
   s.renders.resize(n);
   for (size_t k = 0; k < n; ++k) {
     const double t = s.plan.times_s[k];
@@ -128,7 +136,7 @@ void CameraSensor::PlanImageSensorRenders(size_t i, std::vector<rendering::Frame
         angle > 0.0 ? physics::Quaterniond(turn / angle, angle) : physics::Quaterniond::Identity;
     const physics::Pose3d X_WC_t(X_WC.Pos() + v_C_W * t, q_turn * X_WC.Rot());
     // the middle one with depth: the frame's depth image, the velocity buffer, the next near depth
-    requests->push_back({X_WC_t, &s.noiseless, 0, true, k == middle, &s.renders[k]});
+    requests->push_back({X_WC_t, &s.noiseless, 0, true, k == middle && want_depth, &s.renders[k]});
   }
 }
 
@@ -142,10 +150,15 @@ void CameraSensor::FinishImageSensorFrame(size_t i) {
   out.height_px = in.height_px;
   const size_t renders = s.renders.size(), middle = renders / 2;
   if (p.blur_method == rendering::ImageSensorParams::BlurMethod::kVelocityBuffer) {
-    rendering::VelocityBufferExposure(s.renders[0].image, s.renders[0].depth_m, in.width_px, in.height_px,
-                                      rendering::BytesPerPixel(camera.format), in.FocalLengthPx(), in.Cx(), in.Cy(),
-                                      s.twist, s.exposure_s, p.line_delay_s, p.subframes_per_pixel, p.max_subframes,
-                                      &s.light);
+    // an image that moves less than half a pixel over the frame's window is the render itself
+    if (s.renders[0].depth_m.empty()) {
+      s.light.assign(s.renders[0].image.begin(), s.renders[0].image.end());
+    } else {
+      rendering::VelocityBufferExposure(s.renders[0].image, s.renders[0].depth_m, in.width_px, in.height_px,
+                                        rendering::BytesPerPixel(camera.format), in.FocalLengthPx(), in.Cx(), in.Cy(),
+                                        s.twist, s.exposure_s, p.line_delay_s, p.subframes_per_pixel, p.max_subframes,
+                                        &s.light);
+    }
     s.sensor.Digitise(s.light, s.exposure_s, s.gain, NoiseSeedOf(i), &out.image);
   } else {
     std::vector<const std::vector<uint8_t>*> images;

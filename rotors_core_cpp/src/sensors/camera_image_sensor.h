@@ -23,6 +23,8 @@ struct CameraSensor::ImageSensorState {
   rendering::CameraSpec noiseless;  ///< the camera without Gazebo's <noise>, as the renders draw it
   rendering::ExposurePlan plan;     ///< this frame's instants
   rendering::CameraTwist twist;     ///< the camera's twist at the update, optical frame
+  double image_speed_px_s = 0.0;    ///< the image's fastest point's speed bound at the update
+  int frames_since_depth = 0;       ///< frames since the last depth read-back
 };
 
 }  // namespace sensors
