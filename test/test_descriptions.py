@@ -39,7 +39,7 @@ def test_vehicle_description_parses_with_urdfdom(mav: str, top: str, tmp_path):
     assert "librotors_gazebo_bag_plugin.so" in urdf
 
 
-# rotors_reference.md section 3.1: radius_rotor [m]
+# radius_rotor [m] of RotorS' rotors_description/urdf/<mav>.xacro
 RADIUS_ROTOR = {
     "firefly": 0.1,
     "hummingbird": 0.1,

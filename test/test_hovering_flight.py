@@ -14,7 +14,7 @@ sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "sr
 from rotors_evaluation.bag_data import FlightBag, load_flight  # noqa: E402
 from rotors_evaluation.metrics import rms_error  # noqa: E402
 
-# Topics of a spawned firefly (rotors_reference.md section 5, mav_hovering_example set-up).
+# Topics of a spawned firefly (RotorS' rotors_gazebo/launch/mav_hovering_example.launch and spawn_mav.launch).
 ROTORS_TOPICS = [
     "/firefly/command/motor_speed",
     "/firefly/command/trajectory",

@@ -1,4 +1,4 @@
-// Vehicle parameters of the shipped yamls (rotors_reference.md section 3.2).
+// Vehicle parameters of the shipped yamls (RotorS' rotors_gazebo/resource/<mav>.yaml).
 #pragma once
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// RotorS' rotors_control API (rotors_reference.md 5): default topics, the controllers' odometry type
+// RotorS' rotors_control API (RotorS' include/rotors_control/common.h): default topics, the controllers' odometry type
 // and the allocation matrix. Header-only; same names and behaviour as RotorS.
 #pragma once
 

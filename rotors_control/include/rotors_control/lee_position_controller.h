@@ -1,4 +1,4 @@
-// RotorS' LeePositionController API (rotors_reference.md 5): set the parameters' public fields (or
+// RotorS' LeePositionController API (RotorS' include/rotors_control/lee_position_controller.h): set the parameters' public fields (or
 // keep the Firefly defaults), call InitializeParameters(), then SetOdometry / SetTrajectoryPoint /
 // CalculateRotorVelocities. The law behind it is ours (LeeController, lee_controller.h, with
 // RotorS' defects fixed); names, fields, units and call order are RotorS'.

@@ -1,4 +1,4 @@
-// RotorS' rosparam helpers of the rotors_control API (rotors_reference.md 5): a parameter with a
+// RotorS' rosparam helpers of the rotors_control API (RotorS' include/rotors_control/parameters_ros.h): a parameter with a
 // default (announced when absent), and the vehicle (mass, inertia, rotor_configuration/<i>/...) as
 // <mav>.yaml lays it out. Our own nodes use parameter_report_ros.h, which also names unread keys.
 #pragma once

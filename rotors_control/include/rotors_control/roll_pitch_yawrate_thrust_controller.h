@@ -1,4 +1,4 @@
-// RotorS' RollPitchYawrateThrustController API (rotors_reference.md 5): roll and pitch [rad], yaw
+// RotorS' RollPitchYawrateThrustController API (RotorS' include/rotors_control/roll_pitch_yawrate_thrust_controller.h): roll and pitch [rad], yaw
 // rate [rad/s] and thrust [N, thrust.z()] to rotor speeds. The law behind it is ours
 // (AttitudeLevelController, attitude_controllers.h); names, fields and call order are RotorS'.
 #pragma once

@@ -1,4 +1,4 @@
-// librotors_gazebo_magnetometer_plugin.so (rotors_reference.md 4.10): sensor_msgs/MagneticField
+// librotors_gazebo_magnetometer_plugin.so (RotorS' rotors_gazebo_plugins/src/gazebo_magnetometer_plugin.cpp): sensor_msgs/MagneticField
 // on <ns>/<magnetometerTopic> every physics step, B_B = R_WB^T m_W + b_B + n with covariance
 // diag(sigma^2). The reference field is given as north, east, down [T] and placed in the ENU
 // world correctly (RotorS used N, E, D as x, y, z); with worldMagneticModel (a WMM .COF file) it is

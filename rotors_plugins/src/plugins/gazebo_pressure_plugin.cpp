@@ -1,4 +1,4 @@
-// librotors_gazebo_pressure_plugin.so (rotors_reference.md 4.11): sensor_msgs/FluidPressure on
+// librotors_gazebo_pressure_plugin.so (RotorS' rotors_gazebo_plugins/src/gazebo_pressure_plugin.cpp): sensor_msgs/FluidPressure on
 // <ns>/<pressureTopic> every physics step: the standard atmosphere at referenceAltitude + z_W,
 // plus N(0, pressureVariance).
 #include <sensor_msgs/FluidPressure.h>

@@ -1,4 +1,4 @@
-// RotorS' rotors_control library API (rotors_reference.md 5) as a user's code meets it: the
+// RotorS' rotors_control library API (its include/rotors_control/*.h) as a user's code meets it: the
 // Firefly defaults, the allocation matrix, the call contract, and rotor speeds that hold a hover.
 #include <cmath>
 #include <stdexcept>

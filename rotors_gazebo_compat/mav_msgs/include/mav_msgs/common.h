@@ -1,4 +1,4 @@
-// Eigen helpers of the mav_comm API (rotors_reference.md 2.2): message <-> Eigen, skew/vee,
+// Eigen helpers of the mav_comm API (mav_comm's mav_msgs/include/mav_msgs/common.h): message <-> Eigen, skew/vee,
 // rotation vectors, yaw and Euler angles, gravity by latitude and height, rotor speeds from an
 // allocation matrix. Header-only.
 #pragma once

@@ -1,4 +1,4 @@
-// Messages <-> Eigen types of the mav_comm API (rotors_reference.md 2.2). Header-only.
+// Messages <-> Eigen types of the mav_comm API (mav_comm's mav_msgs/include/mav_msgs/conversions.h). Header-only.
 // Trajectory points: transforms[0], velocities[0] and accelerations[0] are used (velocities and
 // accelerations are optional; zero when absent); jerk and snap have no field and read as zero.
 #pragma once

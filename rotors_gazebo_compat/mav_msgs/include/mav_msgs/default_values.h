@@ -1,4 +1,4 @@
-// Constants of the mav_comm API (rotors_reference.md 2.2): Zurich's latitude and height and the
+// Constants of the mav_comm API (mav_comm's mav_msgs/include/mav_msgs/default_values.h): Zurich's latitude and height and the
 // normal gravity there.
 #pragma once
 

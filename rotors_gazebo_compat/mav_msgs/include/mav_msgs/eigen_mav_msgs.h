@@ -1,5 +1,5 @@
 // Eigen counterparts of the mav_msgs messages, with the mav_comm API's names and frames
-// (rotors_reference.md 2.2): _W world, _B body. Header-only.
+// (mav_comm's mav_msgs/include/mav_msgs/eigen_mav_msgs.h): _W world, _B body. Header-only.
 #pragma once
 
 #include <cstdint>
