@@ -1,5 +1,5 @@
-// RotorS' LeePositionController API (RotorS' include/rotors_control/lee_position_controller.h): set the parameters' public fields (or
-// keep the Firefly defaults), call InitializeParameters(), then SetOdometry / SetTrajectoryPoint /
+// RotorS' LeePositionController API (RotorS' include/rotors_control/lee_position_controller.h): set the parameters'
+// public fields (or keep the Firefly defaults), call InitializeParameters(), then SetOdometry / SetTrajectoryPoint /
 // CalculateRotorVelocities. The law behind it is ours (LeeController, lee_controller.h, with
 // RotorS' defects fixed); names, fields, units and call order are RotorS'.
 #pragma once

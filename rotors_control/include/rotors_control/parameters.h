@@ -1,7 +1,7 @@
-// RotorS' rotors_control API (RotorS' include/rotors_control/parameters.h): the vehicle description its controllers take,
-// with the AscTec Firefly as the default. Same names, fields and units as RotorS, so a controller
-// node written against RotorS' library builds here unchanged. Our own controllers use
-// vehicle_parameters.h (MultirotorParameters); rotors_api_conversions.h maps one to the other.
+// RotorS' rotors_control API (RotorS' include/rotors_control/parameters.h): the vehicle description its controllers
+// take, with the AscTec Firefly as the default. Same names, fields and units as RotorS, so a controller node written
+// against RotorS' library builds here unchanged. Our own controllers use vehicle_parameters.h (MultirotorParameters);
+// rotors_api_conversions.h maps one to the other.
 #pragma once
 
 #include <vector>

@@ -1,6 +1,6 @@
-// RotorS' rosparam helpers of the rotors_control API (RotorS' include/rotors_control/parameters_ros.h): a parameter with a
-// default (announced when absent), and the vehicle (mass, inertia, rotor_configuration/<i>/...) as
-// <mav>.yaml lays it out. Our own nodes use parameter_report_ros.h, which also names unread keys.
+// RotorS' rosparam helpers of the rotors_control API (RotorS' include/rotors_control/parameters_ros.h): a parameter
+// with a default (announced when absent), and the vehicle (mass, inertia, rotor_configuration/<i>/...) as <mav>.yaml
+// lays it out. Our own nodes use parameter_report_ros.h, which also names unread keys.
 #pragma once
 
 #include <map>

@@ -1,5 +1,5 @@
-// RotorS' RollPitchYawrateThrustController API (RotorS' include/rotors_control/roll_pitch_yawrate_thrust_controller.h): roll and pitch [rad], yaw
-// rate [rad/s] and thrust [N, thrust.z()] to rotor speeds. The law behind it is ours
+// RotorS' RollPitchYawrateThrustController API (RotorS' include/rotors_control/roll_pitch_yawrate_thrust_controller.h):
+// roll and pitch [rad], yaw rate [rad/s] and thrust [N, thrust.z()] to rotor speeds. The law behind it is ours
 // (AttitudeLevelController, attitude_controllers.h); names, fields and call order are RotorS'.
 #pragma once
 

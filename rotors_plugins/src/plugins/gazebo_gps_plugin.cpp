@@ -1,5 +1,5 @@
-// librotors_gazebo_gps_plugin.so (RotorS' rotors_gazebo_plugins/src/gazebo_gps_plugin.cpp): a SensorPlugin in a <sensor type="gps">,
-// updated at the sensor's <update_rate>. Publishes <ns>/<gpsTopic> (sensor_msgs/NavSatFix: WGS84 at the
+// librotors_gazebo_gps_plugin.so (RotorS' rotors_gazebo_plugins/src/gazebo_gps_plugin.cpp): a SensorPlugin in a <sensor
+// type="gps">, updated at the sensor's <update_rate>. Publishes <ns>/<gpsTopic> (sensor_msgs/NavSatFix: WGS84 at the
 // world's <spherical_coordinates>, fix, GPS service, covariance diag(h^2, h^2, v^2)) and
 // <ns>/<groundSpeedTopic> (geometry_msgs/TwistStamped, world-frame velocity), both noisy with the
 // plugin's standard deviations and stamped with the sensor's update time. gpsNoiseModel random_walk:

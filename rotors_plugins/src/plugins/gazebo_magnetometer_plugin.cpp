@@ -1,5 +1,5 @@
-// librotors_gazebo_magnetometer_plugin.so (RotorS' rotors_gazebo_plugins/src/gazebo_magnetometer_plugin.cpp): sensor_msgs/MagneticField
-// on <ns>/<magnetometerTopic> every physics step, B_B = R_WB^T m_W + b_B + n with covariance
+// librotors_gazebo_magnetometer_plugin.so (RotorS' rotors_gazebo_plugins/src/gazebo_magnetometer_plugin.cpp):
+// sensor_msgs/MagneticField on <ns>/<magnetometerTopic> every physics step, B_B = R_WB^T m_W + b_B + n with covariance
 // diag(sigma^2). The reference field is given as north, east, down [T] and placed in the ENU
 // world correctly (RotorS used N, E, D as x, y, z); with worldMagneticModel (a WMM .COF file) it is
 // the World Magnetic Model's field at the world's <spherical_coordinates> instead, at the date

@@ -1,6 +1,6 @@
-// librotors_gazebo_pressure_plugin.so (RotorS' rotors_gazebo_plugins/src/gazebo_pressure_plugin.cpp): sensor_msgs/FluidPressure on
-// <ns>/<pressureTopic> every physics step: the standard atmosphere at referenceAltitude + z_W,
-// plus N(0, pressureVariance).
+// librotors_gazebo_pressure_plugin.so (RotorS' rotors_gazebo_plugins/src/gazebo_pressure_plugin.cpp):
+// sensor_msgs/FluidPressure on <ns>/<pressureTopic> every physics step: the standard atmosphere at referenceAltitude +
+// z_W, plus N(0, pressureVariance).
 #include <sensor_msgs/FluidPressure.h>
 
 #include "rotors_gazebo_plugins/models/navigation_sensor_models.h"

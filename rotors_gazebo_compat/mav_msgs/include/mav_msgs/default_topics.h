@@ -1,4 +1,5 @@
-// Topic names of the mav_comm API (mav_comm's mav_msgs/include/mav_msgs/default_topics.h), relative to the vehicle namespace.
+// Topic names of the mav_comm API (mav_comm's mav_msgs/include/mav_msgs/default_topics.h), relative to the vehicle
+// namespace.
 #pragma once
 
 namespace mav_msgs {

@@ -1,5 +1,5 @@
-// Constants of the mav_comm API (mav_comm's mav_msgs/include/mav_msgs/default_values.h): Zurich's latitude and height and the
-// normal gravity there.
+// Constants of the mav_comm API (mav_comm's mav_msgs/include/mav_msgs/default_values.h): Zurich's latitude and height
+// and the normal gravity there.
 #pragma once
 
 #include "mav_msgs/common.h"

@@ -1,4 +1,5 @@
-// Navigation sensors of RotorS (RotorS' gazebo_gps_plugin.cpp, gazebo_magnetometer_plugin.cpp, gazebo_pressure_plugin.cpp), engine-free:
+// Navigation sensors of RotorS (RotorS' gazebo_gps_plugin.cpp, gazebo_magnetometer_plugin.cpp,
+// gazebo_pressure_plugin.cpp), engine-free:
 //   GPS:          position in the world (ENU) + N(0, sigma_h/v) -> WGS84 latitude, longitude, altitude
 //                 at the world's <spherical_coordinates>; ground speed = v_W + N(0, sigma)
 //   GPS, PX4's:   PX4-SITL_gazebo-classic's gazebo_gps_plugin: every physics step dt a bias walks,
