@@ -49,6 +49,13 @@ bool CameraIntrinsics::MaySee(const Eigen::Vector3d& c_O, double r) const {
          !beyond(c_O.y(), height_px - 0.5 - Cy() + 1.0) && !beyond(-c_O.y(), Cy() + 1.5);
 }
 
+double CameraIntrinsics::ImageSpeedBoundPxS(double omega_rad_s, double speed_m_s, double near_m) const {
+  const double f = FocalLengthPx();
+  const double du = std::max(Cx(), width_px - 1 - Cx()), dv = std::max(Cy(), height_px - 1 - Cy());
+  const double corner2 = (du * du + dv * dv) / (f * f);  // tan^2 theta of the farthest corner
+  return f * omega_rad_s * (1.0 + corner2) + f * speed_m_s / near_m;
+}
+
 std::string CameraIntrinsics::Validate() const {
   if (width_px <= 0 || height_px <= 0)
     return "image size " + std::to_string(width_px) + " x " + std::to_string(height_px) + " must be positive";

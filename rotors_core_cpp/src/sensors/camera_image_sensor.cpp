@@ -23,22 +23,7 @@ void CameraSensor::SetImageSensor(const rendering::ImageSensorParams& params) {
   rendered_update_.assign(cameras_.size(), 0);  // this update's frames again, through the sensor
   if (!params.AnyEffect()) return;
   for (size_t i = 0; i < cameras_.size(); ++i) {
-    const rendering::CameraIntrinsics& in = cameras_[i].intrinsics;
-    auto state = std::unique_ptr<ImageSensorState>(new ImageSensorState{
-        rendering::AutoExposure(params),
-        rendering::ImageSensor(params, in.width_px, in.height_px, rendering::BytesPerPixel(cameras_[i].format),
-                               in.FocalLengthPx(), in.Cx(), in.Cy(), seed_ * 31u + i),
-        params.exposure_s,
-        1.0,
-        0.0,
-        1.0,
-        1,
-        0.0,
-        {},
-        {},
-        {},
-        {},
-        {}});
+    auto state = std::make_unique<ImageSensorState>(params, cameras_[i], seed_ * 31u + i);
     if (params.auto_exposure) state->exposure_s = state->auto_exposure.ExposureS();
     image_sensors_.push_back(std::move(state));
   }
@@ -88,7 +73,6 @@ void CameraSensor::PlanImageSensorRenders(size_t i, std::vector<rendering::Frame
   ImageSensorState& s = *image_sensors_.at(i);
   const rendering::ImageSensorParams& p = image_sensor_params_;
   const rendering::CameraIntrinsics& in = cameras_[i].intrinsics;
-  const double f = in.FocalLengthPx();
   s.noiseless = cameras_[i];  // Gazebo's <noise> is added to the frame, not to each render
   s.noiseless.noise_mean = s.noiseless.noise_stddev = 0.0;
 
@@ -104,13 +88,8 @@ void CameraSensor::PlanImageSensorRenders(size_t i, std::vector<rendering::Frame
     s.twist.v_O[k] = v_O[k];
     s.twist.omega_O[k] = w_O[k];
   }
-  // the image's fastest point: a turn moves a point at angle theta off the axis by f omega / cos^2
-  // theta (at most the corner's); a translation by f |v| / Z, Z the scene's near depth
-  const double corner2 = (std::pow(std::max(in.Cx(), in.width_px - 1 - in.Cx()), 2) +
-                          std::pow(std::max(in.Cy(), in.height_px - 1 - in.Cy()), 2)) /
-                         (f * f);
   const double near_m = s.near_depth_m > 0.0 ? s.near_depth_m : in.far_m;
-  s.image_speed_px_s = f * omega_W.Length() * (1.0 + corner2) + f * v_C_W.Length() / near_m;
+  s.image_speed_px_s = in.ImageSpeedBoundPxS(omega_W.Length(), v_C_W.Length(), near_m);
   if (p.blur_method == rendering::ImageSensorParams::BlurMethod::kVelocityBuffer) {
     // one render at the middle of the exposure, with depth: each pixel is averaged along its motion
     s.plan = rendering::ExposurePlan::Make(0.0, 0.0, in.height_px, 0.0, 1.0, 1);

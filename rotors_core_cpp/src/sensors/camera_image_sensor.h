@@ -2,6 +2,7 @@
 // CameraSensor is made or destroyed.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "rotors_core/rendering/image_sensor_model.h"
@@ -12,6 +13,12 @@ namespace rotors_sim {
 namespace sensors {
 
 struct CameraSensor::ImageSensorState {
+  ImageSensorState(const rendering::ImageSensorParams& params, const rendering::CameraSpec& camera, uint64_t seed)
+      : auto_exposure(params),
+        sensor(params, camera.intrinsics.width_px, camera.intrinsics.height_px, rendering::BytesPerPixel(camera.format),
+               camera.intrinsics.FocalLengthPx(), camera.intrinsics.Cx(), camera.intrinsics.Cy(), seed),
+        exposure_s(params.exposure_s) {}
+
   rendering::AutoExposure auto_exposure;
   rendering::ImageSensor sensor;
   double exposure_s, gain = 1.0;                    ///< for the next frame

@@ -86,14 +86,11 @@ class GazeboDvsPlugin : public rotors_sim::SensorPlugin {
       model_->Reset();  // nobody listens: no renders; the next listener starts from a fresh render
       return;
     }
-    // adaptive sampling: the image's fastest point moves f |omega| (1 + r_max^2 / f^2) + f |v| / Z
-    // pixels per second (as the image sensor's exposure plan)
+    // adaptive sampling: the image's fastest point's speed bound, as the image sensor's exposure plan
     const auto& in = sensor_->Camera(0).intrinsics;
-    const double f = in.FocalLengthPx();
-    const double corner2 = (in.Cx() * in.Cx() + in.Cy() * in.Cy()) / (f * f);
     const auto link = sensor_->ParentLink();
-    const double speed_px_s = f * link->WorldAngularVel().Length() * (1.0 + corner2) +
-                              f * link->WorldLinearVel().Length() / std::max(near_depth_m_, in.near_m);
+    const double speed_px_s = in.ImageSpeedBoundPxS(link->WorldAngularVel().Length(), link->WorldLinearVel().Length(),
+                                                    std::max(near_depth_m_, in.near_m));
     moved_px_ += speed_px_s * (t - last_step_s_);
     last_step_s_ = t;
     if (!model_->Started() || moved_px_ >= pixels_per_render_ || t - last_render_s_ >= max_render_interval_s_) {

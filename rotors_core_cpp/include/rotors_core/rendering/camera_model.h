@@ -40,6 +40,11 @@ struct CameraIntrinsics {
   /// that nothing of what it encloses can be seen; true when it may be seen.
   bool MaySee(const Eigen::Vector3d& centre_O_m, double radius_m) const;
   std::string Validate() const;  ///< empty when valid, else a one-line reason
+  /// How fast the image's fastest point may move [px/s] for a camera turning at omega [rad/s] and
+  /// moving at speed [m/s] past a scene no nearer than near [m]: a turn moves a point at angle
+  /// theta off the axis by f omega / cos^2 theta (at most the farthest corner's), a translation by
+  /// f v / Z.
+  double ImageSpeedBoundPxS(double omega_rad_s, double speed_m_s, double near_m) const;
 };
 
 /// Gazebo's <distortion>: the Brown-Conrady model of OpenCV and ROS' plumb_bob, in coordinates
