@@ -74,6 +74,7 @@ std::vector<Model::BodyMassProperties> Model::BodyMasses() const {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) p.inertia_B_kg_m2(i, j) = m.I[i * 4 + j];
     p.X_MB = b.X_MB;
+    p.body = b.body;
     out.push_back(p);
   }
   return out;

@@ -15,6 +15,7 @@
 #include "rotors_core/physics/physics_types.h"
 #include "rotors_core/sdf_params.h"
 #include "rotors_gazebo_plugins/models/imu_noise_model.h"
+#include "rotors_gazebo_plugins/models/imu_vibration_model.h"
 #include "rotors_gazebo_plugins/models/odometry_model.h"
 #include "rotors_gazebo_plugins/models/rotor_model.h"
 #include "rotors_gazebo_plugins/models/tilt_servo_model.h"
@@ -64,5 +65,8 @@ WindParams ReadWindParams(SdfParams& params);
 OdometryNoiseParams ReadOdometryNoise(SdfParams& params);
 /// The IMU plugin's noise densities, random walks, correlation times and turn-on biases, validated.
 ImuNoiseParams ReadImuNoise(SdfParams& params);
+/// The IMU's rotor vibration and ADIS16448 sampling (rotorVibration, balanceGrade, residualUnbalance,
+/// bladeCount, bladePassThrustRipple, internalSampleRate, bartlettTaps), validated.
+ImuVibrationParams ReadImuVibration(SdfParams& params);
 
 }  // namespace rotors_gazebo_plugins

@@ -15,7 +15,8 @@
 namespace rotors_sim {
 namespace physics {
 class World;
-}
+class Link;
+}  // namespace physics
 }  // namespace rotors_sim
 
 namespace rotors_gazebo_plugins {
@@ -26,6 +27,14 @@ struct MotorFault {
   double start_time_s = 0.0;  ///< [s] sim time
 };
 
+/// A rotor as its motor model mounts it (what an IMU needs to feel its vibration).
+struct RotorMounting {
+  std::shared_ptr<const rotors_sim::physics::Link> link;  ///< the rotor link (its hub is the link origin)
+  Eigen::Vector3d axis_L = Eigen::Vector3d::UnitZ();      ///< spin axis, link frame (a positive speed turns about it)
+  double rotor_mass_kg = 0.0;
+  double motor_constant = 0.0;  ///< C_T [N/(rad/s)^2]
+};
+
 struct VehicleBus {
   std::vector<double> motor_command_rad_s;     ///< empty until the first valid command
   uint64_t motor_command_count = 0;            ///< valid commands so far (any source)
@@ -33,6 +42,7 @@ struct VehicleBus {
   int rotor_count = 0;                         ///< motor models registered (rotors and servos)
   std::vector<bool> is_servo;                  ///< per motor number: a servo (its command and "speed" are angles [rad])
   std::vector<double> max_rot_velocity_rad_s;  ///< per motor number: the motor model's maxRotVelocity (0: a servo)
+  std::vector<RotorMounting> rotor_mountings;  ///< per motor number (no link: a servo, or not registered)
   Eigen::Vector3d wind_velocity_W = Eigen::Vector3d::Zero();  ///< [m/s]
   std::vector<MotorFault> motor_faults;                       ///< per motor number (healthy by default)
   /// Fixed wings: RotorS' normalized actuator command (mav_msgs/Actuators.normalized, by channel).
@@ -55,6 +65,8 @@ struct VehicleBus {
   /// worlds in one process with the same vehicle name never share motor commands.
   static std::shared_ptr<VehicleBus> For(rotors_sim::physics::World& world, const std::string& robot_namespace);
   void RegisterRotor(int motor_number, double max_rot_velocity_rad_s = 0.0);
+  /// A rotor's mounting, registered by its motor model when it loads.
+  void RegisterRotorMounting(int motor_number, const RotorMounting& mounting);
   /// A position-controlled motor (the omav's tilt units): its command entry is an angle [rad], any sign.
   void RegisterServo(int motor_number);
   /// The one way in for motor commands (the controller interface's ROS topics, the Python module):

@@ -144,4 +144,17 @@ ImuNoiseParams ReadImuNoise(SdfParams& params) {
   return p;
 }
 
+ImuVibrationParams ReadImuVibration(SdfParams& params) {
+  ImuVibrationParams p;
+  ReadParam(params, "rotorVibration", &p.enabled);
+  ReadParam(params, "balanceGrade", &p.balance_grade_mm_s);
+  ReadParam(params, "residualUnbalance", &p.residual_unbalance_kg_m);
+  ReadParam(params, "bladeCount", &p.blade_count);
+  ReadParam(params, "bladePassThrustRipple", &p.blade_pass_thrust_ripple);
+  ReadParam(params, "internalSampleRate", &p.internal_rate_hz);
+  ReadParam(params, "bartlettTaps", &p.bartlett_taps);
+  ThrowIfInvalid(p.Validate());
+  return p;
+}
+
 }  // namespace rotors_gazebo_plugins

@@ -36,6 +36,12 @@ void VehicleBus::RegisterRotor(int motor_number, double max_rot_velocity) {
   is_servo.resize(rotor_count, false);
   max_rot_velocity_rad_s.resize(rotor_count, 0.0);
   max_rot_velocity_rad_s[motor_number] = max_rot_velocity;
+  rotor_mountings.resize(rotor_count);
+}
+
+void VehicleBus::RegisterRotorMounting(int motor_number, const RotorMounting& mounting) {
+  if (motor_number >= rotor_count) RegisterRotor(motor_number);
+  rotor_mountings[motor_number] = mounting;
 }
 
 std::string VehicleBus::SetRcChannels(const std::vector<int>& channels_us) {

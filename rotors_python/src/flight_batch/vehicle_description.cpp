@@ -175,6 +175,10 @@ VehicleDescription DescribeVehicle(const physics::Model& model, const std::strin
       }
       ImuDescription imu;
       imu.noise = rgp::ReadImuNoise(params);
+      if (rgp::ReadImuVibration(params).enabled)
+        throw SimError(who + ": IMU '" + link_name +
+                       "' has rotorVibration on; the batch does not step rotor vibration (fly it in a World, "
+                       "or build the vehicle with sensor_realism false)");
       imu.seed = rgp::ReadSeed(params);
       const physics::LinkPtr link = model.GetLink(link_name);
       if (!link) throw SimError(who + ": IMU linkName '" + link_name + "' is not a link");

@@ -67,6 +67,7 @@ class Model {
     double mass_kg = 0.0;
     Eigen::Matrix3d inertia_B_kg_m2 = Eigen::Matrix3d::Zero();
     Pose3d X_MB;
+    const BodyHandle* body = nullptr;  ///< the body (Link::Body() of the links riding on it)
   };
   std::vector<BodyMassProperties> BodyMasses() const;
   /// The axis-aligned box [lo, hi] (world frame) around every collision geom on a body, now; false
