@@ -180,9 +180,15 @@ def _write_imu(bag: FlightBag, mav: str, out: Path, urdf: RobotDescription) -> i
         f"gyroscope_noise_density: {float(p['gyroscopeNoiseDensity'])!r}\ngyroscope_random_walk: {float(walk_g)!r}\n"
         f"accelerometer_noise_density: {float(p['accelerometerNoiseDensity'])!r}\naccelerometer_random_walk: {float(walk_a)!r}\n"
     )
+    # the rotor vibration the IMU felt (docs/sensor_realism.md, S8), or none
+    vibration_keys = ("balanceGrade", "residualUnbalance", "bladeCount", "bladePassThrustRipple", "internalSampleRate", "bartlettTaps")
+    if p.get("rotorVibration", "false").strip().lower() in ("true", "1"):
+        vibration = "".join(f"\n  {k}: {float(p[k])!r}" for k in vibration_keys if k in p)
+    else:
+        vibration = " none"
     (folder / "sensor.yaml").write_text(
         f"sensor_type: imu\ncomment: VI-sensor IMU (simulated, {bag.path.name})\nT_BS:\n{_matrix_yaml(np.eye(4))}"
-        f"rate_hz: {rate:.3f}\n{noise}"
+        f"rate_hz: {rate:.3f}\n{noise}rotors_imu_vibration:{vibration}\n"
     )
     return len(lines)
 

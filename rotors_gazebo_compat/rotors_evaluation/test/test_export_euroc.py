@@ -1,8 +1,9 @@
 """export_euroc.py takes the calibration and noise figures of the vehicle actually flown from the
 bag: a bag shaped as the bag plugin writes it (camera_info, images, IMU, ground truth and the robot
 description that xacro made of mav_with_vi_sensor.gazebo with sensor_realism:=true) exports T_BS
-from the description's links, the IMU plugin's densities and the camera plugin's image sensor; a bag
-without the description is one line naming the fix."""
+from the description's links, the IMU plugin's densities and rotor vibration and the camera plugin's image sensor;
+evo's EuRoC reader reads the ground truth back with the bag's stamps; a bag without the description is one line
+naming the fix."""
 
 import math
 import subprocess
@@ -117,6 +118,7 @@ def test_export_takes_the_flown_vehicles_calibration_from_the_bag(tmp_path: Path
     # the IMU plugin's noise, read from the description (the ADIS16448 of vi_sensor_macro)
     imu0 = yaml.safe_load((mav0 / "imu0" / "sensor.yaml").read_text())
     assert imu0["gyroscope_noise_density"] == 0.0003394 and imu0["accelerometer_random_walk"] == 0.006
+    assert imu0["rotors_imu_vibration"]["balanceGrade"] == 6.3 and imu0["rotors_imu_vibration"]["bartlettTaps"] == 16
     # images read back as they were written
     rows = (mav0 / "cam1" / "data.csv").read_text().splitlines()[1:]
     assert len(rows) == 3 and np.asarray(Image.open(mav0 / "cam1" / "data" / rows[2].split(",")[1])).mean() == 60
@@ -125,10 +127,26 @@ def test_export_takes_the_flown_vehicles_calibration_from_the_bag(tmp_path: Path
     print("ground truth of B:", gt[0, 1:8].tolist())
     assert np.allclose(gt[0, 4:8], [1, 0, 0, 0]) and np.linalg.norm(gt[0, 1:4] - [1.0, 2.0, 3.0]) < 0.05
 
+    # read back by evo's own EuRoC reader (a reader written elsewhere): the stamps are the bag's
+    # odometry stamps to the nanosecond, the poses those of the file
+    from evo.tools import file_interface
+
+    trajectory = file_interface.read_euroc_csv_trajectory(str(mav0 / "state_groundtruth_estimate0" / "data.csv"))
+    bag_stamps_ns = [int(round((1.0 + k * 0.001) * 1e9)) for k in range(100)]
+    assert np.array_equal(np.round(trajectory.timestamps * 1e9).astype(np.int64), bag_stamps_ns)
+    assert np.allclose(trajectory.positions_xyz, gt[:, 1:4]) and np.allclose(trajectory.orientations_quat_wxyz, gt[:, 4:8])
+    print(f"evo read {trajectory.num_poses} poses over {trajectory.path_length:.3f} m")
+    # the image and IMU stamps are the bag's header stamps
+    image_stamps = [int(r.split(",")[0]) for r in rows]
+    assert image_stamps == [int(round((1.0 + k / 30) * 1e9)) for k in range(3)]
+    imu_stamps = np.loadtxt(mav0 / "imu0" / "data.csv", delimiter=",", comments="#", dtype=np.int64, usecols=0)
+    assert imu_stamps.tolist() == bag_stamps_ns
+
     # without sensor_realism the image sensor is none
     plain = export(write_bag(tmp_path / "plain.bag", vi_sensor_description()), tmp_path / "plain")
     assert plain.returncode == 0, plain.stderr
     assert yaml.safe_load((tmp_path / "plain" / "mav0" / "cam0" / "sensor.yaml").read_text())["rotors_image_sensor"] == "none"
+    assert yaml.safe_load((tmp_path / "plain" / "mav0" / "imu0" / "sensor.yaml").read_text())["rotors_imu_vibration"] == "none"
 
 
 def test_a_bag_without_the_robot_description_is_one_line(tmp_path: Path):
