@@ -7,14 +7,14 @@ frame goes through OpenCV as a VIO front end would:
 - StereoSGBM depth at the corners against the ground-truth depth rendered with the left image.
 
 Through the Python module (no ROS): the same engine, plugins, renderer and Lee controller library
-as under ROS; the vehicle flies test/flight_paths.py's paths closed loop."""
+as under ROS; the vehicle flies rotors_gazebo.flight_paths's paths closed loop."""
 
 from dataclasses import dataclass, field
 
 import cv2
 import numpy as np
 import pytest
-from flight_paths import POWERPLANT_FACING, POWERPLANT_PATH, POWERPLANT_START, WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
+from rotors_gazebo.flight_paths import POWERPLANT_FACING, POWERPLANT_PATH, POWERPLANT_START, WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 import rotors_sim as rs
 

@@ -2,7 +2,7 @@
 through RotorS' warehouse. It checks in one go what a VIO user depends on: the images,
 the intrinsics in cam0/cam1 sensor.yaml, the camera-IMU extrinsics T_BS, the stamps and the ground
 truth. The flight is RotorS' VI hovering example (ROS, lockstep) with enable_logging:=true, given a
-39.5 m loop through the aisles (test/flight_paths.py) on command/trajectory; export_euroc.py makes
+39.5 m loop through the aisles (rotors_gazebo.flight_paths) on command/trajectory; export_euroc.py makes
 the dataset.
 
 The odometry: keyframes whose Shi-Tomasi corners are matched into the right image by KLT along the
@@ -21,7 +21,7 @@ import cv2
 import numpy as np
 import pytest
 import yaml
-from flight_paths import WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
+from rotors_gazebo.flight_paths import WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
 

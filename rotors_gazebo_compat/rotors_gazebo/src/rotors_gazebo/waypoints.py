@@ -46,6 +46,27 @@ def trajectory(waypoints: Sequence[Waypoint]) -> MultiDOFJointTrajectory:
     return msg
 
 
+def sampled_trajectory(flight) -> MultiDOFJointTrajectory:
+    """A sampled flight (rotors_gazebo.flight_paths.Trajectory) as one trajectory: each point with its
+    position, yaw, velocity, yaw rate and acceleration (the Lee controller's feed-forward), at its time."""
+    msg = MultiDOFJointTrajectory()
+    msg.joint_names = ["base_link"]
+    for i in range(len(flight.t_s)):
+        t = Transform()
+        t.translation.x, t.translation.y, t.translation.z = (float(c) for c in flight.p_W[i])
+        t.rotation.z, t.rotation.w = math.sin(flight.yaw[i] / 2.0), math.cos(flight.yaw[i] / 2.0)
+        velocity, acceleration = Twist(), Twist()
+        velocity.linear.x, velocity.linear.y, velocity.linear.z = (float(c) for c in flight.v_W[i])
+        velocity.angular.z = float(flight.yaw_rate[i])
+        acceleration.linear.x, acceleration.linear.y, acceleration.linear.z = (float(c) for c in flight.a_W[i])
+        msg.points.append(
+            MultiDOFJointTrajectoryPoint(
+                transforms=[t], velocities=[velocity], accelerations=[acceleration], time_from_start=rospy.Duration(float(flight.t_s[i]))
+            )
+        )
+    return msg
+
+
 def read_waypoint_file(path: Path) -> list[Waypoint]:
     """Whitespace-separated 5-tuples: wait_time[s] x[m] y[m] z[m] yaw[deg]; stops at the first
     incomplete tuple, as RotorS."""
