@@ -1155,7 +1155,8 @@ def main() -> int:
         res["sensor_realism"] = sensor_realism()
         rows += sensor_realism_rows(res["sensor_realism"])
         res["not_measured"].append(
-            "sensor_realism vi_sensor_fps.vibration: the IMU's vibration is not in a camera frame's path; its cost is imu_vibration_steps_per_s"
+            "sensor_realism vi_sensor_fps.vibration: the IMU's vibration is not in a camera frame's path; "
+            "its cost is imu_vibration_steps_per_s"
         )
     if "soak" in only:
         soaked = soak(float(os.environ.get("SOAK_SIM_S", "3600")))

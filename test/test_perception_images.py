@@ -14,9 +14,17 @@ from dataclasses import dataclass, field
 import cv2
 import numpy as np
 import pytest
-from rotors_gazebo.flight_paths import POWERPLANT_FACING, POWERPLANT_PATH, POWERPLANT_START, WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 import rotors_sim as rs
+from rotors_gazebo.flight_paths import (
+    POWERPLANT_FACING,
+    POWERPLANT_PATH,
+    POWERPLANT_START,
+    WAREHOUSE_FACING,
+    WAREHOUSE_LOOP,
+    WAREHOUSE_START,
+    sample,
+)
 
 VI_SENSOR = rs.paths.package_path("rotors_description") / "urdf" / "mav_with_vi_sensor.gazebo"
 STEREO = "firefly_vi_sensor_stereo_camera"

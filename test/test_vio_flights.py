@@ -10,12 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
-from rotors_gazebo.flight_paths import EUROC_SHAPES, VIO_PLACES, mean_speed, mean_yaw_rate_deg_s, read_trajectory_file, vio_flight
-
-from rotors_evaluation.bag_data import FlightBag
-from rotors_evaluation.robot_description import RobotDescription
 
 from conftest import REPO, RosGraph, launch, package_path, stop_launch, wait_sim_time
+from rotors_evaluation.bag_data import FlightBag
+from rotors_evaluation.robot_description import RobotDescription
+from rotors_gazebo.flight_paths import EUROC_SHAPES, VIO_PLACES, mean_speed, mean_yaw_rate_deg_s, read_trajectory_file, vio_flight
 
 FLIGHTS = package_path("rotors_gazebo") / "resource" / "vio_flights"
 DELAY_S = 5.0  # trajectory_publisher_file's default: the flight is due 5 s after the first IMU message
@@ -28,7 +27,8 @@ def test_shipped_flights_have_euroc_speeds_and_rates(place: str, difficulty: str
     flight = read_trajectory_file(FLIGHTS / f"{place}_{difficulty}.csv")
     print(
         f"{place} {difficulty}: {flight.duration_s:.1f} s, {flight.length_m():.1f} m, mean speed {mean_speed(flight):.3f} m/s "
-        f"(EuRoC {sequence} {shape.mean_speed_m_s}), mean yaw rate {mean_yaw_rate_deg_s(flight):.2f} deg/s ({shape.mean_angular_rate_deg_s})"
+        f"(EuRoC {sequence} {shape.mean_speed_m_s}), "
+        f"mean yaw rate {mean_yaw_rate_deg_s(flight):.2f} deg/s ({shape.mean_angular_rate_deg_s})"
     )
     assert mean_speed(flight) == pytest.approx(shape.mean_speed_m_s, rel=0.01)
     assert mean_yaw_rate_deg_s(flight) == pytest.approx(shape.mean_angular_rate_deg_s, rel=0.01)
@@ -112,7 +112,8 @@ def test_vio_flight_launch_records_a_flight_shaped_like_euroc(ros: RosGraph, tmp
     rate = np.degrees((rotations[1:] * rotations[:-1].inv()).magnitude() / dts)
     print(
         f"flown {t[-1] - t[0]:.1f} s: mean speed {speed.mean():.3f} m/s (EuRoC {sequence} {shape.mean_speed_m_s}), "
-        f"mean angular rate {rate.mean():.1f} deg/s ({shape.mean_angular_rate_deg_s}), tracking RMS {tracking_rms(t0):.3f} m (start {t0 - imu_t0 - DELAY_S:+.2f} s), "
+        f"mean angular rate {rate.mean():.1f} deg/s ({shape.mean_angular_rate_deg_s}), "
+        f"tracking RMS {tracking_rms(t0):.3f} m (start {t0 - imu_t0 - DELAY_S:+.2f} s), "
         f"{len(list((mav0 / 'cam0' / 'data').iterdir()))} stereo frames"
     )
     assert speed.mean() == pytest.approx(shape.mean_speed_m_s, rel=0.1)

@@ -21,9 +21,9 @@ import cv2
 import numpy as np
 import pytest
 import yaml
-from rotors_gazebo.flight_paths import WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+from rotors_gazebo.flight_paths import WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
 
 TRAJECTORY_DUE_S = 6.0  # from take-off on the ground (it replaces the hovering example's waypoint)
 KLT = dict(winSize=(21, 21), maxLevel=3, criteria=(cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 30, 0.01))

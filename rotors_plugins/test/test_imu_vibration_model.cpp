@@ -150,11 +150,13 @@ TEST(ImuVibration, GyroscopeIsTheIntegralOfTheAngularAcceleration) {
   }
   const ImuSample now = model.Vibration(rotors, phases);
   const Eigen::Vector3d alpha =
-      (model.Vibration(rotors, later).angular_velocity_I - model.Vibration(rotors, earlier).angular_velocity_I) / (2 * h);
+      (model.Vibration(rotors, later).angular_velocity_I - model.Vibration(rotors, earlier).angular_velocity_I) /
+      (2 * h);
   // a_vib = sum F / m + alpha x p_imu: take sum F / m from the same rotors with the IMU at the CoG
   VibratingBody at_cog = body;
   at_cog.p_B_imu.setZero();
-  const Eigen::Vector3d a_cog = ImuVibrationModel(Params(1, 0.02), at_cog, 5).Vibration(rotors, phases).linear_acceleration_I;
+  const Eigen::Vector3d a_cog =
+      ImuVibrationModel(Params(1, 0.02), at_cog, 5).Vibration(rotors, phases).linear_acceleration_I;
   const Eigen::Vector3d alpha_cross_p = now.linear_acceleration_I - a_cog;
   EXPECT_NEAR((alpha.cross(body.p_B_imu) - alpha_cross_p).norm(), 0.0, 1e-6 * alpha_cross_p.norm());
 }

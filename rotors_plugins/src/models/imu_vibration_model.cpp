@@ -45,8 +45,7 @@ std::string VibratingBody::Validate() const {
 BartlettFilter::BartlettFilter(int taps) : taps_(taps) {}
 
 BartlettFilter::Vector6d BartlettFilter::Average(MovingAverage* stage, const Vector6d& x) const {
-  if (stage->window.empty())
-    stage->window.assign(taps_, x);
+  if (stage->window.empty()) stage->window.assign(taps_, x);
   else {
     stage->window.pop_front();
     stage->window.push_back(x);

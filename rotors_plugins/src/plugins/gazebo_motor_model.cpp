@@ -97,8 +97,8 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     parent_link_ = joint_->GetParent();
     bus_->RegisterRotor(motor_number_, p.max_rot_velocity);
-    bus_->RegisterRotorMounting(motor_number_, {link_, ToEigen(joint_->LocalAxis(0)), link_->GetInertial().Mass(),
-                                                p.motor_constant});
+    bus_->RegisterRotorMounting(motor_number_,
+                                {link_, ToEigen(joint_->LocalAxis(0)), link_->GetInertial().Mass(), p.motor_constant});
     speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 1);
   }
 

@@ -211,8 +211,16 @@ def read_trajectory_file(path: Path) -> Trajectory:
 # The VIO flights of mav_vio_flight.launch: from the ground at the spawn point (facing as the path
 # faces) up to the path's height, then the path, shaped like each EuRoC difficulty.
 VIO_PLACES = {
-    "warehouse": ((0.0, 0.0, 0.1, WAREHOUSE_FACING), [(0.0, 0.0, WAREHOUSE_START[2]), WAREHOUSE_START[:3]] + WAREHOUSE_LOOP, WAREHOUSE_FACING),
-    "powerplant": ((POWERPLANT_START[0], POWERPLANT_START[1], 0.1, POWERPLANT_FACING), [POWERPLANT_START[:3]] + POWERPLANT_PATH, POWERPLANT_FACING),
+    "warehouse": (
+        (0.0, 0.0, 0.1, WAREHOUSE_FACING),
+        [(0.0, 0.0, WAREHOUSE_START[2]), WAREHOUSE_START[:3]] + WAREHOUSE_LOOP,
+        WAREHOUSE_FACING,
+    ),
+    "powerplant": (
+        (POWERPLANT_START[0], POWERPLANT_START[1], 0.1, POWERPLANT_FACING),
+        [POWERPLANT_START[:3]] + POWERPLANT_PATH,
+        POWERPLANT_FACING,
+    ),
 }
 
 

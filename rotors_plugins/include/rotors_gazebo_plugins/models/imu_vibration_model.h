@@ -39,16 +39,17 @@ struct ImuVibrationParams {
   double balance_grade_mm_s = 6.3;        ///< G [mm/s] (balanceGrade); ISO 21940-11 G 6.3: fans
   double residual_unbalance_kg_m = -1.0;  ///< U [kg m] per rotor (residualUnbalance); < 0: from the grade
   int blade_count = 2;                    ///< n_b (bladeCount)
-  double blade_pass_thrust_ripple = 0.0;  ///< r_bp: amplitude of the n_b/rev thrust over the mean (bladePassThrustRipple)
-  double internal_rate_hz = 819.2;        ///< f_s [Hz] (internalSampleRate); the ADIS16448's
-  int bartlett_taps = 16;                 ///< N_B = 2^B, B = SENS_AVG[2:0] (bartlettTaps); 16 as PX4's driver sets
+  double blade_pass_thrust_ripple =
+      0.0;                          ///< r_bp: amplitude of the n_b/rev thrust over the mean (bladePassThrustRipple)
+  double internal_rate_hz = 819.2;  ///< f_s [Hz] (internalSampleRate); the ADIS16448's
+  int bartlett_taps = 16;           ///< N_B = 2^B, B = SENS_AVG[2:0] (bartlettTaps); 16 as PX4's driver sets
   /// Empty when valid, else one line naming the bad value and the fix.
   std::string Validate() const;
 };
 
 /// One rotor as the vibration sees it, in the body frame B (origin at the CoG, the rigid body's axes).
 struct VibratingRotor {
-  Eigen::Vector3d p_B = Eigen::Vector3d::Zero();     ///< [m] hub
+  Eigen::Vector3d p_B = Eigen::Vector3d::Zero();      ///< [m] hub
   Eigen::Vector3d axis_B = Eigen::Vector3d::UnitZ();  ///< unit spin axis; a positive speed turns about it
   double rotor_mass_kg = 0.0;
   double max_rot_velocity_rad_s = 0.0;  ///< Omega_max, where the balance grade holds
