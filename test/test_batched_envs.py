@@ -3,6 +3,7 @@ gymnasium's env checker passes on one vehicle, and the checks it applies to a si
 hold for the vector one (seeded resets and steps repeat, observations lie in their space and are
 not reused, autoreset in the same step keeps the last observation); gym.make_vec finds them."""
 
+import re
 import warnings
 
 import gymnasium as gym
@@ -73,3 +74,107 @@ def test_autoreset_returns_next_episode_and_keeps_last_obs():
     for i in ended:
         assert info["_final_obs"][i] and not np.array_equal(info["final_obs"][i], obs[i])
         assert envs.batch.time[i] == 0.0 and np.all(np.abs(obs[i, 0:3]) <= 0.5)  # a new start near the target
+
+
+def sync_vector_env(task: str, n: int, mode) -> gym.vector.SyncVectorEnv:
+    """Gymnasium's own vector environment over n single-vehicle environments, vehicle i with sensor
+    seed i as FlightBatchEnv seeds its vehicle i."""
+    return gym.vector.SyncVectorEnv([lambda i=i: SingleVehicleEnv(task, sensor_seed=i) for i in range(n)], autoreset_mode=mode)
+
+
+@pytest.mark.parametrize("task", ["hover", "waypoints"])
+def test_vector_env_steps_as_gymnasiums_sync_vector_env(task):
+    # the same seeds and actions: the same observations, rewards, ends, last observations and infos,
+    # episodes ending at different steps (random actions) and starting again in the same step
+    n = 4
+    ours = FlightBatchEnv(task, n)
+    theirs = sync_vector_env(task, n, gym.vector.AutoresetMode.SAME_STEP)
+    assert ours.metadata["autoreset_mode"] == theirs.metadata["autoreset_mode"] == gym.vector.AutoresetMode.SAME_STEP
+    o1, _ = ours.reset(seed=7)
+    o2, _ = theirs.reset(seed=7)
+    assert np.array_equal(o1, o2)
+    rng = np.random.default_rng(7)
+    ends = 0
+    for _ in range(400):
+        a = rng.uniform(-1.0, 1.0, ours.action_space.shape).astype(np.float32) * 0.3
+        r1, r2 = ours.step(a), theirs.step(a)
+        for x, y in zip(r1[:4], r2[:4]):
+            assert np.array_equal(x, y)
+        i1, i2 = r1[4], r2[4]
+        if "_final_obs" in i2:
+            ends += int(i2["_final_obs"].sum())
+            assert np.array_equal(i1["_final_obs"], i2["_final_obs"]) and np.array_equal(i1["_final_info"], i2["_final_info"])
+            for i in np.flatnonzero(i2["_final_obs"]):
+                assert np.array_equal(i1["final_obs"][i], i2["final_obs"][i])
+            for key in i2["final_info"]:
+                assert np.array_equal(i1["final_info"][key], i2["final_info"][key]), key
+        else:
+            assert "_final_obs" not in i1
+        for key in i2:
+            if key not in ("final_obs", "final_info"):
+                assert np.array_equal(i1[key], i2[key]), key
+    print(f"{task}: 400 steps of {n} vehicles, {ends} episodes ended and started again, equal to SyncVectorEnv's")
+    assert ends >= 4
+
+
+def test_reset_mask_resets_only_the_masked_vehicles():
+    n = 4
+    ours = FlightBatchEnv("hover", n, autoreset=False)
+    theirs = sync_vector_env("hover", n, gym.vector.AutoresetMode.DISABLED)
+    assert ours.metadata["autoreset_mode"] == gym.vector.AutoresetMode.DISABLED
+    ours.reset(seed=3)
+    theirs.reset(seed=3)
+    a = np.zeros(ours.action_space.shape, np.float32)
+    a[:2] = 1.0  # vehicles 0 and 1 climb at full speed and leave the 2 m bound; 2 and 3 hover-ish
+    a[2:] = 0.0
+    for _ in range(300):
+        r1, r2 = ours.step(a), theirs.step(a)
+        assert all(np.array_equal(x, y) for x, y in zip(r1[:4], r2[:4]))
+        done = r1[2] | r1[3]
+        if done.any():
+            break
+    assert done.any() and not done[2:].any(), done
+    ended = np.flatnonzero(done).tolist()
+    with pytest.raises(rs.SimError, match=rf"environments {re.escape(str(ended))} have ended and autoreset is off"):
+        ours.step(a)
+    mask = done.copy()
+    before = r1[0].copy()
+    o1, info1 = ours.reset(options={"reset_mask": mask})
+    o2, info2 = theirs.reset(options={"reset_mask": mask})
+    assert np.array_equal(o1, o2) and np.array_equal(info1["_time_s"], mask)
+    assert np.array_equal(o1[~mask], before[~mask]) and not np.array_equal(o1[mask], before[mask])  # only the masked anew
+    r1, r2 = ours.step(a), theirs.step(a)
+    assert all(np.array_equal(x, y) for x, y in zip(r1[:4], r2[:4]))
+    with pytest.raises(rs.SimError, match=r"reset_mask'\] has no True value"):
+        ours.reset(options={"reset_mask": np.zeros(n, bool)})
+
+
+def test_a_crash_scores_below_any_hover_that_lasts_longer():
+    # every step survived earns a reward in [0, 1] and the crash step -10: whatever came before, an
+    # episode that ends in a crash at step k scores below one that lasts past k
+    envs = FlightBatchEnv("hover", 16, action_type="attitude")
+    envs.reset(seed=1)
+    rng = np.random.default_rng(1)
+    survived, crashed = [], []
+    for _ in range(300):
+        _, reward, terminated, _, _ = envs.step(rng.uniform(-1.0, 1.0, envs.action_space.shape).astype(np.float32))
+        survived += reward[~terminated].tolist()
+        crashed += reward[terminated].tolist()
+    print(f"{len(survived)} steps survived: rewards {min(survived):.3f} to {max(survived):.3f}; {len(crashed)} crashes")
+    assert crashed and min(survived) >= 0.0 and max(survived) <= 1.0 and set(crashed) == {-10.0}
+    # rotors off: it falls and crashes at step k; level at hover thrust it lasts longer and scores more
+    falling = FlightBatchEnv("hover", 1, action_type="attitude", target=(0.0, 0.0, 0.3), autoreset=False)
+    hovering = FlightBatchEnv("hover", 1, action_type="attitude", target=(0.0, 0.0, 0.3), autoreset=False)
+    falling.reset(seed=2)
+    hovering.reset(seed=2)
+    fall_return, k = 0.0, 0
+    while True:
+        _, reward, terminated, truncated, _ = falling.step(np.array([[0.0, 0.0, 0.0, -1.0]], np.float32))
+        fall_return, k = fall_return + reward[0], k + 1
+        if terminated[0] or truncated[0]:
+            break
+    hover_return = sum(hovering.step(np.zeros((1, 4), np.float32))[1][0] for _ in range(k + 1))
+    print(f"rotors off: crashed at step {k}, return {fall_return:.2f}; hover thrust for {k + 1} steps: {hover_return:.2f}")
+    assert terminated[0] and hover_return > fall_return
+    with pytest.raises(rs.SimError, match="alive_bonus = -1.0 must be >= 0"):
+        FlightBatchEnv("hover", 1, alive_bonus=-1.0)

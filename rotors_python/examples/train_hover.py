@@ -82,7 +82,7 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     torch.set_num_threads(1)  # the engine's threads step the vehicles; one for the network is enough
-    envs = FlightBatchEnv("hover", args.envs, action_type="attitude", episode_s=3.0, alive_bonus=1.0, sensor_seed=args.seed)
+    envs = FlightBatchEnv("hover", args.envs, action_type="attitude", episode_s=3.0, sensor_seed=args.seed)
     vec = FlightBatchVecEnv(envs)
     vec.seed(args.seed)
     model = PPO(

@@ -2,8 +2,11 @@
 engine call steps every vehicle (threads, no GIL), observations and rewards are numpy over all of
 them. Same spaces, rewards, starts and ends as RotorS/Hover-v0 and RotorS/Waypoints-v0 (hover.py,
 waypoints.py); the vehicle is the full world's to rounding (docs/batched_flight.md).
-Autoreset in the same step (gymnasium AutoresetMode.SAME_STEP): an episode that ends returns the
-first observation of the next one, its last observation in infos["final_obs"].
+Autoreset in the same step (gymnasium AutoresetMode.SAME_STEP, the default): an episode that ends
+returns the first observation of the next one, its last observation and info in infos["final_obs"]
+and infos["final_info"] (masks "_final_obs", "_final_info"), as gymnasium's SyncVectorEnv does. With
+autoreset=False (AutoresetMode.DISABLED) the caller resets ended vehicles with
+reset(options={"reset_mask": mask}), which resets only the masked ones.
 
     envs = FlightBatchEnv("hover", num_envs=1024)
     obs, info = envs.reset(seed=0)
@@ -39,9 +42,8 @@ class FlightBatchEnv(VectorEnv):
     """`task` "hover" or "waypoints" for `num_envs` vehicles `mav_name`; `action_type` "motor" (a
     value in [-1, 1] per rotor: 0 to its maximum speed) or "attitude" (roll and pitch up to
     max_tilt_rad, yaw rate up to max_yaw_rate_rad_s, thrust 0 to twice the weight). Sensor noise
-    seeded per vehicle from sensor_seed + i. `alive_bonus` (hover, default 0 as RotorS/Hover-v0)
-    is added to the reward of every step that does not end in a crash: without it a policy that
-    crashes at once scores better than one that hovers with a small error."""
+    seeded per vehicle from sensor_seed + i. `alive_bonus` (hover, default 0, >= 0) is added to the
+    reward of every step that does not end in a crash (the hover reward is in [0, 1] already)."""
 
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP}
 
@@ -73,7 +75,10 @@ class FlightBatchEnv(VectorEnv):
         if int(num_envs) < 1:
             raise SimError(f"num_envs = {num_envs} must be >= 1")
         self.task, self.num_envs, self.action_type = task, int(num_envs), action_type
+        if not float(alive_bonus) >= 0.0:
+            raise SimError(f"alive_bonus = {alive_bonus} must be >= 0 (a negative one makes crashing early pay)")
         self.autoreset = autoreset
+        self.metadata = {"autoreset_mode": AutoresetMode.SAME_STEP if autoreset else AutoresetMode.DISABLED}
         self.alive_bonus = float(alive_bonus)
         step_size = 1.0 / physics_hz
         self.substeps = max(1, round(1.0 / control_hz / step_size))
@@ -109,16 +114,33 @@ class FlightBatchEnv(VectorEnv):
         self.steps = np.zeros(self.num_envs, dtype=np.int64)
         self.index = np.zeros(self.num_envs, dtype=np.int64)
         self.distance = np.zeros(self.num_envs)
+        self._ended = np.zeros(self.num_envs, dtype=bool)  # with autoreset off: ended, not reset yet
+        self._obs = np.zeros(self.observation_space.shape, np.float32)
 
     # --- Gymnasium ---
-    def reset(self, *, seed: int | list[int] | None = None, options: dict[str, Any] | None = None):
+    def reset(self, *, seed: int | list[int | None] | None = None, options: dict[str, Any] | None = None):
+        """All vehicles, or with options={"reset_mask": mask} (a bool array, one per vehicle) only
+        the masked ones: their observations are new, the others' are those of the last step, and
+        the info speaks for the masked ones (gymnasium's SyncVectorEnv semantics)."""
+        mask = np.ones(self.num_envs, dtype=bool)
+        if options is not None and "reset_mask" in options:
+            mask = options["reset_mask"]
+            if not isinstance(mask, np.ndarray) or mask.dtype != np.bool_ or mask.shape != (self.num_envs,):
+                raise SimError(f"options['reset_mask'] must be a numpy bool array of shape ({self.num_envs},), got {mask!r}")
+            if not mask.any():
+                raise SimError("options['reset_mask'] has no True value: nothing to reset")
         if seed is not None:
             seeds = seed if isinstance(seed, list) else [seed + i for i in range(self.num_envs)]
             if len(seeds) != self.num_envs:
                 raise SimError(f"reset got {len(seeds)} seeds for {self.num_envs} environments")
-            self._rngs = [np.random.default_rng(s) for s in seeds]
-        self._reset(np.arange(self.num_envs))
-        return self._observe(), {"time_s": self.batch.time.copy()}
+            for i in np.flatnonzero(mask):
+                if seeds[i] is not None:
+                    self._rngs[i] = np.random.default_rng(seeds[i])
+        ended = np.flatnonzero(mask)
+        self._reset(ended)
+        self._ended[ended] = False
+        self._obs[ended] = self._observe()[ended]
+        return self._obs.copy(), {"time_s": self.batch.time.copy(), "_time_s": mask.copy()}
 
     def step(self, actions):
         a = np.asarray(actions, dtype=np.float64)
@@ -127,6 +149,11 @@ class FlightBatchEnv(VectorEnv):
         if not np.all(np.isfinite(a)):
             bad = np.argwhere(~np.isfinite(a))[0]
             raise SimError(f"actions[{bad[0]}, {bad[1]}] = {a[tuple(bad)]} is not finite")
+        if self._ended.any():
+            raise SimError(
+                f"environments {np.flatnonzero(self._ended).tolist()} have ended and autoreset is off; "
+                "reset them first: reset(options={'reset_mask': mask})"
+            )
         a = np.clip(a, -1.0, 1.0)
         if self.action_type == "motor":
             self.batch.commands[:] = (a + 1.0) / 2.0 * self.max_rot_velocity
@@ -146,12 +173,7 @@ class FlightBatchEnv(VectorEnv):
         if self.task == "hover":
             obs = self._observe()
             terminated = collided | np.any(np.abs(obs[:, 0:3]) > hover.BOUND_M, axis=1)
-            reward = (
-                -np.linalg.norm(obs[:, 0:3], axis=1)
-                - 0.1 * np.linalg.norm(obs[:, 3:6], axis=1)
-                - 0.05 * np.linalg.norm(obs[:, 10:13], axis=1)
-            )
-            reward = np.where(terminated, hover.TERMINATION_REWARD, reward + self.alive_bonus)
+            reward = np.where(terminated, hover.TERMINATION_REWARD, hover.hover_reward(obs) + self.alive_bonus)
             success = np.zeros(self.num_envs, dtype=bool)
         else:
             last = len(self.waypoints) - 1
@@ -170,19 +192,35 @@ class FlightBatchEnv(VectorEnv):
             obs = self._observe()
         truncated = ~terminated & (self.steps >= self.max_steps)
         done = terminated | truncated
-        infos: dict[str, Any] = {"time_s": self.batch.time.copy(), "collided": collided.copy()}
+        step_info: dict[str, np.ndarray] = {"time_s": self.batch.time.copy(), "collided": collided.copy()}
         if self.task == "waypoints":
-            infos["success"] = success.copy()
-            infos["waypoint"] = np.minimum(self.index, len(self.waypoints))
-        final_obs = np.full(self.num_envs, None, dtype=object)
+            step_info["success"] = success.copy()
+            step_info["waypoint"] = np.minimum(self.index, len(self.waypoints))
+        everyone = np.ones(self.num_envs, dtype=bool)
+        infos: dict[str, Any] = {}
+        for key, value in step_info.items():
+            infos[key], infos["_" + key] = value, everyone.copy()
         if self.autoreset and done.any():
             ended = np.flatnonzero(done)
+            final_obs = np.full(self.num_envs, None, dtype=object)
             for i in ended:
                 final_obs[i] = obs[i].copy()
+            # the last step's info of the ended vehicles; their info now is the new episode's
+            final_info: dict[str, Any] = {}
+            for key, value in step_info.items():
+                final_info[key], final_info["_" + key] = np.where(done, value, np.zeros_like(value)), done.copy()
             self._reset(ended)
             obs[ended] = self._observe()[ended]
-        infos["final_obs"] = final_obs
-        infos["_final_obs"] = done.copy()
+            for key in step_info:
+                if key != "time_s":
+                    infos[key] = np.where(done, np.zeros_like(infos[key]), infos[key])
+                    infos["_" + key] = ~done
+            infos["time_s"] = self.batch.time.copy()
+            infos["final_obs"], infos["_final_obs"] = final_obs, done.copy()
+            infos["final_info"], infos["_final_info"] = final_info, done.copy()
+        elif done.any():
+            self._ended |= done
+        self._obs[:] = obs
         return obs, reward.astype(np.float64), terminated, truncated, infos
 
     def close_extras(self, **kwargs: Any) -> None:
@@ -254,11 +292,13 @@ class SingleVehicleEnv(gym.Env):
         return obs[0], {"time_s": float(info["time_s"][0])}
 
     def step(self, action):
+        self.vector._ended[:] = False  # an env steps on after it ends if its caller does so
         obs, reward, terminated, truncated, info = self.vector.step(np.asarray(action)[None, :])
+        keys = ("time_s", "collided", "success", "waypoint")
         return (
             obs[0],
             float(reward[0]),
             bool(terminated[0]),
             bool(truncated[0]),
-            {"time_s": float(info["time_s"][0]), "collided": bool(info["collided"][0])},
+            {k: info[k][0].item() for k in keys if k in info},
         )

@@ -4,7 +4,10 @@ Observation (13, float32), from the odometry sensor: position error p - p_target
 +-5), velocity in the world frame [m/s] (3, +-20), orientation quaternion (x, y, z, w) (4, +-1),
 body rates [rad/s] (3, +-50); values are clipped to these bounds.
 Action: see rotors_sim.envs.flight ("motor": one per rotor, "attitude": roll, pitch, yaw rate, thrust).
-Reward per control step: -|p - p_target| - 0.1 |v| - 0.05 |omega|, and -10 when terminated.
+Reward per control step: 1 - c / c_max with the cost c = |p - p_target| + 0.1 |v| + 0.05 |omega|
+and c_max its largest value before termination (|p - p_target| < 2 sqrt(3) m, |v| <= 20 sqrt(3) m/s,
+|omega| <= 50 sqrt(3) rad/s), so in [0, 1]; -10 when terminated. Every step survived pays and a crash
+costs: a crash scores below any episode that lasts longer.
 Start: at rest, p_target + U(-0.5, 0.5) m per axis (z at least 0.3 m), yaw U(-pi, pi).
 terminated: a contact (the ground included) or |p - p_target| > 2 m on some axis.
 truncated: episode_s of simulated time (default 10 s).
@@ -23,6 +26,9 @@ OBSERVATION_HIGH = np.array([5.0] * 3 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.
 OBSERVATION_SIZE = len(OBSERVATION_HIGH)
 BOUND_M = 2.0
 TERMINATION_REWARD = -10.0
+# the cost's largest value while the episode runs: each axis of the position error under BOUND_M,
+# velocity and body rates at their observation bounds
+COST_MAX = float(np.sqrt(3.0) * (BOUND_M + 0.1 * OBSERVATION_HIGH[3] + 0.05 * OBSERVATION_HIGH[10]))
 
 
 def hover_observation(odometry, target: np.ndarray) -> np.ndarray:
@@ -31,8 +37,15 @@ def hover_observation(odometry, target: np.ndarray) -> np.ndarray:
     return np.clip(obs, -OBSERVATION_HIGH, OBSERVATION_HIGH).astype(np.float32)
 
 
-def hover_reward(obs: np.ndarray) -> float:
-    return float(-np.linalg.norm(obs[0:3]) - 0.1 * np.linalg.norm(obs[3:6]) - 0.05 * np.linalg.norm(obs[10:13]))
+def hover_cost(obs: np.ndarray) -> np.ndarray:
+    """c = |e_p| + 0.1 |v| + 0.05 |omega| of one observation or of rows of them."""
+    o = np.asarray(obs, dtype=np.float64)
+    return np.linalg.norm(o[..., 0:3], axis=-1) + 0.1 * np.linalg.norm(o[..., 3:6], axis=-1) + 0.05 * np.linalg.norm(o[..., 10:13], axis=-1)
+
+
+def hover_reward(obs: np.ndarray) -> np.ndarray:
+    """1 - c / c_max, in [0, 1] while the episode runs."""
+    return 1.0 - hover_cost(obs) / COST_MAX
 
 
 class HoverEnv(FlightEnv):
@@ -68,6 +81,6 @@ class HoverEnv(FlightEnv):
         self.steps += 1
         collided = self.flight.collided()
         terminated = collided or bool(np.any(np.abs(obs[0:3]) > BOUND_M))
-        reward = TERMINATION_REWARD if terminated else hover_reward(obs)
+        reward = TERMINATION_REWARD if terminated else float(hover_reward(obs))
         truncated = not terminated and self.steps >= self.max_steps
         return obs, reward, terminated, truncated, {"time_s": self.flight.odometry.time_s, "collided": collided}
