@@ -55,7 +55,11 @@ def test_batch_flies_the_route_as_the_full_world(mav: str, wind: str):
         worst_m = max(worst_m, float(np.linalg.norm(p_world - truth[0:3])))
         worst_deg = max(worst_deg, angle_deg(q_world, truth[3:7]))
     print(f"{mav} {wind}: largest difference {worst_m:.2e} m, {worst_deg:.2e} deg over 10 s " f"(end at {np.round(truth[0:3], 3)})")
-    assert worst_m < 1e-3 and worst_deg < 0.1
+    assert worst_m < 1e-3 and worst_deg < 0.1  # the target: 1 mm and 0.1 deg
+    # the level it holds: rounding for the firefly, hummingbird and pelican (about 1e-15 m); the iris
+    # holds 3e-11 m (where its larger difference comes from is not traced)
+    level_m, level_deg = (1e-9, 1e-7) if mav == "iris" else (1e-12, 1e-10)
+    assert worst_m < level_m and worst_deg < level_deg
     assert np.linalg.norm(truth[0:3] - [0.0, 0.0, 1.0]) < 0.3  # it flew the route back towards home
 
 
@@ -181,6 +185,37 @@ def test_takes_off_from_the_ground_and_lands_again():
     print(f"after take-off {np.round(up[:3], 3)}, landed at {np.round(down[:3], 4)}")
     assert batch.in_contact[0] and abs(down[2] - rest[2]) < 0.01 and np.linalg.norm(down[:2]) < 0.02
     assert np.linalg.norm(down[7:10]) < 0.01
+
+
+def test_a_take_off_and_a_landing_as_the_full_world():
+    """From the ground at 0.1 m up to 1 m and down onto the ground again, world and batch side by side:
+    the same to rounding until the feet touch; the touch-down is the batch's own contact model
+    against ODE's, within millimetres, and at rest the two agree to 0.05 mm."""
+    world = rs.World("basic", step_size=DT)
+    world.spawn_mav("firefly", xyz=(0.0, 0.0, 0.1), random_seed=7, odometry_divisor=DIVISOR)
+    lee = rs.LeePositionController.for_mav("firefly")
+    lee.set_point([0.0, 0.0, 1.0])
+    world.attach_controller("firefly", lee)
+    batch = rs.FlightBatch("firefly", 1, step_size=DT, control_divisor=DIVISOR, seeds=[7], positions=[[0.0, 0.0, 0.1]])
+    batch.commands[0] = [0.0, 0.0, 1.0, 0.0]
+    difference, touched = [], None
+    for k in range(int(round(10.0 / DT))):
+        if k == int(round(5.0 / DT)):  # below the ground: both land and stay
+            lee.set_point([0.0, 0.0, -0.05])
+            batch.commands[0] = [0.0, 0.0, -0.05, 0.0]
+        world.step(1)
+        batch.step(1)
+        difference.append(float(np.linalg.norm(world.link_state("firefly")[0] - batch.truth()[0, 0:3])))
+        if touched is None and k > int(round(5.0 / DT)) and batch.in_contact[0]:
+            touched = k
+    difference = np.array(difference)
+    assert touched is not None
+    before, touchdown, rest = difference[:touched], difference[touched : touched + 500], difference[touched + 500 :]
+    print(
+        f"until the touch-down at {touched * DT:.3f} s: {before.max():.1e} m; touching down: {touchdown.max() * 1e3:.2f} mm; "
+        f"at rest: {rest.max() * 1e3:.4f} mm"
+    )
+    assert before.max() < 1e-12 and touchdown.max() < 5e-3 and rest.max() < 5e-5
 
 
 def test_imu_in_a_hover_feels_gravity_up():
