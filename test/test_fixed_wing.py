@@ -20,6 +20,8 @@ FW = rs.paths.resource("fixed_wing")
 SURFACE_MAX = 0.349066  # [rad] every surface of techpod.yaml
 G = 9.8  # the world's gravity
 V_TRIM = 15.0
+HEIGHT = 50.0  # the flights' height in the basic world, whose origin is 500 m up: the air of 550 m
+ALTITUDE = 500.0 + HEIGHT
 
 
 def techpod_mass() -> float:
@@ -38,7 +40,7 @@ def trim(model, mass: float):
 
     def residual(x):
         alpha, elevator, throttle = x
-        w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0.0, 0.0, 0.0], command(elevator, throttle))
+        w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0.0, 0.0, 0.0], command(elevator, throttle), ALTITUDE)
         f, m = np.asarray(w["force_B"]), np.asarray(w["moment_B"])
         # body pitched nose up by alpha (FLU): world x = cos a f_x - sin a f_z, world z = sin a f_x + cos a f_z
         fx_W = math.cos(alpha) * f[0] - math.sin(alpha) * f[2]
@@ -70,8 +72,8 @@ def trimmed():
 
 def test_lift_equals_weight_at_trim_within_2_percent(trimmed):
     model, mass, (alpha, elevator, throttle) = trimmed
-    w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0, 0, 0], command(elevator, throttle))
-    lift = 0.5 * 1.18 * V_TRIM**2 * 0.47 * w["lift_coefficient"]
+    w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0, 0, 0], command(elevator, throttle), ALTITUDE)
+    lift = 0.5 * rs.atmosphere.density_kg_m3(ALTITUDE) * V_TRIM**2 * 0.47 * w["lift_coefficient"]
     print(
         f"techpod {mass:.3f} kg at {V_TRIM} m/s: alpha {math.degrees(alpha):.2f} deg, elevator "
         f"{math.degrees(elevator):.2f} deg, throttle {throttle:.3f}; lift {lift:.2f} N, weight {mass * G:.2f} N"
@@ -215,7 +217,7 @@ def test_wind_changes_airspeed_and_aoa_as_the_model_says(trimmed, wind_direction
     c, s = math.cos(alpha), math.sin(alpha)
     R = np.array([[c, 0.0, -s], [0.0, 1.0, 0.0], [s, 0.0, c]])  # FLU body axes in the world, pitched nose up
     v_air_B = R.T @ (np.array([V_TRIM, 0.0, 0.0]) - wind_W)
-    w = model.compute(list(v_air_B), [0.0, 0.0, 0.0], command(elevator, throttle))
+    w = model.compute(list(v_air_B), [0.0, 0.0, 0.0], command(elevator, throttle), ALTITUDE)
     a_model = R @ np.asarray(w["force_B"]) / mass - [0.0, 0.0, G]
     print(
         f"wind {wind_W} m/s: airspeed {w['airspeed']:.2f} m/s, alpha {math.degrees(w['alpha']):.2f} deg "

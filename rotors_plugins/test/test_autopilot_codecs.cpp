@@ -39,6 +39,10 @@ TEST(StandardAtmosphere, PressureAltitudeInvertsThePressureWithinTheGeopotential
   // the pressure of 500 m geometric is that of 499.96 m geopotential: h R_e / (R_e + h)
   EXPECT_NEAR(PressureAltitude(StandardAtmospherePressure(500.0)), 500.0 * 6356766.0 / (6356766.0 + 500.0), 1e-6);
   EXPECT_NEAR(StandardAtmosphereTemperature_C(1000.0), 15.0 - 6.5, 1e-12);
+  // the density, against the 1976 standard's table (U.S. Standard Atmosphere 1976, geometric altitude)
+  EXPECT_NEAR(StandardAtmosphereDensity(0.0), 1.2250, 5e-5);
+  EXPECT_NEAR(StandardAtmosphereDensity(500.0), 1.1673, 2e-4);
+  EXPECT_NEAR(StandardAtmosphereDensity(1000.0), 1.1117, 2e-4);
 }
 
 TEST(Px4HilSensor, FieldsInPx4sUnitsAndFrames) {

@@ -24,13 +24,16 @@ FixedWingModel Techpod() {
 /// Airspeed V at angle of attack alpha, no sideslip, in FLU (FRD w = V sin(alpha) is -z in FLU).
 Eigen::Vector3d Air(double V, double alpha) { return {V * std::cos(alpha), 0.0, -V * std::sin(alpha)}; }
 
-double QS(double V) { return 0.5 * 1.18 * V * V * 0.47; }
+/// RotorS' plugin's constant density, with which its reference trims the techpod (the standard
+/// atmosphere's at 380 m); the model takes the density as an input
+constexpr double kRho = 1.18;
+double QS(double V) { return 0.5 * kRho * V * V * 0.47; }
 }  // namespace
 
 TEST(FixedWingModel, LiftEqualsTheTechpodsWeightAtItsTrimAngleOfAttack) {
   const FixedWingModel m = Techpod();
   const double V = 15.0, alpha = 0.0235, weight_N = 2.81 * 9.81;  // the reference's level flight at 15 m/s
-  const auto w = m.Compute(Air(V, alpha), Eigen::Vector3d::Zero(), FixedWingInputs{});
+  const auto w = m.Compute(Air(V, alpha), Eigen::Vector3d::Zero(), FixedWingInputs{}, kRho);
   // C_L = 0.2127 + 10.806 a - 46.8324 a^2 + 60.6017 a^3
   const double C_L = 0.2127 + 10.806 * alpha - 46.8324 * alpha * alpha + 60.6017 * alpha * alpha * alpha;
   EXPECT_NEAR(w.lift_coefficient, C_L, 1e-12);
@@ -50,14 +53,14 @@ TEST(FixedWingModel, AnAileronStepRollsRightWingDownAtTheRatePredicted) {
   FixedWingInputs u;
   u.aileron_left_rad = 0.1;  // left trailing edge down, right up: Delta a = 0.2
   u.aileron_right_rad = -0.1;
-  const auto w = m.Compute(Air(V, 0.0), Eigen::Vector3d::Zero(), u);
+  const auto w = m.Compute(Air(V, 0.0), Eigen::Vector3d::Zero(), u, kRho);
   // C_l = 0.0117 Delta a; M_x = qS b C_l, positive in FRD and FLU alike: right wing down
   EXPECT_NEAR(w.moment_B.x(), QS(V) * b * 0.0117 * 0.2, 1e-9);
   EXPECT_GT(w.moment_B.x(), 0.0);
   // the steady roll rate where roll damping cancels it: p = -C_l,da Da 2V / (b C_l,p)
   const double p_ss = -0.0117 * 0.2 * 2.0 * V / (b * -0.1647);
   EXPECT_NEAR(p_ss, 0.16456, 1e-4);
-  const auto at_p = m.Compute(Air(V, 0.0), Eigen::Vector3d(p_ss, 0.0, 0.0), u);
+  const auto at_p = m.Compute(Air(V, 0.0), Eigen::Vector3d(p_ss, 0.0, 0.0), u, kRho);
   EXPECT_NEAR(at_p.moment_B.x(), 0.0, 1e-9);
 }
 
@@ -65,17 +68,17 @@ TEST(FixedWingModel, ThrottleElevatorRudderAndLowSpeed) {
   const FixedWingModel m = Techpod();
   FixedWingInputs u;
   u.throttle = 1.0;
-  const auto thrust = m.Compute(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), u);
+  const auto thrust = m.Compute(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), u, kRho);
   EXPECT_NEAR(thrust.force_B.x(), 14.7217, 1e-9);  // c_thrust [0, 14.7217, 0], along x
   EXPECT_EQ(thrust.alpha_rad, 0.0);
   EXPECT_TRUE(thrust.moment_B.allFinite());
   // elevator trailing edge down (+): C_m = 0.0435 - 6.1308 de at alpha 0: nose down, i.e. +y in FLU
   FixedWingInputs elevator;
   elevator.elevator_rad = 0.1;
-  const auto e = m.Compute(Air(15.0, 0.0), Eigen::Vector3d::Zero(), elevator);
+  const auto e = m.Compute(Air(15.0, 0.0), Eigen::Vector3d::Zero(), elevator, kRho);
   EXPECT_NEAR(e.moment_B.y(), -QS(15.0) * 0.18 * (0.0435 - 6.1308 * 0.1), 1e-9);
   // alpha clamped at 0.27
-  const auto stall = m.Compute(Air(15.0, 0.6), Eigen::Vector3d::Zero(), FixedWingInputs{});
+  const auto stall = m.Compute(Air(15.0, 0.6), Eigen::Vector3d::Zero(), FixedWingInputs{}, kRho);
   EXPECT_DOUBLE_EQ(stall.alpha_rad, 0.27);
 }
 
@@ -114,7 +117,7 @@ TEST(FixedWingModel, ParameterFilesWithAMissingKeyOrAShortListAreNamed) {
 TEST(FixedWingModel, LiftPeaksAtTheStallAngleFallsBeyondItAndIsHeldPastAlphaMax) {
   const FixedWingModel m = Techpod();
   auto C_L = [&](double alpha) {
-    return m.Compute(Air(15.0, alpha), Eigen::Vector3d::Zero(), FixedWingInputs{}).lift_coefficient;
+    return m.Compute(Air(15.0, alpha), Eigen::Vector3d::Zero(), FixedWingInputs{}, kRho).lift_coefficient;
   };
   const double a_stall = (93.6648 - std::sqrt(93.6648 * 93.6648 - 4 * 181.8051 * 10.806)) / (2 * 181.8051);
   EXPECT_NEAR(a_stall, 0.1740, 1e-3);
@@ -122,7 +125,7 @@ TEST(FixedWingModel, LiftPeaksAtTheStallAngleFallsBeyondItAndIsHeldPastAlphaMax)
   EXPECT_GT(C_L(a_stall), C_L(a_stall + 0.02));
   EXPECT_LT(C_L(0.25), C_L(a_stall) - 0.05);  // past the stall angle the lift falls
   EXPECT_DOUBLE_EQ(C_L(0.40), C_L(0.27));     // clamped at alpha_max
-  const auto w = m.Compute(Air(15.0, 0.40), Eigen::Vector3d::Zero(), FixedWingInputs{});
+  const auto w = m.Compute(Air(15.0, 0.40), Eigen::Vector3d::Zero(), FixedWingInputs{}, kRho);
   EXPECT_DOUBLE_EQ(w.alpha_rad, 0.27);
 }
 

@@ -18,6 +18,7 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
+#include "rotors_gazebo_plugins/models/standard_atmosphere.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
@@ -201,9 +202,10 @@ VehicleSnapshot AutopilotInterface::Snapshot() {
   }
   if (const auto* airspeed = Latest<geometry_msgs::Vector3Stamped>(airspeed_, &s.diff_pressure_count)) {
     s.has_diff_pressure = true;
-    constexpr double kAirDensity = 1.225;  // [kg/m^3] sea level
-    // a pitot tube's differential pressure: q = rho v_x^2 / 2
-    s.diff_pressure_Pa = 0.5 * kAirDensity * airspeed->vector.x * airspeed->vector.x;
+    // a pitot tube's differential pressure: q = rho v_x^2 / 2, rho the standard atmosphere's at the
+    // vehicle's altitude
+    const double rho = StandardAtmosphereDensity(s.latitude_longitude_altitude.z());
+    s.diff_pressure_Pa = 0.5 * rho * airspeed->vector.x * airspeed->vector.x;
     s.airspeed_m_s = ToEigen(airspeed->vector).norm();
   }
   return s;

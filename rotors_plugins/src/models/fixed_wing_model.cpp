@@ -180,7 +180,7 @@ FixedWingModel::FixedWingModel(FixedWingAeroParams aero, FixedWingVehicleParams 
 }
 
 FixedWingWrench FixedWingModel::Compute(const Eigen::Vector3d& v_air_B, const Eigen::Vector3d& omega_B,
-                                        const FixedWingInputs& u) const {
+                                        const FixedWingInputs& u, double air_density_kg_m3) const {
   const FixedWingAeroParams& a = aero_;
   // FLU -> FRD (180 deg about x): (u, v, w) = (vx, -vy, -vz), (p, q, r) = (wx, -wy, -wz)
   const double uu = v_air_B.x(), vv = -v_air_B.y(), ww = -v_air_B.z();
@@ -220,7 +220,7 @@ FixedWingWrench FixedWingModel::Compute(const Eigen::Vector3d& v_air_B, const Ei
   out.lift_coefficient = C_L;
   out.drag_coefficient = C_D;
   // q-bar S = 1/2 rho V^2 S
-  const double qS = 0.5 * kAirDensity_kg_m3 * V * V * vehicle_.wing_surface_m2;
+  const double qS = 0.5 * air_density_kg_m3 * V * V * vehicle_.wing_surface_m2;
   const Eigen::Vector3d F_w = qS * Eigen::Vector3d(-C_D, C_Y, -C_L);
   const Eigen::Vector3d M_w = qS * Eigen::Vector3d(b * C_l, c * C_m, b * C_n);
   // body -> wind rotation (rows), applied transposed: F_FRD = R^T F_w

@@ -26,4 +26,11 @@ double PressureAltitude(double pressure_Pa) {
 
 double StandardAtmosphereTemperature_C(double altitude_m) { return kT0_K - kLapse_K_m * altitude_m - 273.15; }
 
+double StandardAtmosphereDensity(double h_m) {
+  const double h_gp = kEarthRadius_m * h_m / (kEarthRadius_m + h_m);
+  const double T = kT0_K - kLapse_K_m * h_gp;
+  // rho = p M / (R T)
+  return StandardAtmospherePressure(h_m) * kMolarMass_kg_kmol / (kGasConstant_J_kmol_K * T);
+}
+
 }  // namespace rotors_gazebo_plugins

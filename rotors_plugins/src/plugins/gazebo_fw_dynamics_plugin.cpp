@@ -1,6 +1,7 @@
 // librotors_gazebo_fw_dynamics_plugin.so: RotorS' fixed-wing dynamics (FixedWingModel) on <linkName>:
 // each step the airspeed (link velocity minus the vehicle's wind, from its bus) and the body rates
-// give the aerodynamic and thrust wrench, applied at the link's CoG. Inputs, held between messages
+// give the aerodynamic and thrust wrench, applied at the link's CoG; the air's density is the
+// standard atmosphere's at the link's altitude (the world's elevation plus its height; RotorS: 1.18). Inputs, held between messages
 // (all 0 at the start):
 // - <actuatorsSubTopic> (default command/motor_speed): mav_msgs/Actuators, field normalized, by the
 //   channels of <vehicleParamsYAML>;
@@ -20,8 +21,10 @@
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/models/fixed_wing_model.h"
+#include "rotors_gazebo_plugins/models/standard_atmosphere.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
@@ -50,6 +53,7 @@ class GazeboFwDynamicsPlugin : public rotors_sim::ModelPlugin {
     }
     link_ = RequireLink(model, link_name);
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
+    elevation_m_ = model->GetWorldRaw()->Origin().elevation_m;
     const FixedWingVehicleParams& v = model_->Vehicle();
     for (int channel : {v.aileron_left.channel, v.aileron_right.channel, v.elevator.channel, v.flap.channel,
                         v.rudder.channel, v.throttle_channel})
@@ -111,12 +115,15 @@ class GazeboFwDynamicsPlugin : public rotors_sim::ModelPlugin {
     const auto v_air_B = X_WB.Rot().RotateVectorReverse(
         rotors_sim::physics::Vector3d(v_W.X() - wind_W.x(), v_W.Y() - wind_W.y(), v_W.Z() - wind_W.z()));
     const auto w_B = link_->RelativeAngularVel();
-    last_ = model_->Compute({v_air_B.X(), v_air_B.Y(), v_air_B.Z()}, {w_B.X(), w_B.Y(), w_B.Z()}, inputs_);
+    // the standard atmosphere at the link's altitude (the world origin's elevation plus its height)
+    const double rho = StandardAtmosphereDensity(elevation_m_ + X_WB.Pos().Z());
+    last_ = model_->Compute({v_air_B.X(), v_air_B.Y(), v_air_B.Z()}, {w_B.X(), w_B.Y(), w_B.Z()}, inputs_, rho);
     link_->AddRelativeForce({last_.force_B.x(), last_.force_B.y(), last_.force_B.z()});
     link_->AddRelativeTorque({last_.moment_B.x(), last_.moment_B.y(), last_.moment_B.z()});
   }
 
   std::string namespace_;
+  double elevation_m_ = 0.0;  ///< [m] of the world origin (<spherical_coordinates>)
   std::unique_ptr<FixedWingModel> model_;
   FixedWingInputs inputs_;
   FixedWingWrench last_;

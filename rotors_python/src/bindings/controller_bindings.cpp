@@ -19,6 +19,7 @@
 #include "rotors_control/lee_controller.h"
 #include "rotors_control/parameter_loading.h"
 #include "rotors_gazebo_plugins/models/fixed_wing_model.h"
+#include "rotors_gazebo_plugins/models/standard_atmosphere.h"
 #include "rotors_core/error.h"
 #include "rotors_params/map_param_reader.h"
 
@@ -188,12 +189,12 @@ void BindControllers(py::module_& m) {
       .def(
           "compute",
           [](const rotors_gazebo_plugins::FixedWingModel& model, const Eigen::Vector3d& v_air_B,
-             const Eigen::Vector3d& omega_B, const std::vector<double>& normalized) {
+             const Eigen::Vector3d& omega_B, const std::vector<double>& normalized, double altitude_m) {
             rotors_gazebo_plugins::FixedWingInputs u;
             const std::string why =
                 rotors_gazebo_plugins::FixedWingInputs::FromNormalized(normalized, model.Vehicle(), &u);
             if (!why.empty()) throw SimError(why);
-            const auto w = model.Compute(v_air_B, omega_B, u);
+            const auto w = model.Compute(v_air_B, omega_B, u, rotors_gazebo_plugins::StandardAtmosphereDensity(altitude_m));
             py::dict out;
             out["force_B"] = w.force_B;
             out["moment_B"] = w.moment_B;
@@ -203,8 +204,9 @@ void BindControllers(py::module_& m) {
             out["lift_coefficient"] = w.lift_coefficient;
             return out;
           },
-          py::arg("v_air_B"), py::arg("omega_B"), py::arg("normalized"),
-          "Force and moment (body frame FLU) for the airspeed and rates (FLU) and a normalized command.");
+          py::arg("v_air_B"), py::arg("omega_B"), py::arg("normalized"), py::arg("altitude_m"),
+          "Force and moment (body frame FLU) for the airspeed and rates (FLU) and a normalized command, in "
+          "the standard atmosphere at altitude_m [m] (as the plugin: the world's elevation plus the height).");
 
   const char* state_doc =
       "Rotor speeds [rad/s] for the state as the ROS node takes it from odometry: position_W, "

@@ -26,6 +26,7 @@ void BindFrames(pybind11::module_& m) {
   a.def("pressure_Pa", &rotors_gazebo_plugins::StandardAtmospherePressure, pybind11::arg("altitude_m"));
   a.def("pressure_altitude_m", &rotors_gazebo_plugins::PressureAltitude, pybind11::arg("pressure_Pa"));
   a.def("temperature_C", &rotors_gazebo_plugins::StandardAtmosphereTemperature_C, pybind11::arg("altitude_m"));
+  a.def("density_kg_m3", &rotors_gazebo_plugins::StandardAtmosphereDensity, pybind11::arg("altitude_m"));
 }
 
 }  // namespace rotors_python

@@ -64,14 +64,14 @@ struct FixedWingWrench {
 
 class FixedWingModel {
  public:
-  static constexpr double kAirDensity_kg_m3 = 1.18;  ///< RotorS' rho
-  static constexpr double kMinAirspeed_m_s = 0.1;    ///< below it alpha, beta and the rate terms are 0
+  static constexpr double kMinAirspeed_m_s = 0.1;  ///< below it alpha, beta and the rate terms are 0
 
   FixedWingModel(FixedWingAeroParams aero, FixedWingVehicleParams vehicle);
   /// v_air_B: airspeed vector (link velocity minus wind) in the body frame FLU [m/s]; omega_B: body
-  /// rates FLU [rad/s].
-  FixedWingWrench Compute(const Eigen::Vector3d& v_air_B, const Eigen::Vector3d& omega_B,
-                          const FixedWingInputs& u) const;
+  /// rates FLU [rad/s]; rho: the air's density [kg/m^3] (StandardAtmosphereDensity at the altitude;
+  /// RotorS' plugin has a constant 1.18, the standard atmosphere's at 380 m).
+  FixedWingWrench Compute(const Eigen::Vector3d& v_air_B, const Eigen::Vector3d& omega_B, const FixedWingInputs& u,
+                          double air_density_kg_m3) const;
   const FixedWingAeroParams& Aero() const { return aero_; }
   const FixedWingVehicleParams& Vehicle() const { return vehicle_; }
 

@@ -1,5 +1,6 @@
-// The 1976 standard atmosphere below 11 km, the one model of air the sensors and the autopilot
-// codecs share (the barometer plugin, PX4's HIL_SENSOR, Betaflight's state packet).
+// The 1976 standard atmosphere below 11 km, the one model of air the sensors, the aerodynamics
+// and the autopilot codecs share (the barometer plugin, the fixed wing's dynamic pressure, PX4's
+// HIL_SENSOR and its pitot tube, Betaflight's state packet).
 #pragma once
 
 namespace rotors_gazebo_plugins {
@@ -14,5 +15,9 @@ double PressureAltitude(double pressure_Pa);
 
 /// Temperature [deg C] at a pressure altitude [m]: T_0 - L h.
 double StandardAtmosphereTemperature_C(double altitude_m);
+
+/// Air density [kg/m^3] at a geometric altitude [m]: rho = p M / (R T) with p and T as above
+/// (1.2250 at sea level, 1.1673 at 500 m, RotorS' worlds' elevation).
+double StandardAtmosphereDensity(double altitude_m);
 
 }  // namespace rotors_gazebo_plugins
