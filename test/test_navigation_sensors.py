@@ -6,6 +6,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from conftest import RosGraph, stop_launch, wait_sim_time
 
@@ -146,3 +147,40 @@ def test_the_world_magnetic_model_field_at_the_worlds_origin():
     print(f"magnetometer at Canberra {mean_B * 1e9} nT, WMM {expected_B * 1e9} nT")
     # the profile's noise (4e-7 T per sample) averages out; RotorS' initial bias is within 4e-7 T per axis
     np.testing.assert_allclose(mean_B, expected_B, atol=5e-7)
+
+
+def test_px4_profile_publishes_barometer_at_50_hz_and_magnetometer_at_100_hz():
+    """PX4's iris has its barometer at 50 Hz and its magnetometer at 100 Hz (<pubRate> in
+    iris.sdf.jinja); with autopilot_profile px4 so do ours, on PX4's 250 Hz steps: each sample at the
+    first step at or after its time (the magnetometer's 8 and 12 ms apart in turn). RotorS' profile
+    keeps every step; a negative pubRate is one line."""
+    import rotors_sim as rs
+
+    counts = {}
+    for profile in ("px4", "rotors"):
+        world = rs.World("basic", step_size=0.004)
+        world.spawn_mav("iris", random_seed=3, enable_navigation_sensors=True, autopilot_profile=profile)
+        stamps = {"air_pressure": [], "magnetic_field": []}
+        for _ in range(500):  # 2 s
+            world.step(1)
+            for topic, seen in stamps.items():
+                msg, _ = world.message(f"/iris/{topic}")
+                t = msg.header.stamp.to_sec()
+                if not seen or seen[-1] != t:
+                    seen.append(t)
+        counts[profile] = {topic: len(seen) for topic, seen in stamps.items()}
+        if profile == "px4":
+            for topic, period in (("air_pressure", 0.02), ("magnetic_field", 0.01)):
+                t = np.array(stamps[topic])
+                due = t[0] + period * np.arange(len(t))  # sample k due at t_0 + k / rate
+                assert np.all(t >= due - 1e-9) and np.all(t - due < 0.004 - 1e-9), topic
+    print(f"messages in 2 s at 250 Hz steps: {counts}")
+    assert counts["px4"] == {"air_pressure": 100, "magnetic_field": 200}
+    assert counts["rotors"] == {"air_pressure": 500, "magnetic_field": 500}
+    from rotors_sim.world import run_xacro
+
+    model = rs.paths.package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"
+    args = dict(mav_name="iris", namespace="iris", enable_navigation_sensors=True, autopilot_profile="px4")
+    urdf = run_xacro(model, args).replace("<pubRate>50</pubRate>", "<pubRate>-5</pubRate>")
+    with pytest.raises(rs.SimError, match=r"pubRate = -5.0+ Hz must be >= 0"):
+        rs.World("basic").spawn(urdf, "iris")

@@ -2,15 +2,18 @@
 // parameter and one advertised message type (ROS, or the in-process taps), for every one of them
 // (pressure, magnetometer, airspeed, optical flow). LinkSensorPlugin adds what the link-mounted
 // ones share (pressure, magnetometer, airspeed): linkName (required), the link and its world, and
-// OnUpdate() after every world step while someone listens. A plugin reads its own parameters
+// OnUpdate() after every world step while someone listens, or at <pubRate> [Hz] (ours, PX4's
+// plugins' parameter; 0 or absent: every step, as RotorS). A plugin reads its own parameters
 // between LoadLink() and StartPublishing().
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 
 #include <ros/ros.h>
 
+#include "rotors_core/error.h"
 #include "rotors_core/event.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -60,13 +63,21 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     msg_.header.frame_id = link_name;
+    double rate_hz = 0.0;
+    ReadParam(Params(), "pubRate", &rate_hz);
+    if (!std::isfinite(rate_hz) || rate_hz < 0.0)
+      throw rotors_sim::SimError("pubRate = " + std::to_string(rate_hz) +
+                                 " Hz must be >= 0 (0: a message every physics step)");
+    period_s_ = rate_hz > 0.0 ? 1.0 / rate_hz : 0.0;
   }
 
   /// Last in Load(): advertises the topic and calls OnUpdate() after each world step (not at all
   /// when nobody can listen).
   void StartPublishing() {
     if (!topic_.Advertise(*world_)) return;
-    connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnUpdate(); });
+    connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] {
+      if (Due()) OnUpdate();
+    });
   }
 
   /// Fills msg_ (its stamp too) and publishes it with Publish().
@@ -80,8 +91,25 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
   Msg msg_;
 
  private:
+  /// Every step without pubRate; else sample k at the first step at or after k / pubRate, so the
+  /// rate is pubRate on any step (100 Hz on 250 Hz steps: 8 and 12 ms apart in turn). PX4's plugins
+  /// publish once more than 1 / pubRate has passed since the last, which on 250 Hz steps is 41.7 Hz
+  /// for 50 and 83.3 Hz for 100. A reset (sim time going back) starts again.
+  bool Due() {
+    if (period_s_ <= 0.0) return true;
+    const double t = world_->SimTime().Double();
+    if (t < last_s_) next_s_ = last_s_ = -1.0;
+    constexpr double kEpsilon_s = 1e-9;  // sim time is whole nanoseconds
+    if (last_s_ >= 0.0 && t + kEpsilon_s < next_s_) return false;
+    next_s_ = (last_s_ >= 0.0 ? next_s_ : t) + period_s_;
+    if (next_s_ <= t) next_s_ = t + period_s_;  // no burst after a long step
+    last_s_ = t;
+    return true;
+  }
+
   SensorTopic<Msg> topic_;
   rotors_sim::event::ConnectionPtr connection_;
+  double period_s_ = 0.0, last_s_ = -1.0, next_s_ = -1.0;
 };
 
 }  // namespace rotors_gazebo_plugins
