@@ -40,7 +40,9 @@ def trim(model, mass: float):
 
     def residual(x):
         alpha, elevator, throttle = x
-        w = model.compute([V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0.0, 0.0, 0.0], command(elevator, throttle), ALTITUDE)
+        w = model.compute(
+            [V_TRIM * math.cos(alpha), 0.0, -V_TRIM * math.sin(alpha)], [0.0, 0.0, 0.0], command(elevator, throttle), ALTITUDE
+        )
         f, m = np.asarray(w["force_B"]), np.asarray(w["moment_B"])
         # body pitched nose up by alpha (FLU): world x = cos a f_x - sin a f_z, world z = sin a f_x + cos a f_z
         fx_W = math.cos(alpha) * f[0] - math.sin(alpha) * f[2]

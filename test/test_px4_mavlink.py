@@ -238,6 +238,60 @@ def test_lockstep_waits_on_unanswered_hil_sensor_loses_no_answer():
     assert world.time == pytest.approx(62 * DT)
 
 
+def test_an_answer_releases_only_the_step_whose_hil_sensor_it_answers():
+    """PX4 answers every HIL_SENSOR it takes, stamped with that HIL_SENSOR's time (its lockstep clock).
+    Before lockstep begins (the first answer) the world does not wait, so two HIL_SENSOR go out before
+    the first answer. Each answered 4 ms after it came (within answer_timeout), the exchange must not
+    stay one answer behind: an older answer is applied but does not release the waiting step. Counted
+    as PX4 would see it: times it takes a HIL_SENSOR while another one is already waiting."""
+    import queue
+
+    port = free_port()
+    world = make_world(port, mavlink_answer_timeout=0.5)
+    stepper = SteppingWorld(world)
+    stepper.run(1)
+    stepper.join()
+    link = connect(port)
+    stepper.run(2)  # two HIL_SENSOR before any answer: lockstep has not begun, the world does not wait
+    stepper.join()
+    first, second = next_sensor(link)[0], next_sensor(link)[0]
+    answer(link, [0.0] * 6, armed=True, t_us=first.time_usec)  # lockstep from this answer on
+    steps = 500
+    arrivals: queue.Queue = queue.Queue()
+
+    def read() -> None:  # the autopilot's receive side: each HIL_SENSOR with the moment it came
+        while (m := link.recv_match(type="HIL_SENSOR", blocking=True, timeout=3.0)) is not None:
+            arrivals.put((time.monotonic(), m))
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    stepper.run(steps)
+    third = arrivals.get(timeout=5.0)  # the world has taken the first answer and waits for this one's
+    answer(link, [0.0] * 6, armed=True, t_us=second.time_usec)  # the answer to the second comes now
+    answered, ahead, pending = 2, [], [third]
+    while answered < steps:
+        if pending:
+            came, sensor = pending.pop()
+        else:
+            came, sensor = arrivals.get(timeout=5.0)
+        time.sleep(max(0.0, came + 0.004 - time.monotonic()))
+        if arrivals.qsize() > 0:  # the world has sent the next one before this one was answered
+            ahead.append(answered)
+        answer(link, [0.0] * 6, armed=True, t_us=sensor.time_usec)
+        answered += 1
+    print(f"{answered} answers, each 4 ms after its HIL_SENSOR; taken while the next was already there: {len(ahead)} {ahead[:8]}")
+    assert ahead == []
+    for _ in range(steps):  # the rest, answered at once
+        try:
+            _, sensor = arrivals.get(timeout=2.0)
+        except queue.Empty:
+            break
+        answer(link, [0.0] * 6, armed=True, t_us=sensor.time_usec)
+    stepper.join()
+    reader.join(10.0)
+    link.close()
+
+
 def channels_urdf(port: int) -> str:
     """The firefly with RotorS-style control_channels: u -> (u + offset) * scaling + zero_armed."""
     text = subprocess.run(

@@ -14,8 +14,9 @@ namespace {
 
 int16_t ClampInt16(double v) { return static_cast<int16_t>(std::max(-32767.0, std::min(32767.0, std::round(v)))); }
 uint16_t ClampUint16(double v) { return static_cast<uint16_t>(std::max(0.0, std::min(65534.0, std::round(v)))); }
-uint64_t Microseconds(double t_s) { return static_cast<uint64_t>(std::llround(t_s * 1e6)); }
 }  // namespace
+
+uint64_t Microseconds(double t_s) { return static_cast<uint64_t>(std::llround(t_s * 1e6)); }
 
 mavlink_hil_sensor_t HilSensor(const VehicleSnapshot& s, bool new_mag, bool new_baro, bool new_diff_pressure) {
   mavlink_hil_sensor_t m{};

@@ -1,8 +1,8 @@
 // librotors_gazebo_fw_dynamics_plugin.so: RotorS' fixed-wing dynamics (FixedWingModel) on <linkName>:
 // each step the airspeed (link velocity minus the vehicle's wind, from its bus) and the body rates
 // give the aerodynamic and thrust wrench, applied at the link's CoG; the air's density is the
-// standard atmosphere's at the link's altitude (the world's elevation plus its height; RotorS: 1.18). Inputs, held between messages
-// (all 0 at the start):
+// standard atmosphere's at the link's altitude (the world's elevation plus its height; RotorS: 1.18). Inputs, held
+// between messages (all 0 at the start):
 // - <actuatorsSubTopic> (default command/motor_speed): mav_msgs/Actuators, field normalized, by the
 //   channels of <vehicleParamsYAML>;
 // - with <isInputJoystick> true, <rollPitchYawrateThrustSubTopic> (default

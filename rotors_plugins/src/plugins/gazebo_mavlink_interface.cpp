@@ -114,6 +114,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     if (!session_.Waits(armed_)) return;
     // lockstep while armed: this step waits for the answer to the HIL_SENSOR just sent, at most answer_timeout
     awaiting_answer_ = true;
+    awaited_time_usec_ = px4::Microseconds(s.time_s);
     const auto start = std::chrono::steady_clock::now();
     while (awaiting_answer_) {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -258,7 +259,11 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     if (m.msgid != MAVLINK_MSG_ID_HIL_ACTUATOR_CONTROLS) return;
     mavlink_hil_actuator_controls_t a;
     mavlink_msg_hil_actuator_controls_decode(&m, &a);
-    awaiting_answer_ = false;  // an answer, used or not: lockstep goes on
+    // PX4 stamps its outputs with its clock, which in lockstep is the time of the last HIL_SENSOR it
+    // took: an answer releases the waiting step when it answers that step's HIL_SENSOR (or a later
+    // one); an older answer is applied and the step keeps waiting, so the exchange never falls one
+    // answer behind. An unstamped answer (time_usec 0: not PX4's clock) releases it, used or not.
+    if (a.time_usec == 0 || a.time_usec >= awaited_time_usec_) awaiting_answer_ = false;
     if (session_.On(LinkEvent::kAnswered) && session_.State() == LinkState::kLockstep)
       Info(std::string("first HIL_ACTUATOR_CONTROLS") + (lockstep_ ? ": lockstep from now on (while armed)" : ""));
     std::vector<double> u(16);
@@ -340,6 +345,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
   int autopilot_system_id_ = -1;
   LinkSession session_{WaitPolicy{}};
   bool awaiting_answer_ = false, armed_ = false, heard_heartbeat_ = false;
+  uint64_t awaited_time_usec_ = 0;  ///< time_usec of the HIL_SENSOR the step waits for
   uint64_t last_imu_count_ = 0, last_gps_count_ = 0, last_mag_count_ = 0, last_baro_count_ = 0, last_diff_count_ = 0,
            last_range_count_ = 0, last_flow_count_ = 0;
   double last_sensor_time_s_ = -1e9, last_state_time_s_ = -1e9;

@@ -194,7 +194,8 @@ void BindControllers(py::module_& m) {
             const std::string why =
                 rotors_gazebo_plugins::FixedWingInputs::FromNormalized(normalized, model.Vehicle(), &u);
             if (!why.empty()) throw SimError(why);
-            const auto w = model.Compute(v_air_B, omega_B, u, rotors_gazebo_plugins::StandardAtmosphereDensity(altitude_m));
+            const auto w =
+                model.Compute(v_air_B, omega_B, u, rotors_gazebo_plugins::StandardAtmosphereDensity(altitude_m));
             py::dict out;
             out["force_B"] = w.force_B;
             out["moment_B"] = w.moment_B;

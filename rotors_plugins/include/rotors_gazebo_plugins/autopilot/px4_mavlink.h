@@ -24,6 +24,10 @@ constexpr uint8_t kArmed = MAV_MODE_FLAG_SAFETY_ARMED;
 /// HIL_ACTUATOR_CONTROLS.flags bit 0: PX4 runs lockstep
 constexpr uint64_t kLockstepFlag = 1;
 
+/// The time_usec of the messages: sim time in whole microseconds (HIL_SENSOR's; PX4 in lockstep
+/// stamps its HIL_ACTUATOR_CONTROLS with the HIL_SENSOR time it last took).
+uint64_t Microseconds(double t_s);
+
 /// IMU (always), magnetometer, barometer and differential pressure (each when `new_*`), as
 /// fields_updated says; accelerometer and gyroscope in body FRD, the field in gauss.
 mavlink_hil_sensor_t HilSensor(const VehicleSnapshot& s, bool new_mag, bool new_baro, bool new_diff_pressure);
