@@ -448,8 +448,10 @@ class HilSensorAutopilot:
 
 
 def test_autopilot_side_controller_flies_on_hil_sensor_to_2_m():
+    # with the launch's own answer timeout (mavlink_answer_timeout 0.01 s, PX4's plugin's): the flight
+    # as PX4 would have it, the world going on when an answer is late
     port = free_port()
-    world = make_world(port, seed=21)
+    world = make_world(port, seed=21, mavlink_answer_timeout=0.01)
     stepper, link = start_lockstep(world, port, int(12.0 / DT))
     pilot = HilSensorAutopilot(z_ref=2.0)
     truth = []
