@@ -260,3 +260,41 @@ def test_gps_inertial_controller_takes_off_to_2_m_and_holds_it(px4_flight):
         f"{horizontal.max():.3f} m (the estimate's: {np.abs(held[:, 4:7] - held[:, 1:4]).max(axis=0).round(3)})"
     )
     assert np.abs(error[:, 2]).max() < 0.2 and horizontal.max() < 0.3
+
+
+# --- negative controls: the stand-in checks fail where PX4's would ---
+
+
+def test_the_stale_rule_catches_a_constant_stream(px4_flight):
+    """The flight's barometer held at its first value: PX4's DataValidator counts every equal value of
+    its three (the barometer's two unused are 0, always equal) and calls the sensor stale past 100,
+    from the 35th sample, as it would a frozen sensor."""
+    _, sensors, _, _, _ = px4_flight
+    first = next(v for m in sensors for name, v in hil_sensor_channels(m).items() if name == "barometer")
+    validator = DataValidatorStale(100)
+    stale_from = next(i for i in range(1, 500) if validator.put(first))
+    print(f"a constant barometer ({first[0]:.2f} hPa): stale from sample {stale_from}")
+    assert stale_from == 35
+
+
+def test_rotors_own_gps_fails_ekf2s_gnss_checks():
+    """RotorS' GPS (the rotors profile: white noise of 3 m / 6 m, eph 3 m, epv 6 m) on the launch's
+    iris at rest for 30 s: EKF2's GNSS checks never pass (epv 6 m is above EKF2_REQ_EPV 5 m on every
+    fix), where the px4 profile's pass in 10 s."""
+    defaults = launch_defaults()
+    step = float(defaults["step_size"])
+    port = free_port()
+    world = rs.World(defaults["world_name"], step_size=step)
+    world.spawn_mav(defaults["mav_name"], enable_mavlink_interface=True, mavlink_tcp_port=port, autopilot_profile="rotors", random_seed=5)
+    stepper, link = start_lockstep(world, port, int(30.0 / step))
+    checks, fixes = GnssChecks(), 0
+    while (m := link.recv_match(type=["HIL_SENSOR", "HIL_GPS"], blocking=True, timeout=5)) is not None:
+        if m.get_type() == "HIL_GPS":
+            fixes += 1
+            checks.run(world.time, m)
+        else:
+            answer(link, [0.0] * 4, armed=False, t_us=m.time_usec)  # disarmed: the world does not wait
+    stepper.join()
+    link.close()
+    print(f"{fixes} fixes of RotorS' GPS in 30 s: checks passed at {checks.passed_at}; failures {checks.failures}")
+    assert fixes > 100 and checks.passed_at is None and checks.failures.get("epv", 0) == fixes
