@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -263,7 +264,9 @@ void ImageSensor::Digitise(const std::vector<float>& light, double exposure_s, d
 }
 
 namespace {
-/// Rows [row_begin, row_end) of VelocityBufferExposure, for C channels.
+/// Rows [row_begin, row_end) of VelocityBufferExposure, for C channels. Two passes a row: each
+/// pixel's motion and samples (float arithmetic only, so the compiler runs it on vector lanes), then
+/// the samples themselves.
 template <int channels>
 void VelocityBufferRows(const std::vector<uint8_t>& image, const std::vector<float>& depth_m, int width_px,
                         int height_px, float f, float cx, float cy, const float v[3], const float w[3], float tau,
@@ -273,36 +276,53 @@ void VelocityBufferRows(const std::vector<uint8_t>& image, const std::vector<flo
   const float x_max = static_cast<float>(width_px - 1), y_max = static_cast<float>(height_px - 1);
   const int x_last = std::max(width_px - 2, 0), y_last = std::max(height_px - 2, 0);
   const size_t dx = width_px > 1 ? channels : 0, dy = height_px > 1 ? row_values : 0;
-  float sum[4];
+  const float max_n = static_cast<float>(max_subframes);
+  std::vector<float> sx0_row(width_px), sy0_row(width_px), step_x_row(width_px), step_y_row(width_px);
+  std::vector<int32_t> n_row(width_px);
+  const std::vector<float> no_depth(depth_m.empty() ? width_px : 0, 0.0f);  // no depth: rotation only
   for (int r = row_begin; r < row_end; ++r) {
     const float t_row = static_cast<float>((r - (height_px - 1) / 2.0) * line_delay_s);  // eq. S2
     const float y = r - cy;
+    const float* depth_row = depth_m.empty() ? no_depth.data() : depth_m.data() + static_cast<size_t>(r) * width_px;
+    // pass 1: the motion of each pixel and where its samples lie (no branch: selects only)
     for (int u = 0; u < width_px; ++u) {
-      const size_t px = static_cast<size_t>(r) * width_px + u;
       const float x = u - cx;
-      const float z = depth_m.empty() ? NAN : depth_m[px];
-      const float inv_z = std::isfinite(z) && z > 0.0f ? 1.0f / z : 0.0f;
+      const float z = depth_row[u], one_over_z = 1.0f / z;
+      const bool usable = (z > 0.0f) & (z <= std::numeric_limits<float>::max());  // finite, > 0
+      const float inv_z = usable ? one_over_z : 0.0f;
       // P / Z = (x / f, y / f, 1);  P' / Z = -v / Z - omega x (P / Z)
       const float q0 = x / f, q1 = y / f;
       const float d0 = -v[0] * inv_z - (w[1] - w[2] * q1), d1 = -v[1] * inv_z - (w[2] * q0 - w[0]),
                   d2 = -v[2] * inv_z - (w[0] * q1 - w[1] * q0);
       const float du = f * d0 - x * d2, dv = f * d1 - y * d2;  // [px/s]
       const float motion_px = std::sqrt(du * du + dv * dv) * tau;
-      const int n = tau > 0.0f ? std::min(std::max(static_cast<int>(std::ceil(motion_px * subframes_per_pixel)), 1),
-                                          max_subframes)
-                               : 1;
-      // the samples along the motion: p - p' t, t = t_row - tau / 2 + (k + 1/2) tau / n, bilinear in
-      // fixed point (1/256 pixel), clamped to the image where the segment leaves it
-      const float t0 = t_row - tau / 2.0f + 0.5f * tau / n, dt = tau / n;
-      const float sx0 = u - du * t0, sy0 = r - dv * t0, step_x = -du * dt, step_y = -dv * dt;
+      // n = clamp(ceil(motion spp), 1, max): the ceiling of a value under max_subframes, in integers
+      const float m = std::min(motion_px * subframes_per_pixel, max_n);
+      int32_t n = static_cast<int32_t>(m);
+      n += static_cast<float>(n) < m ? 1 : 0;
+      n = std::max(n, 1);  // 1 for a still camera or no exposure (m <= 0)
+      // the samples along the motion: p - p' t, t = t_row - tau / 2 + (k + 1/2) tau / n
+      const float n_f = static_cast<float>(n);
+      const float t0 = t_row - tau / 2.0f + 0.5f * tau / n_f, dt = tau / n_f;
+      sx0_row[u] = u - du * t0;
+      sy0_row[u] = r - dv * t0;
+      step_x_row[u] = -du * dt;
+      step_y_row[u] = -dv * dt;
+      n_row[u] = n;
+    }
+    // pass 2: bilinear in fixed point (1/256 pixel), clamped to the image where the segment leaves it
+    for (int u = 0; u < width_px; ++u) {
+      const size_t px = static_cast<size_t>(r) * width_px + u;
+      const int n = n_row[u];
+      const float sx0 = sx0_row[u], sy0 = sy0_row[u], step_x = step_x_row[u], step_y = step_y_row[u];
       const float sx1 = sx0 + step_x * (n - 1), sy1 = sy0 + step_y * (n - 1);
       const bool inside = std::min(sx0, sx1) >= 0.0f && std::max(sx0, sx1) < x_last + 1.0f &&
                           std::min(sy0, sy1) >= 0.0f && std::max(sy0, sy1) < y_last + 1.0f;
       int32_t acc[4] = {0, 0, 0, 0};
       int32_t fx = static_cast<int32_t>(std::min(std::max(sx0, 0.0f), x_max) * 256.0f + 0.5f);
       int32_t fy = static_cast<int32_t>(std::min(std::max(sy0, 0.0f), y_max) * 256.0f + 0.5f);
-      const int32_t fdx = static_cast<int32_t>(std::nearbyint(step_x * 256.0f)),
-                    fdy = static_cast<int32_t>(std::nearbyint(step_y * 256.0f));
+      const int32_t fdx = static_cast<int32_t>(std::lrint(step_x * 256.0f)),
+                    fdy = static_cast<int32_t>(std::lrint(step_y * 256.0f));
       const int32_t fx_max = x_last * 256 + 255, fy_max = y_last * 256 + 255;
       for (int k = 0; k < n; ++k, fx += fdx, fy += fdy) {
         const int32_t qx = inside ? fx : std::min(std::max(fx, 0), fx_max);
@@ -315,9 +335,8 @@ void VelocityBufferRows(const std::vector<uint8_t>& image, const std::vector<flo
           acc[c] += top * (256 - ay) + bottom * ay;  // 16 fractional bits
         }
       }
-      for (int c = 0; c < channels; ++c) sum[c] = acc[c] * (1.0f / 65536.0f);
       const float inv_n = 1.0f / static_cast<float>(n);
-      for (int c = 0; c < channels; ++c) light[px * channels + c] = sum[c] * inv_n;
+      for (int c = 0; c < channels; ++c) light[px * channels + c] = acc[c] * (1.0f / 65536.0f) * inv_n;
     }
   }
 }
