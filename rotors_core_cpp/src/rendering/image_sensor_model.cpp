@@ -265,8 +265,8 @@ void ImageSensor::Digitise(const std::vector<float>& light, double exposure_s, d
 
 namespace {
 /// Rows [row_begin, row_end) of VelocityBufferExposure, for C channels. Two passes a row: each
-/// pixel's motion and samples (float arithmetic only, so the compiler runs it on vector lanes), then
-/// the samples themselves.
+/// pixel's motion and where its samples lie (float arithmetic and selects, no branch), then the
+/// samples themselves.
 template <int channels>
 void VelocityBufferRows(const std::vector<uint8_t>& image, const std::vector<float>& depth_m, int width_px,
                         int height_px, float f, float cx, float cy, const float v[3], const float w[3], float tau,
@@ -284,7 +284,7 @@ void VelocityBufferRows(const std::vector<uint8_t>& image, const std::vector<flo
     const float t_row = static_cast<float>((r - (height_px - 1) / 2.0) * line_delay_s);  // eq. S2
     const float y = r - cy;
     const float* depth_row = depth_m.empty() ? no_depth.data() : depth_m.data() + static_cast<size_t>(r) * width_px;
-    // pass 1: the motion of each pixel and where its samples lie (no branch: selects only)
+    // pass 1: the motion of each pixel and where its samples lie
     for (int u = 0; u < width_px; ++u) {
       const float x = u - cx;
       const float z = depth_row[u], one_over_z = 1.0f / z;
