@@ -116,7 +116,8 @@ ImuSample ImuVibrationModel::Step(const ImuSample& truth_begin, const ImuSample&
   while (phases_rad_.size() < rotors.size())
     phases_rad_.push_back(std::uniform_real_distribution<double>(0.0, 2.0 * M_PI)(rng_));
   const double period_s = 1.0 / params_.internal_rate_hz;
-  std::vector<double> phases(rotors.size());
+  std::vector<double>& phases = sample_phases_rad_;  // reused: no allocation on the physics step
+  phases.resize(rotors.size());
   double tau_s = time_to_next_sample_s_;
   for (; tau_s <= dt_s; tau_s += period_s) {
     for (size_t i = 0; i < rotors.size(); ++i) phases[i] = phases_rad_[i] + rotors[i].speed_rad_s * tau_s;

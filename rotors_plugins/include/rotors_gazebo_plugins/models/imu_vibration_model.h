@@ -108,7 +108,8 @@ class ImuVibrationModel {
   VibratingBody body_;
   Eigen::Matrix3d inverse_inertia_B_;
   std::mt19937_64 rng_;
-  std::vector<double> phases_rad_;
+  std::vector<double> phases_rad_;         ///< at the start of the next period
+  std::vector<double> sample_phases_rad_;  ///< at an internal sample (Step's scratch)
   BartlettFilter filter_;
   double time_to_next_sample_s_ = 0.0;
   bool have_output_ = false;
