@@ -3,6 +3,7 @@ flights of flight_s sim time each (the first, then after reset_simulation, reset
 reset_world again), run after conftest's send_hover_pose."""
 
 import io
+import struct
 import time
 
 import genpy
@@ -33,7 +34,10 @@ def record_and_reset(flight_s: float) -> dict:
         time.sleep(0.05)
     pause, unpause = rospy.ServiceProxy("/gazebo/pause_physics", Empty), rospy.ServiceProxy("/gazebo/unpause_physics", Empty)
 
+    starts = {}
+
     def fly(name, start_s):
+        starts[name] = start_s
         phase[0] = name
         clock[0] = None
         unpause()
@@ -67,12 +71,18 @@ def record_and_reset(flight_s: float) -> dict:
 
     def flight(name, topic):
         # the simulator repeats its state (joint_states) every 50 ms while paused, for late
-        # subscribers: of the messages with one stamp, only the first belongs to the flight
+        # subscribers, and once when a reset lands (that one may arrive after the next flight's
+        # recording began): the flight's messages are those stamped after its start, one per stamp
         msgs = log[name].get(topic, [])
         if topic != "/firefly/joint_states":
             return msgs
-        stamps = [m[4:12] for m in msgs]
-        return [m for i, m in enumerate(msgs) if i == 0 or stamps[i] != stamps[i - 1]]
+        secs_nsecs = [struct.unpack_from("<II", m, 4) for m in msgs]
+        stamps = [s + 1e-9 * ns for s, ns in secs_nsecs]
+        return [
+            m
+            for i, m in enumerate(msgs)
+            if stamps[i] > starts[name] + 1e-6 and (i == 0 or secs_nsecs[i] != secs_nsecs[i - 1])
+        ]
 
     def compare(a, b, canonical=lambda topic, data: data):
         # per topic: how many messages both flights have, and the first of them that differs
