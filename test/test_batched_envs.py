@@ -76,19 +76,23 @@ def test_autoreset_returns_next_episode_and_keeps_last_obs():
         assert envs.batch.time[i] == 0.0 and np.all(np.abs(obs[i, 0:3]) <= 0.5)  # a new start near the target
 
 
-def sync_vector_env(task: str, n: int, mode) -> gym.vector.SyncVectorEnv:
+def sync_vector_env(task: str, n: int, mode, **kwargs) -> gym.vector.SyncVectorEnv:
     """Gymnasium's own vector environment over n single-vehicle environments, vehicle i with sensor
     seed i as FlightBatchEnv seeds its vehicle i."""
-    return gym.vector.SyncVectorEnv([lambda i=i: SingleVehicleEnv(task, sensor_seed=i) for i in range(n)], autoreset_mode=mode)
+    return gym.vector.SyncVectorEnv([lambda i=i: SingleVehicleEnv(task, sensor_seed=i, **kwargs) for i in range(n)], autoreset_mode=mode)
 
 
-@pytest.mark.parametrize("task", ["hover", "waypoints"])
-def test_vector_env_steps_as_gymnasiums_sync_vector_env(task):
+# randomised airframes (rotors_sim.randomization): each vehicle's own, drawn again at every reset
+RANDOMIZATION = {"mass": ("uniform", 0.8, 1.2), "motorConstant": ("normal", 1.0, 0.03), "cog": ("uniform", -0.01, 0.01)}
+
+
+@pytest.mark.parametrize("task,randomization", [("hover", None), ("waypoints", None), ("hover", RANDOMIZATION)])
+def test_vector_env_steps_as_gymnasiums_sync_vector_env(task, randomization):
     # the same seeds and actions: the same observations, rewards, ends, last observations and infos,
     # episodes ending at different steps (random actions) and starting again in the same step
     n = 4
-    ours = FlightBatchEnv(task, n)
-    theirs = sync_vector_env(task, n, gym.vector.AutoresetMode.SAME_STEP)
+    ours = FlightBatchEnv(task, n, randomization=randomization)
+    theirs = sync_vector_env(task, n, gym.vector.AutoresetMode.SAME_STEP, randomization=randomization)
     assert ours.metadata["autoreset_mode"] == theirs.metadata["autoreset_mode"] == gym.vector.AutoresetMode.SAME_STEP
     o1, _ = ours.reset(seed=7)
     o2, _ = theirs.reset(seed=7)
@@ -113,7 +117,10 @@ def test_vector_env_steps_as_gymnasiums_sync_vector_env(task):
         for key in i2:
             if key not in ("final_obs", "final_info"):
                 assert np.array_equal(i1[key], i2[key]), key
-    print(f"{task}: 400 steps of {n} vehicles, {ends} episodes ended and started again, equal to SyncVectorEnv's")
+    print(
+        f"{task}{' randomised' if randomization else ''}: 400 steps of {n} vehicles, {ends} episodes ended and "
+        "started again, equal to SyncVectorEnv's"
+    )
     assert ends >= 4
 
 

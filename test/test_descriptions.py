@@ -198,3 +198,32 @@ def test_image_sensor_options_reach_the_camera_plugins(tmp_path: Path):
     )
     bad = expand(wrong)
     assert bad.returncode != 0 and "image_sensor=mt9v032 is not known: use none, rolling, mt9v034 or mt9v034_rolling" in bad.stderr
+
+
+def test_mass_and_motor_constant_scales_reach_every_multirotor():
+    """mass_scale and motor_constant_scale (spawn_mav.launch and the vehicle launch files pass them
+    on): every link mass of the airframe and the body's inertia times mass_scale, every
+    motorConstant times motor_constant_scale; a scale <= 0 is one error naming both."""
+
+    def expand(*args: str) -> subprocess.CompletedProcess:
+        urdf = package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo"
+        return subprocess.run(["xacro", str(urdf), *args], capture_output=True, text=True)
+
+    for mav in ("firefly", "hummingbird", "pelican", "iris", "neo11"):
+        plain = ET.fromstring(expand(f"mav_name:={mav}").stdout)
+        scaled = ET.fromstring(expand(f"mav_name:={mav}", "mass_scale:=1.2", "motor_constant_scale:=0.85").stdout)
+
+        def body(robot, mav=mav):
+            link = next(link for link in robot.iter("link") if link.get("name") == f"{mav}/base_link_inertia")
+            inertial = link.find("inertial")
+            return float(inertial.find("mass").get("value")), float(inertial.find("inertia").get("izz"))
+
+        def motor_constants(robot):
+            return [float(p.find("motorConstant").text) for p in robot.iter("plugin") if p.find("motorConstant") is not None]
+
+        (m0, izz0), (m1, izz1) = body(plain), body(scaled)
+        assert m1 == pytest.approx(1.2 * m0, rel=1e-12) and izz1 == pytest.approx(1.2 * izz0, rel=1e-12), mav
+        k0, k1 = motor_constants(plain), motor_constants(scaled)
+        assert len(k0) >= 4 and k1 == pytest.approx([0.85 * k for k in k0], rel=1e-12), mav
+    bad = expand("mav_name:=firefly", "motor_constant_scale:=0")
+    assert bad.returncode != 0 and "mass_scale = 1, motor_constant_scale = 0: both must be > 0" in bad.stderr

@@ -78,11 +78,7 @@ def record_and_reset(flight_s: float) -> dict:
             return msgs
         secs_nsecs = [struct.unpack_from("<II", m, 4) for m in msgs]
         stamps = [s + 1e-9 * ns for s, ns in secs_nsecs]
-        return [
-            m
-            for i, m in enumerate(msgs)
-            if stamps[i] > starts[name] + 1e-6 and (i == 0 or secs_nsecs[i] != secs_nsecs[i - 1])
-        ]
+        return [m for i, m in enumerate(msgs) if stamps[i] > starts[name] + 1e-6 and (i == 0 or secs_nsecs[i] != secs_nsecs[i - 1])]
 
     def compare(a, b, canonical=lambda topic, data: data):
         # per topic: how many messages both flights have, and the first of them that differs

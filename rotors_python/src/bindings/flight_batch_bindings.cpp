@@ -1,6 +1,7 @@
 // rotors_sim._engine.FlightBatch: the batched flight engine (flight_batch/), its arrays shared
 // with numpy (views on the engine's memory: no copy per step), its controllers' parameters read
 // by the same loaders as the ROS nodes from the numbers Python flattened out of the yaml files.
+#include <algorithm>
 #include <set>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@ namespace py = pybind11;
 namespace rotors_python {
 namespace {
 
+using rotors_flight_batch::Airframe;
 using rotors_flight_batch::CommandMode;
 using rotors_flight_batch::FlightBatch;
 using rotors_flight_batch::FlightBatchOptions;
@@ -75,6 +77,71 @@ std::unique_ptr<FlightBatch> MakeBatch(const VehicleDescription& d, int count, c
   return std::make_unique<FlightBatch>(d, o);
 }
 
+/// The motor plugin's per-rotor SDF parameters an airframe may set, and where RotorParams keeps them.
+const std::vector<std::pair<const char*, double rotors_gazebo_plugins::RotorParams::*>> kRotorFields = {
+    {"motorConstant", &rotors_gazebo_plugins::RotorParams::motor_constant},
+    {"momentConstant", &rotors_gazebo_plugins::RotorParams::moment_constant},
+    {"rotorDragCoefficient", &rotors_gazebo_plugins::RotorParams::rotor_drag_coefficient},
+    {"rollingMomentCoefficient", &rotors_gazebo_plugins::RotorParams::rolling_moment_coefficient},
+    {"timeConstantUp", &rotors_gazebo_plugins::RotorParams::time_constant_up_s},
+    {"timeConstantDown", &rotors_gazebo_plugins::RotorParams::time_constant_down_s},
+    {"maxRotVelocity", &rotors_gazebo_plugins::RotorParams::max_rot_velocity},
+};
+
+/// {"mass": kg, "inertia": 3 x 3 kg m^2, "cog": the CoG in the model frame [m], "<SDF name>": one
+/// value per rotor, ...}
+py::dict AirframeDict(const Airframe& a) {
+  py::dict out;
+  out["mass"] = a.mass_kg;
+  out["inertia"] = a.inertia_B_kg_m2;
+  out["cog"] = a.p_M_cog;
+  for (const auto& [name, field] : kRotorFields) {
+    std::vector<double> v;
+    for (const auto& r : a.rotors) v.push_back(r.*field);
+    out[name] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+  }
+  return out;
+}
+
+/// `base` with the entries of `values` (AirframeDict's keys; any subset); SimError naming an unknown
+/// key or an array of the wrong length.
+Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle) {
+  Airframe a = base;
+  const std::string who = "FlightBatch.set_airframe: vehicle " + std::to_string(vehicle);
+  for (const auto& [key, value] : values) {
+    const std::string name = py::str(key);
+    if (name == "mass") {
+      a.mass_kg = value.cast<double>();
+      continue;
+    }
+    if (name == "inertia") {
+      const auto I = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+      if (!I || I.ndim() != 2 || I.shape(0) != 3 || I.shape(1) != 3)
+        throw SimError(who + ": inertia must be a 3 x 3 array [kg m^2]");
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) a.inertia_B_kg_m2(r, c) = I.at(r, c);
+      continue;
+    }
+    if (name == "cog") {
+      const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+      if (!p || p.ndim() != 1 || p.shape(0) != 3) throw SimError(who + ": cog must be 3 values [m] (model frame)");
+      a.p_M_cog = {p.at(0), p.at(1), p.at(2)};
+      continue;
+    }
+    auto it = std::find_if(kRotorFields.begin(), kRotorFields.end(), [&](const auto& f) { return name == f.first; });
+    if (it == kRotorFields.end()) {
+      std::string known = "mass, inertia, cog";
+      for (const auto& f : kRotorFields) known += std::string(", ") + f.first;
+      throw SimError(who + ": '" + name + "' is not an airframe parameter; use " + known);
+    }
+    const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+    if (!v || v.ndim() != 1 || v.shape(0) != static_cast<py::ssize_t>(a.rotors.size()))
+      throw SimError(who + ": " + name + " must have one value per rotor (" + std::to_string(a.rotors.size()) + ")");
+    for (size_t r = 0; r < a.rotors.size(); ++r) a.rotors[r].*(it->second) = v.at(r);
+  }
+  return a;
+}
+
 }  // namespace
 
 void BindFlightBatch(py::module_& m) {
@@ -89,6 +156,9 @@ void BindFlightBatch(py::module_& m) {
       .def_readonly("step_size", &VehicleDescription::step_s)
       .def_readonly("left_out", &VehicleDescription::left_out)
       .def_readonly("contact_points_B", &VehicleDescription::contact_points_B)
+      .def_property_readonly(
+          "airframe", [](const VehicleDescription& d) { return AirframeDict(rotors_flight_batch::AirframeOf(d)); },
+          "The airframe as FlightBatch.set_airframe takes it: {'mass', 'inertia', 'cog', 'motorConstant', ...}.")
       .def_property_readonly("has_imu", [](const VehicleDescription& d) { return d.imu.has_value(); })
       .def_property_readonly("has_wind", [](const VehicleDescription& d) { return d.wind.has_value(); })
       .def_property_readonly("odometry_divisor", [](const VehicleDescription& d) { return d.odometry->divisor; })
@@ -135,6 +205,21 @@ void BindFlightBatch(py::module_& m) {
             b.Reset(indices, positions.data(), yaws.data());
           },
           py::arg("indices"), py::arg("positions"), py::arg("yaws"))
+      .def(
+          "airframe", [](const FlightBatch& b, int i) { return AirframeDict(b.GetAirframe(i)); }, py::arg("i"),
+          "Vehicle i's airframe: {'mass': kg, 'inertia': 3 x 3 kg m^2, 'motorConstant': per rotor, ...}.")
+      .def_property_readonly(
+          "nominal_airframe", [](const FlightBatch& b) { return AirframeDict(b.NominalAirframe()); },
+          "The description's airframe (the xacro's).")
+      .def(
+          "set_airframe",
+          [](FlightBatch& b, int i, const py::dict& values) {
+            b.SetAirframe(i, AirframeFrom(b.NominalAirframe(), values, i));
+          },
+          py::arg("i"), py::arg("values"),
+          "Vehicle i flies the nominal airframe with `values` (airframe()'s keys, any subset) in place.")
+      .def("set_seed", &FlightBatch::SetSeed, py::arg("i"), py::arg("seed"),
+           "Vehicle i's random_seed (sensor and wind noise) from its next reset on.")
       .def_property_readonly("count", &FlightBatch::Count)
       .def_property_readonly("rotor_count", &FlightBatch::Rotors)
       .def_property_readonly("threads", &FlightBatch::Threads)

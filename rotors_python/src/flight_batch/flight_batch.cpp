@@ -9,6 +9,8 @@
 #include <iterator>
 #include <mutex>
 #include <sstream>
+
+#include <Eigen/Eigenvalues>
 #include <thread>
 
 #include "rotors_core/error.h"
@@ -185,6 +187,14 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   qdot_applied_.assign(r_ * n, 0.0);
   motor_command_.assign(r_ * n, 0.0);
   wind_velocity_W_.assign(3 * n, 0.0);
+  for (auto* v : {&mass_, &inv_mass_, &contact_k_, &contact_c_, &contact_reach_m_}) v->assign(n, 0.0);
+  for (auto* v : {&p_origin_B_, &p_cog_B_}) v->assign(3 * r_ * n, 0.0);
+  corner_B_.assign(3 * kMaxContacts * n, 0.0);
+  points_.resize(n);
+  for (auto* v : {&I_B_, &inv_I_B_}) v->assign(9 * n, 0.0);
+  for (auto* v : {&motor_constant_, &rotor_drag_coefficient_, &rolling_moment_coefficient_, &reaction_factor_,
+                  &max_rot_velocity_, &a_up_, &a_down_})
+    v->assign(r_ * n, 0.0);
   const size_t count = n_;
   steps_.assign(count, 0);
   in_contact_.assign(count, 0);
@@ -199,8 +209,23 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   controller_seen_.assign(count, 0);
   BuildKernelModel();
   kernel_arrays_ = {
-      n_pad_,          p_W_.data(),         v_W_.data(),          q_WB_.data(),          R_WB_.data(),
-      omega_W_.data(), omega_rotor_.data(), qdot_applied_.data(), motor_command_.data(), wind_velocity_W_.data()};
+      n_pad_,
+      p_W_.data(),
+      v_W_.data(),
+      q_WB_.data(),
+      R_WB_.data(),
+      omega_W_.data(),
+      omega_rotor_.data(),
+      qdot_applied_.data(),
+      motor_command_.data(),
+      wind_velocity_W_.data(),
+      KernelAirframes{mass_.data(), inv_mass_.data(), I_B_.data(), inv_I_B_.data(), contact_k_.data(),
+                      contact_c_.data(), p_origin_B_.data(), p_cog_B_.data(), corner_B_.data(), contact_reach_m_.data(),
+                      motor_constant_.data(), rotor_drag_coefficient_.data(), rolling_moment_coefficient_.data(),
+                      reaction_factor_.data(), max_rot_velocity_.data(), a_up_.data(), a_down_.data()}};
+  const Airframe nominal = NominalAirframe();
+  airframes_.assign(count, nominal);
+  for (size_t i = 0; i < n; ++i) WriteAirframe(i, nominal);  // the padding lanes too
   kernels_ = ChooseKernels(options_.kernel);
 
   if (!options_.lee_each.empty() && static_cast<int>(options_.lee_each.size()) != n_)
@@ -264,6 +289,13 @@ uint64_t FlightBatch::SeedFor(uint64_t plugin_seed, int i) const {
   return options_.seeds.empty() ? plugin_seed : options_.seeds[i] + (plugin_seed - options_.description_seed);
 }
 
+void FlightBatch::SetSeed(int i, uint64_t seed) {
+  if (i < 0 || i >= n_)
+    throw SimError("FlightBatch.set_seed: vehicle " + std::to_string(i) + " is not in 0.." + std::to_string(n_ - 1));
+  if (options_.seeds.empty()) options_.seeds.assign(n_, options_.description_seed);
+  options_.seeds[i] = seed;
+}
+
 void FlightBatch::Reset(const std::vector<int>& indices, const double* positions_M, const double* yaws) {
   for (size_t k = 0; k < indices.size(); ++k) {
     const int i = indices[k];
@@ -283,7 +315,7 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     double R[9];
     RotationFromQuaternion(q, R);
     double r_cog[3];
-    Rotate(R, d_.p_M_cog, r_cog);
+    Rotate(R, airframes_[i].p_M_cog, r_cog);
     for (int c = 0; c < 3; ++c) {
       p_W_[c * n + i] = positions_M[3 * k + c] + r_cog[c];
       v_W_[c * n + i] = 0.0;
@@ -323,7 +355,7 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     double* o = &odometry_out_[i * 14];
     const Mount& m = d_.odometry->mount;
     double r_s[3];
-    Rotate(R, m.p_B, r_s);
+    Rotate(R, points_[i].odometry, r_s);
     const Eigen::Quaterniond q_WS = Eigen::Quaterniond(q[0], q[1], q[2], q[3]) * m.q_BS;
     for (int c = 0; c < 3; ++c) o[c] = p_W_[c * n + i] + r_s[c];
     o[3] = q_WS.x(), o[4] = q_WS.y(), o[5] = q_WS.z(), o[6] = q_WS.w();
@@ -388,48 +420,118 @@ void FlightBatch::BuildKernelModel() {
   for (int r = 0; r < r_; ++r) {
     const RotorMount& rotor = d_.rotors[r];
     KernelModel::Rotor& kr = k.rotor[r];
-    for (int c = 0; c < 3; ++c) {
-      kr.p_origin_B[c] = rotor.p_B_origin[c];
-      kr.p_cog_B[c] = rotor.p_B_cog[c];
-      kr.axis_B[c] = rotor.axis_B[c];
-    }
+    for (int c = 0; c < 3; ++c) kr.axis_B[c] = rotor.axis_B[c];
     kr.cog_on_origin = rotor.p_B_cog == rotor.p_B_origin;
-    kr.motor_constant = rotor.params.motor_constant;
-    kr.rotor_drag_coefficient = rotor.params.rotor_drag_coefficient;
-    kr.rolling_moment_coefficient = rotor.params.rolling_moment_coefficient;
-    kr.reaction_factor = -rotor.params.turning_direction * rotor.params.moment_constant;
-    kr.max_rot_velocity = rotor.params.max_rot_velocity;
-    kr.a_up = std::exp(-dt_ / rotor.params.time_constant_up_s);  // FirstOrderFilter's factors, once
-    kr.a_down = std::exp(-dt_ / rotor.params.time_constant_down_s);
     kr.spin_inertia = rotor.spin_inertia_kg_m2;
     kr.direction = rotor.params.turning_direction;
     kr.slowdown = rotor.slowdown;
   }
   FillRotorColumns(k);
   k.contacts = static_cast<int>(std::min<size_t>(d_.contact_points_B.size(), kMaxContacts));
-  for (int c = 0; c < k.contacts; ++c)
-    for (int j = 0; j < 3; ++j) k.corner_B[c][j] = d_.contact_points_B[c][j];
   // Ground contact: a spring and damper at each corner below z = 0, stiff enough that the vehicle
-  // sinks g / w^2 (0.4 mm at 500 Hz), soft enough for the explicit step (w dt = 0.3).
-  const double w = 0.3 / dt_ * std::sqrt(options_.contact_stiffness_scale);
-  k.contact_k = d_.mass_kg * w * w / 4.0;
-  k.contact_c = d_.mass_kg * w / 2.0;
-  k.contact_reach_m = 0.0;  // no corner is farther from the CoG: above it, no contact
-  for (const auto& corner : d_.contact_points_B) k.contact_reach_m = std::max(k.contact_reach_m, corner.norm());
+  // sinks g / w^2 (0.4 mm at 500 Hz), soft enough for the explicit step (w dt = 0.3); per vehicle
+  // with its own mass (WriteAirframe).
+  contact_w_ = 0.3 / dt_ * std::sqrt(options_.contact_stiffness_scale);
   k.dt = dt_;
   k.inv_dt = 1.0 / dt_;
-  k.mass = d_.mass_kg;
   for (int c = 0; c < 3; ++c) k.gravity_W[c] = d_.gravity_W[c];
-  k.body.inv_mass_kg = 1.0 / d_.mass_kg;
-  const Eigen::Matrix3d inv_I = d_.inertia_B_kg_m2.inverse();
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      k.body.I_B[i * 3 + j] = d_.inertia_B_kg_m2(i, j);
-      k.body.inv_I_B[i * 3 + j] = inv_I(i, j);
-    }
   k.has_wind = d_.wind.has_value();
   k.keep_state_before = d_.imu && options_.imu;
   k.wind_before_motors = d_.wind && d_.wind->before_motors;
+}
+
+Airframe AirframeOf(const VehicleDescription& d) {
+  Airframe a;
+  a.mass_kg = d.mass_kg;
+  a.inertia_B_kg_m2 = d.inertia_B_kg_m2;
+  a.p_M_cog = d.p_M_cog;
+  for (const RotorMount& rotor : d.rotors) a.rotors.push_back(rotor.params);
+  return a;
+}
+
+Airframe FlightBatch::NominalAirframe() const { return AirframeOf(d_); }
+
+const Airframe& FlightBatch::GetAirframe(int i) const {
+  if (i < 0 || i >= n_)
+    throw SimError("FlightBatch.airframe: vehicle " + std::to_string(i) + " is not in 0.." + std::to_string(n_ - 1));
+  return airframes_[i];
+}
+
+void FlightBatch::SetAirframe(int i, const Airframe& airframe) {
+  const std::string who = "FlightBatch.set_airframe: vehicle " + std::to_string(i);
+  if (i < 0 || i >= n_) throw SimError(who + " is not in 0.." + std::to_string(n_ - 1));
+  if (!(airframe.mass_kg > 0.0) || !std::isfinite(airframe.mass_kg))
+    throw SimError(who + ": mass = " + std::to_string(airframe.mass_kg) + " kg must be > 0");
+  const Eigen::Matrix3d& I = airframe.inertia_B_kg_m2;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(I);
+  if (!I.allFinite() || (I - I.transpose()).cwiseAbs().maxCoeff() > 1e-12 * I.cwiseAbs().maxCoeff() ||
+      !(eigen.eigenvalues().minCoeff() > 0.0)) {
+    std::ostringstream msg;
+    msg << who << ": inertia [" << I.row(0) << "; " << I.row(1) << "; " << I.row(2)
+        << "] kg m^2 is not symmetric positive definite";
+    throw SimError(msg.str());
+  }
+  if (!airframe.p_M_cog.allFinite()) throw SimError(who + ": the CoG must be finite");
+  if (static_cast<int>(airframe.rotors.size()) != r_)
+    throw SimError(who + ": " + std::to_string(airframe.rotors.size()) + " rotors given, the vehicle has " +
+                   std::to_string(r_));
+  Airframe checked = airframe;
+  for (int r = 0; r < r_; ++r) {
+    checked.rotors[r].turning_direction = d_.rotors[r].params.turning_direction;
+    const std::string why = checked.rotors[r].Validate();
+    if (!why.empty()) throw SimError(who + ", rotor " + std::to_string(r) + ": " + why);
+  }
+  airframes_[i] = checked;
+  WriteAirframe(i, checked);
+}
+
+void FlightBatch::WriteAirframe(size_t i, const Airframe& a) {
+  const size_t n = n_pad_;
+  mass_[i] = a.mass_kg;
+  inv_mass_[i] = 1.0 / a.mass_kg;
+  const Eigen::Matrix3d inv_I = a.inertia_B_kg_m2.inverse();
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) {
+      I_B_[(row * 3 + col) * n + i] = a.inertia_B_kg_m2(row, col);
+      inv_I_B_[(row * 3 + col) * n + i] = inv_I(row, col);
+    }
+  contact_k_[i] = a.mass_kg * contact_w_ * contact_w_ / 4.0;
+  contact_c_[i] = a.mass_kg * contact_w_ / 2.0;
+  // every point in the body frame moves against the CoG: p_B = p_M - p_M_cog (0 for the description's)
+  const Eigen::Vector3d cog_move = a.p_M_cog - d_.p_M_cog;
+  auto in_body = [&](const Eigen::Vector3d& p_B) -> Eigen::Vector3d { return p_B - cog_move; };
+  for (int r = 0; r < r_; ++r) {
+    const RotorMount& rotor = d_.rotors[r];
+    const Eigen::Vector3d p_o = in_body(rotor.p_B_origin);
+    const Eigen::Vector3d p_c = rotor.p_B_cog == rotor.p_B_origin ? p_o : in_body(rotor.p_B_cog);
+    for (int c = 0; c < 3; ++c) {
+      p_origin_B_[(c * r_ + r) * n + i] = p_o[c];
+      p_cog_B_[(c * r_ + r) * n + i] = p_c[c];
+    }
+  }
+  contact_reach_m_[i] = 0.0;  // no corner is farther from the CoG: above it, no contact
+  for (int k = 0; k < kernel_model_.contacts; ++k) {
+    const Eigen::Vector3d corner = in_body(d_.contact_points_B[k]);
+    for (int c = 0; c < 3; ++c) corner_B_[(3 * k + c) * n + i] = corner[c];
+    contact_reach_m_[i] = std::max(contact_reach_m_[i], corner.norm());
+  }
+  BodyPoints& points = points_[i];
+  if (d_.imu) points.imu = in_body(d_.imu->mount.p_B);
+  if (d_.odometry) points.odometry = in_body(d_.odometry->mount.p_B);
+  if (d_.wind) {
+    points.wind_link = in_body(d_.wind->p_B_link);
+    points.wind_force = in_body(d_.wind->p_B_force);
+  }
+  for (int r = 0; r < r_; ++r) {
+    const rgp::RotorParams& p = a.rotors[r];
+    motor_constant_[r * n + i] = p.motor_constant;
+    rotor_drag_coefficient_[r * n + i] = p.rotor_drag_coefficient;
+    rolling_moment_coefficient_[r * n + i] = p.rolling_moment_coefficient;
+    reaction_factor_[r * n + i] = -d_.rotors[r].params.turning_direction * p.moment_constant;  // -epsilon C_M
+    max_rot_velocity_[r * n + i] = p.max_rot_velocity;
+    a_up_[r * n + i] = std::exp(-dt_ / p.time_constant_up_s);  // FirstOrderFilter's factors, once
+    a_down_[r * n + i] = std::exp(-dt_ / p.time_constant_down_s);
+  }
 }
 
 void FlightBatch::ParkPaddingLanes() {
@@ -478,12 +580,12 @@ void FlightBatch::StepGroup(int i0) {
     if (wd.profile) ws.velocity_W = wd.profile->Velocity(t_s);
     if (wd.field) {
       double r_link[3];
-      Rotate(R, wd.p_B_link, r_link);
+      Rotate(R, points_[i].wind_link, r_link);
       Eigen::Vector3d v_field;
       if (wd.field->Velocity({p[0] + r_link[0], p[1] + r_link[1], p[2] + r_link[2]}, &v_field)) ws.velocity_W = v_field;
     }
     double r_f[3], moment[3];
-    Rotate(R, wd.p_B_force, r_f);
+    Rotate(R, points_[i].wind_force, r_f);
     const double f[3] = {ws.force_W[0], ws.force_W[1], ws.force_W[2]};
     Cross(r_f, f, moment);
     for (int c = 0; c < 3; ++c) {
@@ -518,7 +620,7 @@ void FlightBatch::ApplyCommand(int i) {
       return;
     case CommandMode::kNormalizedThrust:
       // thrust = u T_max = u C_T omega_max^2  ->  omega = omega_max sqrt(u)
-      for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = d_.rotors[r].params.max_rot_velocity * std::sqrt(c[r]);
+      for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = max_rot_velocity_[r * n + i] * std::sqrt(c[r]);
       return;
     default: break;
   }
@@ -592,10 +694,9 @@ void FlightBatch::Observe(int i, const KernelBefore& before, int lane) {
       omega_before_W[c] = before.omega_W[c * kLanes + lane];
     }
     for (int c = 0; c < 9; ++c) R_before[c] = before.R_WB[c * kLanes + lane];
-    const Mount& m = d_.imu->mount;
     double r_now[3], r_then[3], wxr_now[3], wxr_then[3];
-    Rotate(R, m.p_B, r_now);
-    Rotate(R_before, m.p_B, r_then);
+    Rotate(R, points_[i].imu, r_now);
+    Rotate(R_before, points_[i].imu, r_then);
     Cross(w, r_now, wxr_now);
     Cross(omega_before_W, r_then, wxr_then);
     const Eigen::Matrix3d R_WI = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R) * R_BI_;
@@ -616,7 +717,7 @@ void FlightBatch::Observe(int i, const KernelBefore& before, int lane) {
     const double t_s = SimTimeS(steps_[i], dt_ns_);
     rgp::OdometryMeasurement m;
     double r_s[3], wxr[3], v_s[3], v_S[3], w_S[3];
-    Rotate(R, od.mount.p_B, r_s);
+    Rotate(R, points_[i].odometry, r_s);
     Cross(w, r_s, wxr);
     for (int c = 0; c < 3; ++c) v_s[c] = v[c] + wxr[c];
     m.q_WS = q_WB * od.mount.q_BS;
@@ -667,7 +768,7 @@ double* FlightBatch::Truth() {
     double R[9], r_cog[3], w[3], wxr[3], w_B[3];
     for (int c = 0; c < 9; ++c) R[c] = R_WB_[c * n + i];
     for (int c = 0; c < 3; ++c) w[c] = omega_W_[c * n + i];
-    Rotate(R, d_.p_M_cog, r_cog);
+    Rotate(R, airframes_[i].p_M_cog, r_cog);
     const double r_m[3] = {-r_cog[0], -r_cog[1], -r_cog[2]};  // the model origin from the CoG
     Cross(w, r_m, wxr);
     RotateBack(R, w, w_B);

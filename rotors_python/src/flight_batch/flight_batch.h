@@ -39,6 +39,23 @@ enum class CommandMode {
 CommandMode ParseCommandMode(const std::string& name);
 int CommandColumns(CommandMode mode, int rotors);
 
+/// What may differ between the vehicles of a batch, as the xacro's values would set them in the
+/// full world: the solver body's mass, inertia (the lumped body's, about its CoG, body frame) and
+/// CoG (in the model frame: moving it moves every point of the vehicle relative to the body's
+/// origin, as the solver sees it) and each motor plugin's constants. The rotors' and sensors'
+/// places in the model frame and the rotor axes are the description's for every vehicle.
+struct Airframe {
+  double mass_kg = 0.0;
+  Eigen::Matrix3d inertia_B_kg_m2 = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p_M_cog = Eigen::Vector3d::Zero();  ///< [m]
+  /// by motor number: motorConstant, momentConstant, rotorDragCoefficient, rollingMomentCoefficient,
+  /// timeConstantUp/Down, maxRotVelocity (turningDirection stays the description's)
+  std::vector<rotors_gazebo_plugins::RotorParams> rotors;
+};
+
+/// The airframe `d` describes (the xacro's).
+Airframe AirframeOf(const VehicleDescription& d);
+
 struct FlightBatchOptions {
   int count = 1;
   int threads = 0;  ///< 0: one per core
@@ -81,6 +98,17 @@ class FlightBatch {
   /// vehicle `steps` physics steps. On a bad command: SimError naming the vehicle and the value,
   /// and no vehicle moves.
   void Step(long steps);
+  /// The description's airframe (every vehicle's until SetAirframe).
+  Airframe NominalAirframe() const;
+  const Airframe& GetAirframe(int i) const;
+  /// Vehicle i flies `airframe` from its next step on (its state is kept: set it at a reset). SimError
+  /// naming the vehicle and the bad value (the motor plugin's own checks; mass > 0; an inertia that
+  /// is symmetric positive definite), and nothing changes.
+  void SetAirframe(int i, const Airframe& airframe);
+
+  /// Vehicle i's random_seed from its next Reset on (a new episode's sensor and wind noise).
+  void SetSeed(int i, uint64_t seed);
+
   /// Vehicles `indices` back to rest at position_M (N x 3, the model frame's origin, as spawned) and
   /// yaw, their time at 0, rotors stopped, sensor and wind noise at their seeds again.
   void Reset(const std::vector<int>& indices, const double* positions_M, const double* yaws);
@@ -112,6 +140,7 @@ class FlightBatch {
   uint64_t SeedFor(uint64_t plugin_seed, int i) const;
   static constexpr int kLanes = 4;  ///< vehicles stepped together by the kernel
   void BuildKernelModel();
+  void WriteAirframe(size_t i, const Airframe& airframe);  ///< into the kernel's arrays
   void ParkPaddingLanes();
   void StepRange(int begin, int end, long steps);
   void StepGroup(int i0);
@@ -137,7 +166,19 @@ class FlightBatch {
   std::vector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;           ///< the body (CoG), as the solver keeps it
   std::vector<double> omega_rotor_, qdot_applied_, motor_command_;  ///< R per vehicle
   std::vector<double> wind_velocity_W_;                             ///< the wind speed the motors see
-  std::vector<uint64_t> steps_;                                     ///< steps since the vehicle's reset
+  // each vehicle's airframe (KernelAirframes), and as set
+  std::vector<double> mass_, inv_mass_, I_B_, inv_I_B_, contact_k_, contact_c_;
+  std::vector<double> motor_constant_, rotor_drag_coefficient_, rolling_moment_coefficient_, reaction_factor_;
+  std::vector<double> max_rot_velocity_, a_up_, a_down_;
+  std::vector<double> p_origin_B_, p_cog_B_, corner_B_, contact_reach_m_;
+  std::vector<Airframe> airframes_;
+  /// Each vehicle's points in its body frame that the scalar code reads (the CoG's move applied).
+  struct BodyPoints {
+    Eigen::Vector3d imu, odometry, wind_link, wind_force;
+  };
+  std::vector<BodyPoints> points_;
+  double contact_w_ = 0.0;       ///< the ground contact's natural frequency [rad/s]
+  std::vector<uint64_t> steps_;  ///< steps since the vehicle's reset
   std::vector<uint8_t> has_motor_command_, in_contact_;
   // shared with Python
   std::vector<double> commands_, odometry_out_, imu_out_, truth_out_, rotor_speed_out_;

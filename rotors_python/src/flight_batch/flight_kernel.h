@@ -21,34 +21,26 @@ namespace rotors_flight_batch {
 constexpr int kMaxRotors = 16;
 constexpr int kMaxContacts = 8;
 
-/// The model's constants, flattened for the kernel.
+/// What is the same for every vehicle of a batch, flattened for the kernel. What may differ per
+/// vehicle (mass, inertia, the CoG and with it every point in the body frame, the rotors'
+/// constants: KernelAirframes) is in KernelArrays.
 struct KernelModel {
   struct Rotor {
-    double p_origin_B[3], p_cog_B[3], axis_B[3];
-    bool cog_on_origin;
-    double motor_constant, rotor_drag_coefficient, rolling_moment_coefficient;
-    double reaction_factor;  ///< -epsilon C_M
-    double max_rot_velocity, a_up, a_down;
+    double axis_B[3];
+    bool cog_on_origin;                        ///< the rotor link's CoG is its origin
     double spin_inertia, direction, slowdown;  ///< J_a; epsilon; the joint turns epsilon omega / slowdown
   };
   /// The same constants as one array over the rotors each, for the kernel that steps one vehicle
-  /// with a lane per rotor. Rotors past the last add nothing (zero constants, slowdown 1); p_cog_B
-  /// is p_origin_B where the two coincide, so R p_cog_B is bit for bit the R p_origin_B of Rotor.
+  /// with a lane per rotor. Rotors past the last add nothing (zero constants, slowdown 1).
   struct RotorColumns {
     bool every_cog_on_origin = true;  ///< R p_cog_B need not be computed apart
-    alignas(32) double axis_B[3][kMaxRotors], p_origin_B[3][kMaxRotors], p_cog_B[3][kMaxRotors];
-    alignas(32) double motor_constant[kMaxRotors], rotor_drag_coefficient[kMaxRotors];
-    alignas(32) double rolling_moment_coefficient[kMaxRotors], reaction_factor[kMaxRotors];
-    alignas(32) double max_rot_velocity[kMaxRotors], a_up[kMaxRotors], a_down[kMaxRotors];
+    alignas(32) double axis_B[3][kMaxRotors];
     alignas(32) double spin_inertia[kMaxRotors], direction[kMaxRotors], slowdown[kMaxRotors];
   };
   int rotors = 0, contacts = 0;
   Rotor rotor[kMaxRotors];
   RotorColumns columns;
-  double corner_B[kMaxContacts][3];
-  double contact_k = 0, contact_c = 0, contact_reach_m = 0;
-  double dt = 0, inv_dt = 0, mass = 0, gravity_W[3] = {0, 0, 0};
-  rotors_sim::physics::FreeBodyInertia body;
+  double dt = 0, inv_dt = 0, gravity_W[3] = {0, 0, 0};
   bool has_wind = false;  ///< a wind plugin: KernelWind holds its draws (else no wind is read)
   bool wind_before_motors = false;
   bool keep_state_before = false;  ///< write KernelBefore (the IMU measures from it)
@@ -57,12 +49,28 @@ struct KernelModel {
 /// m.columns from m.rotor[0 .. m.rotors - 1] (the rotors past the last add nothing).
 void FillRotorColumns(KernelModel& m);
 
+/// Each vehicle's airframe, component k of vehicle i at [k * n + i] as the state: the solver
+/// body's mass [kg], 1 / mass, inertia about the CoG and its inverse (9 each, row-major, body
+/// frame), the ground contact's spring [N/m] and damper [N s/m]; per rotor (R components each) the
+/// motor plugin's constants: C_T, C_D, C_R, -epsilon C_M, omega_max and its first-order filter's
+/// factors exp(-dt / tau) up and down; where the rotors sit relative to the CoG, component
+/// (c R + r) for axis c of rotor r: the rotor link's origin (its airspeed) and its CoG (where its
+/// force acts; the origin's value where the two coincide, so that R p_cog_B is bit for bit R
+/// p_origin_B); the collision box's corners, component (3 k + c), and the farthest one's distance.
+struct KernelAirframes {
+  const double *mass, *inv_mass, *I_B, *inv_I_B, *contact_k, *contact_c;
+  const double *p_origin_B, *p_cog_B, *corner_B, *contact_reach_m;
+  const double *motor_constant, *rotor_drag_coefficient, *rolling_moment_coefficient, *reaction_factor;
+  const double *max_rot_velocity, *a_up, *a_down;
+};
+
 /// The batch's arrays, component k of vehicle i at [k * n + i] (n a multiple of the lane count).
 struct KernelArrays {
   size_t n;
   double *p_W, *v_W, *q_WB, *R_WB, *omega_W;
   double *omega_rotor, *qdot_applied, *motor_command;
   double* wind_velocity_W;  ///< what the motors see (the wind plugin's last sample)
+  KernelAirframes airframe;
 };
 
 /// This step's wind of each lane (the scalar pass drew it): force and moment about the CoG, and the
@@ -112,9 +120,9 @@ inline void Cross(const V a[3], const V b[3], V out[3]) {
   out[1] = a[2] * b[0] - a[0] * b[2];
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
-/// out = R v for a constant body-frame vector
-template <class V>
-inline void Rotate(const V R[9], const double v[3], V out[3]) {
+/// out = R v for a body-frame vector (the same in every lane, S = double, or a lane's own)
+template <class V, class S>
+inline void Rotate(const V R[9], const S v[3], V out[3]) {
   for (int k = 0; k < 3; ++k) out[k] = R[k * 3 + 0] * v[0] + R[k * 3 + 1] * v[1] + R[k * 3 + 2] * v[2];
 }
 inline bool Any(bool m) { return m; }
@@ -172,6 +180,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
   using namespace kernel_detail;
   constexpr int L = static_cast<int>(LaneCount<V>::value);
   const KernelModel::RotorColumns& k = m.columns;
+  const KernelAirframes& af = a.airframe;
   const size_t n = a.n;
   // the body's state and the model's scalars in locals: the stores below may alias them, and every
   // group of rotors would read them again
@@ -190,8 +199,8 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
       V axis_B[3], p_o_B[3], p_c_B[3];
       for (int c = 0; c < 3; ++c) {
         axis_B[c] = Load<V>(&k.axis_B[c][r0]);
-        p_o_B[c] = Load<V>(&k.p_origin_B[c][r0]);
-        p_c_B[c] = Load<V>(&k.p_cog_B[c][r0]);
+        p_o_B[c] = Gather<V>(af.p_origin_B + c * rotors * n, r0, count, n, i);
+        p_c_B[c] = every_cog_on_origin ? p_o_B[c] : Gather<V>(af.p_cog_B + c * rotors * n, r0, count, n, i);
       }
       for (int c = 0; c < 3; ++c) {  // R v, as Rotate (a product of doubles is commutative)
         ax[c] = R[c * 3 + 0] * axis_B[0] + R[c * 3 + 1] * axis_B[1] + R[c * 3 + 2] * axis_B[2];
@@ -205,12 +214,12 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     const V omega = Gather<V>(a.omega_rotor, r0, count, n, i);
     const V cmd = Gather<V>(a.motor_command, r0, count, n, i);
     const V qdot_before = Gather<V>(a.qdot_applied, r0, count, n, i);
+    auto constant = [&](const double* x) { return Gather<V>(x, r0, count, n, i); };
     const V w_x_r[3] = {w[1] * r_o[2] - w[2] * r_o[1], w[2] * r_o[0] - w[0] * r_o[2], w[0] * r_o[1] - w[1] * r_o[0]};
     V air[3];
     for (int c = 0; c < 3; ++c) air[c] = v_W[c] + w_x_r[c] - wind_W[c];
-    const Loads<V> loads =
-        RotorLoads(omega, ax, air, Load<V>(&k.motor_constant[r0]), Load<V>(&k.rotor_drag_coefficient[r0]),
-                   Load<V>(&k.rolling_moment_coefficient[r0]), Load<V>(&k.reaction_factor[r0]));
+    const Loads<V> loads = RotorLoads(omega, ax, air, constant(af.motor_constant), constant(af.rotor_drag_coefficient),
+                                      constant(af.rolling_moment_coefficient), constant(af.reaction_factor));
     V f[3];
     for (int c = 0; c < 3; ++c) f[c] = loads.thrust_F[c] + loads.drag_F[c];
     V torque[3];
@@ -221,8 +230,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
       Store(&out.moment_W[c][r0], torque[c] + loads.reaction_moment_F[c] + loads.rolling_moment_F[c]);
     }
     // the speed dynamics, as StepLanesStrided
-    const V y =
-        RotorSpeedStep(omega, cmd, Load<V>(&k.max_rot_velocity[r0]), Load<V>(&k.a_up[r0]), Load<V>(&k.a_down[r0]));
+    const V y = RotorSpeedStep(omega, cmd, constant(af.max_rot_velocity), constant(af.a_up), constant(af.a_down));
     const V qdot = Load<V>(&k.direction[r0]) * y / Load<V>(&k.slowdown[r0]);
     V spin_moment[3];
     SpinMoment(ax, Load<V>(&k.spin_inertia[r0]), qdot, qdot_before, inv_dt, w, spin_moment);
@@ -258,9 +266,16 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
   for (int c = 0; c < 9; ++c) s.R_WB[c] = Load<V>(&a.R_WB[c * n + i0]);
   const V* R = s.R_WB;
   const V* w = s.omega_W;
+  const KernelAirframes& af = a.airframe;
+  rotors_sim::physics::FreeBodyInertiaT<V> body;
+  body.inv_mass_kg = Load<V>(&af.inv_mass[i0]);
+  for (int c = 0; c < 9; ++c) {
+    body.I_B[c] = Load<V>(&af.I_B[c * n + i0]);
+    body.inv_I_B[c] = Load<V>(&af.inv_I_B[c * n + i0]);
+  }
   // the free-body step's half that needs no force, first: the core runs its chain (a division) while
   // it steps the rotors
-  const rotors_sim::physics::FreeBodyStateTerms<V> body_terms = rotors_sim::physics::FreeBodyTermsOf(m.dt, m.body, s);
+  const rotors_sim::physics::FreeBodyStateTerms<V> body_terms = rotors_sim::physics::FreeBodyTermsOf(m.dt, body, s);
   V F[3] = {}, T[3] = {};
   V wind_v[3] = {};
   for (int c = 0; c < 3 && m.has_wind; ++c)
@@ -292,28 +307,32 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
     const KernelModel::Rotor& p = m.rotor[r];
     V* ax = axis_W[r];
     Rotate(R, p.axis_B, ax);
-    V r_o[3], w_x_r[3];
-    Rotate(R, p.p_origin_B, r_o);
+    V p_o_B[3], r_o[3], w_x_r[3];
+    for (int c = 0; c < 3; ++c) p_o_B[c] = Load<V>(&af.p_origin_B[(c * m.rotors + r) * n + i0]);
+    Rotate(R, p_o_B, r_o);
     Cross(w, r_o, w_x_r);
     V air[3];
     for (int c = 0; c < 3; ++c) air[c] = s.v_W[c] + w_x_r[c] - wind_v[c];
     const V omega = Load<V>(&a.omega_rotor[r * n + i0]);
-    const Loads<V> loads = RotorLoads(omega, ax, air, p.motor_constant, p.rotor_drag_coefficient,
-                                      p.rolling_moment_coefficient, p.reaction_factor);
+    auto constant = [&](const double* x) { return Load<V>(&x[r * n + i0]); };
+    const Loads<V> loads = RotorLoads(omega, ax, air, constant(af.motor_constant), constant(af.rotor_drag_coefficient),
+                                      constant(af.rolling_moment_coefficient), constant(af.reaction_factor));
     V r_c[3], torque[3], f[3];
     for (int c = 0; c < 3; ++c) f[c] = loads.thrust_F[c] + loads.drag_F[c];
     if (p.cog_on_origin) {
       for (int c = 0; c < 3; ++c) r_c[c] = r_o[c];
     } else {
-      Rotate(R, p.p_cog_B, r_c);
+      V p_c_B[3];
+      for (int c = 0; c < 3; ++c) p_c_B[c] = Load<V>(&af.p_cog_B[(c * m.rotors + r) * n + i0]);
+      Rotate(R, p_c_B, r_c);
     }
     Cross(r_c, f, torque);
     for (int c = 0; c < 3; ++c) {
       F[c] += f[c];
       T[c] += torque[c] + loads.reaction_moment_F[c] + loads.rolling_moment_F[c];
     }
-    const V y = RotorSpeedStep(omega, Load<V>(&a.motor_command[r * n + i0]), Splat<V>(p.max_rot_velocity),
-                               Splat<V>(p.a_up), Splat<V>(p.a_down));
+    const V y = RotorSpeedStep(omega, Load<V>(&a.motor_command[r * n + i0]), constant(af.max_rot_velocity),
+                               constant(af.a_up), constant(af.a_down));
     Store(&a.omega_rotor[r * n + i0], y);
     qdot[r] = p.direction * y / p.slowdown;
   }
@@ -339,19 +358,21 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
 
   // ground contact: a spring and damper at each corner below z = 0, friction limited to the normal force
   unsigned touching = 0;
-  if (Any(s.p_W[2] <= Splat<V>(m.contact_reach_m))) {
+  if (Any(s.p_W[2] <= Load<V>(&af.contact_reach_m[i0]))) {
     const V zero = {};
+    const V contact_k = Load<V>(&af.contact_k[i0]), contact_c = Load<V>(&af.contact_c[i0]);
     for (int k = 0; k < m.contacts; ++k) {
-      V r_k[3];
-      Rotate(R, m.corner_B[k], r_k);
+      V corner_B[3], r_k[3];
+      for (int c = 0; c < 3; ++c) corner_B[c] = Load<V>(&af.corner_B[(3 * k + c) * n + i0]);
+      Rotate(R, corner_B, r_k);
       const V depth = -(s.p_W[2] + r_k[2]);
       if (!Any(depth > zero)) continue;
       V w_x_r[3];
       Cross(w, r_k, w_x_r);
       const V v_k[3] = {s.v_W[0] + w_x_r[0], s.v_W[1] + w_x_r[1], s.v_W[2] + w_x_r[2]};
-      const V normal = m.contact_k * depth - m.contact_c * v_k[2];
+      const V normal = contact_k * depth - contact_c * v_k[2];
       const auto on = (depth > zero) & (normal > zero);
-      V f[3] = {-m.contact_c * v_k[0], -m.contact_c * v_k[1], normal};
+      V f[3] = {-contact_c * v_k[0], -contact_c * v_k[1], normal};
       const V tangential = Hypot(f[0], f[1]);
       const auto slip = tangential > normal;
       for (int c = 0; c < 2; ++c) f[c] = slip ? f[c] * (normal / tangential) : f[c];
@@ -368,8 +389,9 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
   }
 
   // gravity, added by the solver after the plugins' forces
+  const V mass = Load<V>(&af.mass[i0]);
   for (int c = 0; c < 3; ++c)
-    if (m.gravity_W[c] != 0.0) F[c] += m.mass * m.gravity_W[c];
+    if (m.gravity_W[c] != 0.0) F[c] += mass * m.gravity_W[c];
 
   if (m.keep_state_before) {
     for (int c = 0; c < 3; ++c) {
@@ -378,7 +400,7 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
     }
     for (int c = 0; c < 9; ++c) Store(&before.R_WB[c * Stride], s.R_WB[c]);
   }
-  rotors_sim::physics::StepFreeBody(m.dt, m.body, F, T, body_terms, s);
+  rotors_sim::physics::StepFreeBody(m.dt, body, F, T, body_terms, s);
   for (int c = 0; c < 3; ++c) {
     Store(&a.p_W[c * n + i0], s.p_W[c]);
     Store(&a.v_W[c * n + i0], s.v_W[c]);

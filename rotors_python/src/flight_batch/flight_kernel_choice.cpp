@@ -19,18 +19,7 @@ void FillRotorColumns(KernelModel& m) {
   std::fill(std::begin(col.slowdown), std::end(col.slowdown), 1.0);  // rotors past the last: all zero
   for (int r = 0; r < m.rotors; ++r) {
     const KernelModel::Rotor& kr = m.rotor[r];
-    for (int c = 0; c < 3; ++c) {
-      col.axis_B[c][r] = kr.axis_B[c];
-      col.p_origin_B[c][r] = kr.p_origin_B[c];
-      col.p_cog_B[c][r] = kr.cog_on_origin ? kr.p_origin_B[c] : kr.p_cog_B[c];
-    }
-    col.motor_constant[r] = kr.motor_constant;
-    col.rotor_drag_coefficient[r] = kr.rotor_drag_coefficient;
-    col.rolling_moment_coefficient[r] = kr.rolling_moment_coefficient;
-    col.reaction_factor[r] = kr.reaction_factor;
-    col.max_rot_velocity[r] = kr.max_rot_velocity;
-    col.a_up[r] = kr.a_up;
-    col.a_down[r] = kr.a_down;
+    for (int c = 0; c < 3; ++c) col.axis_B[c][r] = kr.axis_B[c];
     col.spin_inertia[r] = kr.spin_inertia;
     col.direction[r] = kr.direction;
     col.slowdown[r] = kr.slowdown;

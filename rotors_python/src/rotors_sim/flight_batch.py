@@ -150,6 +150,32 @@ class FlightBatch:
         y = np.zeros(len(idx)) if yaws is None else np.asarray(yaws, dtype=float)
         self._b.reset(idx, np.ascontiguousarray(p), np.ascontiguousarray(y))
 
+    # --- each vehicle's airframe ---
+    @property
+    def nominal_airframe(self) -> dict[str, Any]:
+        """The xacro's airframe: {"mass": kg, "inertia": 3 x 3 kg m^2 (about the CoG, body frame),
+        "cog": the CoG in the model frame [m], and per rotor (arrays by motor number) "motorConstant",
+        "momentConstant", "rotorDragCoefficient", "rollingMomentCoefficient", "timeConstantUp",
+        "timeConstantDown", "maxRotVelocity"}, in the SDF parameters' units."""
+        return self._b.nominal_airframe
+
+    def airframe(self, i: int) -> dict[str, Any]:
+        """Vehicle i's airframe (nominal_airframe's keys)."""
+        return self._b.airframe(int(i))
+
+    def set_airframe(self, i: int, **values: Any) -> None:
+        """Vehicle i flies the nominal airframe with `values` in place (nominal_airframe's keys, any
+        subset), from its next step: set it with a reset. Checked as the plugins check their SDF
+        (a bad value raises SimError naming the vehicle and the value, and nothing changes). The
+        controllers keep the yaml's vehicle: they do not know the airframe they fly."""
+        self._b.set_airframe(int(i), values)
+
+    def set_seed(self, i: int, seed: int) -> None:
+        """Vehicle i's random_seed (its sensor and wind noise) from its next reset on."""
+        if int(seed) < 0:
+            raise SimError(f"seed = {seed} must be >= 0")
+        self._b.set_seed(int(i), int(seed))
+
     # --- what it holds ---
     @property
     def count(self) -> int:

@@ -26,10 +26,13 @@ struct FreeBodyStateT {
 using FreeBodyState = FreeBodyStateT<double>;
 
 /// The body's constants: 1 / mass [1/kg], the inertia about the CoG and its inverse in the body
-/// frame (row-major) [kg m^2, 1/(kg m^2)].
-struct FreeBodyInertia {
-  double inv_mass_kg, I_B[9], inv_I_B[9];
+/// frame (row-major) [kg m^2, 1/(kg m^2)]. S: double (one body, or every lane the same body) or a
+/// GCC vector of doubles (a body of its own per lane).
+template <class S>
+struct FreeBodyInertiaT {
+  S inv_mass_kg, I_B[9], inv_I_B[9];
 };
+using FreeBodyInertia = FreeBodyInertiaT<double>;
 
 /// R_WB from q_WB (w, x, y, z), ODE's dRfromQ.
 template <class T>
@@ -47,8 +50,8 @@ inline void RotationFromQuaternion(const T q[4], T R[9]) {
 }
 
 /// A_W = R A_B R^T for a body-frame tensor A_B, in ODE's order (dMultiply2_333, then dMultiply0_333).
-template <class T>
-inline void TensorToWorld(const T R[9], const double A_B[9], T A_W[9]) {
+template <class T, class S>
+inline void TensorToWorld(const T R[9], const S A_B[9], T A_W[9]) {
   T tmp[9];  // tmp = A_B R^T
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -74,8 +77,8 @@ struct FreeBodyStateTerms {
 };
 
 /// The first half of a step: FreeBodyStateTerms of `s` for the step h.
-template <class T>
-inline FreeBodyStateTerms<T> FreeBodyTermsOf(double h, const FreeBodyInertia& body, const FreeBodyStateT<T>& s) {
+template <class T, class S>
+inline FreeBodyStateTerms<T> FreeBodyTermsOf(double h, const FreeBodyInertiaT<S>& body, const FreeBodyStateT<T>& s) {
   constexpr bool kScalar = std::is_same_v<T, double>;
   FreeBodyStateTerms<T> out;
   T I_W[9];
@@ -115,8 +118,8 @@ inline FreeBodyStateTerms<T> FreeBodyTermsOf(double h, const FreeBodyInertia& bo
 
 /// The second half: advances `s` by h under the force F_W (gravity included) and torque T_W about
 /// the CoG, with the terms FreeBodyTermsOf computed from `s` as it is.
-template <class T>
-inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], const T T_W_in[3],
+template <class T, class S>
+inline void StepFreeBody(double h, const FreeBodyInertiaT<S>& body, const T F_W[3], const T T_W_in[3],
                          const FreeBodyStateTerms<T>& terms, FreeBodyStateT<T>& s) {
   constexpr bool kScalar = std::is_same_v<T, double>;
   const T* w = s.omega_W;
@@ -125,7 +128,7 @@ inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], 
   const T T_W[3] = {T_W_in[0] + terms.tau_gyro_W[0], T_W_in[1] + terms.tau_gyro_W[1], T_W_in[2] + terms.tau_gyro_W[2]};
 
   // v += h/m F;  w += I_W^-1 (h T)
-  const double s_lin = h * body.inv_mass_kg;
+  const S s_lin = h * body.inv_mass_kg;
   for (int i = 0; i < 3; ++i) s.v_W[i] = s.v_W[i] + s_lin * F_W[i];
   const T a[3] = {T_W[0] * h, T_W[1] * h, T_W[2] * h};
   T dw[3];
@@ -155,8 +158,8 @@ inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], 
 }
 
 /// Advances `s` by h under the force F_W (gravity included) and torque T_W about the CoG.
-template <class T>
-inline void StepFreeBody(double h, const FreeBodyInertia& body, const T F_W[3], const T T_W_in[3],
+template <class T, class S>
+inline void StepFreeBody(double h, const FreeBodyInertiaT<S>& body, const T F_W[3], const T T_W_in[3],
                          FreeBodyStateT<T>& s) {
   StepFreeBody(h, body, F_W, T_W_in, FreeBodyTermsOf(h, body, s), s);
 }

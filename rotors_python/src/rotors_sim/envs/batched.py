@@ -26,6 +26,7 @@ from gymnasium.vector.utils import batch_space
 from rotors_sim._engine import SimError
 from rotors_sim.envs import hover, waypoints
 from rotors_sim.flight_batch import FlightBatch
+from rotors_sim.randomization import check_spec, draw_airframe
 
 TASKS = ("hover", "waypoints")
 ACTION_TYPES = ("motor", "attitude")
@@ -43,7 +44,11 @@ class FlightBatchEnv(VectorEnv):
     value in [-1, 1] per rotor: 0 to its maximum speed) or "attitude" (roll and pitch up to
     max_tilt_rad, yaw rate up to max_yaw_rate_rad_s, thrust 0 to twice the weight). Sensor noise
     seeded per vehicle from sensor_seed + i. `alive_bonus` (hover, default 0, >= 0) is added to the
-    reward of every step that does not end in a crash (the hover reward is in [0, 1] already)."""
+    reward of every step that does not end in a crash (the hover reward is in [0, 1] already).
+    `randomization` (rotors_sim.randomization's spec; also reset(options={"randomization": spec})
+    from that reset on): every vehicle draws its airframe at every reset from its episode's
+    generator, and its sensor noise a new seed; None (the default): every episode the xacro's
+    airframe and the same noise."""
 
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP}
 
@@ -67,6 +72,7 @@ class FlightBatchEnv(VectorEnv):
         max_yaw_rate_rad_s: float = 2.0,
         autoreset: bool = True,
         alive_bonus: float = 0.0,
+        randomization: dict[str, Any] | None = None,
     ):
         if task not in TASKS:
             raise SimError(f"task '{task}' is not known; use one of: {', '.join(TASKS)}")
@@ -80,6 +86,8 @@ class FlightBatchEnv(VectorEnv):
         self.autoreset = autoreset
         self.metadata = {"autoreset_mode": AutoresetMode.SAME_STEP if autoreset else AutoresetMode.DISABLED}
         self.alive_bonus = float(alive_bonus)
+        self.randomization = check_spec(randomization) if randomization is not None else None
+        self.sensor_seed = int(sensor_seed)
         step_size = 1.0 / physics_hz
         self.substeps = max(1, round(1.0 / control_hz / step_size))
         mode = "rotor_speeds" if action_type == "motor" else "roll_pitch_yawrate_thrust"
@@ -116,6 +124,7 @@ class FlightBatchEnv(VectorEnv):
         self.distance = np.zeros(self.num_envs)
         self._ended = np.zeros(self.num_envs, dtype=bool)  # with autoreset off: ended, not reset yet
         self._obs = np.zeros(self.observation_space.shape, np.float32)
+        self.randomized_before = False
 
     # --- Gymnasium ---
     def reset(self, *, seed: int | list[int | None] | None = None, options: dict[str, Any] | None = None):
@@ -129,6 +138,9 @@ class FlightBatchEnv(VectorEnv):
                 raise SimError(f"options['reset_mask'] must be a numpy bool array of shape ({self.num_envs},), got {mask!r}")
             if not mask.any():
                 raise SimError("options['reset_mask'] has no True value: nothing to reset")
+        if options is not None and "randomization" in options:
+            spec = options["randomization"]
+            self.randomization = check_spec(spec) if spec is not None else None
         if seed is not None:
             seeds = seed if isinstance(seed, list) else [seed + i for i in range(self.num_envs)]
             if len(seeds) != self.num_envs:
@@ -239,6 +251,17 @@ class FlightBatchEnv(VectorEnv):
                 yaws[j] = rng.uniform(-np.pi, np.pi)
             else:
                 positions[j] = self.start + rng.uniform(-0.2, 0.2, 3)
+        if self.randomization is not None:
+            nominal = self.batch.nominal_airframe
+            for i in ended:
+                rng = self._rngs[i]
+                self.batch.set_airframe(i, **draw_airframe(self.randomization, nominal, rng))
+                self.batch.set_seed(i, int(rng.integers(0, 2**31)))
+        elif self.randomized_before:
+            for i in ended:
+                self.batch.set_airframe(i)  # the xacro's again, and the constructor's noise
+                self.batch.set_seed(i, self.sensor_seed + i)
+        self.randomized_before = self.randomized_before or self.randomization is not None
         self.batch.reset(ended, positions=positions, yaws=yaws)
         # the sensor's first message is the end of the first step; until then, the reset state
         self.batch.commands[ended] = 0.0

@@ -1,0 +1,104 @@
+"""Domain randomisation of FlightBatch's airframes: a spec names, per airframe parameter (as the SDF
+and xacro name it), the distribution of a factor on the vehicle's own value (or, for the CoG, of
+an offset in metres), and every vehicle draws its airframe from it at every reset, from its
+episode's generator (so one seed gives one airframe, and the next episode another).
+
+    spec = {"mass": ("uniform", 0.8, 1.2), "motorConstant": ("normal", 1.0, 0.05),
+            "timeConstantUp": ("uniform", 0.8, 1.5), "cog": ("uniform", -0.01, 0.01)}
+    envs = FlightBatchEnv("hover", 64, randomization=spec)
+
+Per-rotor parameters draw one factor per rotor; "inertia" one per body axis (the tensor scaled as
+S I S with S = diag(sqrt(s_x), sqrt(s_y), sqrt(s_z)), so its diagonal is s I_ii and it stays
+positive definite); "cog" one offset per axis. A draw that leaves a value out of the motor
+plugin's range (a factor <= 0 where the parameter must be > 0) is an error naming the parameter.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from rotors_sim._engine import SimError
+
+ROTOR_PARAMETERS = (
+    "motorConstant",
+    "momentConstant",
+    "rotorDragCoefficient",
+    "rollingMomentCoefficient",
+    "timeConstantUp",
+    "timeConstantDown",
+    "maxRotVelocity",
+)
+PARAMETERS = ("mass", "inertia", "cog", *ROTOR_PARAMETERS)
+DISTRIBUTIONS = ("uniform", "normal", "fixed")
+
+
+def check_spec(spec: Mapping[str, Any] | None) -> dict[str, tuple]:
+    """The spec as {name: (distribution, a, b)}; SimError naming an unknown parameter, an unknown
+    distribution or bad bounds."""
+    if spec is None:
+        return {}
+    if not isinstance(spec, Mapping):
+        raise SimError(f"randomization must be a dict of parameter: (distribution, a, b), got {spec!r}")
+    out = {}
+    for name, entry in spec.items():
+        if name not in PARAMETERS:
+            raise SimError(f"randomization: '{name}' is not an airframe parameter; use one of: {', '.join(PARAMETERS)}")
+        entry = (entry,) if isinstance(entry, str) else tuple(entry)
+        kind = entry[0] if entry else None
+        if kind not in DISTRIBUTIONS:
+            raise SimError(f"randomization['{name}']: distribution {kind!r} is not known; use uniform, normal or fixed")
+        wanted = {"uniform": 3, "normal": 3, "fixed": 2}[kind]
+        if len(entry) != wanted or not all(np.isfinite(float(x)) for x in entry[1:]):
+            form = {"uniform": "('uniform', low, high)", "normal": "('normal', mean, sigma)", "fixed": "('fixed', value)"}[kind]
+            raise SimError(f"randomization['{name}'] = {entry!r}: give {form} with finite numbers")
+        if kind == "uniform" and float(entry[1]) > float(entry[2]):
+            raise SimError(f"randomization['{name}']: low {entry[1]} > high {entry[2]}")
+        if kind == "normal" and float(entry[2]) < 0.0:
+            raise SimError(f"randomization['{name}']: sigma {entry[2]} must be >= 0")
+        out[name] = (kind, *(float(x) for x in entry[1:]))
+    return out
+
+
+def _draw(entry: tuple, rng: np.random.Generator, size: int) -> np.ndarray:
+    kind = entry[0]
+    if kind == "uniform":
+        return rng.uniform(entry[1], entry[2], size)
+    if kind == "normal":
+        return rng.normal(entry[1], entry[2], size)
+    return np.full(size, entry[1])
+
+
+def draw_airframe(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rng: np.random.Generator) -> dict[str, Any]:
+    """One airframe from `spec` (check_spec's form) around `nominal` (FlightBatch.nominal_airframe),
+    drawn from `rng` in PARAMETERS' order (each parameter of the spec draws, the others do not)."""
+    out: dict[str, Any] = {}
+    for name in PARAMETERS:
+        if name not in spec:
+            continue
+        if name == "mass":
+            factor = float(_draw(spec[name], rng, 1)[0])
+            if not factor > 0.0:
+                raise SimError(f"randomization drew a mass factor of {factor:.4g}; the mass must stay > 0 (narrow its range)")
+            out["mass"] = nominal["mass"] * factor
+        elif name == "inertia":
+            factors = _draw(spec[name], rng, 3)
+            if not np.all(factors > 0.0):
+                raise SimError(f"randomization drew inertia factors {np.round(factors, 4).tolist()}; each must be > 0")
+            s = np.diag(np.sqrt(factors))
+            out["inertia"] = s @ np.asarray(nominal["inertia"]) @ s
+        elif name == "cog":
+            out["cog"] = np.asarray(nominal["cog"]) + _draw(spec[name], rng, 3)
+        else:
+            value = np.asarray(nominal[name], dtype=float)
+            factors = _draw(spec[name], rng, len(value))
+            must_be_positive = name in ("motorConstant", "timeConstantUp", "timeConstantDown", "maxRotVelocity")
+            if (must_be_positive and not np.all(factors > 0.0)) or not np.all(factors >= 0.0):
+                raise SimError(
+                    f"randomization drew {name} factors {np.round(factors, 4).tolist()}; "
+                    f"each must be {'> 0' if must_be_positive else '>= 0'} (narrow its range)"
+                )
+            out[name] = value * factors
+    return out

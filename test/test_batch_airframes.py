@@ -1,0 +1,179 @@
+"""Every vehicle of a FlightBatch its own airframe: a vehicle given the airframe of a firefly
+spawned with other xacro values (mass_scale, motor_constant_scale; the CoG moves with them, as the
+sensors keep their mass) flies as the full world with that xacro does, to rounding, beside
+vehicles of the nominal airframe; a randomisation spec draws airframes and noise seeds that repeat
+for a seed and differ between episodes; bad values and specs are one line."""
+
+import numpy as np
+import pytest
+
+import rotors_sim as rs
+from rotors_sim.envs.batched import FlightBatchEnv
+from rotors_sim.randomization import check_spec, draw_airframe
+
+DT, DIVISOR = 0.002, 5
+ROUTE = [(0.0, [0.0, 0.0, 1.0], 0.0), (1.0, [0.6, 0.3, 1.3], 0.5), (2.5, [-0.3, 0.5, 1.1], -0.5)]
+FLIGHT_S = 4.0
+MAV = "firefly"
+
+
+def scaled_world(mass_scale: float, motor_constant_scale: float) -> rs.World:
+    world = rs.World("basic", step_size=DT)
+    world.spawn_mav(
+        MAV,
+        xyz=(0.0, 0.0, 1.0),
+        random_seed=7,
+        odometry_divisor=DIVISOR,
+        mass_scale=mass_scale,
+        motor_constant_scale=motor_constant_scale,
+    )
+    lee = rs.LeePositionController.for_mav(MAV)
+    lee.set_point(ROUTE[0][1])
+    world.attach_controller(MAV, lee)
+    world.lee = lee
+    return world
+
+
+def test_each_vehicle_flies_its_own_airframe_as_the_world_built_with_it():
+    """12 vehicles: every third the xacro's airframe, the others with mass_scale and
+    motor_constant_scale drawn from U(0.8, 1.2) and U(0.85, 1.05); each compared with a full world
+    spawned with its own xacro values, every 10 physics steps over the route."""
+    rng = np.random.default_rng(3)
+    n = 12
+    scales = [(1.0, 1.0) if i % 3 == 0 else (rng.uniform(0.8, 1.2), rng.uniform(0.85, 1.05)) for i in range(n)]
+    worlds = [scaled_world(*s) for s in scales]
+    batch = rs.FlightBatch(MAV, n, step_size=DT, control_divisor=DIVISOR, seeds=[7] * n)
+    for i, world in enumerate(worlds):
+        airframe = world.engine.describe_multirotor(MAV, "odometry_sensor1/odometry").airframe
+        if scales[i] != (1.0, 1.0):
+            batch.set_airframe(i, **airframe)
+        for key, value in batch.airframe(i).items():
+            assert np.array_equal(np.asarray(value), np.asarray(airframe[key])), (i, key)
+    batch.reset(positions=np.tile([0.0, 0.0, 1.0], (n, 1)))
+    batch.commands[:] = [*ROUTE[0][1], 0.0]
+    worst_m = np.zeros(n)
+    nominal_path, paths = [], [[] for _ in range(n)]
+    for k in range(0, int(round(FLIGHT_S / DT)), 10):
+        for t, p, yaw in ROUTE:
+            if abs(k * DT - t) < DT / 2:
+                batch.commands[:] = [*p, yaw]
+                for world in worlds:
+                    world.lee.set_point(p, yaw=yaw)
+        batch.step(10)
+        truth = batch.truth()
+        for i, world in enumerate(worlds):
+            world.step(10)
+            p_world = world.link_state(MAV)[0]
+            worst_m[i] = max(worst_m[i], float(np.linalg.norm(p_world - truth[i, 0:3])))
+            paths[i].append(truth[i, 0:3].copy())
+    nominal_path = np.array(paths[0])
+    apart_m = [float(np.max(np.linalg.norm(np.array(p) - nominal_path, axis=1))) for p in paths]
+    for i in range(n):
+        print(
+            f"vehicle {i:2d}: mass_scale {scales[i][0]:.3f}, motor_constant_scale {scales[i][1]:.3f}: "
+            f"{worst_m[i]:.1e} m from its world, {apart_m[i] * 1000:6.1f} mm from the nominal vehicle's path"
+        )
+    # to rounding: from 3e-16 m to 2e-11 m on this route, as the nominal firefly (the rounding of
+    # the two engines' sums, grown by the closed loop)
+    assert np.all(worst_m < 1e-10)
+    # and the airframes made a difference
+    assert all(apart_m[i] > 1e-3 for i in range(n) if scales[i] != (1.0, 1.0))
+    assert all(apart_m[i] == 0.0 for i in range(n) if scales[i] == (1.0, 1.0))
+
+
+SPEC = {
+    "mass": ("uniform", 0.8, 1.2),
+    "inertia": ("uniform", 0.8, 1.2),
+    "cog": ("uniform", -0.01, 0.01),
+    "motorConstant": ("normal", 1.0, 0.03),
+    "momentConstant": ("uniform", 0.9, 1.1),
+    "timeConstantUp": ("uniform", 0.8, 1.5),
+    "timeConstantDown": ("uniform", 0.8, 1.5),
+    "maxRotVelocity": ("uniform", 0.9, 1.0),
+}
+
+
+def airframes(envs: FlightBatchEnv) -> list[dict]:
+    return [envs.batch.airframe(i) for i in range(envs.num_envs)]
+
+
+def same(a: dict, b: dict) -> bool:
+    return all(np.array_equal(np.asarray(a[k]), np.asarray(b[k])) for k in a)
+
+
+def test_randomised_airframes_repeat_for_a_seed_and_differ_between_episodes():
+    envs = FlightBatchEnv("hover", 8, randomization=SPEC)
+    nominal = envs.batch.nominal_airframe
+    envs.reset(seed=11)
+    first = airframes(envs)
+    # every vehicle its own, every parameter of the spec drawn, each within its range
+    assert not any(same(first[0], a) for a in first[1:])
+    for a in first:
+        assert 0.8 <= a["mass"] / nominal["mass"] <= 1.2
+        assert np.all(np.abs(a["cog"] - nominal["cog"]) <= 0.01)
+        assert np.all((a["timeConstantUp"] / nominal["timeConstantUp"] >= 0.8) & (a["timeConstantUp"] / nominal["timeConstantUp"] <= 1.5))
+        assert len(set(a["motorConstant"])) == envs.batch.rotor_count  # one draw per rotor
+        assert np.all(np.linalg.eigvalsh(a["inertia"]) > 0)
+    rng = np.random.default_rng(0)
+    actions = [rng.uniform(-0.2, 0.2, envs.action_space.shape).astype(np.float32) for _ in range(50)]
+
+    def fly():
+        out = []
+        for a in actions:
+            obs, *_ = envs.step(a)
+            out.append(np.hstack([obs, envs.batch.imu]))
+        return np.array(out)
+
+    flown = fly()
+    envs.reset(seed=11)
+    assert all(same(a, b) for a, b in zip(first, airframes(envs)))
+    assert np.array_equal(flown, fly())  # the same seed: the same airframes, noise and flight
+    envs.reset()  # the next episode: new airframes and new noise
+    second = airframes(envs)
+    assert not any(same(a, b) for a, b in zip(first, second))
+    imu_first, imu_second = flown[0, :, -6:], (envs.step(actions[0])[0], envs.batch.imu.copy())[1]
+    assert not np.array_equal(imu_first, imu_second)
+    # the spec off again: the xacro's airframe for every vehicle from the next reset on
+    envs.reset(options={"randomization": None})
+    assert all(same(nominal, a) for a in airframes(envs))
+
+
+def test_draws_follow_the_spec_and_bad_input_is_one_line():
+    nominal = rs.FlightBatch(MAV, 1).nominal_airframe
+    spec = check_spec({"mass": ("fixed", 1.25), "inertia": ("fixed", 0.81), "maxRotVelocity": ("fixed", 0.5)})
+    a = draw_airframe(spec, nominal, np.random.default_rng(0))
+    assert a["mass"] == nominal["mass"] * 1.25 and np.allclose(np.diag(a["inertia"]), 0.81 * np.diag(nominal["inertia"]))
+    assert np.array_equal(a["maxRotVelocity"], nominal["maxRotVelocity"] * 0.5) and set(a) == {"mass", "inertia", "maxRotVelocity"}
+    bad = {
+        "wingspan": r"'wingspan' is not an airframe parameter; use one of: mass, inertia, cog",
+        "mass_gauss": r"'mass_gauss' is not an airframe parameter",
+    }
+    for name, match in bad.items():
+        with pytest.raises(rs.SimError, match=match):
+            check_spec({name: ("uniform", 0.9, 1.1)})
+    with pytest.raises(rs.SimError, match=r"randomization\['mass'\]: distribution 'gauss' is not known"):
+        check_spec({"mass": ("gauss", 1.0, 0.1)})
+    with pytest.raises(rs.SimError, match=r"randomization\['mass'\]: low 1.2 > high 0.8"):
+        check_spec({"mass": ("uniform", 1.2, 0.8)})
+    with pytest.raises(rs.SimError, match=r"give \('uniform', low, high\) with finite numbers"):
+        check_spec({"mass": ("uniform", 0.8, float("nan"))})
+    with pytest.raises(rs.SimError, match="drew a mass factor of -0.5; the mass must stay > 0"):
+        draw_airframe(check_spec({"mass": ("fixed", -0.5)}), nominal, np.random.default_rng(0))
+    batch = rs.FlightBatch(MAV, 2)
+    batch.step(10)
+    before = batch.truth()
+    for values, match in [
+        ({"mass": 0.0}, r"vehicle 1: mass = 0.000000 kg must be > 0"),
+        ({"motorConstant": [1e-5] * 4}, r"vehicle 1: motorConstant must have one value per rotor \(6\)"),
+        ({"timeConstantDown": [0.02, 0.02, 0.02, 0.02, 0.02, -1.0]}, r"vehicle 1, rotor 5: timeConstantDown = -1 must be > 0 s"),
+        ({"inertia": np.diag([0.03, 0.04, -0.1])}, r"vehicle 1: inertia .* is not symmetric positive definite"),
+        ({"cog": [0.0, np.nan, 0.0]}, r"vehicle 1: the CoG must be finite"),
+        ({"battery": 3.0}, r"'battery' is not an airframe parameter; use mass, inertia, cog, motorConstant"),
+    ]:
+        with pytest.raises(rs.SimError, match=match):
+            batch.set_airframe(1, **values)
+    assert same(batch.airframe(1), batch.nominal_airframe)  # nothing changed, and the batch flies on
+    batch.step(10)
+    assert np.isfinite(batch.truth()).all() and not np.array_equal(before, batch.truth())
+    with pytest.raises(rs.SimError, match="vehicle 2 is not in 0..1"):
+        batch.set_airframe(2, mass=1.0)
