@@ -564,7 +564,7 @@ def hover_drone_s_per_s(peer: str, worlds: int, seconds: float, rates_hz=(), mod
     """One closed-loop hover run of a peer script (scripts/peers/<peer>_hover.py): its JSON line.
     rates_hz: (physics, control) where the script takes them (gym-pybullet-drones), else 500 / 100;
     mode: "loop" or "one_call" for the scripts that have both (PEER_MODES)."""
-    if peer in ("rotors_sim", "rotors_batch"):
+    if peer in ("rotors_sim", "rotors_batch", "rotors_env"):
         python = sys.executable
     elif peer == "rotorpy":
         python = str(rotorpy_python())
@@ -714,7 +714,14 @@ def batched_flight() -> dict:
         runs = [hover_drone_s_per_s("rotors_batch", int(args[0]), float(args[1]), rates_hz=args[2:]) for _ in range(3)]
         extra[label] = max(r["drone_s_per_s"] for r in runs)
     memory = hover_drone_s_per_s("rotors_batch", 1, 1.0)["memory_bytes_per_vehicle"]
-    return {"table": table, "extra": extra, "memory": memory, "profile": batch_profile()}
+    # the call an RL loop makes: FlightBatchEnv.step once per control period, beside the raw engine
+    env = {}
+    for n, sim_s in ((64, 4.0), (1024, 1.0)):
+        for kind in ("nominal", "randomized"):
+            runs = [hover_drone_s_per_s("rotors_env", n, sim_s, mode=kind) for _ in range(3)]
+            env[f"{kind}_{n}"] = max(runs, key=lambda r: r["drone_s_per_s"])
+    table["rotors_env"] = {str(n): env[f"randomized_{n}"]["drone_s_per_s"] for n in (64, 1024)}
+    return {"table": table, "extra": extra, "memory": memory, "profile": batch_profile(), "env": env}
 
 
 def batched_flight_rows(b: dict) -> list:
@@ -748,6 +755,21 @@ def batched_flight_rows(b: dict) -> list:
                 "  rotors_batch with the IMU and its noise (RotorS' vehicle as it flies), 1 / 64 vehicles",
                 f"{x['imu_1']:,.0f} / {x['imu_64']:,.0f} drone-s/s",
                 "",
+            ),
+        ]
+    for n in (64, 1024):
+        r, nominal = b["env"][f"randomized_{n}"], b["env"][f"nominal_{n}"]
+        rows += [
+            (
+                f"  FlightBatchEnv.step (hover, motor actions), {n:,} vehicles, randomised airframes / the xacro's",
+                f"{r['drone_s_per_s']:,.0f} / {nominal['drone_s_per_s']:,.0f} drone-s/s, "
+                f"{r['env_steps_per_s']:,.0f} / {nominal['env_steps_per_s']:,.0f} env steps/s",
+                "",
+            ),
+            (
+                f"  FlightBatchEnv.step / the raw engine in the same mode (rotor speeds, one call), {n:,} vehicles",
+                f"{r['drone_s_per_s'] / r['raw_drone_s_per_s']:.2f} x (raw {r['raw_drone_s_per_s']:,.0f} drone-s/s)",
+                ">= 0.5 x" if n == 1024 else "",
             ),
         ]
     m = b["memory"]
