@@ -5,6 +5,7 @@ Kalibr-style tools run on simulated data unchanged:
   <out>/mav0/cam0, cam1/   data.csv (#timestamp [ns],filename), data/<ns>.png, sensor.yaml
   <out>/mav0/imu0/         data.csv (gyro [rad/s], accel [m/s^2]), sensor.yaml (the IMU plugin's noise)
   <out>/mav0/state_groundtruth_estimate0/data.csv   IMU-frame pose and velocity in the world
+  <out>/kalibr/camchain-imucam.yaml, imu.yaml        the calibration in Kalibr's layout (VIO configs)
 
 The body frame B is the VI-sensor's IMU, as in EuRoC. Everything comes from the bag, for the vehicle
 actually flown: the cameras' intrinsics and distortion from camera_info, each sensor.yaml's T_BS
@@ -149,7 +150,14 @@ def _write_camera(bag: FlightBag, mav: str, side: str, out: Path, from_png, urdf
         f"distortion_model: radial-tangential\ndistortion_coefficients: [{D[0]!r}, {D[1]!r}, {D[2]!r}, {D[3]!r}]\n"
         f"rotors_image_sensor:{image_sensor_yaml}"
     )
-    return len(rows)
+    kalibr = {
+        "T_BS": T_BS,
+        "intrinsics": [K[0], K[4], K[2], K[5]],
+        "distortion_coeffs": D[:4],
+        "resolution": [info.width, info.height],
+        "rostopic": "/" + image_topic.lstrip("/"),
+    }
+    return len(rows), kalibr
 
 
 def _write_imu(bag: FlightBag, mav: str, out: Path, urdf: RobotDescription) -> int:
@@ -190,7 +198,38 @@ def _write_imu(bag: FlightBag, mav: str, out: Path, urdf: RobotDescription) -> i
         f"sensor_type: imu\ncomment: VI-sensor IMU (simulated, {bag.path.name})\nT_BS:\n{_matrix_yaml(np.eye(4))}"
         f"rate_hz: {rate:.3f}\n{noise}rotors_imu_vibration:{vibration}\n"
     )
-    return len(lines)
+    return len(lines), {"noise": noise, "rostopic": "/" + topic.lstrip("/"), "update_rate": rate}
+
+
+def _kalibr_matrix(T: np.ndarray, indent: str = "  ") -> str:
+    return "".join(f"{indent}- [{', '.join(f'{v:.9f}' for v in row)}]\n" for row in T)
+
+
+def _write_kalibr(out: Path, cameras: list[dict], imu: dict, bag_name: str) -> None:
+    """The calibration as Kalibr writes it (camchain-imucam and imu yaml files), the input that
+    OpenVINS, VINS-Fusion and ORB-SLAM3's converters take: T_cam_imu (IMU to camera), the intrinsics
+    (fu, fv, cu, cv), radtan distortion, the resolution and topic; cam1 also T_cn_cnm1 (cam0 to
+    cam1); the IMU's densities and random walks and its rate."""
+    folder = out / "kalibr"
+    folder.mkdir(parents=True, exist_ok=True)
+    text = f"# {bag_name}: the simulated VI-sensor (export_euroc.py), Kalibr's camchain-imucam layout\n"
+    T_cam_imu = [np.linalg.inv(c["T_BS"]) for c in cameras]
+    for i, c in enumerate(cameras):
+        text += f"cam{i}:\n  T_cam_imu:\n{_kalibr_matrix(T_cam_imu[i], '  ')}"
+        if i > 0:
+            text += f"  T_cn_cnm1:\n{_kalibr_matrix(T_cam_imu[i] @ np.linalg.inv(T_cam_imu[i - 1]), '  ')}"
+        text += (
+            f"  cam_overlaps: [{', '.join(str(j) for j in range(len(cameras)) if j != i)}]\n  camera_model: pinhole\n"
+            f"  distortion_coeffs: [{', '.join(repr(float(d)) for d in c['distortion_coeffs'])}]\n  distortion_model: radtan\n"
+            f"  intrinsics: [{', '.join(repr(float(k)) for k in c['intrinsics'])}]\n"
+            f"  resolution: [{c['resolution'][0]}, {c['resolution'][1]}]\n  rostopic: {c['rostopic']}\n  timeshift_cam_imu: 0.0\n"
+        )
+    (folder / "camchain-imucam.yaml").write_text(text)
+    noise = "".join(f"  {line}\n" for line in imu["noise"].splitlines())
+    (folder / "imu.yaml").write_text(
+        f"# {bag_name}: the simulated VI-sensor's IMU plugin (export_euroc.py), Kalibr's imu layout\n"
+        f"imu0:\n  T_i_b:\n{_kalibr_matrix(np.eye(4), '  ')}{noise}  rostopic: {imu['rostopic']}\n  update_rate: {imu['update_rate']:.3f}\n"
+    )
 
 
 def _write_ground_truth(bag: FlightBag, mav: str, out: Path, urdf: RobotDescription) -> int:
@@ -237,12 +276,15 @@ def main(argv=None) -> int:
         out = Path(args.output)
         try:
             urdf = _description(bag, args.mav_name)
+            (n_left, left), (n_right, right) = (_write_camera(bag, args.mav_name, side, out, Image, urdf) for side in ("left", "right"))
+            n_imu, imu = _write_imu(bag, args.mav_name, out, urdf)
             counts = {
-                "cam0": _write_camera(bag, args.mav_name, "left", out, Image, urdf),
-                "cam1": _write_camera(bag, args.mav_name, "right", out, Image, urdf),
-                "imu0": _write_imu(bag, args.mav_name, out, urdf),
+                "cam0": n_left,
+                "cam1": n_right,
+                "imu0": n_imu,
                 "state_groundtruth_estimate0": _write_ground_truth(bag, args.mav_name, out, urdf),
             }
+            _write_kalibr(out, [left, right], imu, bag.path.name)
         finally:
             bag.close()
     except (BagError, DescriptionError) as e:
