@@ -16,7 +16,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-import numpy as np
 from evo.core import metrics, sync
 from evo.tools import file_interface
 
@@ -46,7 +45,9 @@ def main(out: str, runs: list[str]) -> int:
         line = f"{label}: {len(est.timestamps)} poses, path {length:.1f} m, ATE RMSE {stats['rmse']:.3f} m ({100 * stats['rmse'] / length:.2f} % of the path), max {stats['max']:.3f} m"
         print(line)
         if mav0 not in drawn_truth:
-            top.plot(truth.positions_xyz[:, 0], truth.positions_xyz[:, 1], color="k", lw=1.0, label="ground truth" if not drawn_truth else None)
+            top.plot(
+                truth.positions_xyz[:, 0], truth.positions_xyz[:, 1], color="k", lw=1.0, label="ground truth" if not drawn_truth else None
+            )
             drawn_truth.add(mav0)
         top.plot(est.positions_xyz[:, 0], est.positions_xyz[:, 1], lw=0.9, label=label)
         t = est.timestamps - est.timestamps[0]

@@ -90,6 +90,7 @@ SPEC = {
     "timeConstantUp": ("uniform", 0.8, 1.5),
     "timeConstantDown": ("uniform", 0.8, 1.5),
     "maxRotVelocity": ("uniform", 0.9, 1.0),
+    "actuatorDelay": ("uniform", 0, 5),
 }
 
 
@@ -138,6 +139,23 @@ def test_randomised_airframes_repeat_for_a_seed_and_differ_between_episodes():
     assert all(same(nominal, a) for a in airframes(envs))
 
 
+def test_an_actuator_delay_shifts_the_motors_by_its_steps():
+    """Vehicle 1 with actuatorDelay 10, both commanded the same rotor speeds (changing every step):
+    its rotors do what vehicle 0's did 10 physics steps earlier, bit for bit (stopped until then)."""
+    batch = rs.FlightBatch(MAV, 2, mode="rotor_speeds", step_size=DT, noise=False)
+    batch.set_airframe(1, actuatorDelay=10)
+    batch.reset()
+    assert batch.airframe(1)["actuatorDelay"] == 10 and batch.airframe(0)["actuatorDelay"] == 0
+    speeds = []
+    for k in range(60):
+        batch.commands[:] = 400.0 + 5.0 * k + 30.0 * np.sin(0.3 * k)
+        batch.step(1)
+        speeds.append(batch.rotor_speeds.copy())
+    speeds = np.array(speeds)
+    assert np.all(speeds[:10, 1] == 0.0) and np.all(speeds[:10, 0] != 0.0)
+    assert np.array_equal(speeds[10:, 1], speeds[:-10, 0])
+
+
 def test_draws_follow_the_spec_and_bad_input_is_one_line():
     nominal = rs.FlightBatch(MAV, 1).nominal_airframe
     spec = check_spec({"mass": ("fixed", 1.25), "inertia": ("fixed", 0.81), "maxRotVelocity": ("fixed", 0.5)})
@@ -168,7 +186,9 @@ def test_draws_follow_the_spec_and_bad_input_is_one_line():
         ({"timeConstantDown": [0.02, 0.02, 0.02, 0.02, 0.02, -1.0]}, r"vehicle 1, rotor 5: timeConstantDown = -1 must be > 0 s"),
         ({"inertia": np.diag([0.03, 0.04, -0.1])}, r"vehicle 1: inertia .* is not symmetric positive definite"),
         ({"cog": [0.0, np.nan, 0.0]}, r"vehicle 1: the CoG must be finite"),
-        ({"battery": 3.0}, r"'battery' is not an airframe parameter; use mass, inertia, cog, motorConstant"),
+        ({"battery": 3.0}, r"'battery' is not an airframe parameter; use mass, inertia, cog, actuatorDelay, motorConstant"),
+        ({"actuatorDelay": 2.5}, r"vehicle 1: actuatorDelay must be a whole number of physics steps"),
+        ({"actuatorDelay": -1}, r"vehicle 1: actuatorDelay = -1 steps must be in 0..1000"),
     ]:
         with pytest.raises(rs.SimError, match=match):
             batch.set_airframe(1, **values)

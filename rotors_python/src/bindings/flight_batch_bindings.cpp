@@ -2,6 +2,7 @@
 // with numpy (views on the engine's memory: no copy per step), its controllers' parameters read
 // by the same loaders as the ROS nodes from the numbers Python flattened out of the yaml files.
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 #include <vector>
@@ -88,13 +89,14 @@ const std::vector<std::pair<const char*, double rotors_gazebo_plugins::RotorPara
     {"maxRotVelocity", &rotors_gazebo_plugins::RotorParams::max_rot_velocity},
 };
 
-/// {"mass": kg, "inertia": 3 x 3 kg m^2, "cog": the CoG in the model frame [m], "<SDF name>": one
-/// value per rotor, ...}
+/// {"mass": kg, "inertia": 3 x 3 kg m^2, "cog": the CoG in the model frame [m], "actuatorDelay":
+/// physics steps, "<SDF name>": one value per rotor, ...}
 py::dict AirframeDict(const Airframe& a) {
   py::dict out;
   out["mass"] = a.mass_kg;
   out["inertia"] = a.inertia_B_kg_m2;
   out["cog"] = a.p_M_cog;
+  out["actuatorDelay"] = a.actuator_delay_steps;
   for (const auto& [name, field] : kRotorFields) {
     std::vector<double> v;
     for (const auto& r : a.rotors) v.push_back(r.*field);
@@ -122,6 +124,12 @@ Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle)
         for (int c = 0; c < 3; ++c) a.inertia_B_kg_m2(r, c) = I.at(r, c);
       continue;
     }
+    if (name == "actuatorDelay") {
+      const double steps = value.cast<double>();
+      if (steps != std::floor(steps)) throw SimError(who + ": actuatorDelay must be a whole number of physics steps");
+      a.actuator_delay_steps = static_cast<int>(steps);
+      continue;
+    }
     if (name == "cog") {
       const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
       if (!p || p.ndim() != 1 || p.shape(0) != 3) throw SimError(who + ": cog must be 3 values [m] (model frame)");
@@ -130,7 +138,7 @@ Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle)
     }
     auto it = std::find_if(kRotorFields.begin(), kRotorFields.end(), [&](const auto& f) { return name == f.first; });
     if (it == kRotorFields.end()) {
-      std::string known = "mass, inertia, cog";
+      std::string known = "mass, inertia, cog, actuatorDelay";
       for (const auto& f : kRotorFields) known += std::string(", ") + f.first;
       throw SimError(who + ": '" + name + "' is not an airframe parameter; use " + known);
     }

@@ -186,6 +186,9 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   omega_rotor_.assign(r_ * n, 0.0);
   qdot_applied_.assign(r_ * n, 0.0);
   motor_command_.assign(r_ * n, 0.0);
+  command_target_.assign(r_ * n, 0.0);
+  delay_rings_.assign(n, {});
+  delay_heads_.assign(n, 0);
   wind_velocity_W_.assign(3 * n, 0.0);
   for (auto* v : {&mass_, &inv_mass_, &contact_k_, &contact_c_, &contact_reach_m_}) v->assign(n, 0.0);
   for (auto* v : {&p_origin_B_, &p_cog_B_}) v->assign(3 * r_ * n, 0.0);
@@ -328,10 +331,14 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
       omega_rotor_[r * n + i] = 0.0;
       qdot_applied_[r * n + i] = 0.0;
       motor_command_[r * n + i] = 0.0;
+      command_target_[r * n + i] = 0.0;
       rotor_speed_out_[i * r_ + r] = 0.0;
     }
     steps_[i] = 0;
     in_contact_[i] = 0;
+    // no command in flight: the motors get 0 (stopped) for the first actuator_delay_steps steps
+    delay_rings_[i].assign(static_cast<size_t>(airframes_[i].actuator_delay_steps) * r_, 0.0);
+    delay_heads_[i] = 0;
     Sensors& s = *sensors_[i];
     const uint64_t seed_odometry = SeedFor(d_.odometry->seed, i);
     s.queue.clear();
@@ -472,6 +479,9 @@ void FlightBatch::SetAirframe(int i, const Airframe& airframe) {
     throw SimError(msg.str());
   }
   if (!airframe.p_M_cog.allFinite()) throw SimError(who + ": the CoG must be finite");
+  if (airframe.actuator_delay_steps < 0 || airframe.actuator_delay_steps > kMaxActuatorDelaySteps)
+    throw SimError(who + ": actuatorDelay = " + std::to_string(airframe.actuator_delay_steps) +
+                   " steps must be in 0.." + std::to_string(kMaxActuatorDelaySteps));
   if (static_cast<int>(airframe.rotors.size()) != r_)
     throw SimError(who + ": " + std::to_string(airframe.rotors.size()) + " rotors given, the vehicle has " +
                    std::to_string(r_));
@@ -616,16 +626,29 @@ void FlightBatch::ApplyCommand(int i) {
   const double* c = &commands_[i * command_columns_];
   switch (options_.mode) {
     case CommandMode::kRotorSpeeds:
-      for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = c[r];
-      return;
+      for (int r = 0; r < r_; ++r) command_target_[r * n + i] = c[r];
+      break;
     case CommandMode::kNormalizedThrust:
       // thrust = u T_max = u C_T omega_max^2  ->  omega = omega_max sqrt(u)
-      for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = max_rot_velocity_[r * n + i] * std::sqrt(c[r]);
-      return;
-    default: break;
+      for (int r = 0; r < r_; ++r) command_target_[r * n + i] = max_rot_velocity_[r * n + i] * std::sqrt(c[r]);
+      break;
+    default:
+      // a controller answers a new odometry message, as World.attach_controller (and the ROS node) does
+      if (odometry_count_[i] != controller_seen_[i]) RunController(i);
+      break;
   }
-  // a controller answers a new odometry message, as World.attach_controller (and the ROS node) does
-  if (odometry_count_[i] != controller_seen_[i]) RunController(i);
+  // the motors get the command of actuator_delay_steps steps ago (the ring holds the last ones)
+  std::vector<double>& ring = delay_rings_[i];
+  if (ring.empty()) {
+    for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = command_target_[r * n + i];
+    return;
+  }
+  double* oldest = &ring[delay_heads_[i] * r_];
+  for (int r = 0; r < r_; ++r) {
+    motor_command_[r * n + i] = oldest[r];
+    oldest[r] = command_target_[r * n + i];
+  }
+  delay_heads_[i] = (delay_heads_[i] + 1) % airframes_[i].actuator_delay_steps;
 }
 
 void FlightBatch::RunController(int i) {
@@ -666,7 +689,7 @@ void FlightBatch::RunController(int i) {
       break;
     default: break;
   }
-  for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = std::max(0.0, speeds[r]);
+  for (int r = 0; r < r_; ++r) command_target_[r * n + i] = std::max(0.0, speeds[r]);
 }
 
 void FlightBatch::Observe(int i, const KernelBefore& before, int lane) {

@@ -48,6 +48,9 @@ struct Airframe {
   double mass_kg = 0.0;
   Eigen::Matrix3d inertia_B_kg_m2 = Eigen::Matrix3d::Identity();
   Eigen::Vector3d p_M_cog = Eigen::Vector3d::Zero();  ///< [m]
+  /// The motors get the rotor speed commanded this many physics steps ago (an ESC's and link's
+  /// latency; 0: the same step, as RotorS' motor plugin). After a reset, 0 (stopped) until then.
+  int actuator_delay_steps = 0;
   /// by motor number: motorConstant, momentConstant, rotorDragCoefficient, rollingMomentCoefficient,
   /// timeConstantUp/Down, maxRotVelocity (turningDirection stays the description's)
   std::vector<rotors_gazebo_plugins::RotorParams> rotors;
@@ -55,6 +58,8 @@ struct Airframe {
 
 /// The airframe `d` describes (the xacro's).
 Airframe AirframeOf(const VehicleDescription& d);
+
+constexpr int kMaxActuatorDelaySteps = 1000;
 
 struct FlightBatchOptions {
   int count = 1;
@@ -165,7 +170,10 @@ class FlightBatch {
   // state, structure of arrays: component k of vehicle i at [k * n_pad_ + i]
   std::vector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;           ///< the body (CoG), as the solver keeps it
   std::vector<double> omega_rotor_, qdot_applied_, motor_command_;  ///< R per vehicle
-  std::vector<double> wind_velocity_W_;                             ///< the wind speed the motors see
+  std::vector<double> command_target_;            ///< R per vehicle: what the controller or the commands ask now
+  std::vector<std::vector<double>> delay_rings_;  ///< per vehicle: the last actuator_delay_steps commands
+  std::vector<int> delay_heads_;
+  std::vector<double> wind_velocity_W_;  ///< the wind speed the motors see
   // each vehicle's airframe (KernelAirframes), and as set
   std::vector<double> mass_, inv_mass_, I_B_, inv_I_B_, contact_k_, contact_c_;
   std::vector<double> motor_constant_, rotor_drag_coefficient_, rolling_moment_coefficient_, reaction_factor_;

@@ -9,7 +9,8 @@ episode's generator (so one seed gives one airframe, and the next episode anothe
 
 Per-rotor parameters draw one factor per rotor; "inertia" one per body axis (the tensor scaled as
 S I S with S = diag(sqrt(s_x), sqrt(s_y), sqrt(s_z)), so its diagonal is s I_ii and it stays
-positive definite); "cog" one offset per axis. A draw that leaves a value out of the motor
+positive definite); "cog" one offset per axis; "actuatorDelay" a whole number of physics steps
+(uniform: each of low..high alike; normal: rounded, at least 0). A draw that leaves a value out of the motor
 plugin's range (a factor <= 0 where the parameter must be > 0) is an error naming the parameter.
 """
 
@@ -31,7 +32,7 @@ ROTOR_PARAMETERS = (
     "timeConstantDown",
     "maxRotVelocity",
 )
-PARAMETERS = ("mass", "inertia", "cog", *ROTOR_PARAMETERS)
+PARAMETERS = ("mass", "inertia", "cog", "actuatorDelay", *ROTOR_PARAMETERS)
 DISTRIBUTIONS = ("uniform", "normal", "fixed")
 
 
@@ -91,6 +92,12 @@ def draw_airframe(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rng: np
             out["inertia"] = s @ np.asarray(nominal["inertia"]) @ s
         elif name == "cog":
             out["cog"] = np.asarray(nominal["cog"]) + _draw(spec[name], rng, 3)
+        elif name == "actuatorDelay":
+            entry = spec[name]
+            if entry[0] == "uniform":
+                out[name] = int(rng.integers(int(np.ceil(entry[1])), int(np.floor(entry[2])) + 1))
+            else:
+                out[name] = max(0, int(round(float(_draw(entry, rng, 1)[0]))))
         else:
             value = np.asarray(nominal[name], dtype=float)
             factors = _draw(spec[name], rng, len(value))
