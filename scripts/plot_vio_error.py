@@ -42,8 +42,11 @@ def main(out: str, runs: list[str]) -> int:
         estimate, mav0 = rest.split(":", 1)
         truth, est, error, stats = scored(estimate, mav0)
         length = truth.path_length
-        line = f"{label}: {len(est.timestamps)} poses, path {length:.1f} m, ATE RMSE {stats['rmse']:.3f} m ({100 * stats['rmse'] / length:.2f} % of the path), max {stats['max']:.3f} m"
-        print(line)
+        share = 100 * stats["rmse"] / length
+        print(
+            f"{label}: {len(est.timestamps)} poses, path {length:.1f} m, ATE RMSE {stats['rmse']:.3f} m "
+            f"({share:.2f} % of the path), max {stats['max']:.3f} m"
+        )
         if mav0 not in drawn_truth:
             top.plot(
                 truth.positions_xyz[:, 0], truth.positions_xyz[:, 1], color="k", lw=1.0, label="ground truth" if not drawn_truth else None
