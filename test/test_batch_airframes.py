@@ -4,12 +4,16 @@ sensors keep their mass) flies as the full world with that xacro does, to roundi
 vehicles of the nominal airframe; a randomisation spec draws airframes and noise seeds that repeat
 for a seed and differ between episodes; bad values and specs are one line."""
 
+import xml.etree.ElementTree as ET
+
 import numpy as np
 import pytest
 
 import rotors_sim as rs
 from rotors_sim.envs.batched import FlightBatchEnv
+from rotors_sim.paths import package_path
 from rotors_sim.randomization import check_spec, draw_airframe
+from rotors_sim.world import run_xacro
 
 DT, DIVISOR = 0.002, 5
 ROUTE = [(0.0, [0.0, 0.0, 1.0], 0.0), (1.0, [0.6, 0.3, 1.3], 0.5), (2.5, [-0.3, 0.5, 1.1], -0.5)]
@@ -79,6 +83,67 @@ def test_each_vehicle_flies_its_own_airframe_as_the_world_built_with_it():
     # and the airframes made a difference
     assert all(apart_m[i] > 1e-3 for i in range(n) if scales[i] != (1.0, 1.0))
     assert all(apart_m[i] == 0.0 for i in range(n) if scales[i] == (1.0, 1.0))
+
+
+def randomized_urdf(rng: np.random.Generator) -> str:
+    """The firefly's URDF with its body link's mass, inertia and CoG and each motor plugin's
+    constants drawn from the ranges domain randomisation uses."""
+    args = dict(mav_name=MAV, namespace=MAV, random_seed=7, enable_logging=False, enable_ground_truth=True, log_file=MAV)
+    args.update(wait_to_record_bag=False, enable_mavlink_interface=False, odometry_divisor=DIVISOR)
+    robot = ET.fromstring(run_xacro(package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo", args))
+    inertial = next(link for link in robot.iter("link") if link.get("name") == f"{MAV}/base_link_inertia").find("inertial")
+    mass = inertial.find("mass")
+    mass.set("value", repr(float(mass.get("value")) * rng.uniform(0.8, 1.2)))
+    inertia = inertial.find("inertia")
+    for axis in ("ixx", "iyy", "izz"):
+        inertia.set(axis, repr(float(inertia.get(axis)) * rng.uniform(0.8, 1.2)))
+    inertial.find("origin").set("xyz", " ".join(repr(v) for v in rng.uniform(-0.01, 0.01, 3)))
+    factors = {"motorConstant": (0.9, 1.1), "momentConstant": (0.9, 1.1), "timeConstantUp": (0.8, 1.5), "timeConstantDown": (0.8, 1.5)}
+    for plugin in robot.iter("plugin"):
+        for name, (low, high) in factors.items():
+            if plugin.find(name) is not None:
+                plugin.find(name).text = repr(float(plugin.find(name).text) * rng.uniform(low, high))
+    return ET.tostring(robot, encoding="unicode")
+
+
+def test_a_randomised_batch_of_64_flies_as_64_worlds_built_with_their_values():
+    """64 vehicles, each the airframe of its own world: a firefly URDF whose body mass, inertia, CoG
+    and every rotor's motor, moment and time constants were drawn anew (as a randomised episode
+    draws them). Each vehicle, given its world's values, flies the route as its world does."""
+    rng = np.random.default_rng(64)
+    n = 64
+    batch = rs.FlightBatch(MAV, n, step_size=DT, control_divisor=DIVISOR, seeds=[7] * n)
+    worlds = []
+    for i in range(n):
+        world = rs.World("basic", step_size=DT)
+        world.spawn(randomized_urdf(rng), MAV, xyz=(0.0, 0.0, 1.0))
+        lee = rs.LeePositionController.for_mav(MAV)
+        lee.set_point(ROUTE[0][1])
+        world.attach_controller(MAV, lee)
+        world.lee = lee
+        worlds.append(world)
+        batch.set_airframe(i, **world.engine.describe_multirotor(MAV, "odometry_sensor1/odometry").airframe)
+    batch.reset(positions=np.tile([0.0, 0.0, 1.0], (n, 1)))
+    batch.commands[:] = [*ROUTE[0][1], 0.0]
+    worst_m = np.zeros(n)
+    for k in range(0, int(round(3.0 / DT)), 25):
+        for t, p, yaw in ROUTE:
+            if abs(k * DT - t) < DT / 2:
+                batch.commands[:] = [*p, yaw]
+                for world in worlds:
+                    world.lee.set_point(p, yaw=yaw)
+        batch.step(25)
+        truth = batch.truth()
+        for i, world in enumerate(worlds):
+            world.step(25)
+            worst_m[i] = max(worst_m[i], float(np.linalg.norm(world.link_state(MAV)[0] - truth[i, 0:3])))
+    ends = batch.truth()[:, 0:3]
+    print(
+        f"64 randomised airframes: largest difference from their worlds {worst_m.max():.1e} m (median {np.median(worst_m):.1e} m); "
+        f"the ends of their flights {np.ptp(ends, axis=0).round(3)} m apart (x, y, z)"
+    )
+    assert worst_m.max() < 1e-10
+    assert np.ptp(ends, axis=0).max() > 0.01  # they are 64 different vehicles
 
 
 SPEC = {
