@@ -710,6 +710,8 @@ def batched_flight() -> dict:
         ("one_thread_1024", ["1024", "20", "1"]),
         ("imu_1", ["1", "20000", "0", "imu"]),
         ("imu_64", ["64", "300", "0", "imu"]),
+        ("randomized_1", ["1", "20000", "0", "no_imu", "randomized"]),
+        ("randomized_64", ["64", "300", "0", "no_imu", "randomized"]),
     ):
         runs = [hover_drone_s_per_s("rotors_batch", int(args[0]), float(args[1]), rates_hz=args[2:]) for _ in range(3)]
         extra[label] = max(r["drone_s_per_s"] for r in runs)
@@ -741,6 +743,11 @@ def batched_flight_rows(b: dict) -> list:
         rows += [
             ("  rotors_batch / crazyflow's faster release, 1 vehicle", f"{ours['1'] / fastest['1']:.1f} x", ">= 10 x"),
             ("  rotors_batch / crazyflow's faster release, 64 vehicles", f"{ours['64'] / fastest['64']:.1f} x", ">= 5 x"),
+            (
+                "  rotors_batch, every vehicle its own randomised airframe / crazyflow's faster release, 1 / 64 vehicles",
+                f"{x['randomized_1'] / fastest['1']:.1f} x / {x['randomized_64'] / fastest['64']:.1f} x",
+                ">= 10 x / >= 10 x",
+            ),
         ]
     if ours:
         ns = {n: 1e9 / (ours[n] / 0.002) for n in ours}  # wall time per vehicle-step, both threads working

@@ -142,12 +142,30 @@ def test_batch_of_n_equals_n_single_runs_on_any_thread_count():
     assert np.array_equal(together, alone)
 
 
+def with_own_airframes(batch: rs.FlightBatch) -> rs.FlightBatch:
+    """`batch` with vehicles 1 (in lanes) and 4 (alone) given their own airframes: mass, CoG, speed
+    dynamics and a motor constant per rotor."""
+    nominal = batch.nominal_airframe
+    for i, scale in ((1, 1.15), (4, 0.9)):
+        batch.set_airframe(
+            i,
+            mass=scale * nominal["mass"],
+            cog=nominal["cog"] + [0.004, -0.003, 0.002],
+            timeConstantUp=scale * nominal["timeConstantUp"],
+            motorConstant=nominal["motorConstant"] * np.linspace(0.9, 1.1, 6),
+        )
+    batch.reset(positions=np.tile([0.0, 0.0, 1.0], (batch.count, 1)))
+    batch.commands[:] = [0.3, -0.2, 1.2, 0.4]
+    return batch
+
+
 def test_every_kernel_flies_the_same_bits():
-    """Four vehicles in lanes and a fifth alone (its rotors in lanes): AVX-512, AVX2, SSE2 and no
-    lanes at all give the same flight bit for bit, so a CPU without AVX-512 or AVX2 flies what this
-    one flies."""
+    """Four vehicles in lanes and a fifth alone (its rotors in lanes), two of them with their own
+    airframes: AVX-512, AVX2, SSE2 and no lanes at all give the same flight bit for bit, so a CPU
+    without AVX-512 or AVX2 flies what this one flies."""
     seeds = [31, 32, 33, 34, 35]
-    fastest = noisy_batch(5, seeds)
+
+    fastest = with_own_airframes(noisy_batch(5, seeds))
     assert fastest.kernel in ("avx512", "avx2", "sse2", "neon")
     flights = {fastest.kernel: record(fastest)}
     narrower = {
@@ -157,7 +175,7 @@ def test_every_kernel_flies_the_same_bits():
         "neon": ("scalar",),
     }
     for kernel in narrower[fastest.kernel]:
-        flights[kernel] = record(noisy_batch(5, seeds, kernel=kernel))
+        flights[kernel] = record(with_own_airframes(noisy_batch(5, seeds, kernel=kernel)))
     print(f"kernels flown: {list(flights)}")
     assert all(np.array_equal(flights["scalar"], f) for f in flights.values()), list(flights)
     assert np.isfinite(flights["scalar"]).all() and abs(flights["scalar"][:, 2].mean() - 1.2) < 0.05

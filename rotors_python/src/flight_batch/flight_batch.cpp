@@ -193,6 +193,7 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   for (auto* v : {&mass_, &inv_mass_, &contact_k_, &contact_c_, &contact_reach_m_}) v->assign(n, 0.0);
   for (auto* v : {&p_origin_B_, &p_cog_B_}) v->assign(3 * r_ * n, 0.0);
   corner_B_.assign(3 * kMaxContacts * n, 0.0);
+  rotor_columns_.assign(n, RotorColumnsOfOne{});
   points_.resize(n);
   for (auto* v : {&I_B_, &inv_I_B_}) v->assign(9 * n, 0.0);
   for (auto* v : {&motor_constant_, &rotor_drag_coefficient_, &rolling_moment_coefficient_, &reaction_factor_,
@@ -211,21 +212,21 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
   odometry_count_.assign(count, 0);
   controller_seen_.assign(count, 0);
   BuildKernelModel();
-  kernel_arrays_ = {
-      n_pad_,
-      p_W_.data(),
-      v_W_.data(),
-      q_WB_.data(),
-      R_WB_.data(),
-      omega_W_.data(),
-      omega_rotor_.data(),
-      qdot_applied_.data(),
-      motor_command_.data(),
-      wind_velocity_W_.data(),
-      KernelAirframes{mass_.data(), inv_mass_.data(), I_B_.data(), inv_I_B_.data(), contact_k_.data(),
-                      contact_c_.data(), p_origin_B_.data(), p_cog_B_.data(), corner_B_.data(), contact_reach_m_.data(),
-                      motor_constant_.data(), rotor_drag_coefficient_.data(), rolling_moment_coefficient_.data(),
-                      reaction_factor_.data(), max_rot_velocity_.data(), a_up_.data(), a_down_.data()}};
+  kernel_arrays_ = {n_pad_,
+                    p_W_.data(),
+                    v_W_.data(),
+                    q_WB_.data(),
+                    R_WB_.data(),
+                    omega_W_.data(),
+                    omega_rotor_.data(),
+                    qdot_applied_.data(),
+                    motor_command_.data(),
+                    wind_velocity_W_.data(),
+                    KernelAirframes{mass_.data(), inv_mass_.data(), I_B_.data(), inv_I_B_.data(), contact_k_.data(),
+                                    contact_c_.data(), rotor_columns_.data(), p_origin_B_.data(), p_cog_B_.data(),
+                                    corner_B_.data(), contact_reach_m_.data(), motor_constant_.data(),
+                                    rotor_drag_coefficient_.data(), rolling_moment_coefficient_.data(),
+                                    reaction_factor_.data(), max_rot_velocity_.data(), a_up_.data(), a_down_.data()}};
   const Airframe nominal = NominalAirframe();
   airframes_.assign(count, nominal);
   for (size_t i = 0; i < n; ++i) WriteAirframe(i, nominal);  // the padding lanes too
@@ -541,6 +542,20 @@ void FlightBatch::WriteAirframe(size_t i, const Airframe& a) {
     max_rot_velocity_[r * n + i] = p.max_rot_velocity;
     a_up_[r * n + i] = std::exp(-dt_ / p.time_constant_up_s);  // FirstOrderFilter's factors, once
     a_down_[r * n + i] = std::exp(-dt_ / p.time_constant_down_s);
+  }
+  RotorColumnsOfOne& own = rotor_columns_[i];
+  for (int r = 0; r < r_; ++r) {
+    own.motor_constant[r] = motor_constant_[r * n + i];
+    own.rotor_drag_coefficient[r] = rotor_drag_coefficient_[r * n + i];
+    own.rolling_moment_coefficient[r] = rolling_moment_coefficient_[r * n + i];
+    own.reaction_factor[r] = reaction_factor_[r * n + i];
+    own.max_rot_velocity[r] = max_rot_velocity_[r * n + i];
+    own.a_up[r] = a_up_[r * n + i];
+    own.a_down[r] = a_down_[r * n + i];
+    for (int c = 0; c < 3; ++c) {
+      own.p_origin_B[c][r] = p_origin_B_[(c * r_ + r) * n + i];
+      own.p_cog_B[c][r] = p_cog_B_[(c * r_ + r) * n + i];
+    }
   }
 }
 

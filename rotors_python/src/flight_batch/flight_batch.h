@@ -179,6 +179,7 @@ class FlightBatch {
   std::vector<double> motor_constant_, rotor_drag_coefficient_, rolling_moment_coefficient_, reaction_factor_;
   std::vector<double> max_rot_velocity_, a_up_, a_down_;
   std::vector<double> p_origin_B_, p_cog_B_, corner_B_, contact_reach_m_;
+  std::vector<RotorColumnsOfOne> rotor_columns_;  ///< the same, per vehicle, for the lone-vehicle kernel
   std::vector<Airframe> airframes_;
   /// Each vehicle's points in its body frame that the scalar code reads (the CoG's move applied).
   struct BodyPoints {

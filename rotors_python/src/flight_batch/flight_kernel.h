@@ -57,8 +57,19 @@ void FillRotorColumns(KernelModel& m);
 /// (c R + r) for axis c of rotor r: the rotor link's origin (its airspeed) and its CoG (where its
 /// force acts; the origin's value where the two coincide, so that R p_cog_B is bit for bit R
 /// p_origin_B); the collision box's corners, component (3 k + c), and the farthest one's distance.
+/// One vehicle's rotor constants and places as one array over the rotors each, for the kernel that
+/// steps a lone vehicle with a lane per rotor (contiguous loads, not gathers from the structure of
+/// arrays); the same values as KernelAirframes', rotors past the last all zero.
+struct RotorColumnsOfOne {
+  alignas(64) double motor_constant[kMaxRotors], rotor_drag_coefficient[kMaxRotors];
+  alignas(64) double rolling_moment_coefficient[kMaxRotors], reaction_factor[kMaxRotors];
+  alignas(64) double max_rot_velocity[kMaxRotors], a_up[kMaxRotors], a_down[kMaxRotors];
+  alignas(64) double p_origin_B[3][kMaxRotors], p_cog_B[3][kMaxRotors];
+};
+
 struct KernelAirframes {
   const double *mass, *inv_mass, *I_B, *inv_I_B, *contact_k, *contact_c;
+  const RotorColumnsOfOne* columns;  ///< per vehicle (n of them)
   const double *p_origin_B, *p_cog_B, *corner_B, *contact_reach_m;
   const double *motor_constant, *rotor_drag_coefficient, *rolling_moment_coefficient, *reaction_factor;
   const double *max_rot_velocity, *a_up, *a_down;
@@ -180,7 +191,7 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
   using namespace kernel_detail;
   constexpr int L = static_cast<int>(LaneCount<V>::value);
   const KernelModel::RotorColumns& k = m.columns;
-  const KernelAirframes& af = a.airframe;
+  const RotorColumnsOfOne& own = a.airframe.columns[i];
   const size_t n = a.n;
   // the body's state and the model's scalars in locals: the stores below may alias them, and every
   // group of rotors would read them again
@@ -199,8 +210,8 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
       V axis_B[3], p_o_B[3], p_c_B[3];
       for (int c = 0; c < 3; ++c) {
         axis_B[c] = Load<V>(&k.axis_B[c][r0]);
-        p_o_B[c] = Gather<V>(af.p_origin_B + c * rotors * n, r0, count, n, i);
-        p_c_B[c] = every_cog_on_origin ? p_o_B[c] : Gather<V>(af.p_cog_B + c * rotors * n, r0, count, n, i);
+        p_o_B[c] = Load<V>(&own.p_origin_B[c][r0]);
+        p_c_B[c] = every_cog_on_origin ? p_o_B[c] : Load<V>(&own.p_cog_B[c][r0]);
       }
       for (int c = 0; c < 3; ++c) {  // R v, as Rotate (a product of doubles is commutative)
         ax[c] = R[c * 3 + 0] * axis_B[0] + R[c * 3 + 1] * axis_B[1] + R[c * 3 + 2] * axis_B[2];
@@ -214,12 +225,12 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
     const V omega = Gather<V>(a.omega_rotor, r0, count, n, i);
     const V cmd = Gather<V>(a.motor_command, r0, count, n, i);
     const V qdot_before = Gather<V>(a.qdot_applied, r0, count, n, i);
-    auto constant = [&](const double* x) { return Gather<V>(x, r0, count, n, i); };
     const V w_x_r[3] = {w[1] * r_o[2] - w[2] * r_o[1], w[2] * r_o[0] - w[0] * r_o[2], w[0] * r_o[1] - w[1] * r_o[0]};
     V air[3];
     for (int c = 0; c < 3; ++c) air[c] = v_W[c] + w_x_r[c] - wind_W[c];
-    const Loads<V> loads = RotorLoads(omega, ax, air, constant(af.motor_constant), constant(af.rotor_drag_coefficient),
-                                      constant(af.rolling_moment_coefficient), constant(af.reaction_factor));
+    const Loads<V> loads =
+        RotorLoads(omega, ax, air, Load<V>(&own.motor_constant[r0]), Load<V>(&own.rotor_drag_coefficient[r0]),
+                   Load<V>(&own.rolling_moment_coefficient[r0]), Load<V>(&own.reaction_factor[r0]));
     V f[3];
     for (int c = 0; c < 3; ++c) f[c] = loads.thrust_F[c] + loads.drag_F[c];
     V torque[3];
@@ -230,7 +241,8 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
       Store(&out.moment_W[c][r0], torque[c] + loads.reaction_moment_F[c] + loads.rolling_moment_F[c]);
     }
     // the speed dynamics, as StepLanesStrided
-    const V y = RotorSpeedStep(omega, cmd, constant(af.max_rot_velocity), constant(af.a_up), constant(af.a_down));
+    const V y = RotorSpeedStep(omega, cmd, Load<V>(&own.max_rot_velocity[r0]), Load<V>(&own.a_up[r0]),
+                               Load<V>(&own.a_down[r0]));
     const V qdot = Load<V>(&k.direction[r0]) * y / Load<V>(&k.slowdown[r0]);
     V spin_moment[3];
     SpinMoment(ax, Load<V>(&k.spin_inertia[r0]), qdot, qdot_before, inv_dt, w, spin_moment);
