@@ -19,63 +19,98 @@ namespace {
 constexpr double kDt = 0.002, kMassKg = 1.56779, kG = 9.81;
 constexpr double kMotorConstant = 8.54858e-06;  // the firefly's C_T [N/(rad/s)^2]
 
-/// A hexacopter with the firefly's numbers (arm 0.215 m, C_T, C_M 0.016, tau 1/80 and 1/40 s), one
-/// rotor with its CoG off its origin, spin inertia on, four ground-contact corners.
-KernelModel Hexacopter() {
+/// A hexacopter with the firefly's geometry (arm 0.215 m, rotors 3.7 cm above the CoG, spin
+/// inertia on, four ground-contact corners); rotor 2's link has its CoG off its origin unless
+/// `rotor2_cog_on_origin`.
+KernelModel Hexacopter(bool rotor2_cog_on_origin = false) {
   KernelModel m;
   m.rotors = 6;
   for (int r = 0; r < m.rotors; ++r) {
     KernelModel::Rotor& k = m.rotor[r];
-    const double angle = M_PI / 6.0 + r * M_PI / 3.0;
-    const double p[3] = {0.215 * std::cos(angle), 0.215 * std::sin(angle), 0.037};
-    for (int c = 0; c < 3; ++c) k.p_origin_B[c] = k.p_cog_B[c] = p[c];
     k.axis_B[0] = k.axis_B[1] = 0.0;
     k.axis_B[2] = 1.0;
     k.direction = r % 2 ? -1.0 : 1.0;
-    k.motor_constant = kMotorConstant;
-    k.rotor_drag_coefficient = 8.06428e-05;
-    k.rolling_moment_coefficient = 1e-06;
-    k.reaction_factor = -k.direction * 0.016;
-    k.max_rot_velocity = 838.0;
-    k.a_up = std::exp(-kDt * 80.0);
-    k.a_down = std::exp(-kDt * 40.0);
     k.spin_inertia = 1e-5;
     k.slowdown = 10.0;
-    k.cog_on_origin = true;
+    k.cog_on_origin = r != 2 || rotor2_cog_on_origin;
   }
-  m.rotor[2].p_cog_B[2] += 0.01;
-  m.rotor[2].cog_on_origin = false;
   FillRotorColumns(m);
   m.contacts = 4;
-  for (int c = 0; c < 4; ++c) {
-    m.corner_B[c][0] = c % 2 ? 0.2 : -0.2;
-    m.corner_B[c][1] = c / 2 ? 0.2 : -0.2;
-    m.corner_B[c][2] = -0.1;
-  }
-  const double w = 0.3 / kDt;
-  m.contact_k = kMassKg * w * w / 4.0;
-  m.contact_c = kMassKg * w / 2.0;
-  m.contact_reach_m = std::sqrt(0.2 * 0.2 * 2 + 0.1 * 0.1);
   m.dt = kDt;
   m.inv_dt = 1.0 / kDt;
-  m.mass = kMassKg;
   m.gravity_W[2] = -kG;
-  const double I[3] = {0.0347563, 0.0458929, 0.0977};
-  m.body.inv_mass_kg = 1.0 / kMassKg;
-  for (int k = 0; k < 9; ++k) m.body.I_B[k] = m.body.inv_I_B[k] = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    m.body.I_B[k * 4] = I[k];
-    m.body.inv_I_B[k * 4] = 1.0 / I[k];
-  }
   m.keep_state_before = true;
   return m;
 }
 
-/// The state of n vehicles (structure of arrays, as the batch keeps it) and their buffers.
+/// Each vehicle's airframe (structure of arrays, as the batch keeps it): the firefly's numbers (C_T,
+/// C_M 0.016, tau 1/80 and 1/40 s, its inertia), vehicle i's mass and motor constants times
+/// Scale(i) (1 for all unless `vary`).
+struct Airframes {
+  size_t n;
+  bool vary;
+  std::vector<double> mass, inv_mass, I_B, inv_I_B, contact_k, contact_c, p_origin_B, p_cog_B, corner_B, reach;
+  std::vector<double> motor_constant, drag, rolling, reaction, max_rot, a_up, a_down;
+  std::vector<RotorColumnsOfOne> columns;
+
+  double Scale(size_t i) const { return vary ? 0.85 + 0.3 * static_cast<double>(i % 7) / 6.0 : 1.0; }
+
+  Airframes(const KernelModel& m, size_t count, bool vary_them) : n(count), vary(vary_them) {
+    const size_t R = m.rotors;
+    for (auto* v : {&mass, &inv_mass, &contact_k, &contact_c, &reach}) v->assign(n, 0.0);
+    for (auto* v : {&I_B, &inv_I_B}) v->assign(9 * n, 0.0);
+    for (auto* v : {&p_origin_B, &p_cog_B}) v->assign(3 * R * n, 0.0);
+    corner_B.assign(3 * kMaxContacts * n, 0.0);
+    for (auto* v : {&motor_constant, &drag, &rolling, &reaction, &max_rot, &a_up, &a_down}) v->assign(R * n, 0.0);
+    columns.assign(n, RotorColumnsOfOne{});
+    const double I[3] = {0.0347563, 0.0458929, 0.0977}, w = 0.3 / kDt;
+    for (size_t i = 0; i < n; ++i) {
+      const double s = Scale(i), mass_kg = kMassKg * s;
+      mass[i] = mass_kg;
+      inv_mass[i] = 1.0 / mass_kg;
+      contact_k[i] = mass_kg * w * w / 4.0;
+      contact_c[i] = mass_kg * w / 2.0;
+      for (int k = 0; k < 3; ++k) {
+        I_B[k * 4 * n + i] = I[k] * s;
+        inv_I_B[k * 4 * n + i] = 1.0 / (I[k] * s);
+      }
+      for (int c = 0; c < 4; ++c) {
+        const double corner[3] = {c % 2 ? 0.2 : -0.2, c / 2 ? 0.2 : -0.2, -0.1};
+        for (int k = 0; k < 3; ++k) corner_B[(3 * c + k) * n + i] = corner[k];
+      }
+      reach[i] = std::sqrt(0.2 * 0.2 * 2 + 0.1 * 0.1);
+      RotorColumnsOfOne& own = columns[i];
+      for (size_t r = 0; r < R; ++r) {
+        const double angle = M_PI / 6.0 + r * M_PI / 3.0;
+        const double p[3] = {0.215 * std::cos(angle), 0.215 * std::sin(angle), 0.037};
+        for (int c = 0; c < 3; ++c) {
+          own.p_origin_B[c][r] = p_origin_B[(c * R + r) * n + i] = p[c];
+          own.p_cog_B[c][r] = p_cog_B[(c * R + r) * n + i] = p[c] + (c == 2 && !m.rotor[r].cog_on_origin ? 0.01 : 0.0);
+        }
+        own.motor_constant[r] = motor_constant[r * n + i] = kMotorConstant * (vary ? 2.0 - s : 1.0);
+        own.rotor_drag_coefficient[r] = drag[r * n + i] = 8.06428e-05;
+        own.rolling_moment_coefficient[r] = rolling[r * n + i] = 1e-06;
+        own.reaction_factor[r] = reaction[r * n + i] = -m.rotor[r].direction * 0.016;
+        own.max_rot_velocity[r] = max_rot[r * n + i] = 838.0;
+        own.a_up[r] = a_up[r * n + i] = std::exp(-kDt * 80.0);
+        own.a_down[r] = a_down[r * n + i] = std::exp(-kDt * 40.0);
+      }
+    }
+  }
+  KernelAirframes View() const {
+    return {mass.data(),      inv_mass.data(),       I_B.data(),        inv_I_B.data(), contact_k.data(),
+            contact_c.data(), columns.data(),        p_origin_B.data(), p_cog_B.data(), corner_B.data(),
+            reach.data(),     motor_constant.data(), drag.data(),       rolling.data(), reaction.data(),
+            max_rot.data(),   a_up.data(),           a_down.data()};
+  }
+};
+
+/// The state of n vehicles (structure of arrays, as the batch keeps it), their airframes and buffers.
 struct Fleet {
   size_t n;
+  Airframes airframes;
   std::vector<double> p, v, q, R, w, omega_rotor, qdot, command, wind_v, before_v, before_w, before_R;
-  explicit Fleet(size_t count, unsigned seed) : n(count) {
+  Fleet(const KernelModel& m, size_t count, unsigned seed, bool vary = true) : n(count), airframes(m, count, vary) {
     p.resize(3 * n), v.resize(3 * n), q.resize(4 * n), R.resize(9 * n), w.resize(3 * n);
     omega_rotor.resize(kMaxRotors * n), qdot.resize(kMaxRotors * n), command.resize(kMaxRotors * n);
     wind_v.assign(3 * n, 0.0), before_v.resize(12), before_w.resize(12), before_R.resize(36);
@@ -104,8 +139,8 @@ struct Fleet {
     }
   }
   KernelArrays Arrays() {
-    return {n,        p.data(),           v.data(),    q.data(),       R.data(),
-            w.data(), omega_rotor.data(), qdot.data(), command.data(), wind_v.data()};
+    return {n,           p.data(),       v.data(),      q.data(),        R.data(), w.data(), omega_rotor.data(),
+            qdot.data(), command.data(), wind_v.data(), airframes.View()};
   }
   /// steps every vehicle: groups of four in the kernel's lanes, the rest one by one with the rotors in lanes
   void Step(const Kernels& kernels, const KernelModel& m) {
@@ -134,8 +169,8 @@ std::vector<std::string> KernelNames() {
 
 TEST(FlightKernel, EveryKernelOfThisTargetStepsTheScalarBits) {
   const KernelModel m = Hexacopter();
-  // 8 vehicles in two groups of four, 3 alone (a batch's last, incomplete group)
-  Fleet scalar(11, 7);
+  // 8 vehicles in two groups of four, 3 alone (a batch's last, incomplete group), each its own airframe
+  Fleet scalar(m, 11, 7);
   const Kernels none = ChooseKernels("scalar");
   for (int s = 0; s < 500; ++s) scalar.Step(none, m);
   for (double z : scalar.p) ASSERT_TRUE(std::isfinite(z));
@@ -143,7 +178,7 @@ TEST(FlightKernel, EveryKernelOfThisTargetStepsTheScalarBits) {
   ASSERT_FALSE(names.empty());
   std::string flown;
   for (const std::string& name : names) {
-    Fleet lanes(11, 7);
+    Fleet lanes(m, 11, 7);
     const Kernels kernels = ChooseKernels(name);
     for (int s = 0; s < 500; ++s) lanes.Step(kernels, m);
     EXPECT_TRUE(lanes.SameBits(scalar)) << "kernel " << name << " differs from the scalar step";
@@ -167,17 +202,14 @@ TEST(FlightKernel, UnknownKernelIsOneLineNamingTheChoices) {
 }
 
 /// At omega_h = sqrt(m g / (6 C_T)) on every rotor, level and at rest, the thrust is the weight
-/// (eq. 1: F = 6 C_T omega_h^2 = m g) and the reaction moments cancel (eq. 4, three each way).
+/// (eq. 1: F = 6 C_T omega_h^2 = m g) and the reaction moments cancel (eq. 4, three each way); each
+/// vehicle with its own mass and C_T at its own omega_h.
 TEST(FlightKernel, HoverSpeedHoldsTheBodyStill) {
-  KernelModel m = Hexacopter();
-  m.gravity_W[2] = -kG;
-  m.rotor[2].p_cog_B[2] = m.rotor[2].p_origin_B[2];
-  m.rotor[2].cog_on_origin = true;
-  FillRotorColumns(m);
-  const double omega_h = std::sqrt(kMassKg * kG / (6.0 * kMotorConstant));
+  const KernelModel m = Hexacopter(true);
   for (const std::string& name : KernelNames()) {
-    Fleet f(5, 3);
+    Fleet f(m, 5, 3);
     for (size_t i = 0; i < f.n; ++i) {
+      const double omega_h = std::sqrt(f.airframes.mass[i] * kG / (6.0 * f.airframes.motor_constant[i]));
       const double level[4] = {1, 0, 0, 0}, I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
       for (int c = 0; c < 4; ++c) f.q[c * f.n + i] = level[c];
       for (int c = 0; c < 9; ++c) f.R[c * f.n + i] = I3[c];
@@ -204,7 +236,7 @@ TEST(FlightKernel, HoverSpeedHoldsTheBodyStill) {
 TEST(FlightKernel, StoppedRotorsFallAsGravitySays) {
   const KernelModel m = Hexacopter();
   for (const std::string& name : KernelNames()) {
-    Fleet f(5, 4);
+    Fleet f(m, 5, 4);
     for (size_t i = 0; i < f.n; ++i) {
       for (int c = 0; c < 3; ++c) f.v[c * f.n + i] = f.w[c * f.n + i] = 0.0;
       f.p[2 * f.n + i] = 100.0;
