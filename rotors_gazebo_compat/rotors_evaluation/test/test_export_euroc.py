@@ -119,6 +119,16 @@ def test_export_takes_the_flown_vehicles_calibration_from_the_bag(tmp_path: Path
     imu0 = yaml.safe_load((mav0 / "imu0" / "sensor.yaml").read_text())
     assert imu0["gyroscope_noise_density"] == 0.0003394 and imu0["accelerometer_random_walk"] == 0.006
     assert imu0["rotors_imu_vibration"]["balanceGrade"] == 6.3 and imu0["rotors_imu_vibration"]["bartlettTaps"] == 16
+    # the same calibration in Kalibr's camchain-imucam and imu layouts (what VIO configurations take):
+    # T_cam_imu the inverse of T_BS, cam1's T_cn_cnm1 the baseline, the IMU's densities and topic
+    chain = yaml.safe_load((tmp_path / "euroc" / "kalibr" / "camchain-imucam.yaml").read_text())
+    assert np.allclose(np.array(chain["cam0"]["T_cam_imu"]) @ T0, np.eye(4), atol=1e-9)
+    assert np.allclose(np.array(chain["cam1"]["T_cam_imu"]) @ T1, np.eye(4), atol=1e-9)
+    assert np.allclose(np.array(chain["cam1"]["T_cn_cnm1"])[:3, 3], [-0.11, 0, 0], atol=1e-9)
+    assert chain["cam1"]["intrinsics"] == pytest.approx([F_PX, F_PX, 375.5, 239.5]) and chain["cam0"]["distortion_model"] == "radtan"
+    kalibr_imu = yaml.safe_load((tmp_path / "euroc" / "kalibr" / "imu.yaml").read_text())["imu0"]
+    assert kalibr_imu["gyroscope_noise_density"] == 0.0003394 and kalibr_imu["accelerometer_random_walk"] == 0.006
+    assert kalibr_imu["rostopic"].endswith("firefly/vi_sensor/imu") and kalibr_imu["update_rate"] == pytest.approx(1000.0, rel=1e-6)
     # images read back as they were written
     rows = (mav0 / "cam1" / "data.csv").read_text().splitlines()[1:]
     assert len(rows) == 3 and np.asarray(Image.open(mav0 / "cam1" / "data" / rows[2].split(",")[1])).mean() == 60
