@@ -639,6 +639,7 @@ void FlightBatch::StepGroup(int i0) {
 void FlightBatch::ApplyCommand(int i) {
   const size_t n = n_pad_;
   const double* c = &commands_[i * command_columns_];
+  bool new_target = true;
   switch (options_.mode) {
     case CommandMode::kRotorSpeeds:
       for (int r = 0; r < r_; ++r) command_target_[r * n + i] = c[r];
@@ -649,13 +650,15 @@ void FlightBatch::ApplyCommand(int i) {
       break;
     default:
       // a controller answers a new odometry message, as World.attach_controller (and the ROS node) does
-      if (odometry_count_[i] != controller_seen_[i]) RunController(i);
+      new_target = odometry_count_[i] != controller_seen_[i];
+      if (new_target) RunController(i);
       break;
   }
   // the motors get the command of actuator_delay_steps steps ago (the ring holds the last ones)
   std::vector<double>& ring = delay_rings_[i];
   if (ring.empty()) {
-    for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = command_target_[r * n + i];
+    if (new_target)
+      for (int r = 0; r < r_; ++r) motor_command_[r * n + i] = command_target_[r * n + i];
     return;
   }
   double* oldest = &ring[delay_heads_[i] * r_];
