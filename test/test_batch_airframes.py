@@ -169,7 +169,7 @@ def same(a: dict, b: dict) -> bool:
 
 
 def test_randomised_airframes_repeat_for_a_seed_and_differ_between_episodes():
-    envs = FlightBatchEnv("hover", 8, randomization=SPEC)
+    envs = FlightBatchEnv("hover", 8, randomization=SPEC, imu=True)
     nominal = envs.batch.nominal_airframe
     envs.reset(seed=11)
     first = airframes(envs)

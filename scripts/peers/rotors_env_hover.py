@@ -2,7 +2,7 @@
 motor actions: each rotor's speed, physics at 500 Hz, 100 Hz actions), one FlightBatchEnv.step per
 control period from Python with the actions of a fixed hover (each rotor at the hover speed), with
 its observations, rewards and autoreset; beside it the raw engine in the same mode (rotor_speeds,
-no controller) stepped in one call. Prints one JSON line.
+no controller, no IMU, as the environment) stepped in one call. Prints one JSON line.
     python rotors_env_hover.py <vehicles> <seconds> [randomized|nominal]
 randomized: every vehicle its own airframe, drawn again at each reset (docs/batched_flight.md)."""
 
@@ -31,7 +31,7 @@ for _ in range(periods):
     envs.step(action)
 env_wall = time.perf_counter() - t0
 
-raw = rs.FlightBatch("firefly", vehicles, mode="rotor_speeds", step_size=0.002, control_divisor=5)
+raw = rs.FlightBatch("firefly", vehicles, mode="rotor_speeds", step_size=0.002, control_divisor=5, imu=False)
 raw.commands[:] = hover_speed
 raw.step(50)
 raw.reset()

@@ -411,7 +411,9 @@ void FlightBatch::Step(long steps) {
   CheckCommands();
   if (steps == 0) return;
   ParkPaddingLanes();
-  if (!pool_) {
+  // a short call (an environment's control period over few vehicles) is cheaper on this thread
+  // than the pool's wake-up: below kPoolMinVehicleSteps vehicle-steps the workers stay asleep
+  if (!pool_ || static_cast<long>(n_) * steps < kPoolMinVehicleSteps) {
     StepRange(0, n_, steps);
     return;
   }

@@ -144,6 +144,9 @@ class FlightBatch {
   void CheckCommands() const;
   uint64_t SeedFor(uint64_t plugin_seed, int i) const;
   static constexpr int kLanes = 4;  ///< vehicles stepped together by the kernel
+  /// Fewer vehicle-steps than this in one call run on the calling thread (about 60 ns each, so
+  /// 4,096 take about a quarter of a millisecond: more than waking the pool's threads costs).
+  static constexpr long kPoolMinVehicleSteps = 4096;
   void BuildKernelModel();
   void WriteAirframe(size_t i, const Airframe& airframe);  ///< into the kernel's arrays
   void ParkPaddingLanes();

@@ -57,7 +57,8 @@ class FlightBatchEnv(VectorEnv):
     `randomization` (rotors_sim.randomization's spec; also reset(options={"randomization": spec})
     from that reset on): every vehicle draws its airframe at every reset from its episode's
     generator, and its sensor noise a new seed; None (the default): every episode the xacro's
-    airframe and the same noise."""
+    airframe and the same noise. `imu` simulates the vehicles' IMU (self.batch.imu; off by default:
+    the observations are the odometry's, and the IMU costs as much as the rest of the step)."""
 
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP}
 
@@ -82,6 +83,7 @@ class FlightBatchEnv(VectorEnv):
         autoreset: bool = True,
         alive_bonus: float = 0.0,
         randomization: dict[str, Any] | None = None,
+        imu: bool = False,
     ):
         if task not in TASKS:
             raise SimError(f"task '{task}' is not known; use one of: {', '.join(TASKS)}")
@@ -108,6 +110,7 @@ class FlightBatchEnv(VectorEnv):
             control_divisor=self.substeps,
             threads=threads,
             seeds=[sensor_seed + i for i in range(self.num_envs)],
+            imu=imu,
         )
         d = self.batch.description
         self.max_rot_velocity = np.array([r["max_rot_velocity"] for r in d.rotors])
