@@ -38,6 +38,28 @@ def scaled_world(mass_scale: float, motor_constant_scale: float) -> rs.World:
     return world
 
 
+def fly_beside(batch: rs.FlightBatch, worlds: list, flight_s: float, every: int) -> tuple[np.ndarray, np.ndarray]:
+    """The batch and its vehicles' worlds over ROUTE from (0, 0, 1): each vehicle's largest distance
+    from its world [m], compared every `every` physics steps, and the batch's paths (n x samples x 3)."""
+    n = batch.count
+    batch.reset(positions=np.tile([0.0, 0.0, 1.0], (n, 1)))
+    batch.commands[:] = [*ROUTE[0][1], 0.0]
+    worst_m, paths = np.zeros(n), []
+    for k in range(0, int(round(flight_s / DT)), every):
+        for t, p, yaw in ROUTE:
+            if abs(k * DT - t) < DT / 2:
+                batch.commands[:] = [*p, yaw]
+                for world in worlds:
+                    world.lee.set_point(p, yaw=yaw)
+        batch.step(every)
+        truth = batch.truth()
+        for i, world in enumerate(worlds):
+            world.step(every)
+            worst_m[i] = max(worst_m[i], float(np.linalg.norm(world.link_state(MAV)[0] - truth[i, 0:3])))
+        paths.append(truth[:, 0:3].copy())
+    return worst_m, np.stack(paths, axis=1)
+
+
 def test_each_vehicle_flies_its_own_airframe_as_the_world_built_with_it():
     """14 vehicles (three groups of four in lanes, two alone): every third the xacro's airframe,
     the others with mass_scale and motor_constant_scale drawn from U(0.8, 1.2) and U(0.85, 1.05);
@@ -54,25 +76,8 @@ def test_each_vehicle_flies_its_own_airframe_as_the_world_built_with_it():
             batch.set_airframe(i, **airframe)
         for key, value in batch.airframe(i).items():
             assert np.array_equal(np.asarray(value), np.asarray(airframe[key])), (i, key)
-    batch.reset(positions=np.tile([0.0, 0.0, 1.0], (n, 1)))
-    batch.commands[:] = [*ROUTE[0][1], 0.0]
-    worst_m = np.zeros(n)
-    nominal_path, paths = [], [[] for _ in range(n)]
-    for k in range(0, int(round(FLIGHT_S / DT)), 10):
-        for t, p, yaw in ROUTE:
-            if abs(k * DT - t) < DT / 2:
-                batch.commands[:] = [*p, yaw]
-                for world in worlds:
-                    world.lee.set_point(p, yaw=yaw)
-        batch.step(10)
-        truth = batch.truth()
-        for i, world in enumerate(worlds):
-            world.step(10)
-            p_world = world.link_state(MAV)[0]
-            worst_m[i] = max(worst_m[i], float(np.linalg.norm(p_world - truth[i, 0:3])))
-            paths[i].append(truth[i, 0:3].copy())
-    nominal_path = np.array(paths[0])
-    apart_m = [float(np.max(np.linalg.norm(np.array(p) - nominal_path, axis=1))) for p in paths]
+    worst_m, paths = fly_beside(batch, worlds, FLIGHT_S, every=10)
+    apart_m = [float(np.max(np.linalg.norm(path - paths[0], axis=1))) for path in paths]
     for i in range(n):
         print(
             f"vehicle {i:2d}: mass_scale {scales[i][0]:.3f}, motor_constant_scale {scales[i][1]:.3f}: "
@@ -124,20 +129,7 @@ def test_a_randomised_batch_of_64_flies_as_64_worlds_built_with_their_values():
         world.lee = lee
         worlds.append(world)
         batch.set_airframe(i, **world.engine.describe_multirotor(MAV, "odometry_sensor1/odometry").airframe)
-    batch.reset(positions=np.tile([0.0, 0.0, 1.0], (n, 1)))
-    batch.commands[:] = [*ROUTE[0][1], 0.0]
-    worst_m = np.zeros(n)
-    for k in range(0, int(round(3.0 / DT)), 25):
-        for t, p, yaw in ROUTE:
-            if abs(k * DT - t) < DT / 2:
-                batch.commands[:] = [*p, yaw]
-                for world in worlds:
-                    world.lee.set_point(p, yaw=yaw)
-        batch.step(25)
-        truth = batch.truth()
-        for i, world in enumerate(worlds):
-            world.step(25)
-            worst_m[i] = max(worst_m[i], float(np.linalg.norm(world.link_state(MAV)[0] - truth[i, 0:3])))
+    worst_m, _ = fly_beside(batch, worlds, 3.0, every=25)
     ends = batch.truth()[:, 0:3]
     print(
         f"64 randomised airframes: largest difference from their worlds {worst_m.max():.1e} m (median {np.median(worst_m):.1e} m); "
