@@ -220,6 +220,12 @@ def test_draws_follow_the_spec_and_bad_input_is_one_line():
     a = draw_airframe(spec, nominal, np.random.default_rng(0))
     assert a["mass"] == nominal["mass"] * 1.25 and np.allclose(np.diag(a["inertia"]), 0.81 * np.diag(nominal["inertia"]))
     assert np.array_equal(a["maxRotVelocity"], nominal["maxRotVelocity"] * 0.5) and set(a) == {"mass", "inertia", "maxRotVelocity"}
+    wind = draw_airframe(
+        check_spec({"windGustForceMean": ("fixed", 4.0), "windGustStart": ("uniform", 1.0, 2.0)}), nominal, np.random.default_rng(0)
+    )
+    assert wind["windGustForceMean"] == 4.0 and 1.0 <= wind["windGustStart"] <= 2.0  # values in the SDF's units, not factors
+    with pytest.raises(rs.SimError, match="drew windForceVariance = -1; it must be >= 0"):
+        draw_airframe(check_spec({"windForceVariance": ("fixed", -1.0)}), nominal, np.random.default_rng(0))
     bad = {
         "wingspan": r"'wingspan' is not an airframe parameter; use one of: mass, inertia, cog",
         "mass_gauss": r"'mass_gauss' is not an airframe parameter",
@@ -255,3 +261,35 @@ def test_draws_follow_the_spec_and_bad_input_is_one_line():
     assert np.isfinite(batch.truth()).all() and not np.array_equal(before, batch.truth())
     with pytest.raises(rs.SimError, match="vehicle 2 is not in 0..1"):
         batch.set_airframe(2, mass=1.0)
+
+
+def test_each_vehicle_its_own_wind_as_the_world_spawned_with_it():
+    """RotorS' wind gust (mav_with_wind_gust.gazebo): vehicle 1 given the wind of a world spawned
+    with another gust (force, start, direction) flies as that world, beside vehicle 0 with the
+    nominal gust; a wind parameter on a vehicle without a wind plugin is one line."""
+    model = package_path("rotors_description") / "urdf" / "mav_with_wind_gust.gazebo"
+    gusts = [
+        dict(wind_gust_start=1.0, wind_gust_force_mean=3.0),
+        dict(wind_gust_start=0.5, wind_gust_force_mean=6.0, wind_gust_direction="0 1 0"),
+    ]
+    worlds = []
+    for gust in gusts:
+        world = rs.World("basic", step_size=DT)
+        world.spawn_mav(MAV, xyz=(0.0, 0.0, 1.0), random_seed=7, odometry_divisor=DIVISOR, model=model, **gust)
+        world.lee = rs.LeePositionController.for_mav(MAV)
+        world.lee.set_point(ROUTE[0][1])
+        world.attach_controller(MAV, world.lee)
+        worlds.append(world)
+    batch = rs.FlightBatch(MAV, 2, step_size=DT, control_divisor=DIVISOR, seeds=[7, 7], model=model, **gusts[0])
+    other = worlds[1].engine.describe_multirotor(MAV, "odometry_sensor1/odometry").airframe
+    batch.set_airframe(1, **other)
+    assert batch.airframe(1)["windGustForceMean"] == 6.0 and np.allclose(batch.airframe(1)["windGustDirection"], [0, 1, 0])
+    worst_m, paths = fly_beside(batch, worlds, 2.5, every=10)
+    pushed_apart_m = float(np.max(np.linalg.norm(paths[1] - paths[0], axis=1)))
+    print(f"two gusts: {worst_m[0]:.1e} and {worst_m[1]:.1e} m from their worlds; the paths up to {pushed_apart_m:.3f} m apart")
+    assert np.all(worst_m < 1e-10) and pushed_apart_m > 0.05
+    no_wind = rs.FlightBatch(MAV, 1)
+    with pytest.raises(rs.SimError, match="'windForceMean' given, but the vehicle has no wind plugin"):
+        no_wind.set_airframe(0, windForceMean=1.0)
+    with pytest.raises(rs.SimError, match="vehicle 0, wind: windGustDuration = -1 must be >= 0 s"):
+        batch.set_airframe(0, windGustDuration=-1.0)

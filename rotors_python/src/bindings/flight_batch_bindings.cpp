@@ -89,10 +89,28 @@ const std::vector<std::pair<const char*, double rotors_gazebo_plugins::RotorPara
     {"maxRotVelocity", &rotors_gazebo_plugins::RotorParams::max_rot_velocity},
 };
 
+/// The wind plugin's scalar SDF parameters an airframe may set, and where WindParams keeps them.
+const std::vector<std::pair<const char*, double rotors_gazebo_plugins::WindParams::*>> kWindFields = {
+    {"windSpeedMean", &rotors_gazebo_plugins::WindParams::wind_speed_mean_m_s},
+    {"windSpeedVariance", &rotors_gazebo_plugins::WindParams::wind_speed_variance},
+    {"windForceMean", &rotors_gazebo_plugins::WindParams::wind_force_mean_n},
+    {"windForceVariance", &rotors_gazebo_plugins::WindParams::wind_force_variance},
+    {"windGustStart", &rotors_gazebo_plugins::WindParams::wind_gust_start_s},
+    {"windGustDuration", &rotors_gazebo_plugins::WindParams::wind_gust_duration_s},
+    {"windGustForceMean", &rotors_gazebo_plugins::WindParams::wind_gust_force_mean_n},
+    {"windGustForceVariance", &rotors_gazebo_plugins::WindParams::wind_gust_force_variance},
+};
+
 /// {"mass": kg, "inertia": 3 x 3 kg m^2, "cog": the CoG in the model frame [m], "actuatorDelay":
-/// physics steps, "<SDF name>": one value per rotor, ...}
-py::dict AirframeDict(const Airframe& a) {
+/// physics steps, "<SDF name>": one value per rotor, ...; with a wind plugin its SDF parameters
+/// ("windForceMean", ..., "windDirection", "windGustDirection")}
+py::dict AirframeDict(const Airframe& a, bool has_wind) {
   py::dict out;
+  if (has_wind) {
+    for (const auto& [name, field] : kWindFields) out[name] = a.wind.*field;
+    out["windDirection"] = a.wind.wind_direction;
+    out["windGustDirection"] = a.wind.wind_gust_direction;
+  }
   out["mass"] = a.mass_kg;
   out["inertia"] = a.inertia_B_kg_m2;
   out["cog"] = a.p_M_cog;
@@ -107,7 +125,7 @@ py::dict AirframeDict(const Airframe& a) {
 
 /// `base` with the entries of `values` (AirframeDict's keys; any subset); SimError naming an unknown
 /// key or an array of the wrong length.
-Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle) {
+Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle, bool has_wind) {
   Airframe a = base;
   const std::string who = "FlightBatch.set_airframe: vehicle " + std::to_string(vehicle);
   for (const auto& [key, value] : values) {
@@ -122,6 +140,20 @@ Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle)
         throw SimError(who + ": inertia must be a 3 x 3 array [kg m^2]");
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) a.inertia_B_kg_m2(r, c) = I.at(r, c);
+      continue;
+    }
+    auto wind = std::find_if(kWindFields.begin(), kWindFields.end(), [&](const auto& f) { return name == f.first; });
+    const bool direction = name == "windDirection" || name == "windGustDirection";
+    if ((wind != kWindFields.end() || direction) && !has_wind)
+      throw SimError(who + ": '" + name + "' given, but the vehicle has no wind plugin (spawn it with one)");
+    if (wind != kWindFields.end()) {
+      a.wind.*(wind->second) = value.cast<double>();
+      continue;
+    }
+    if (direction) {
+      const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+      if (!d || d.ndim() != 1 || d.shape(0) != 3) throw SimError(who + ": " + name + " must be 3 values");
+      (name == "windDirection" ? a.wind.wind_direction : a.wind.wind_gust_direction) = {d.at(0), d.at(1), d.at(2)};
       continue;
     }
     if (name == "actuatorDelay") {
@@ -140,6 +172,10 @@ Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle)
     if (it == kRotorFields.end()) {
       std::string known = "mass, inertia, cog, actuatorDelay";
       for (const auto& f : kRotorFields) known += std::string(", ") + f.first;
+      if (has_wind) {
+        for (const auto& f : kWindFields) known += std::string(", ") + f.first;
+        known += ", windDirection, windGustDirection";
+      }
       throw SimError(who + ": '" + name + "' is not an airframe parameter; use " + known);
     }
     const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
@@ -165,7 +201,10 @@ void BindFlightBatch(py::module_& m) {
       .def_readonly("left_out", &VehicleDescription::left_out)
       .def_readonly("contact_points_B", &VehicleDescription::contact_points_B)
       .def_property_readonly(
-          "airframe", [](const VehicleDescription& d) { return AirframeDict(rotors_flight_batch::AirframeOf(d)); },
+          "airframe",
+          [](const VehicleDescription& d) {
+            return AirframeDict(rotors_flight_batch::AirframeOf(d), d.wind.has_value());
+          },
           "The airframe as FlightBatch.set_airframe takes it: {'mass', 'inertia', 'cog', 'motorConstant', ...}.")
       .def_property_readonly("has_imu", [](const VehicleDescription& d) { return d.imu.has_value(); })
       .def_property_readonly("has_wind", [](const VehicleDescription& d) { return d.wind.has_value(); })
@@ -214,15 +253,17 @@ void BindFlightBatch(py::module_& m) {
           },
           py::arg("indices"), py::arg("positions"), py::arg("yaws"))
       .def(
-          "airframe", [](const FlightBatch& b, int i) { return AirframeDict(b.GetAirframe(i)); }, py::arg("i"),
-          "Vehicle i's airframe: {'mass': kg, 'inertia': 3 x 3 kg m^2, 'motorConstant': per rotor, ...}.")
+          "airframe",
+          [](const FlightBatch& b, int i) { return AirframeDict(b.GetAirframe(i), b.Description().wind.has_value()); },
+          py::arg("i"), "Vehicle i's airframe: {'mass': kg, 'inertia': 3 x 3 kg m^2, 'motorConstant': per rotor, ...}.")
       .def_property_readonly(
-          "nominal_airframe", [](const FlightBatch& b) { return AirframeDict(b.NominalAirframe()); },
+          "nominal_airframe",
+          [](const FlightBatch& b) { return AirframeDict(b.NominalAirframe(), b.Description().wind.has_value()); },
           "The description's airframe (the xacro's).")
       .def(
           "set_airframe",
           [](FlightBatch& b, int i, const py::dict& values) {
-            b.SetAirframe(i, AirframeFrom(b.NominalAirframe(), values, i));
+            b.SetAirframe(i, AirframeFrom(b.NominalAirframe(), values, i, b.Description().wind.has_value()));
           },
           py::arg("i"), py::arg("values"),
           "Vehicle i flies the nominal airframe with `values` (airframe()'s keys, any subset) in place.")

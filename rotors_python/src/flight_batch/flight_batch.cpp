@@ -355,7 +355,7 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     if (d_.imu && options_.imu && options_.noise)
       s.imu_noise = std::make_unique<rgp::ImuNoiseModel>(d_.imu->noise, SeedFor(d_.imu->seed, i));
     if (d_.wind) {
-      rgp::WindParams wp = d_.wind->params;
+      rgp::WindParams wp = airframes_[i].wind;
       if (!options_.noise) wp.wind_speed_variance = wp.wind_force_variance = wp.wind_gust_force_variance = 0.0;
       s.wind = std::make_unique<rgp::WindModel>(wp, SeedFor(d_.wind->seed, i));
     }
@@ -455,6 +455,7 @@ Airframe AirframeOf(const VehicleDescription& d) {
   a.mass_kg = d.mass_kg;
   a.inertia_B_kg_m2 = d.inertia_B_kg_m2;
   a.p_M_cog = d.p_M_cog;
+  if (d.wind) a.wind = d.wind->params;
   for (const RotorMount& rotor : d.rotors) a.rotors.push_back(rotor.params);
   return a;
 }
@@ -485,6 +486,15 @@ void FlightBatch::SetAirframe(int i, const Airframe& airframe) {
   if (airframe.actuator_delay_steps < 0 || airframe.actuator_delay_steps > kMaxActuatorDelaySteps)
     throw SimError(who + ": actuatorDelay = " + std::to_string(airframe.actuator_delay_steps) +
                    " steps must be in 0.." + std::to_string(kMaxActuatorDelaySteps));
+  if (d_.wind) {
+    const rgp::WindParams& w = airframe.wind;
+    std::string why = w.Validate();
+    const double values[] = {w.wind_speed_mean_m_s, w.wind_force_mean_n, w.wind_gust_start_s, w.wind_gust_force_mean_n};
+    if (why.empty() && !(std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); }) &&
+                         w.wind_direction.allFinite() && w.wind_gust_direction.allFinite()))
+      why = "the wind's means, gust start and directions must be finite";
+    if (!why.empty()) throw SimError(who + ", wind: " + why);
+  }
   if (static_cast<int>(airframe.rotors.size()) != r_)
     throw SimError(who + ": " + std::to_string(airframe.rotors.size()) + " rotors given, the vehicle has " +
                    std::to_string(r_));

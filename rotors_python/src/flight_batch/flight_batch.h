@@ -51,6 +51,10 @@ struct Airframe {
   /// The motors get the rotor speed commanded this many physics steps ago (an ESC's and link's
   /// latency; 0: the same step, as RotorS' motor plugin). After a reset, 0 (stopped) until then.
   int actuator_delay_steps = 0;
+  /// The wind plugin's parameters (when the vehicle has one; its field or profile stays the
+  /// description's): mean and variance of the wind force and speed, the gust's window, force and
+  /// direction. A reset draws the wind from them.
+  rotors_gazebo_plugins::WindParams wind;
   /// by motor number: motorConstant, momentConstant, rotorDragCoefficient, rollingMomentCoefficient,
   /// timeConstantUp/Down, maxRotVelocity (turningDirection stays the description's)
   std::vector<rotors_gazebo_plugins::RotorParams> rotors;

@@ -10,7 +10,9 @@ episode's generator (so one seed gives one airframe, and the next episode anothe
 Per-rotor parameters draw one factor per rotor; "inertia" one per body axis (the tensor scaled as
 S I S with S = diag(sqrt(s_x), sqrt(s_y), sqrt(s_z)), so its diagonal is s I_ii and it stays
 positive definite); "cog" one offset per axis; "actuatorDelay" a whole number of physics steps
-(uniform: each of low..high alike; normal: rounded, at least 0). A draw that leaves a value out of the motor
+(uniform: each of low..high alike; normal: rounded, at least 0); the wind plugin's parameters
+("windForceMean" [N], "windGustStart" [s], ...) one value each, in the SDF's units (a vehicle
+spawned with a wind plugin, e.g. model=mav_with_wind_gust.gazebo). A draw that leaves a value out of the motor
 plugin's range (a factor <= 0 where the parameter must be > 0) is an error naming the parameter.
 """
 
@@ -32,7 +34,18 @@ ROTOR_PARAMETERS = (
     "timeConstantDown",
     "maxRotVelocity",
 )
-PARAMETERS = ("mass", "inertia", "cog", "actuatorDelay", *ROTOR_PARAMETERS)
+# the wind plugin's (a vehicle spawned with one): drawn as values in the SDF's units, not factors
+WIND_PARAMETERS = (
+    "windSpeedMean",
+    "windSpeedVariance",
+    "windForceMean",
+    "windForceVariance",
+    "windGustStart",
+    "windGustDuration",
+    "windGustForceMean",
+    "windGustForceVariance",
+)
+PARAMETERS = ("mass", "inertia", "cog", "actuatorDelay", *ROTOR_PARAMETERS, *WIND_PARAMETERS)
 DISTRIBUTIONS = ("uniform", "normal", "fixed")
 
 
@@ -92,6 +105,11 @@ def draw_airframe(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rng: np
             out["inertia"] = s @ np.asarray(nominal["inertia"]) @ s
         elif name == "cog":
             out["cog"] = np.asarray(nominal["cog"]) + _draw(spec[name], rng, 3)
+        elif name in WIND_PARAMETERS:
+            value = float(_draw(spec[name], rng, 1)[0])
+            if (name.endswith("Variance") or name == "windGustDuration") and value < 0.0:
+                raise SimError(f"randomization drew {name} = {value:.4g}; it must be >= 0 (narrow its range)")
+            out[name] = value
         elif name == "actuatorDelay":
             entry = spec[name]
             if entry[0] == "uniform":
