@@ -293,3 +293,21 @@ def test_each_vehicle_its_own_wind_as_the_world_spawned_with_it():
         no_wind.set_airframe(0, windForceMean=1.0)
     with pytest.raises(rs.SimError, match="vehicle 0, wind: windGustDuration = -1 must be >= 0 s"):
         batch.set_airframe(0, windGustDuration=-1.0)
+
+
+def test_a_failed_motor_turns_no_more_and_an_unaware_controller_loses_the_vehicle():
+    """maxRotVelocity 0 on rotor 2: that rotor stays stopped. Lee's controller, which does not know
+    it and keeps allocating to six rotors, lets the firefly fall away from its set point, while the
+    same controller holds the vehicle whose rotors all turn (in the full world the controller is
+    told of the failure and re-allocates: test_motor_failure.py)."""
+    batch = rs.FlightBatch(MAV, 2, step_size=DT, control_divisor=DIVISOR, noise=False)
+    speeds = batch.nominal_airframe["maxRotVelocity"].copy()
+    speeds[2] = 0.0
+    batch.set_airframe(1, maxRotVelocity=speeds)
+    batch.reset(positions=np.tile([0.0, 0.0, 1.0], (2, 1)))
+    batch.commands[:] = [0.0, 0.0, 1.0, 0.0]
+    batch.step(2500)  # 5 s
+    rotors, p = batch.rotor_speeds, batch.truth()[:, 0:3]
+    print(f"rotor 2 of the failed vehicle: {rotors[1, 2]} rad/s; positions after 5 s {np.round(p, 3).tolist()}")
+    assert rotors[1, 2] == 0.0 and abs(rotors[0, 2]) > 400.0
+    assert np.linalg.norm(p[0] - [0.0, 0.0, 1.04]) < 0.01 and np.linalg.norm(p[1] - [0.0, 0.0, 1.0]) > 0.5

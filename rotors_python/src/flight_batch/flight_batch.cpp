@@ -501,7 +501,10 @@ void FlightBatch::SetAirframe(int i, const Airframe& airframe) {
   Airframe checked = airframe;
   for (int r = 0; r < r_; ++r) {
     checked.rotors[r].turning_direction = d_.rotors[r].params.turning_direction;
-    const std::string why = checked.rotors[r].Validate();
+    // maxRotVelocity 0 is a failed motor (it turns no more); every other value as the plugin checks it
+    rgp::RotorParams as_plugin = checked.rotors[r];
+    if (as_plugin.max_rot_velocity == 0.0) as_plugin.max_rot_velocity = 1.0;
+    const std::string why = as_plugin.Validate();
     if (!why.empty()) throw SimError(who + ", rotor " + std::to_string(r) + ": " + why);
   }
   airframes_[i] = checked;

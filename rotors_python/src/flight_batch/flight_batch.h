@@ -56,7 +56,7 @@ struct Airframe {
   /// direction. A reset draws the wind from them.
   rotors_gazebo_plugins::WindParams wind;
   /// by motor number: motorConstant, momentConstant, rotorDragCoefficient, rollingMomentCoefficient,
-  /// timeConstantUp/Down, maxRotVelocity (turningDirection stays the description's)
+  /// timeConstantUp/Down, maxRotVelocity (0: a failed motor; turningDirection stays the description's)
   std::vector<rotors_gazebo_plugins::RotorParams> rotors;
 };
 

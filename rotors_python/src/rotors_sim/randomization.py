@@ -119,7 +119,7 @@ def draw_airframe(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rng: np
         else:
             value = np.asarray(nominal[name], dtype=float)
             factors = _draw(spec[name], rng, len(value))
-            must_be_positive = name in ("motorConstant", "timeConstantUp", "timeConstantDown", "maxRotVelocity")
+            must_be_positive = name in ("motorConstant", "timeConstantUp", "timeConstantDown")  # maxRotVelocity 0: failed
             if (must_be_positive and not np.all(factors > 0.0)) or not np.all(factors >= 0.0):
                 raise SimError(
                     f"randomization drew {name} factors {np.round(factors, 4).tolist()}; "
