@@ -79,10 +79,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
     while (!answer_due_) {
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (link_timeout_s_ > 0.0 && waited > link_timeout_s_) {
-        session_.On(LinkEvent::kSilent);
-        Error("lost", "no servo packet for " + std::to_string(link_timeout_s_) +
-                          " s (link_timeout): motors disarmed, the world runs on until ArduPilot sends again");
-        ApplyDisarmed();
+        LoseLink();
         return;
       }
       ReadFrames(link_timeout_s_ > 0.0 ? std::min(0.05, link_timeout_s_ - waited) : 0.05);
@@ -90,6 +87,14 @@ class GazeboArdupilotInterface : public AutopilotInterface {
   }
 
  private:
+  /// The link is lost (the plugins' one name for it): motors disarmed, the world runs on.
+  void LoseLink() {
+    session_.On(LinkEvent::kSilent);
+    Error("lost", "no servo packet for " + std::to_string(link_timeout_s_) +
+                      " s (link_timeout): motors disarmed, the world runs on until ArduPilot sends again");
+    ApplyDisarmed();
+  }
+
   /// Takes the servo frames there are (waiting up to timeout_s for one); a new frame drives the step.
   void ReadFrames(double timeout_s) {
     uint8_t buffer[512];

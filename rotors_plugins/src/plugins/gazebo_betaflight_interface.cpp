@@ -146,6 +146,7 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - last_answer_).count();
   }
 
+  /// The link is lost (the plugins' one name for it): motors disarmed, the world runs on.
   void LoseLink(double t_s) {
     session_.On(LinkEvent::kSilent);
     Error("lost", "no motor packet for " + std::to_string(link_timeout_s_) + " s of wall time (link_timeout) at t = " +

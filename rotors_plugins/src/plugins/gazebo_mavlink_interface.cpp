@@ -181,7 +181,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
 
   void Write(const std::vector<uint8_t>& bytes) {
     // a TCP client gone is seen by the next Receive; a serial device gone is seen here too
-    if (connected_ && !link_->Send(bytes.data(), bytes.size()) && open_link_) ReopenableLinkLost();
+    if (connected_ && !link_->Send(bytes.data(), bytes.size()) && open_link_) LoseLink();
   }
 
   /// Takes a new connection and reads what is there (waiting up to timeout_s for the first bytes);
@@ -206,8 +206,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     do {
       n = link_->Receive(buffer, sizeof(buffer), wait);
       if (n == kLinkClosed) {
-        if (open_link_) ReopenableLinkLost();
-        else LinkLost("the autopilot closed the connection");
+        LoseLink();
         return false;
       }
       if (n > 0) Handle(buffer, n);
@@ -313,7 +312,10 @@ class GazeboMavlinkInterface : public AutopilotInterface {
       if (connected_) link_->Send(buffer, static_cast<size_t>(n));
   }
 
-  void LinkLost(const std::string& why) {
+  /// The link is lost (the plugins' one name for it): motors disarmed, the world runs on. A link
+  /// that can come back (a serial device, a TCP client) is dropped, to be opened again.
+  void LoseLink() {
+    const std::string why = open_link_ ? link_->Describe() + " went away" : "the autopilot closed the connection";
     awaiting_answer_ = false;
     session_.On(LinkEvent::kClosed);
     armed_ = false;
@@ -321,11 +323,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     if (link_) link_->Disconnect();
     Error("lost", why + ": motors disarmed, the world runs on (a restarted PX4 may connect again)");
     ApplyDisarmed();
-  }
-
-  void ReopenableLinkLost() {
-    LinkLost(link_->Describe() + " went away");
-    link_.reset();
+    if (open_link_) link_.reset();
   }
 
   // links: the autopilot's (TCP, UDP or serial), and QGroundControl's in HITL
