@@ -122,6 +122,19 @@ def test_reset_world_and_reset_simulation_mid_flight(ros: RosGraph):
 
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
+def test_reset_simulation_while_lockstep_waits_for_the_controller(ros: RosGraph):
+    proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=0")
+    try:
+        wait_sim_time(ros, 1.0)
+        r = ros.run_client("clients.faults:reset_simulation_repeatedly", timeout=300, count=30)
+    finally:
+        stop_launch(proc)
+    went_on = [t for t in r["reached"] if t >= 0.5]
+    print(f"30 resets of a lockstep flight: the clock went on after {len(went_on)} of them")
+    assert len(went_on) == 30
+
+
+@pytest.mark.long  # the long tier: make test-all / make test-long
 def test_pause_for_10_s_and_resume(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "real_time_factor:=1")
     try:

@@ -141,6 +141,25 @@ def reset_world_and_simulation() -> dict:
     return result
 
 
+def reset_simulation_repeatedly(count: int) -> dict:
+    """reset_simulation `count` times at moments spread over the step (lockstep, as fast as possible):
+    after each, the sim time the clock reached within 20 s of wall time (a reset served while the
+    simulator waited for the controller's answer once left the clock at 0 for good)."""
+    watch = Watch()
+    state, reached = watch.state, []
+    reset = rospy.ServiceProxy("/gazebo/reset_simulation", Empty)
+    watch.wait_clock(1.0)
+    for i in range(count):
+        time.sleep(0.013 * (i % 7))  # lands on different phases of the lockstep turn
+        reset()
+        try:
+            reached.append(watch.wait_clock(0.5, limit_s=20))
+        except SystemExit:
+            reached.append(state["clock"])
+            break  # stuck for good: the rest would wait as long each
+    return {"reached": reached}
+
+
 def pause_and_resume() -> dict:
     """The physics paused at 12 s for 10 s of wall time: how far the clock and the MAV moved
     meanwhile, and the largest offset in the 5 s after resuming."""

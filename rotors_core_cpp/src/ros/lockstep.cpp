@@ -248,6 +248,7 @@ void Lockstep::CountUnwaited(const ros::Time& stamp) {
 }
 
 void Lockstep::Rewind(const ros::Time& now) {
+  ++rewinds_;
   latest_step_ = now;
   for (auto& p : participants_) p.last_stamp = std::min(p.last_stamp, now);
 }
@@ -263,7 +264,9 @@ bool Lockstep::WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue,
   ros::WallTime next_report = start + ros::WallDuration(options_.report_period_s);
   const bool hold = options_.mode == LockstepMode::kHold;
   const double t_s = stamp.toSec();
+  const uint64_t rewinds_before = rewinds_;
   while (ros::ok() && !stop()) {
+    if (rewinds_ != rewinds_before) return true;  // reset_simulation was served meanwhile: the step is gone
     bool all = true;
     for (auto& p : participants_) {
       if (p.local) FlushAnswer(&p);

@@ -84,6 +84,8 @@ class Lockstep {
   bool WaitForAnswers(const ros::Time& stamp, ros::CallbackQueue* queue, const std::function<bool()>& stop);
   /// The sim time went back to `now` (reset_simulation): answers stamped before the rewind no longer
   /// count, and one that arrives later (stamped after `now`) is not taken for an answer of the new run.
+  /// A rewind served while WaitForAnswers serves callbacks ends that wait: the step it waited for is
+  /// gone, and its answer (stamped after `now`) would never count.
   void Rewind(const ros::Time& now);
   /// Steps after which a published input's answer was not waited for (see lockstep_state.h).
   uint64_t UnwaitedSteps() const { return unwaited_steps_; }
@@ -130,6 +132,7 @@ class Lockstep {
   PublishCounts& counts_;
   NodePinger pinger_;
   ros::Time latest_step_;  ///< the stamp of the latest step waited for: no answer can be later
+  uint64_t rewinds_ = 0;   ///< Rewind calls so far (a wait that sees it change ends)
   ros::WallTime next_report_;
   uint64_t unwaited_steps_ = 0;
   std::string first_unwaited_reason_;
