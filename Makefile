@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test test-long test-all test-sanitize test-arm64 lint demo demo-msf bench clean train-example
+.PHONY: setup build test test-long test-all test-sanitize test-arm64 lint demo demo-msf bench clean train-example train-policy rl-site
 
 setup:
 	@bash scripts/setup.sh
@@ -45,10 +45,19 @@ bench: build
 clean:
 	rm -rf build/ws
 
-# PPO (Stable-Baselines3) on the batched flight engine: PyTorch's CPU build and SB3 into build/rl-site
-# (not part of setup: about 900 MB), then rotors_python/examples/train_hover.py (docs/batched_flight.md)
-train-example: build
+rl-site:
 	@test -f build/rl-site/.installed || (build/venv/bin/pip install -q --disable-pip-version-check --target build/rl-site --no-deps \
 	  torch==2.13.0 stable-baselines3==2.9.2 cloudpickle sympy mpmath networkx jinja2 markupsafe fsspec filelock typing-extensions \
 	  && touch build/rl-site/.installed)
+
+# PPO (Stable-Baselines3) on the batched flight engine: PyTorch's CPU build and SB3 into build/rl-site
+# (not part of setup: about 900 MB), then rotors_python/examples/train_hover.py (docs/batched_flight.md)
+train-example: build rl-site
 	@bash -c 'source scripts/env.bash && PYTHONPATH=$$PWD/build/rl-site:$$PYTHONPATH python3 rotors_python/examples/train_hover.py'
+
+# the policies mav_policy_example.launch flies (rotors_control/policies/): trained again with
+# rotors_python/examples/train_policy.py, with and without randomised airframes (docs/batched_flight.md)
+train-policy: build rl-site
+	@bash -c 'source scripts/env.bash && cd rotors_python/examples && export PYTHONPATH=$$PWD/../../build/rl-site:$$PYTHONPATH \
+	  && python3 train_policy.py --randomize --out ../../rotors_control/policies/firefly_hover_randomized.npz \
+	  && python3 train_policy.py --out ../../rotors_control/policies/firefly_hover_nominal.npz'

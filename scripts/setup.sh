@@ -17,7 +17,7 @@ apt_packages=(
   libstereo-msgs-dev python3-stereo-msgs libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   python3-evdev python3-sensor-msgs clang-format clang-tidy libembree-dev pybind11-dev python3-pybind11 python3-rospkg
   libopencv-video-dev python3-opencv
-  openssl socat
+  libminizip-dev openssl socat
 )
 missing=()
 for p in "${apt_packages[@]}"; do

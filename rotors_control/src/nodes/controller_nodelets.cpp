@@ -7,6 +7,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "attitude_level_controller_ros.h"
+#include "hover_policy_ros.h"
 #include "lee_position_controller_ros.h"
 
 namespace rotors_control {
@@ -21,8 +22,10 @@ class ControllerNodelet : public nodelet::Nodelet {
 
 using LeePositionControllerNodelet = ControllerNodelet<LeePositionControllerRos>;
 using RollPitchYawrateThrustControllerNodelet = ControllerNodelet<AttitudeLevelControllerRos>;
+using RlPolicyNodelet = ControllerNodelet<HoverPolicyRos>;
 
 }  // namespace rotors_control
 
 PLUGINLIB_EXPORT_CLASS(rotors_control::LeePositionControllerNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(rotors_control::RollPitchYawrateThrustControllerNodelet, nodelet::Nodelet)
+PLUGINLIB_EXPORT_CLASS(rotors_control::RlPolicyNodelet, nodelet::Nodelet)

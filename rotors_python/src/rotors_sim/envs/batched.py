@@ -58,7 +58,9 @@ class FlightBatchEnv(VectorEnv):
     from that reset on): every vehicle draws its airframe at every reset from its episode's
     generator, and its sensor noise a new seed; None (the default): every episode the xacro's
     airframe and the same noise. `imu` simulates the vehicles' IMU (self.batch.imu; off by default:
-    the observations are the odometry's, and the IMU costs as much as the rest of the step)."""
+    the observations are the odometry's, and the IMU costs as much as the rest of the step).
+    With autoreset off, stepping a vehicle that ended before it is reset raises, unless
+    `step_after_end` (a plain gymnasium.Env's caller may step on: SingleVehicleEnv)."""
 
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP}
 
@@ -84,6 +86,7 @@ class FlightBatchEnv(VectorEnv):
         alive_bonus: float = 0.0,
         randomization: dict[str, Any] | None = None,
         imu: bool = False,
+        step_after_end: bool = False,
     ):
         if task not in TASKS:
             raise SimError(f"task '{task}' is not known; use one of: {', '.join(TASKS)}")
@@ -94,7 +97,7 @@ class FlightBatchEnv(VectorEnv):
         self.task, self.num_envs, self.action_type = task, int(num_envs), action_type
         if not float(alive_bonus) >= 0.0:
             raise SimError(f"alive_bonus = {alive_bonus} must be >= 0 (a negative one makes crashing early pay)")
-        self.autoreset = autoreset
+        self.autoreset, self.step_after_end = autoreset, step_after_end
         self.metadata = {"autoreset_mode": AutoresetMode.SAME_STEP if autoreset else AutoresetMode.DISABLED}
         self.alive_bonus = float(alive_bonus)
         self.randomization = check_spec(randomization) if randomization is not None else None
@@ -129,14 +132,14 @@ class FlightBatchEnv(VectorEnv):
         self.single_action_space = gym.spaces.Box(-1.0, 1.0, (action_size,), np.float32)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self._high = high
+        self._high, self._low = high.astype(np.float64), -high.astype(np.float64)
         self._rngs = [np.random.default_rng(i) for i in range(self.num_envs)]
         self.steps = np.zeros(self.num_envs, dtype=np.int64)
         self.index = np.zeros(self.num_envs, dtype=np.int64)
         self.distance = np.zeros(self.num_envs)
         self._ended = np.zeros(self.num_envs, dtype=bool)  # with autoreset off: ended, not reset yet
         self._obs = np.zeros(self.observation_space.shape, np.float32)
-        self.randomized_before = False
+        self._airframes_drawn = False  # some vehicle flies a drawn airframe: None restores the xacro's
 
     # --- Gymnasium ---
     def reset(self, *, seed: int | list[int | None] | None = None, options: dict[str, Any] | None = None):
@@ -163,7 +166,7 @@ class FlightBatchEnv(VectorEnv):
         ended = np.flatnonzero(mask)
         self._reset(ended)
         self._ended[ended] = False
-        self._obs[ended] = self._observe()[ended]
+        self._obs[ended] = self._observe(ended)
         return self._obs.copy(), {"time_s": self.batch.time.copy(), "_time_s": mask.copy()}
 
     def step(self, actions):
@@ -173,7 +176,7 @@ class FlightBatchEnv(VectorEnv):
         if not np.all(np.isfinite(a)):
             bad = np.argwhere(~np.isfinite(a))[0]
             raise SimError(f"actions[{bad[0]}, {bad[1]}] = {a[tuple(bad)]} is not finite")
-        if self._ended.any():
+        if self._ended.any() and not self.step_after_end:
             raise SimError(
                 f"environments {np.flatnonzero(self._ended).tolist()} have ended and autoreset is off; "
                 "reset them first: reset(options={'reset_mask': mask})"
@@ -234,7 +237,7 @@ class FlightBatchEnv(VectorEnv):
             for key, value in step_info.items():
                 final_info[key], final_info["_" + key] = np.where(done, value, np.zeros_like(value)), done.copy()
             self._reset(ended)
-            obs[ended] = self._observe()[ended]
+            obs[ended] = self._observe(ended)
             for key in step_info:
                 if key != "time_s":
                     infos[key] = np.where(done, np.zeros_like(infos[key]), infos[key])
@@ -269,11 +272,11 @@ class FlightBatchEnv(VectorEnv):
                 rng = self._rngs[i]
                 self.batch.set_airframe(i, **draw_airframe(self.randomization, nominal, rng))
                 self.batch.set_seed(i, int(rng.integers(0, 2**31)))
-        elif self.randomized_before:
+            self._airframes_drawn = True
+        elif self._airframes_drawn:
             for i in ended:
                 self.batch.set_airframe(i)  # the xacro's again, and the constructor's noise
                 self.batch.set_seed(i, self.sensor_seed + i)
-        self.randomized_before = self.randomized_before or self.randomization is not None
         self.batch.reset(ended, positions=positions, yaws=yaws)
         # the sensor's first message is the end of the first step; until then, the reset state
         self.batch.commands[ended] = 0.0
@@ -281,18 +284,27 @@ class FlightBatchEnv(VectorEnv):
         self.index[ended] = 0
         self.distance[ended] = np.linalg.norm(self.batch.odometry[ended, 0:3] - self.waypoints[0], axis=1)
 
-    def _observe(self) -> np.ndarray:
-        o = self.batch.odometry
+    def _observe(self, rows: np.ndarray | None = None) -> np.ndarray:
+        """The observations of every vehicle, or of `rows` only."""
+        o = self.batch.odometry if rows is None else self.batch.odometry[rows]
+        index = self.index if rows is None else self.index[rows]
         p, q = o[:, 0:3], o[:, 3:7]
-        v_W = rotate_rows(q, o[:, 7:10])
+        obs = np.empty((len(o), len(self._high)))
         if self.task == "hover":
-            obs = np.hstack([p - self.target, v_W, q, o[:, 10:13]])
+            np.subtract(p, self.target, out=obs[:, 0:3])
+            v_at = 3
         else:
             last = len(self.waypoints) - 1
-            current = self.waypoints[np.minimum(self.index, last)]
-            following = self.waypoints[np.minimum(self.index + 1, last)]
-            obs = np.hstack([p - current, p - following, v_W, q, o[:, 10:13]])
-        return np.clip(obs, -self._high, self._high).astype(np.float32)
+            np.subtract(p, self.waypoints[np.minimum(index, last)], out=obs[:, 0:3])
+            np.subtract(p, self.waypoints[np.minimum(index + 1, last)], out=obs[:, 3:6])
+            v_at = 6
+        obs[:, v_at : v_at + 3] = rotate_rows(q, o[:, 7:10])
+        obs[:, v_at + 3 : v_at + 7] = q
+        obs[:, v_at + 7 : v_at + 10] = o[:, 10:13]
+        # np.clip's values, without its wrapper's cost
+        np.maximum(obs, self._low, out=obs)
+        np.minimum(obs, self._high, out=obs)
+        return obs.astype(np.float32)
 
 
 def hover_vector_env(num_envs: int = 16, **kwargs: Any) -> FlightBatchEnv:
@@ -317,7 +329,7 @@ class SingleVehicleEnv(gym.Env):
     metadata = {"render_modes": []}
 
     def __init__(self, task: str = "hover", **kwargs: Any):
-        self.vector = FlightBatchEnv(task, 1, autoreset=False, **kwargs)
+        self.vector = FlightBatchEnv(task, 1, autoreset=False, step_after_end=True, **kwargs)
         self.observation_space = self.vector.single_observation_space
         self.action_space = self.vector.single_action_space
 
@@ -327,7 +339,6 @@ class SingleVehicleEnv(gym.Env):
         return obs[0], {"time_s": float(info["time_s"][0])}
 
     def step(self, action):
-        self.vector._ended[:] = False  # an env steps on after it ends if its caller does so
         obs, reward, terminated, truncated, info = self.vector.step(np.asarray(action)[None, :])
         keys = ("time_s", "collided", "success", "waypoint")
         return (

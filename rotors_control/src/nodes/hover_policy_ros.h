@@ -1,0 +1,102 @@
+// rl_policy_node's ROS face (and the same as a nodelet, in_process:=true): odometry + a target
+// (command/trajectory or command/pose) -> command/roll_pitch_yawrate_thrust, which
+// roll_pitch_yawrate_thrust_controller_node turns into rotor speeds, as RotorS' MPC hands its
+// commands over. The policy (HoverPolicy) is read from the file in ~policy (train_policy.py's .npz).
+// The target is the position of the latest command/pose, or of a trajectory's first point (a
+// trajectory's later points and every yaw are not followed: the policy has no yaw target). Before the
+// first target the node commands zero thrust. Each command is stamped with the odometry stamp it
+// answers (lockstep keys on this).
+#pragma once
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <geometry_msgs/PoseStamped.h>
+#include <mav_msgs/RollPitchYawrateThrust.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <trajectory_msgs/MultiDOFJointTrajectory.h>
+
+#include "rotors_control/policy_file.h"
+#include "ros_conversions.h"
+
+namespace rotors_control {
+
+class HoverPolicyRos {
+ public:
+  static constexpr const char* kTag = "rl_policy";
+  static constexpr const char* kNodeletType = "rotors_control/RlPolicyNodelet";
+
+  /// Reads ~policy (throws std::invalid_argument naming a missing parameter or a bad file).
+  HoverPolicyRos(ros::NodeHandle nh, ros::NodeHandle private_nh) : policy_(Load(private_nh)) {
+    command_pub_ = nh.advertise<mav_msgs::RollPitchYawrateThrust>("command/roll_pitch_yawrate_thrust", 1);
+    trajectory_sub_ = nh.subscribe("command/trajectory", 1, &HoverPolicyRos::OnTrajectory, this);
+    pose_sub_ = nh.subscribe("command/pose", 1, &HoverPolicyRos::OnPose, this);
+    odometry_sub_ = nh.subscribe("odometry", 1, &HoverPolicyRos::OnOdometry, this, ros::TransportHints().tcpNoDelay());
+  }
+
+ private:
+  static HoverPolicy Load(const ros::NodeHandle& private_nh) {
+    std::string path;
+    if (!private_nh.getParam("policy", path) || path.empty())
+      throw std::invalid_argument("parameter ~policy (the policy file, e.g. rotors_control/policies/"
+                                  "firefly_hover_randomized.npz) is missing");
+    HoverPolicy policy(LoadHoverPolicy(path));
+    ROS_INFO("[%s] policy %s: %zu layers, thrust %.3f N at a_3 = 0, tilt up to %.2f rad", kTag, path.c_str(),
+             policy.Parameters().layers.size(), policy.Parameters().hover_thrust_n, policy.Parameters().max_tilt_rad);
+    return policy;
+  }
+
+  void SetTarget(const Eigen::Vector3d& target, const char* source) {
+    if (!target.allFinite()) {
+      ROS_WARN_THROTTLE(1.0, "[%s] ignoring %s with NaN or inf", kTag, source);
+      return;
+    }
+    target_W_ = target;
+    has_target_ = true;
+  }
+  void OnTrajectory(const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& msg) {
+    if (msg->points.empty() || msg->points[0].transforms.empty()) {
+      ROS_WARN_THROTTLE(1.0, "[%s] ignoring command/trajectory without a point", kTag);
+      return;
+    }
+    if (msg->points.size() > 1)
+      ROS_WARN_ONCE("[%s] command/trajectory has %zu points: the policy flies to the first only", kTag,
+                    msg->points.size());
+    const auto& t = msg->points[0].transforms[0].translation;
+    SetTarget({t.x, t.y, t.z}, "command/trajectory");
+  }
+  void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
+    const auto& p = msg->pose.position;
+    SetTarget({p.x, p.y, p.z}, "command/pose");
+  }
+  void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
+    const std::string why = CheckOdometry(*msg);
+    if (!why.empty()) {
+      ROS_WARN_THROTTLE(1.0, "[%s] ignoring odometry: %s (no command sent)", kTag, why.c_str());
+      return;
+    }
+    mav_msgs::RollPitchYawrateThrust out;
+    out.header.stamp = msg->header.stamp;
+    out.header.frame_id = msg->child_frame_id;
+    if (has_target_) {
+      const VehicleState s = StateFromOdometry(*msg);
+      const RollPitchYawrateThrust c = policy_.Command(policy_.Action(policy_.Observation(
+          s.position_W, s.orientation_W_B, s.velocity_B, s.angular_velocity_B, target_W_)));
+      out.roll = c.roll_rad;
+      out.pitch = c.pitch_rad;
+      out.yaw_rate = c.yaw_rate_rad_s;
+      out.thrust.z = c.thrust_n;
+    }
+    command_pub_.publish(out);
+  }
+
+  HoverPolicy policy_;
+  Eigen::Vector3d target_W_ = Eigen::Vector3d::Zero();
+  bool has_target_ = false;
+  ros::Publisher command_pub_;
+  ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_;
+};
+
+}  // namespace rotors_control
