@@ -65,18 +65,19 @@ def engine_only(urdf: Path, with_ros: bool, runs: int = 5) -> dict:
 
 
 def rotorpy_python() -> Path:
+    """RotorPy 3.0.0 in its own venv, with its batched extra (torchdiffeq, roma, opt-einsum) and PyTorch
+    without its CUDA packages (torch --no-deps and its pure-Python dependencies, as `make rl-site`)."""
     venv = OUT / "rotorpy-venv"
-    if (
-        not (venv / "bin" / "python").exists()
-        or subprocess.run([str(venv / "bin" / "python"), "-c", "import rotorpy"], capture_output=True).returncode != 0
-    ):
+    python = venv / "bin" / "python"
+    check = [str(python), "-c", "import torch, torchdiffeq, roma, opt_einsum, rotorpy"]
+    if not python.exists() or subprocess.run(check, capture_output=True).returncode != 0:
+        pip = [str(venv / "bin" / "pip"), "install", "-q", "--disable-pip-version-check"]
         subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
-        subprocess.run(
-            [str(venv / "bin" / "pip"), "install", "-q", "--disable-pip-version-check", "rotorpy==3.0.0"],
-            check=True,
-            stderr=subprocess.DEVNULL,
-        )
-    return venv / "bin" / "python"
+        subprocess.run([*pip, "rotorpy==3.0.0"], check=True, stderr=subprocess.DEVNULL)
+        torch_deps = "sympy mpmath networkx jinja2 markupsafe fsspec filelock typing-extensions".split()
+        batched = ["torch==2.13.0", *torch_deps, "torchdiffeq", "roma", "opt-einsum"]
+        subprocess.run([*pip, "--no-deps", *batched], check=True, stderr=subprocess.DEVNULL)
+    return python
 
 
 def rotorpy_hover_wall_s() -> float:
@@ -566,7 +567,7 @@ def hover_drone_s_per_s(peer: str, worlds: int, seconds: float, rates_hz=(), mod
     mode: "loop" or "one_call" for the scripts that have both (PEER_MODES)."""
     if peer in ("rotors_sim", "rotors_batch", "rotors_env"):
         python = sys.executable
-    elif peer == "rotorpy":
+    elif peer in ("rotorpy", "rotorpy_batch"):
         python = str(rotorpy_python())
     else:
         python = str(peer_python(peer))
@@ -665,12 +666,15 @@ BATCH_PEERS = (
     ("gym_pybullet_drones", "gym_pybullet_drones", (1, 64), 40.0),
     ("PyFlyt", "pyflyt", (1, 64), 40.0),
     ("rotorpy", "rotorpy", (1,), 5.0),
+    # RotorPy 3.0's batch (PyTorch, simulate_batch, rk4, one torch thread): 2 s of sim time at every count
+    ("rotorpy_batch", "rotorpy_batch", (1, 64, 1024), 2.0),
 )
 BATCH_NOT_RUN = {
     "rotors_world": "a World per vehicle (xacro and 12 plugins each): 1,024 take minutes to build",
     "gym_pybullet_drones": "one aviary of N drones, slower than real time at 64",
     "PyFlyt": "one aviary of N drones, slower than real time at 64",
-    "rotorpy": "no batch of worlds",
+    "rotorpy": "its single-vehicle Environment; its batch is the rotorpy_batch row",
+    "rotorpy_batch": "its whole flight's state history is kept in memory: 4,096 vehicles take about 5 GB",
 }
 
 
@@ -748,6 +752,17 @@ def batched_flight_rows(b: dict) -> list:
                 f"{x['randomized_1'] / fastest['1']:.1f} x / {x['randomized_64'] / fastest['64']:.1f} x",
                 ">= 10 x / >= 10 x",
             ),
+        ]
+    rotorpy_batch = t.get("rotorpy_batch", {})
+    if ours and rotorpy_batch:
+        ratios = {n: ours[n] / rotorpy_batch[n] for n in ("1", "64", "1024") if n in ours and n in rotorpy_batch}
+        slower = [n for n, r in ratios.items() if r < 1.0]
+        rows += [
+            (
+                "  rotors_batch / RotorPy's batch, 1 / 64 / 1,024 vehicles",
+                " / ".join(f"{r:,.0f} x" for r in ratios.values()),
+                "RotorPy's batch faster at " + ", ".join(slower) + " vehicles" if slower else "RotorPy's batch faster nowhere",
+            )
         ]
     if ours:
         ns = {n: 1e9 / (ours[n] / 0.002) for n in ours}  # wall time per vehicle-step, both threads working
