@@ -15,7 +15,7 @@ GTESTS = {
     "mav_msgs_api_user/test_mav_msgs_api": 11,
     "msf_updates/test_msf_pose_ekf": 10,
     "rotors_control_api_user/test_rotors_control_api": 5,
-    "rotors_control/test_rotors_control": 18,
+    "rotors_control/test_rotors_control": 21,
     "rotors_core/test_rotors_core_engine": 79,
     "rotors_gazebo_plugins/test_autopilot_codecs": 12,
     "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 67,

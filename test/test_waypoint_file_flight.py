@@ -36,7 +36,7 @@ def test_waypoint_file_is_flown_and_bad_trajectories_are_ignored(ros: RosGraph, 
     assert "Read 2 waypoints." in log
     assert (s["x"], s["y"], s["z"]) == (pytest.approx(1.0, abs=0.02), pytest.approx(1.0, abs=0.02), pytest.approx(1.54, abs=0.01))
     assert math.degrees(2 * math.atan2(s["qz"], s["qw"])) == pytest.approx(90.0, abs=1.0)
-    assert "message has no points; ignored" in log
+    assert "ignoring trajectory: message has no points" in log
     assert "point 0 has NaN or inf" in log
     assert "quaternion has norm 2.000000, not 1" in log
     assert math.dist((after["x"], after["y"], after["z"]), (s["x"], s["y"], s["z"])) < 0.01  # ignored

@@ -35,7 +35,7 @@ std::string Npy(const std::string& shape, const std::vector<double>& values, con
 HoverPolicyParameters TinyPolicy() {
   HoverPolicyParameters p;
   DenseLayer hidden, out;
-  hidden.weight = Eigen::MatrixXd::Constant(2, 13, 0.1);
+  hidden.weight = Eigen::MatrixXd::Constant(2, 18, 0.1);
   hidden.bias = Eigen::VectorXd::Zero(2);
   out.weight = Eigen::MatrixXd::Constant(4, 2, 1.0);
   out.bias = Eigen::VectorXd::Zero(4);
@@ -69,9 +69,12 @@ TEST(HoverPolicy, ShippedPoliciesAgreeWithTheTrainingScriptsForwardPass) {
 TEST(HoverPolicy, ObservationAndCommandAsTheBatchEnvironment) {
   const HoverPolicy policy(TinyPolicy());
   const Eigen::Quaterniond q(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  // a target 8 m away along z (and 1, 2 m in x, y): the point 0.5 m per axis on the way to it
   const Eigen::VectorXd o = policy.Observation({1, 2, 9}, q, {1, 0, 0}, {0.1, 0.2, 60}, {0, 0, 1});
-  EXPECT_NEAR(o[0], 1.0, 1e-15);
-  EXPECT_NEAR(o[2], 5.0, 1e-15);  // 8 m clipped to the bound
+  EXPECT_NEAR(o[0], 1.0 / 16.0, 1e-15);
+  EXPECT_NEAR(o[1], 2.0 / 16.0, 1e-15);
+  EXPECT_NEAR(o[2], 0.5, 1e-15);
+  EXPECT_EQ(policy.Observation({0.3, 0, 1}, q, {0, 0, 0}, {0, 0, 0}, {0, 0, 1}).head<3>(), Eigen::Vector3d(0.3, 0, 0));
   EXPECT_NEAR(o[3], 0.0, 1e-15);  // body x after a 90 deg yaw is world y
   EXPECT_NEAR(o[4], 1.0, 1e-15);
   EXPECT_NEAR(o[8], std::sin(M_PI / 4), 1e-15);  // q_z
@@ -82,8 +85,18 @@ TEST(HoverPolicy, ObservationAndCommandAsTheBatchEnvironment) {
   EXPECT_DOUBLE_EQ(c.pitch_rad, -0.6);
   EXPECT_DOUBLE_EQ(c.yaw_rate_rad_s, 0.5);
   EXPECT_DOUBLE_EQ(c.thrust_n, 15.0);  // a_3 = 0: the training airframe's weight
-  // a = clip(W1 tanh(W0 o + b0) + b1): with every observation 5, tanh(6.5) twice, clipped to 1
-  EXPECT_EQ(policy.Action(Eigen::VectorXd::Constant(13, 5.0)), Eigen::Vector4d::Ones());
+  // f: the quaternion as its rotation matrix, row by row (here yaw 90 deg: x_B = y_W)
+  const Eigen::VectorXd f = HoverPolicy::Features(o);
+  ASSERT_EQ(f.size(), 18);
+  EXPECT_NEAR(f[6 + 1], -1.0, 1e-15);  // R_01
+  EXPECT_NEAR(f[6 + 3], 1.0, 1e-15);   // R_10
+  EXPECT_NEAR(f[6 + 8], 1.0, 1e-15);   // R_22
+  EXPECT_EQ(f.tail<3>(), o.tail<3>());
+  // a = clip(W1 tanh(W0 f + b0) + b1): with a level attitude and everything else 5, f sums to 48,
+  // tanh(4.8) twice, clipped to 1
+  Eigen::VectorXd level = Eigen::VectorXd::Constant(13, 5.0);
+  level.segment<4>(6) << 0, 0, 0, 1;
+  EXPECT_EQ(policy.Action(level), Eigen::Vector4d::Ones());
 }
 
 TEST(HoverPolicy, BadPoliciesAndFilesAreOneLineNamingTheProblem) {

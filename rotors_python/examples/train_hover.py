@@ -26,9 +26,16 @@ class FlightBatchVecEnv(VecEnv):
     """FlightBatchEnv as Stable-Baselines3's VecEnv: both reset an ended episode in the same step;
     SB3 wants the last observation in info["terminal_observation"]."""
 
-    def __init__(self, envs: FlightBatchEnv):
+    def __init__(self, envs: FlightBatchEnv, extra_reward=None, features=None, feature_space=None):
         self.envs = envs
-        super().__init__(envs.num_envs, envs.single_observation_space, envs.single_action_space)
+        # extra_reward(last_obs, terminated) -> a reward added to the environment's (a training
+        # objective of its own, e.g. train_policy.py's precision term); last_obs is the step's
+        # observation before any autoreset. features(obs) -> what the policy sees (feature_space),
+        # e.g. train_policy.py's rotation matrix in place of the quaternion
+        self.extra_reward = extra_reward
+        self.features = features if features is not None else (lambda obs: obs)
+        space = feature_space if feature_space is not None else envs.single_observation_space
+        super().__init__(envs.num_envs, space, envs.single_action_space)
         self._actions = None
         self.returns = np.zeros(envs.num_envs)
         self.lengths = np.zeros(envs.num_envs, dtype=int)
@@ -37,7 +44,7 @@ class FlightBatchVecEnv(VecEnv):
     def reset(self):
         obs, _ = self.envs.reset(seed=self._seeds[0] if self._seeds and self._seeds[0] is not None else None)
         self._seeds = []
-        return obs
+        return self.features(obs)
 
     def step_async(self, actions):
         self._actions = actions
@@ -45,18 +52,23 @@ class FlightBatchVecEnv(VecEnv):
     def step_wait(self):
         obs, reward, terminated, truncated, info = self.envs.step(self._actions)
         done = terminated | truncated
+        if self.extra_reward is not None:
+            last = obs.copy()
+            for i in np.flatnonzero(done):
+                last[i] = info["final_obs"][i]
+            reward = reward + self.extra_reward(last, terminated)
         self.returns += reward
         self.lengths += 1
         infos = [{} for _ in range(self.num_envs)]
         for i in np.flatnonzero(done):
             infos[i] = {
-                "terminal_observation": info["final_obs"][i],
+                "terminal_observation": self.features(info["final_obs"][i][None, :])[0],
                 "TimeLimit.truncated": bool(truncated[i]),
                 "episode": {"r": float(self.returns[i]), "l": int(self.lengths[i])},
             }
             self.finished.append((float(self.returns[i]), int(self.lengths[i])))
             self.returns[i], self.lengths[i] = 0.0, 0
-        return obs, reward.astype(np.float32), done, infos
+        return self.features(obs), reward.astype(np.float32), done, infos
 
     def close(self):
         self.envs.close()

@@ -1,6 +1,6 @@
 // Reads a policy written by numpy (np.savez: a zip of .npy arrays) into HoverPolicyParameters:
 // arrays w0, b0, w1, b1, ... (float64, C order), observation_high, and the scalars max_tilt_rad,
-// max_yaw_rate_rad_s and hover_thrust_n. The zip is read with minizip; the .npy format is numpy's
+// max_yaw_rate_rad_s, hover_thrust_n and max_offset_m. The zip is read with minizip; the .npy format is numpy's
 // own (NEP 1: magic, version, a header dict with descr, fortran_order and shape, then the data).
 #pragma once
 
@@ -13,7 +13,7 @@
 namespace rotors_control {
 
 struct NpyArray {
-  std::vector<long> shape;    ///< () for a scalar
+  std::vector<long> shape;   ///< () for a scalar
   std::vector<double> data;  ///< C order
 };
 

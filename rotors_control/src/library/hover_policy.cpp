@@ -8,12 +8,12 @@ namespace rotors_control {
 std::string HoverPolicyParameters::Validate() const {
   std::ostringstream why;
   if (layers.empty()) return "the policy has no layers";
-  long inputs = HoverPolicy::kObservationSize;
+  long inputs = HoverPolicy::kFeatureSize;
   for (size_t k = 0; k < layers.size(); ++k) {
     const DenseLayer& l = layers[k];
     if (l.weight.cols() != inputs || l.bias.size() != l.weight.rows()) {
-      why << "layer " << k << " has a " << l.weight.rows() << " x " << l.weight.cols() << " weight and " << l.bias.size()
-          << " biases; it must take " << inputs << " inputs and have one bias per output";
+      why << "layer " << k << " has a " << l.weight.rows() << " x " << l.weight.cols() << " weight and "
+          << l.bias.size() << " biases; it must take " << inputs << " inputs and have one bias per output";
       return why.str();
     }
     if (!l.weight.allFinite() || !l.bias.allFinite()) {
@@ -37,6 +37,10 @@ std::string HoverPolicyParameters::Validate() const {
     why << "max_yaw_rate_rad_s = " << max_yaw_rate_rad_s << " must be > 0";
     return why.str();
   }
+  if (!(max_offset_m > 0.0) || !std::isfinite(max_offset_m)) {
+    why << "max_offset_m = " << max_offset_m << " must be > 0";
+    return why.str();
+  }
   if (!(hover_thrust_n > 0.0) || !std::isfinite(hover_thrust_n)) {
     why << "hover_thrust_n = " << hover_thrust_n << " must be > 0";
     return why.str();
@@ -53,8 +57,10 @@ Eigen::VectorXd HoverPolicy::Observation(const Eigen::Vector3d& position_W, cons
                                          const Eigen::Vector3d& velocity_B, const Eigen::Vector3d& angular_velocity_B,
                                          const Eigen::Vector3d& target_W) const {
   Eigen::VectorXd o(kObservationSize);
-  // o = [p_W - p_target_W, R(q_W_B) v_B, q_W_B (x, y, z, w), omega_B]
-  o.segment<3>(0) = position_W - target_W;
+  // o = [e, R(q_W_B) v_B, q_W_B (x, y, z, w), omega_B],  e = (p - p_target) min(1, d_max / max_i |p - p_target|_i)
+  const Eigen::Vector3d e = position_W - target_W;
+  const double largest = e.cwiseAbs().maxCoeff();
+  o.segment<3>(0) = largest > params_.max_offset_m ? Eigen::Vector3d(e * (params_.max_offset_m / largest)) : e;
   o.segment<3>(3) = orientation_W_B * velocity_B;
   o.segment<4>(6) = orientation_W_B.coeffs();  // Eigen stores (x, y, z, w)
   o.segment<3>(10) = angular_velocity_B;
@@ -62,9 +68,19 @@ Eigen::VectorXd HoverPolicy::Observation(const Eigen::Vector3d& position_W, cons
   return o.array().min(high).max(-high).matrix();
 }
 
+Eigen::VectorXd HoverPolicy::Features(const Eigen::VectorXd& o) {
+  // f = [o_0..5, R(q) row by row, o_10..12], q = (x, y, z, w) = o_6..9
+  Eigen::VectorXd f(kFeatureSize);
+  f.head<6>() = o.head<6>();
+  const Eigen::Matrix3d R = Eigen::Quaterniond(o[9], o[6], o[7], o[8]).toRotationMatrix();
+  for (int r = 0; r < 3; ++r) f.segment<3>(6 + 3 * r) = R.row(r).transpose();
+  f.tail<3>() = o.tail<3>();
+  return f;
+}
+
 Eigen::Vector4d HoverPolicy::Action(const Eigen::VectorXd& observation) const {
-  // h_{k+1} = tanh(W_k h_k + b_k);  a = clip(W_L h_L + b_L, -1, 1)
-  Eigen::VectorXd h = observation;
+  // h_0 = f;  h_{k+1} = tanh(W_k h_k + b_k);  a = clip(W_L h_L + b_L, -1, 1)
+  Eigen::VectorXd h = Features(observation);
   for (size_t k = 0; k < params_.layers.size(); ++k) {
     h = params_.layers[k].weight * h + params_.layers[k].bias;
     if (k + 1 < params_.layers.size()) h = h.array().tanh().matrix();

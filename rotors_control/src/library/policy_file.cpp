@@ -56,8 +56,8 @@ NpyArray ParseNpy(const std::string& bytes, const std::string& name) {
   }
   const size_t data_offset = offset + header_len;
   if (bytes.size() != data_offset + count * sizeof(double))
-    throw Bad("array '" + name + "' holds " + std::to_string(bytes.size() - data_offset) + " bytes of data; its shape " +
-              shape + " needs " + std::to_string(count * sizeof(double)));
+    throw Bad("array '" + name + "' holds " + std::to_string(bytes.size() - data_offset) +
+              " bytes of data; its shape " + shape + " needs " + std::to_string(count * sizeof(double)));
   out.data.resize(count);
   std::memcpy(out.data.data(), bytes.data() + data_offset, count * sizeof(double));  // little-endian host
   return out;
@@ -78,7 +78,8 @@ std::map<std::string, NpyArray> ReadNpz(const std::string& path) {
       entry.resize(entry.size() - 4);
       std::string bytes(info.uncompressed_size, '\0');
       if (unzOpenCurrentFile(zip) != UNZ_OK ||
-          unzReadCurrentFile(zip, bytes.data(), static_cast<unsigned>(bytes.size())) != static_cast<int>(bytes.size()) ||
+          unzReadCurrentFile(zip, bytes.data(), static_cast<unsigned>(bytes.size())) !=
+              static_cast<int>(bytes.size()) ||
           unzCloseCurrentFile(zip) != UNZ_OK)
         throw Bad("policy file '" + path + "': array '" + entry + "' cannot be read (truncated?)");
       arrays[entry] = ParseNpy(bytes, entry);
@@ -122,6 +123,7 @@ HoverPolicyParameters LoadHoverPolicy(const std::string& path) {
   p.max_tilt_rad = scalar("max_tilt_rad");
   p.max_yaw_rate_rad_s = scalar("max_yaw_rate_rad_s");
   p.hover_thrust_n = scalar("hover_thrust_n");
+  p.max_offset_m = scalar("max_offset_m");
   const std::string why = p.Validate();
   if (!why.empty()) throw Bad("policy file '" + path + "': " + why);
   return p;

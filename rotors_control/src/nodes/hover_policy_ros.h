@@ -2,8 +2,9 @@
 // (command/trajectory or command/pose) -> command/roll_pitch_yawrate_thrust, which
 // roll_pitch_yawrate_thrust_controller_node turns into rotor speeds, as RotorS' MPC hands its
 // commands over. The policy (HoverPolicy) is read from the file in ~policy (train_policy.py's .npz).
-// The target is the position of the latest command/pose, or of a trajectory's first point (a
-// trajectory's later points and every yaw are not followed: the policy has no yaw target). Before the
+// The target is the position of the set point TrajectorySchedule releases (trajectory_schedule.h, as
+// the Lee node takes them). Yaw is not followed (the policy has no yaw target); a target farther than
+// the policy learnt is approached through a point on the way (HoverPolicy::Observation). Before the
 // first target the node commands zero thrust. Each command is stamped with the odometry stamp it
 // answers (lockstep keys on this).
 #pragma once
@@ -20,6 +21,7 @@
 
 #include "rotors_control/policy_file.h"
 #include "ros_conversions.h"
+#include "trajectory_schedule.h"
 
 namespace rotors_control {
 
@@ -40,36 +42,44 @@ class HoverPolicyRos {
   static HoverPolicy Load(const ros::NodeHandle& private_nh) {
     std::string path;
     if (!private_nh.getParam("policy", path) || path.empty())
-      throw std::invalid_argument("parameter ~policy (the policy file, e.g. rotors_control/policies/"
-                                  "firefly_hover_randomized.npz) is missing");
+      throw std::invalid_argument(
+          "parameter ~policy (the policy file, e.g. rotors_control/policies/"
+          "firefly_hover_randomized.npz) is missing");
     HoverPolicy policy(LoadHoverPolicy(path));
     ROS_INFO("[%s] policy %s: %zu layers, thrust %.3f N at a_3 = 0, tilt up to %.2f rad", kTag, path.c_str(),
              policy.Parameters().layers.size(), policy.Parameters().hover_thrust_n, policy.Parameters().max_tilt_rad);
     return policy;
   }
 
-  void SetTarget(const Eigen::Vector3d& target, const char* source) {
-    if (!target.allFinite()) {
-      ROS_WARN_THROTTLE(1.0, "[%s] ignoring %s with NaN or inf", kTag, source);
+  void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
+    TrajectoryPoint point;
+    const std::string why = schedule_.FromPose(*msg, &point);
+    if (!why.empty()) {
+      ROS_WARN_THROTTLE(1.0, "[%s] ignoring command/pose: %s", kTag, why.c_str());
       return;
     }
-    target_W_ = target;
+    target_W_ = point.position_W;
     has_target_ = true;
   }
   void OnTrajectory(const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& msg) {
-    if (msg->points.empty() || msg->points[0].transforms.empty()) {
-      ROS_WARN_THROTTLE(1.0, "[%s] ignoring command/trajectory without a point", kTag);
+    double ahead_s = 0.0;
+    const std::string why = schedule_.Set(*msg, t_odometry_s_, &ahead_s);
+    if (!why.empty()) {
+      ROS_WARN_THROTTLE(1.0, "[%s] ignoring trajectory: %s", kTag, why.c_str());
       return;
     }
-    if (msg->points.size() > 1)
-      ROS_WARN_ONCE("[%s] command/trajectory has %zu points: the policy flies to the first only", kTag,
-                    msg->points.size());
-    const auto& t = msg->points[0].transforms[0].translation;
-    SetTarget({t.x, t.y, t.z}, "command/trajectory");
+    if (ahead_s > 0.0)
+      ROS_WARN_THROTTLE(1.0,
+                        "[%s] trajectory stamped %.0f s ahead of the odometry (a wall-clock stamp?); its points "
+                        "count from now",
+                        kTag, ahead_s);
+    ReleaseDue(t_odometry_s_);
   }
-  void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
-    const auto& p = msg->pose.position;
-    SetTarget({p.x, p.y, p.z}, "command/pose");
+  void ReleaseDue(double t_s) {
+    TrajectoryPoint point;
+    if (!schedule_.ReleaseDue(t_s, &point)) return;
+    target_W_ = point.position_W;
+    has_target_ = true;
   }
   void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
     const std::string why = CheckOdometry(*msg);
@@ -77,13 +87,15 @@ class HoverPolicyRos {
       ROS_WARN_THROTTLE(1.0, "[%s] ignoring odometry: %s (no command sent)", kTag, why.c_str());
       return;
     }
+    t_odometry_s_ = msg->header.stamp.toSec();
+    ReleaseDue(t_odometry_s_);
     mav_msgs::RollPitchYawrateThrust out;
     out.header.stamp = msg->header.stamp;
     out.header.frame_id = msg->child_frame_id;
     if (has_target_) {
       const VehicleState s = StateFromOdometry(*msg);
-      const RollPitchYawrateThrust c = policy_.Command(policy_.Action(policy_.Observation(
-          s.position_W, s.orientation_W_B, s.velocity_B, s.angular_velocity_B, target_W_)));
+      const RollPitchYawrateThrust c = policy_.Command(policy_.Action(
+          policy_.Observation(s.position_W, s.orientation_W_B, s.velocity_B, s.angular_velocity_B, target_W_)));
       out.roll = c.roll_rad;
       out.pitch = c.pitch_rad;
       out.yaw_rate = c.yaw_rate_rad_s;
@@ -95,6 +107,8 @@ class HoverPolicyRos {
   HoverPolicy policy_;
   Eigen::Vector3d target_W_ = Eigen::Vector3d::Zero();
   bool has_target_ = false;
+  TrajectorySchedule schedule_;
+  double t_odometry_s_ = 0.0;  ///< stamp of the latest odometry
   ros::Publisher command_pub_;
   ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_;
 };

@@ -2,15 +2,11 @@
 // nodelet in the simulator's process (in_process:=true): odometry + command/trajectory |
 // command/pose -> command/motor_speed.
 // Ours: motor_failure (rotors_comm/MotorFailure) re-allocates without (or with a derated) rotor.
-// Parameters from the private namespace (lee_controller_<mav>.yaml and <mav>.yaml). Trajectory
-// point i is due at header.stamp + time_from_start_i (sim time; an unstamped trajectory counts from
-// the latest odometry) and is released with the first odometry stamped at or after that time, so
-// that in lockstep a set point sent ahead of time takes effect at the same step in every run. A
-// point already due is applied at once (RotorS). The motor command is stamped with the odometry
-// stamp it answers (lockstep keys on this).
+// Parameters from the private namespace (lee_controller_<mav>.yaml and <mav>.yaml). Set points as
+// TrajectorySchedule releases them (trajectory_schedule.h). The motor command is stamped with the
+// odometry stamp it answers (lockstep keys on this).
 #pragma once
 
-#include <deque>
 #include <boost/make_shared.hpp>
 #include <stdexcept>
 
@@ -25,6 +21,7 @@
 #include "rotors_control/rotors_api_conversions.h"
 #include "rotors_control/parameter_report_ros.h"
 #include "ros_conversions.h"
+#include "trajectory_schedule.h"
 
 namespace rotors_control {
 
@@ -75,76 +72,34 @@ class LeePositionControllerRos {
   }
 
   void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
-    const std::string why = CheckUnitQuaternion(msg->pose.orientation);
-    const auto& p = msg->pose.position;
-    if (!why.empty() || !std::isfinite(p.x + p.y + p.z)) {
-      ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring command/pose: %s",
-                        why.empty() ? "position has NaN or inf" : why.c_str());
+    TrajectoryPoint point;
+    const std::string why = schedule_.FromPose(*msg, &point);
+    if (!why.empty()) {
+      ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring command/pose: %s", why.c_str());
       return;
     }
-    pending_.clear();
-    TrajectoryPoint point;
-    point.position_W = {p.x, p.y, p.z};
-    point.yaw_rad = mav_msgs::yawFromQuaternion(mav_msgs::quaternionFromMsg(msg->pose.orientation));
     controller_.SetTrajectoryPoint(point);
   }
 
   void OnTrajectory(const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& msg) {
-    if (msg->points.empty()) {
-      ROS_WARN_THROTTLE(1.0,
-                        "[lee_position_controller] Got MultiDOFJointTrajectory message, but message has no points; "
-                        "ignored");
+    double ahead_s = 0.0;
+    const std::string why = schedule_.Set(*msg, t_odometry_s_, &ahead_s);
+    if (!why.empty()) {
+      ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: %s", why.c_str());
       return;
     }
-    std::deque<std::pair<double, TrajectoryPoint>> points;
-    for (size_t i = 0; i < msg->points.size(); ++i) {
-      const auto& pt = msg->points[i];
-      if (pt.transforms.empty()) {
-        ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: point %zu has no transform", i);
-        return;
-      }
-      const std::string why = CheckUnitQuaternion(pt.transforms[0].rotation);
-      if (!why.empty()) {
-        ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: point %zu: %s", i, why.c_str());
-        return;
-      }
-      mav_msgs::EigenTrajectoryPoint eigen_point;
-      mav_msgs::eigenTrajectoryPointFromMsg(pt, &eigen_point);
-      const TrajectoryPoint p = TrajectoryPointFromEigen(eigen_point);
-      if (!p.IsFinite()) {
-        ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: point %zu has NaN or inf", i);
-        return;
-      }
-      // time_from_start: >= 0 and not decreasing, within a day
-      const double t_s = pt.time_from_start.toSec();
-      if (!(t_s >= 0.0 && t_s <= kMaxTimeFromStart_s && (points.empty() || t_s >= points.back().first))) {
-        ROS_WARN_THROTTLE(1.0,
-                          "[lee_position_controller] ignoring trajectory: point %zu has time_from_start %.3f s; it "
-                          "must be in [0, %.0f] s and not below the point before",
-                          i, t_s, kMaxTimeFromStart_s);
-        return;
-      }
-      points.emplace_back(t_s, p);
-    }
-    double t0_s = msg->header.stamp.isZero() ? t_odometry_s_ : msg->header.stamp.toSec();
-    if (t0_s - t_odometry_s_ > kMaxTimeFromStart_s) {
+    if (ahead_s > 0.0)
       ROS_WARN_THROTTLE(1.0,
                         "[lee_position_controller] trajectory stamped %.0f s ahead of the odometry (a wall-clock "
                         "stamp?); its points count from now",
-                        t0_s - t_odometry_s_);
-      t0_s = t_odometry_s_;
-    }
-    for (auto& point : points) point.first += t0_s;  // due times
-    pending_ = std::move(points);
+                        ahead_s);
     ReleaseDue(t_odometry_s_);
   }
 
-  /// Applies every pending point due at or before t_s (the latest applied wins).
+  /// Applies the latest point due at or before t_s.
   void ReleaseDue(double t_s) {
-    while (!pending_.empty() && pending_.front().first <= t_s) {
-      controller_.SetTrajectoryPoint(pending_.front().second);
-      pending_.pop_front();
-    }
+    TrajectoryPoint point;
+    if (schedule_.ReleaseDue(t_s, &point)) controller_.SetTrajectoryPoint(point);
   }
 
   void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
@@ -160,11 +115,10 @@ class LeePositionControllerRos {
         ActuatorsMsg(controller_.RotorSpeeds(StateFromOdometry(*msg)), msg->header.stamp)));
   }
 
-  static constexpr double kMaxTimeFromStart_s = 86400.0;
   ros::NodeHandle nh_;
   LeeController controller_;
-  std::deque<std::pair<double, TrajectoryPoint>> pending_;  ///< (due sim time [s], point)
-  double t_odometry_s_ = 0.0;                               ///< stamp of the latest odometry
+  TrajectorySchedule schedule_;
+  double t_odometry_s_ = 0.0;  ///< stamp of the latest odometry
   ros::Publisher motor_pub_;
   ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_, failure_sub_;
 };

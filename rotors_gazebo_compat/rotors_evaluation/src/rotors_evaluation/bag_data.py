@@ -130,19 +130,23 @@ def _position(msg, msgtype: str) -> np.ndarray:
     return np.array([p.x, p.y, p.z])
 
 
-def _set_point(msg, msgtype: str, topic: str):
-    """(position, orientation or yaw) of a set-point message; None for a trajectory without points.
+def _set_points(msg, msgtype: str, topic: str, t_s: float) -> list:
+    """[(time, position, orientation or yaw)] of a set-point message: one, or a trajectory's points
+    each at the message's time + its time_from_start (the time a controller releases it; RotorS'
+    publishers send one point per message, ours a waypoint file as one trajectory sent ahead).
     BagError for a type that holds no position set point."""
     if msgtype.endswith("/PoseStamped"):
-        return msg.pose.position, msg.pose.orientation
+        return [(t_s, msg.pose.position, msg.pose.orientation)]
     if msgtype.endswith("/Pose"):
-        return msg.position, msg.orientation
+        return [(t_s, msg.position, msg.orientation)]
     if msgtype.endswith("MultiDOFJointTrajectory"):
-        if msg.points and msg.points[0].transforms:
-            return msg.points[0].transforms[0].translation, msg.points[0].transforms[0].rotation
-        return None
+        return [
+            (t_s + p.time_from_start.sec + p.time_from_start.nanosec * 1e-9, p.transforms[0].translation, p.transforms[0].rotation)
+            for p in msg.points
+            if p.transforms
+        ]
     if hasattr(msg, "position") and hasattr(msg, "yaw"):  # mav_msgs/CommandTrajectoryPositionYaw and kin (pre-2.0)
-        return msg.position, float(msg.yaw)
+        return [(t_s, msg.position, float(msg.yaw))]
     raise BagError(
         f"waypoint topic '{topic}' has type {msgtype}, which holds no position set point (usable: "
         f"MultiDOFJointTrajectory, PoseStamped, Pose, or a message with position and yaw fields)"
@@ -321,16 +325,13 @@ def load_flight(
             used["waypoints"] = wp_topic
             last = None
             for msg, msgtype, t_ns in bag.messages(wp_topic):
-                point = _set_point(msg, msgtype, wp_topic)
-                if point is None:
-                    continue
-                pos, rot = point
-                yaw = rot if isinstance(rot, float) else _yaw(rot)
-                sample = WaypointSample(_stamp(msg, t_ns), np.array([pos.x, pos.y, pos.z]), yaw)
-                key = (tuple(sample.position), sample.yaw)
-                if key != last:  # consecutive duplicates are dropped, as RotorS
-                    waypoints.append(sample)
-                last = key
+                for t_s, pos, rot in _set_points(msg, msgtype, wp_topic, _stamp(msg, t_ns)):
+                    yaw = rot if isinstance(rot, float) else _yaw(rot)
+                    sample = WaypointSample(t_s, np.array([pos.x, pos.y, pos.z]), yaw)
+                    key = (tuple(sample.position), sample.yaw)
+                    if key != last:  # consecutive duplicates are dropped, as RotorS
+                        waypoints.append(sample)
+                    last = key
         collisions = []
         wrench = bag.resolve_any(mav_name, wrench_topic)
         if wrench:  # every message is a contact, whatever its type (WrenchStamped; older: collisions)

@@ -261,7 +261,7 @@ class FlightBatchEnv(VectorEnv):
         for j, i in enumerate(ended):
             rng = self._rngs[i]
             if self.task == "hover":
-                positions[j] = self.target + rng.uniform(-0.5, 0.5, 3)
+                positions[j] = self.target + rng.uniform(-hover.START_OFFSET_M, hover.START_OFFSET_M, 3)
                 positions[j, 2] = max(positions[j, 2], 0.3)
                 yaws[j] = rng.uniform(-np.pi, np.pi)
             else:

@@ -25,6 +25,7 @@ from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, rotate
 OBSERVATION_HIGH = np.array([5.0] * 3 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
 OBSERVATION_SIZE = len(OBSERVATION_HIGH)
 BOUND_M = 2.0
+START_OFFSET_M = 0.5  # the start's largest offset from the target per axis
 TERMINATION_REWARD = -10.0
 # the cost's largest value while the episode runs: each axis of the position error under BOUND_M,
 # velocity and body rates at their observation bounds
@@ -70,7 +71,7 @@ class HoverEnv(FlightEnv):
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
-        start = self.target + self.np_random.uniform(-0.5, 0.5, 3)
+        start = self.target + self.np_random.uniform(-START_OFFSET_M, START_OFFSET_M, 3)
         start[2] = max(start[2], 0.3)
         odometry = self.flight.reset(start, yaw=float(self.np_random.uniform(-np.pi, np.pi)))
         self.steps = 0
