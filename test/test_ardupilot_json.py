@@ -281,10 +281,37 @@ def test_airspeed_is_the_airspeed_sensors_reading_in_wind():
     assert ap.read["airspeed"] == pytest.approx(reading, abs=0.02) and reading > 2.5 and ground_speed < 0.1
 
 
-def test_a_rangefinder_without_return_reads_out_of_range_high():
+def sitl_command(tmp_path, *args: str) -> str:
+    """scripts/ardupilot_sitl --print-command's output, as mav_ardupilot_sitl.launch runs it."""
+    import subprocess
+
+    script = rs.paths.package_path("rotors_gazebo") / "scripts" / "ardupilot_sitl"
+    return subprocess.run(
+        [str(script), "--ardupilot_dir", str(tmp_path / "ardupilot"), *args, "--print-command"],
+        check=True,
+        capture_output=True,
+        text=True,
+        env={**__import__("os").environ, "ROS_HOME": str(tmp_path)},
+    ).stdout
+
+
+def parm_values(path: str) -> dict:
+    """A parameter file as AP_Param reads --defaults: `NAME VALUE` or `NAME,VALUE`, '#' a comment."""
+    params = {}
+    for line in open(path):
+        line = line.split("#", 1)[0].strip()
+        if line:
+            name, value = line.replace(",", " ").split()[:2]
+            params[name] = float(value)
+    return params
+
+
+def test_a_rangefinder_without_return_reads_out_of_range_high(tmp_path):
     """ArduPilot's AP_RangeFinder_SITL: a reading above RNGFNDx_MAX is OutOfRangeHigh, NaN is NoData
     and a negative one 0 m; ArduPilot's Gazebo plugin sends twice the maximum when the beam returns
-    nothing."""
+    nothing. ArduPilot reads rng_1 only with RNGFND1_TYPE 100 (AP_RangeFinder.cpp: Type::SIM creates
+    AP_RangeFinder_SITL); gazebo-iris.parm sets type 1, SITL's own analog sonar: with
+    enable_rangefinder:=true the launch loads our file last, whose maximum is the sensor's."""
     port = free_udp_port()
     world = world_with_ardupilot(port, enable_lidar="rangefinder")
     world.set_model_state("iris", [0, 0, 200.0])
@@ -293,6 +320,16 @@ def test_a_rangefinder_without_return_reads_out_of_range_high():
     r = world.message("/iris/lidar")[0]
     print(f"rangefinder at 200 m: {r.range} (max {r.max_range} m) -> rng_1 = {ap.read['rng_1']} m")
     assert ap.read["rng_1"] == pytest.approx(2 * r.max_range, rel=1e-6) and ap.read["rng_1"] > r.max_range
+    cmd = sitl_command(tmp_path, "--rangefinder").splitlines()[0].split()
+    defaults = cmd[cmd.index("--defaults") + 1].split(",")
+    assert defaults[-1].endswith("ardupilot_rangefinder.parm") and defaults[-2].endswith("ardupilot_iris.parm")
+    p = parm_values(defaults[-1])
+    assert p["RNGFND1_TYPE"] == 100 and p["RNGFND1_ORIENT"] == 25  # ROTATION_PITCH_270: down
+    assert (p["RNGFND1_MIN"], p["RNGFND1_MAX"]) == pytest.approx((r.min_range, r.max_range))
+    assert (p["RNGFND1_MIN_CM"], p["RNGFND1_MAX_CM"]) == pytest.approx((100 * r.min_range, 100 * r.max_range))
+    assert ap.read["rng_1"] > p["RNGFND1_MAX"]  # OutOfRangeHigh in ArduPilot's own check
+    plain = sitl_command(tmp_path).splitlines()[0].split()
+    assert not plain[plain.index("--defaults") + 1].endswith("ardupilot_rangefinder.parm")
 
 
 def test_launch_command_line_loads_x_quad_home_at_world_origin(tmp_path):
@@ -300,29 +337,15 @@ def test_launch_command_line_loads_x_quad_home_at_world_origin(tmp_path):
     gazebo-iris defaults and ours last (AP_Param loads --defaults files in order, a later file's value
     wins; a line is `NAME VALUE` or `NAME,VALUE`, '#' starts a comment). AP_Motors_Class.h: FRAME_CLASS
     1 = quad, FRAME_TYPE 1 = X."""
-    import subprocess
-
-    script = rs.paths.package_path("rotors_gazebo") / "scripts" / "ardupilot_sitl"
     world_file = rs.paths.package_path("rotors_gazebo") / "worlds" / "basic.world"
-    out = subprocess.run(
-        [str(script), "--ardupilot_dir", str(tmp_path / "ardupilot"), "--instance", "2", "--world", str(world_file), "--print-command"],
-        check=True,
-        capture_output=True,
-        text=True,
-        env={**__import__("os").environ, "ROS_HOME": str(tmp_path)},
-    ).stdout
+    out = sitl_command(tmp_path, "--instance", "2", "--world", str(world_file))
     print(out)
     cmd = out.splitlines()[0].split()
     assert cmd[0].endswith("build/sitl/bin/arducopter") and cmd[cmd.index("--model") + 1] == "JSON"
     assert cmd[cmd.index("-I") + 1] == "2" and f"cwd: {tmp_path}/ardupilot/2" in out
     defaults = cmd[cmd.index("--defaults") + 1].split(",")
     assert [d.rsplit("/", 1)[1] for d in defaults[:2]] == ["copter.parm", "gazebo-iris.parm"]
-    params = {}
-    for line in open(defaults[-1]):
-        line = line.split("#", 1)[0].strip()
-        if line:
-            name, value = line.replace(",", " ").split()[:2]
-            params[name] = float(value)
+    params = parm_values(defaults[-1])
     assert params["FRAME_CLASS"] == 1 and params["FRAME_TYPE"] == 1
     home = [float(x) for x in cmd[cmd.index("--home") + 1].split(",")]
     assert home[:3] == pytest.approx([47.3667, 8.55, 500.0])  # basic.world's spherical_coordinates

@@ -60,12 +60,13 @@ def test_betaflight_sitl_launch_runs_firmware_flies_on_rc_topic(ros, tmp_path):
 
 
 def test_ardupilot_sitl_launch_servo_port_9002_plus_10_instance(ros):
-    """A stand-in for ArduPilot's SIM_JSON (ArduPilot is not on these machines), instance 3."""
+    """A stand-in for ArduPilot's SIM_JSON (ArduPilot is not on these machines), instance 3, with the
+    downward rangefinder (enable_rangefinder:=true), whose reading goes out as rng_1."""
     import json
     import socket
     import struct
 
-    launch(ros, "rotors_gazebo", "mav_ardupilot_sitl.launch", "instance:=3", "real_time_factor:=0")
+    launch(ros, "rotors_gazebo", "mav_ardupilot_sitl.launch", "instance:=3", "real_time_factor:=0", "enable_rangefinder:=true")
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     sock.settimeout(0.5)
     deadline, answers = time.monotonic() + 60, []
@@ -82,6 +83,9 @@ def test_ardupilot_sitl_launch_servo_port_9002_plus_10_instance(ros):
     steps = np.diff([a["timestamp"] for a in answers[-100:]])
     print(f"{len(answers)} answers; timestamps step by {steps.min():.4f}-{steps.max():.4f} s")
     assert np.allclose(steps, 0.001)  # the launch's --step-size 0.001: one step per frame
+    # on the ground the beam (5 cm under the body) is closer than its 0.06 m minimum: REP 117's -inf
+    # goes out as 0, which AP_RangeFinder_SITL reads as out of range low
+    assert answers[-1]["rng_1"] == 0.0, answers[-1]
 
 
 def test_mav_px4_sitl_multi_launch_gives_each_vehicle_its_port(ros):

@@ -143,6 +143,10 @@ TEST(ArdupilotStateJson, KeysAsSimJsonFindsThem) {
   EXPECT_EQ(json.find(": "), std::string::npos);  // SIM_JSON skips exactly `"key":`
   EXPECT_DOUBLE_EQ(SimJsonNumber(json, "timestamp"), 1.5);
   EXPECT_DOUBLE_EQ(SimJsonNumber(json, "rng_1"), 50.0);  // no return: twice the maximum, out of range high
+  s.range_m = -INFINITY;                                 // REP 117: closer than the minimum
+  EXPECT_DOUBLE_EQ(SimJsonNumber(ardupilot::StateJson(s, &non_finite), "rng_1"), 0.0);  // out of range low
+  s.range_m = 3.25;
+  EXPECT_DOUBLE_EQ(SimJsonNumber(ardupilot::StateJson(s, &non_finite), "rng_1"), 3.25);
   EXPECT_DOUBLE_EQ(SimJsonNumber(json, "airspeed"), 3.0);
   EXPECT_NE(json.find("\"no_time_sync\":true"), std::string::npos);
   // "velocity" before any key it is a prefix of

@@ -88,8 +88,14 @@ std::string StateJson(const VehicleSnapshot& s, int* non_finite) {
        << w.Number(q.x()) << "," << w.Number(q.y()) << "," << w.Number(q.z()) << "]"
        << ",\"velocity\":" << w.Vector(frames::NedFromEnu(s.v_W));
   if (s.has_range) {
-    const bool out_of_range_high = !std::isfinite(s.range_m) || s.range_m > s.range_max_m;
-    json << ",\"rng_1\":" << w.Number(out_of_range_high ? 2.0 * s.range_max_m : s.range_m);
+    // REP 117: +inf nothing within range, -inf closer than the minimum. AP_RangeFinder_SITL takes
+    // max(0, d), then OutOfRangeLow below RNGFNDx_MIN and OutOfRangeHigh above RNGFNDx_MAX (NaN or inf
+    // would be NoData): no return goes out as twice the maximum, as ArduPilot's Gazebo plugin sends it,
+    // too close as 0
+    double range_m = s.range_m;
+    if (std::isnan(range_m) || range_m > s.range_max_m) range_m = 2.0 * s.range_max_m;
+    else if (range_m < 0.0) range_m = 0.0;
+    json << ",\"rng_1\":" << w.Number(range_m);
   }
   if (s.has_diff_pressure) json << ",\"airspeed\":" << w.Number(s.airspeed_m_s);
   json << ",\"no_time_sync\":true}\n";

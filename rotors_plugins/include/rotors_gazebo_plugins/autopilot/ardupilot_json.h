@@ -31,9 +31,9 @@ std::vector<uint8_t> WriteServoPacket(const ServoFrame& frame);
 /// body FRD, the snapshot's IMU reading (the plugin fills it); position [m] and velocity [m/s] NED from
 /// the world origin; quaternion w x y z, NED <- FRD; rng_1 [m] with a range sensor (no return, or
 /// beyond its range: twice its maximum, which ArduPilot reads as "out of range high", as ArduPilot's
-/// Gazebo plugin sends it); airspeed [m/s] with an airspeed sensor, its wind-relative reading (ArduPilot
-/// takes it as airspeed and pitot); no_time_sync (ArduPilot does not pace itself to real time: the
-/// world sets the pace). Numbers that are not finite are written as 0 and counted in *non_finite.
+/// Gazebo plugin sends it; closer than its minimum: 0, "out of range low"); airspeed [m/s] with an airspeed sensor, its
+/// wind-relative reading (ArduPilot takes it as airspeed and pitot); no_time_sync (ArduPilot does not pace itself to
+/// real time: the world sets the pace). Numbers that are not finite are written as 0 and counted in *non_finite.
 std::string StateJson(const VehicleSnapshot& s, int* non_finite);
 
 /// What a servo frame's count says against the last one's (SIM_JSON resends a frame unchanged when it
