@@ -86,6 +86,40 @@ class FlightBatchVecEnv(VecEnv):
         return [False] * len(self._get_indices(indices))
 
 
+def make_ppo(vec: VecEnv, seed: int) -> PPO:
+    """PPO as the examples train it: 128 steps per vehicle per update, batches of 2,048, 5 epochs,
+    64 x 64 tanh networks for the actor and the critic."""
+    return PPO(
+        "MlpPolicy",
+        vec,
+        n_steps=128,
+        batch_size=2048,
+        n_epochs=5,
+        learning_rate=3e-4,
+        gamma=0.99,
+        policy_kwargs={"net_arch": [64, 64]},
+        seed=seed,
+        verbose=0,
+    )
+
+
+def learn(model: PPO, vec: FlightBatchVecEnv, steps: int, chunk: int, t0: float) -> list[tuple[int, float, float]]:
+    """Trains in chunks of `chunk` environment steps up to `steps`; after each, (steps so far, mean
+    return, mean length) of the last 200 episodes, also printed."""
+    points = []
+    while model.num_timesteps < steps:
+        model.learn(chunk, reset_num_timesteps=False)
+        recent = vec.finished[-200:]
+        if recent:
+            points.append((model.num_timesteps, float(np.mean([r for r, _ in recent])), float(np.mean([n for _, n in recent]))))
+            print(
+                f"{model.num_timesteps:>10,d} steps, {time.perf_counter() - t0:6.0f} s: mean return "
+                f"{points[-1][1]:7.1f}, mean length {points[-1][2]:5.1f} steps",
+                flush=True,
+            )
+    return points
+
+
 def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("--steps", type=int, default=8_000_000, help="environment steps (all vehicles)")
@@ -97,31 +131,9 @@ def main() -> int:
     envs = FlightBatchEnv("hover", args.envs, action_type="attitude", episode_s=3.0, sensor_seed=args.seed)
     vec = FlightBatchVecEnv(envs)
     vec.seed(args.seed)
-    model = PPO(
-        "MlpPolicy",
-        vec,
-        n_steps=128,
-        batch_size=2048,
-        n_epochs=5,
-        learning_rate=3e-4,
-        gamma=0.99,
-        policy_kwargs={"net_arch": [64, 64]},
-        seed=args.seed,
-        verbose=0,
-    )
+    model = make_ppo(vec, args.seed)
     t0 = time.perf_counter()
-    points = []
-    chunk = args.envs * 128 * 4
-    while model.num_timesteps < args.steps:
-        model.learn(chunk, reset_num_timesteps=False)
-        recent = vec.finished[-200:]
-        if recent:
-            points.append((model.num_timesteps, float(np.mean([r for r, _ in recent])), float(np.mean([n for _, n in recent]))))
-            print(
-                f"{model.num_timesteps:>8,d} steps, {time.perf_counter() - t0:6.0f} s: mean return "
-                f"{points[-1][1]:7.1f}, mean length {points[-1][2]:5.1f} of 300",
-                flush=True,
-            )
+    points = learn(model, vec, args.steps, args.envs * 128 * 4, t0)
     wall = time.perf_counter() - t0
     steps, returns, lengths = np.array(points).T
     fig, ax = plt.subplots(figsize=(7, 3.6))

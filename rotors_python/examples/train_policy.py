@@ -26,7 +26,7 @@ import numpy as np
 import torch
 from policy_tools import HEAVY_WEAK, features, forward, score
 from stable_baselines3 import PPO
-from train_hover import FlightBatchVecEnv
+from train_hover import FlightBatchVecEnv, learn, make_ppo
 
 from rotors_sim.envs import FlightBatchEnv, hover
 
@@ -93,27 +93,9 @@ def main() -> int:
     space = gym.spaces.Box(-high, high, dtype=np.float32)
     vec = FlightBatchVecEnv(envs, extra_reward=precision_reward, features=lambda o: features(o).astype(np.float32), feature_space=space)
     vec.seed(args.seed)
-    model = PPO(
-        "MlpPolicy",
-        vec,
-        n_steps=128,
-        batch_size=2048,
-        n_epochs=5,
-        learning_rate=3e-4,
-        gamma=0.99,
-        policy_kwargs={"net_arch": [64, 64]},
-        seed=args.seed,
-        verbose=0,
-    )
+    model = make_ppo(vec, args.seed)
     t0 = time.perf_counter()
-    curve = []
-    chunk = args.envs * 128 * 8
-    while model.num_timesteps < args.steps:
-        model.learn(chunk, reset_num_timesteps=False)
-        recent = vec.finished[-200:]
-        if recent:
-            curve.append((model.num_timesteps, float(np.mean([r for r, _ in recent]))))
-            print(f"{model.num_timesteps:>10,d} steps, {time.perf_counter() - t0:6.0f} s: mean return {curve[-1][1]:7.1f}", flush=True)
+    curve = [(steps, mean_return) for steps, mean_return, _ in learn(model, vec, args.steps, args.envs * 128 * 8, t0)]
     wall = time.perf_counter() - t0
     export(model, envs, args.out, args.randomize)
     policy = dict(np.load(args.out))
