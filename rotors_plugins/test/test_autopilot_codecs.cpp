@@ -95,6 +95,76 @@ TEST(Px4HilOpticalFlow, GyroIntegralsNanWithoutAGyro) {
   EXPECT_FLOAT_EQ(px4::HilOpticalFlow(s).integrated_xgyro, 0.01f);
 }
 
+// PX4's mixer output (SimulatorMavlink::send_controls): motors 0..1, surfaces -1..1, the armed bit in
+// mode, PX4's clock in time_usec; framed and fed back through MavlinkEndpoint as the link does.
+TEST(Px4ActuatorControls, DecodedClampedOrRefusedInOneLine) {
+  mavlink_hil_actuator_controls_t sent{};
+  sent.time_usec = 1234567;
+  sent.mode = px4::kArmed;
+  sent.flags = px4::kLockstepFlag;
+  for (int i = 0; i < 16; ++i) sent.controls[i] = 0.05f * static_cast<float>(i) - 0.2f;
+  auto feed = [](const mavlink_hil_actuator_controls_t& c) {
+    mavlink_message_t m;
+    mavlink_msg_hil_actuator_controls_encode(1, 1, &m, &c);
+    uint8_t bytes[MAVLINK_MAX_PACKET_LEN];
+    const uint16_t n = mavlink_msg_to_send_buffer(bytes, &m);
+    px4::MavlinkEndpoint simulator(1, 51);
+    mavlink_message_t got{};
+    int count = 0;
+    simulator.Feed(bytes, n, [&](const mavlink_message_t& message) {
+      got = message;
+      ++count;
+    });
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(simulator.BadFrames(), 0u);
+    return got;
+  };
+  px4::ActuatorControls a;
+  std::string clamped;
+  EXPECT_EQ(px4::DecodeActuatorControls(feed(sent), &a, &clamped), "");
+  EXPECT_EQ(clamped, "");
+  EXPECT_TRUE(a.armed);
+  EXPECT_EQ(a.time_usec, 1234567u);
+  ASSERT_EQ(a.controls.size(), 16u);
+  for (int i = 0; i < 16; ++i) EXPECT_DOUBLE_EQ(a.controls[i], static_cast<double>(sent.controls[i]));
+
+  sent.mode = 0;
+  sent.controls[3] = 1.5f;
+  EXPECT_EQ(px4::DecodeActuatorControls(feed(sent), &a, &clamped), "");
+  EXPECT_EQ(clamped, "HIL_ACTUATOR_CONTROLS controls[3] = 1.500000 is outside -1..1: clamped");
+  EXPECT_DOUBLE_EQ(a.controls[3], 1.0);
+  EXPECT_FALSE(a.armed);
+
+  sent.controls[5] = NAN;
+  a = px4::ActuatorControls{};
+  EXPECT_EQ(px4::DecodeActuatorControls(feed(sent), &a, &clamped),
+            "HIL_ACTUATOR_CONTROLS controls[5] = nan: the message is ignored, the last valid outputs stay in force");
+  EXPECT_TRUE(a.controls.empty());
+  EXPECT_EQ(a.time_usec, 1234567u);  // the answer still counts for lockstep
+}
+
+// MavlinkEndpoint::Feed: a message split across reads comes out once; a corrupt frame is counted and
+// dropped without losing the next one.
+TEST(Px4MavlinkEndpoint, FeedReassemblesSplitFramesAndCountsBadOnes) {
+  mavlink_heartbeat_t h{};
+  h.type = MAV_TYPE_QUADROTOR;
+  px4::MavlinkEndpoint px4_side(1, 1), simulator(1, 51);
+  const std::vector<uint8_t> frame = px4_side.Frame(h);
+  int messages = 0;
+  auto count = [&](const mavlink_message_t& m) { messages += m.msgid == MAVLINK_MSG_ID_HEARTBEAT; };
+  simulator.Feed(frame.data(), 5, count);
+  EXPECT_EQ(messages, 0);
+  simulator.Feed(frame.data() + 5, frame.size() - 5, count);
+  EXPECT_EQ(messages, 1);
+  std::vector<uint8_t> corrupt = frame;
+  corrupt[frame.size() - 1] ^= 0xff;  // the checksum's last byte
+  simulator.Feed(corrupt.data(), corrupt.size(), count);
+  EXPECT_EQ(messages, 1);
+  EXPECT_EQ(simulator.BadFrames(), 1u);
+  simulator.Feed(frame.data(), frame.size(), count);
+  EXPECT_EQ(messages, 2);
+}
+
 TEST(ArdupilotServoFrames, OrderAndPwm) {
   using ardupilot::FrameOrder;
   EXPECT_EQ(ardupilot::OrderOf(5, false, 0), FrameOrder::kFirst);

@@ -22,6 +22,7 @@
 #include "rotors_control/policy_file.h"
 #include "ros_conversions.h"
 #include "trajectory_schedule.h"
+#include "warning_throttle.h"
 
 namespace rotors_control {
 
@@ -55,7 +56,7 @@ class HoverPolicyRos {
     TrajectoryPoint point;
     const std::string why = schedule_.FromPose(*msg, &point);
     if (!why.empty()) {
-      ROS_WARN_THROTTLE(1.0, "[%s] ignoring command/pose: %s", kTag, why.c_str());
+      if (warnings_.Due(why)) ROS_WARN("[%s] ignoring command/pose: %s", kTag, why.c_str());
       return;
     }
     target_W_ = point.position_W;
@@ -65,7 +66,7 @@ class HoverPolicyRos {
     double ahead_s = 0.0;
     const std::string why = schedule_.Set(*msg, t_odometry_s_, &ahead_s);
     if (!why.empty()) {
-      ROS_WARN_THROTTLE(1.0, "[%s] ignoring trajectory: %s", kTag, why.c_str());
+      if (warnings_.Due(why)) ROS_WARN("[%s] ignoring trajectory: %s", kTag, why.c_str());
       return;
     }
     if (ahead_s > 0.0)
@@ -108,7 +109,8 @@ class HoverPolicyRos {
   Eigen::Vector3d target_W_ = Eigen::Vector3d::Zero();
   bool has_target_ = false;
   TrajectorySchedule schedule_;
-  double t_odometry_s_ = 0.0;  ///< stamp of the latest odometry
+  WarningThrottle warnings_{1.0};  ///< set points ignored: one line per kind per second
+  double t_odometry_s_ = 0.0;      ///< stamp of the latest odometry
   ros::Publisher command_pub_;
   ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_;
 };

@@ -22,6 +22,7 @@
 #include "rotors_control/parameter_report_ros.h"
 #include "ros_conversions.h"
 #include "trajectory_schedule.h"
+#include "warning_throttle.h"
 
 namespace rotors_control {
 
@@ -75,7 +76,7 @@ class LeePositionControllerRos {
     TrajectoryPoint point;
     const std::string why = schedule_.FromPose(*msg, &point);
     if (!why.empty()) {
-      ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring command/pose: %s", why.c_str());
+      if (warnings_.Due(why)) ROS_WARN("[lee_position_controller] ignoring command/pose: %s", why.c_str());
       return;
     }
     controller_.SetTrajectoryPoint(point);
@@ -85,7 +86,7 @@ class LeePositionControllerRos {
     double ahead_s = 0.0;
     const std::string why = schedule_.Set(*msg, t_odometry_s_, &ahead_s);
     if (!why.empty()) {
-      ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring trajectory: %s", why.c_str());
+      if (warnings_.Due(why)) ROS_WARN("[lee_position_controller] ignoring trajectory: %s", why.c_str());
       return;
     }
     if (ahead_s > 0.0)
@@ -118,7 +119,8 @@ class LeePositionControllerRos {
   ros::NodeHandle nh_;
   LeeController controller_;
   TrajectorySchedule schedule_;
-  double t_odometry_s_ = 0.0;  ///< stamp of the latest odometry
+  WarningThrottle warnings_{1.0};  ///< set points ignored: one line per kind per second
+  double t_odometry_s_ = 0.0;      ///< stamp of the latest odometry
   ros::Publisher motor_pub_;
   ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_, failure_sub_;
 };

@@ -107,6 +107,29 @@ mavlink_distance_sensor_t DistanceSensor(const VehicleSnapshot& s) {
   return m;
 }
 
+std::string DecodeActuatorControls(const mavlink_message_t& m, ActuatorControls* out, std::string* clamped) {
+  clamped->clear();
+  if (m.msgid != MAVLINK_MSG_ID_HIL_ACTUATOR_CONTROLS)
+    return "message " + std::to_string(m.msgid) + " is not HIL_ACTUATOR_CONTROLS";
+  mavlink_hil_actuator_controls_t a;
+  mavlink_msg_hil_actuator_controls_decode(&m, &a);
+  out->time_usec = a.time_usec;  // also when the controls cannot be applied: the answer came
+  std::vector<double> u(16);
+  for (int i = 0; i < 16; ++i) {
+    const double v = a.controls[i];
+    if (!std::isfinite(v))
+      return "HIL_ACTUATOR_CONTROLS controls[" + std::to_string(i) + "] = " + std::to_string(v) +
+             ": the message is ignored, the last valid outputs stay in force";
+    if ((v < -1.0 || v > 1.0) && clamped->empty())
+      *clamped = "HIL_ACTUATOR_CONTROLS controls[" + std::to_string(i) + "] = " + std::to_string(v) +
+                 " is outside -1..1: clamped";
+    u[i] = std::max(-1.0, std::min(1.0, v));
+  }
+  out->controls = std::move(u);
+  out->armed = (a.mode & kArmed) != 0;
+  return "";
+}
+
 mavlink_hil_optical_flow_t HilOpticalFlow(const VehicleSnapshot& s) {
   mavlink_hil_optical_flow_t m{};
   m.time_usec = Microseconds(s.time_s);

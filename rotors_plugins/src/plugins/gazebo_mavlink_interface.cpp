@@ -256,8 +256,9 @@ class GazeboMavlinkInterface : public AutopilotInterface {
       return;
     }
     if (m.msgid != MAVLINK_MSG_ID_HIL_ACTUATOR_CONTROLS) return;
-    mavlink_hil_actuator_controls_t a;
-    mavlink_msg_hil_actuator_controls_decode(&m, &a);
+    px4::ActuatorControls a;
+    std::string clamped;
+    const std::string why = px4::DecodeActuatorControls(m, &a, &clamped);
     // PX4 stamps its outputs with its clock, which in lockstep is the time of the last HIL_SENSOR it
     // took: an answer releases the waiting step when it answers that step's HIL_SENSOR (or a later
     // one); an older answer is applied and the step keeps waiting, so the exchange never falls one
@@ -265,21 +266,13 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     if (a.time_usec == 0 || a.time_usec >= awaited_time_usec_) awaiting_answer_ = false;
     if (session_.On(LinkEvent::kAnswered) && session_.State() == LinkState::kLockstep)
       Info(std::string("first HIL_ACTUATOR_CONTROLS") + (lockstep_ ? ": lockstep from now on (while armed)" : ""));
-    std::vector<double> u(16);
-    for (int i = 0; i < 16; ++i) {
-      if (!std::isfinite(a.controls[i])) {
-        Error("nan", "HIL_ACTUATOR_CONTROLS controls[" + std::to_string(i) + "] = " + std::to_string(a.controls[i]) +
-                         ": the message is ignored, the last valid outputs stay in force");
-        return;
-      }
-      if (a.controls[i] < -1.0f || a.controls[i] > 1.0f) {
-        Error("range", "HIL_ACTUATOR_CONTROLS controls[" + std::to_string(i) + "] = " + std::to_string(a.controls[i]) +
-                           " is outside -1..1: clamped");
-      }
-      u[i] = std::max(-1.0, std::min(1.0, static_cast<double>(a.controls[i])));
+    if (!why.empty()) {
+      Error("nan", why);
+      return;
     }
-    armed_ = (a.mode & px4::kArmed) != 0;
-    Apply(u, armed_);
+    if (!clamped.empty()) Error("range", clamped);
+    armed_ = a.armed;
+    Apply(a.controls, armed_);
   }
 
   /// HITL: the simulator's heartbeat, each step until the autopilot's first one (current PX4 starts

@@ -44,6 +44,19 @@ mavlink_distance_sensor_t DistanceSensor(const VehicleSnapshot& s);
 /// plugin): PX4 then compensates rotation with its own gyro, as with PX4's Gazebo flow plugin.
 mavlink_hil_optical_flow_t HilOpticalFlow(const VehicleSnapshot& s);
 
+/// What PX4's HIL_ACTUATOR_CONTROLS asks of the vehicle: its 16 controls (PX4 writes motors 0..1 and
+/// surfaces -1..1), whether it is armed, and its stamp (PX4's clock; 0: unstamped).
+struct ActuatorControls {
+  std::vector<double> controls;  ///< 16 values, clamped to -1..1
+  bool armed = false;            ///< mode & MAV_MODE_FLAG_SAFETY_ARMED
+  uint64_t time_usec = 0;
+};
+/// Decodes a HIL_ACTUATOR_CONTROLS message. "" with *out filled, or the line that says why it cannot be
+/// applied (a control that is NaN or inf; the last valid outputs then stay in force; out->time_usec is
+/// filled even then). A control outside -1..1 is clamped and named in *clamped (one line; empty when
+/// none was).
+std::string DecodeActuatorControls(const mavlink_message_t& m, ActuatorControls* out, std::string* clamped);
+
 /// One end of a MAVLink 2 link: frames outgoing messages with its own system and component ids and
 /// sequence (no process-wide channel state: several vehicles in one process each have their own),
 /// and unframes incoming bytes, counting what it had to drop.
