@@ -3,7 +3,7 @@
 // command/pose -> command/motor_speed.
 // Ours: motor_failure (rotors_comm/MotorFailure) re-allocates without (or with a derated) rotor.
 // Parameters from the private namespace (lee_controller_<mav>.yaml and <mav>.yaml). Set points as
-// TrajectorySchedule releases them (trajectory_schedule.h). The motor command is stamped with the
+// SetPointInput releases them (trajectory_schedule.h). The motor command is stamped with the
 // odometry stamp it answers (lockstep keys on this).
 #pragma once
 
@@ -22,7 +22,6 @@
 #include "rotors_control/parameter_report_ros.h"
 #include "ros_conversions.h"
 #include "trajectory_schedule.h"
-#include "warning_throttle.h"
 
 namespace rotors_control {
 
@@ -36,9 +35,6 @@ class LeePositionControllerRos {
   LeePositionControllerRos(ros::NodeHandle nh, ros::NodeHandle private_nh)
       : nh_(nh), controller_(LoadParameters(private_nh)) {
     motor_pub_ = nh_.advertise<mav_msgs::Actuators>(mav_msgs::default_topics::COMMAND_ACTUATORS, 1);
-    trajectory_sub_ =
-        nh_.subscribe(mav_msgs::default_topics::COMMAND_TRAJECTORY, 1, &LeePositionControllerRos::OnTrajectory, this);
-    pose_sub_ = nh_.subscribe(mav_msgs::default_topics::COMMAND_POSE, 1, &LeePositionControllerRos::OnPose, this);
     failure_sub_ = nh_.subscribe("motor_failure", 10, &LeePositionControllerRos::OnMotorFailure, this);
     odometry_sub_ = nh_.subscribe(mav_msgs::default_topics::ODOMETRY, 1, &LeePositionControllerRos::OnOdometry, this,
                                   ros::TransportHints().tcpNoDelay());
@@ -72,45 +68,13 @@ class LeePositionControllerRos {
              msg->speed_factor);
   }
 
-  void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
-    TrajectoryPoint point;
-    const std::string why = schedule_.FromPose(*msg, &point);
-    if (!why.empty()) {
-      if (warnings_.Due(why)) ROS_WARN("[lee_position_controller] ignoring command/pose: %s", why.c_str());
-      return;
-    }
-    controller_.SetTrajectoryPoint(point);
-  }
-
-  void OnTrajectory(const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& msg) {
-    double ahead_s = 0.0;
-    const std::string why = schedule_.Set(*msg, t_odometry_s_, &ahead_s);
-    if (!why.empty()) {
-      if (warnings_.Due(why)) ROS_WARN("[lee_position_controller] ignoring trajectory: %s", why.c_str());
-      return;
-    }
-    if (ahead_s > 0.0)
-      ROS_WARN_THROTTLE(1.0,
-                        "[lee_position_controller] trajectory stamped %.0f s ahead of the odometry (a wall-clock "
-                        "stamp?); its points count from now",
-                        ahead_s);
-    ReleaseDue(t_odometry_s_);
-  }
-
-  /// Applies the latest point due at or before t_s.
-  void ReleaseDue(double t_s) {
-    TrajectoryPoint point;
-    if (schedule_.ReleaseDue(t_s, &point)) controller_.SetTrajectoryPoint(point);
-  }
-
   void OnOdometry(const nav_msgs::OdometryConstPtr& msg) {
     const std::string why = CheckOdometry(*msg);
     if (!why.empty()) {
       ROS_WARN_THROTTLE(1.0, "[lee_position_controller] ignoring odometry: %s (no command sent)", why.c_str());
       return;
     }
-    t_odometry_s_ = msg->header.stamp.toSec();
-    ReleaseDue(t_odometry_s_);
+    set_points_.Release(msg->header.stamp.toSec());
     // a shared pointer: in the simulator's process (in_process:=true) it reaches the plugins unserialized
     motor_pub_.publish(boost::make_shared<mav_msgs::Actuators>(
         ActuatorsMsg(controller_.RotorSpeeds(StateFromOdometry(*msg)), msg->header.stamp)));
@@ -118,11 +82,9 @@ class LeePositionControllerRos {
 
   ros::NodeHandle nh_;
   LeeController controller_;
-  TrajectorySchedule schedule_;
-  WarningThrottle warnings_{1.0};  ///< set points ignored: one line per kind per second
-  double t_odometry_s_ = 0.0;      ///< stamp of the latest odometry
+  SetPointInput set_points_{nh_, kTag, [this](const TrajectoryPoint& p) { controller_.SetTrajectoryPoint(p); }};
   ros::Publisher motor_pub_;
-  ros::Subscriber trajectory_sub_, pose_sub_, odometry_sub_, failure_sub_;
+  ros::Subscriber odometry_sub_, failure_sub_;
 };
 
 }  // namespace rotors_control

@@ -8,17 +8,21 @@
 
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <string>
 #include <utility>
 
 #include <geometry_msgs/PoseStamped.h>
 #include <mav_msgs/conversions.h>
+#include <mav_msgs/default_topics.h>
 #include <mav_msgs/eigen_mav_msgs.h>
+#include <ros/ros.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
 #include "rotors_control/lee_controller.h"  // TrajectoryPoint
 #include "rotors_control/rotors_api_conversions.h"
 #include "ros_conversions.h"
+#include "warning_throttle.h"
 
 namespace rotors_control {
 
@@ -90,6 +94,60 @@ class TrajectorySchedule {
 
  private:
   std::deque<std::pair<double, TrajectoryPoint>> pending_;  ///< (due sim time [s], point)
+};
+
+/// command/trajectory and command/pose for a node that flies to set points (Lee's, the learnt
+/// policy's): subscribes both below `nh`, keeps their TrajectorySchedule, warns about what it ignores
+/// (one line per kind per second, "[tag] ignoring ..."), and hands each set point to `apply` when it
+/// is due: a pose at once, a trajectory's points as Release sees the odometry reach them.
+class SetPointInput {
+ public:
+  SetPointInput(ros::NodeHandle nh, std::string tag, std::function<void(const TrajectoryPoint&)> apply)
+      : tag_(std::move(tag)), apply_(std::move(apply)) {
+    trajectory_sub_ = nh.subscribe(mav_msgs::default_topics::COMMAND_TRAJECTORY, 1, &SetPointInput::OnTrajectory, this);
+    pose_sub_ = nh.subscribe(mav_msgs::default_topics::COMMAND_POSE, 1, &SetPointInput::OnPose, this);
+  }
+  SetPointInput(const SetPointInput&) = delete;  // the subscriptions call back into this object
+  SetPointInput& operator=(const SetPointInput&) = delete;
+
+  /// With each odometry: applies the latest point due at or before its stamp.
+  void Release(double t_odometry_s) {
+    t_odometry_s_ = t_odometry_s;
+    TrajectoryPoint point;
+    if (schedule_.ReleaseDue(t_odometry_s_, &point)) apply_(point);
+  }
+
+ private:
+  void OnPose(const geometry_msgs::PoseStampedConstPtr& msg) {
+    TrajectoryPoint point;
+    const std::string why = schedule_.FromPose(*msg, &point);
+    if (!why.empty()) {
+      if (warnings_.Due(why)) ROS_WARN("[%s] ignoring command/pose: %s", tag_.c_str(), why.c_str());
+      return;
+    }
+    apply_(point);
+  }
+  void OnTrajectory(const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& msg) {
+    double ahead_s = 0.0;
+    const std::string why = schedule_.Set(*msg, t_odometry_s_, &ahead_s);
+    if (!why.empty()) {
+      if (warnings_.Due(why)) ROS_WARN("[%s] ignoring trajectory: %s", tag_.c_str(), why.c_str());
+      return;
+    }
+    if (ahead_s > 0.0)
+      ROS_WARN_THROTTLE(1.0,
+                        "[%s] trajectory stamped %.0f s ahead of the odometry (a wall-clock stamp?); its points "
+                        "count from now",
+                        tag_.c_str(), ahead_s);
+    Release(t_odometry_s_);
+  }
+
+  std::string tag_;
+  std::function<void(const TrajectoryPoint&)> apply_;
+  TrajectorySchedule schedule_;
+  WarningThrottle warnings_{1.0};  ///< set points ignored: one line per kind per second
+  double t_odometry_s_ = 0.0;      ///< stamp of the latest odometry
+  ros::Subscriber trajectory_sub_, pose_sub_;
 };
 
 }  // namespace rotors_control
