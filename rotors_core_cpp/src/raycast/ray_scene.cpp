@@ -13,6 +13,7 @@
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
+#include "rotors_core/raycast/ray_packets.h"
 #include "rotors_core/rendering/tessellation.h"
 #include "physics/pose_math.h"
 
@@ -300,35 +301,14 @@ void RayScene::CastFan(const Eigen::Vector3d& origin_W, const Eigen::Vector3d* d
   context.instances = &r.instances;
   context.ignore = ignore;
   if (ignore && ray_mask == kAllVisuals) context.base.filter = SkipIgnoredLink;
-  for (size_t first = 0; first < n; first += 16) {
-    const size_t count = std::min<size_t>(16, n - first);
-    alignas(64) int valid[16];
-    alignas(64) RTCRayHit16 rh;
-    for (size_t k = 0; k < 16; ++k) {
-      valid[k] = k < count ? -1 : 0;
-      const Eigen::Vector3d& d = dirs_W[first + std::min(k, count - 1)];
-      rh.ray.org_x[k] = static_cast<float>(origin_W.x());
-      rh.ray.org_y[k] = static_cast<float>(origin_W.y());
-      rh.ray.org_z[k] = static_cast<float>(origin_W.z());
-      rh.ray.dir_x[k] = static_cast<float>(d.x());
-      rh.ray.dir_y[k] = static_cast<float>(d.y());
-      rh.ray.dir_z[k] = static_cast<float>(d.z());
-      rh.ray.tnear[k] = static_cast<float>(near_m);
-      rh.ray.tfar[k] = static_cast<float>(far_m);
-      rh.ray.time[k] = 0.0f;
-      rh.ray.mask[k] = ray_mask;
-      rh.ray.id[k] = static_cast<unsigned>(k);
-      rh.ray.flags[k] = 0;
-      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-    }
-    rtcIntersect16(valid, r.top, &context.base, &rh);
-    for (size_t k = 0; k < count; ++k)
-      hits[first + k] = rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID
-                            ? RayHit()
-                            : r.Hit(rh.hit.instID[0][k], rh.ray.tfar[k],
-                                    Eigen::Vector3d(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]), dirs_W[first + k]);
-  }
+  CastPackets16(r.top, &context.base, origin_W, dirs_W, n, near_m, far_m, ray_mask,
+                [&](size_t k, const RTCRayHit16& rh, size_t lane) {
+                  hits[k] =
+                      rh.hit.geomID[lane] == RTC_INVALID_GEOMETRY_ID
+                          ? RayHit()
+                          : r.Hit(rh.hit.instID[0][lane], rh.ray.tfar[lane],
+                                  Eigen::Vector3d(rh.hit.Ng_x[lane], rh.hit.Ng_y[lane], rh.hit.Ng_z[lane]), dirs_W[k]);
+                });
 }
 
 size_t RayScene::InstanceCount() const { return impl_->instances.size(); }

@@ -3,6 +3,8 @@
 // by the same loaders as the ROS nodes from the numbers Python flattened out of the yaml files.
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -25,8 +27,11 @@ namespace {
 
 using rotors_flight_batch::Airframe;
 using rotors_flight_batch::CommandMode;
+using rotors_flight_batch::DepthCameraParams;
 using rotors_flight_batch::FlightBatch;
 using rotors_flight_batch::FlightBatchOptions;
+using rotors_flight_batch::Obstacle;
+using rotors_flight_batch::ObstacleField;
 using rotors_flight_batch::VehicleDescription;
 using rotors_sim::SimError;
 
@@ -188,7 +193,117 @@ Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle,
 
 }  // namespace
 
+/// Obstacles from rows (shape, x, y, z, half extents x, y, z, yaw): shape 0 a box, 1 a cylinder.
+std::vector<Obstacle> ObstacleRows(const py::array_t<double, py::array::c_style | py::array::forcecast>& rows) {
+  if (rows.ndim() != 2 || rows.shape(1) != 8)
+    throw SimError(
+        "ObstacleField.set: obstacles must have shape (K, 8): shape (0 box, 1 cylinder), x, y, z, "
+        "half extents x, y, z, yaw");
+  std::vector<Obstacle> out(rows.shape(0));
+  auto r = rows.unchecked<2>();
+  for (py::ssize_t k = 0; k < rows.shape(0); ++k) {
+    if (r(k, 0) != 0.0 && r(k, 0) != 1.0)
+      throw SimError("ObstacleField.set: obstacle " + std::to_string(k) + ": shape " + std::to_string(r(k, 0)) +
+                     " is not 0 (box) or 1 (cylinder)");
+    Obstacle& o = out[k];
+    o.shape = r(k, 0) == 0.0 ? Obstacle::Shape::kBox : Obstacle::Shape::kCylinder;
+    o.center_W = {r(k, 1), r(k, 2), r(k, 3)};
+    o.half_extents_m = {r(k, 4), r(k, 5), r(k, 6)};
+    o.yaw_rad = r(k, 7);
+  }
+  return out;
+}
+
+DepthCameraParams DepthCameraFrom(const py::dict& values) {
+  DepthCameraParams c;
+  for (const auto& item : values) {
+    const std::string key = py::str(item.first);
+    const py::handle v = item.second;
+    if (key == "width") c.width_px = v.cast<int>();
+    else if (key == "height") c.height_px = v.cast<int>();
+    else if (key == "horizontal_fov") c.horizontal_fov_rad = v.cast<double>();
+    else if (key == "vertical_fov") c.vertical_fov_rad = v.cast<double>();
+    else if (key == "min_range") c.min_range_m = v.cast<double>();
+    else if (key == "max_range") c.max_range_m = v.cast<double>();
+    else if (key == "xyz") c.p_M_m = v.cast<Eigen::Vector3d>();
+    else if (key == "noise") c.noise = v.cast<bool>();
+    else
+      throw SimError(
+          "FlightBatch.set_depth_camera: '" + key +
+          "' is not a parameter (width, height, horizontal_fov, vertical_fov, min_range, max_range, xyz, noise)");
+  }
+  return c;
+}
+
+py::dict DepthCameraDict(const DepthCameraParams& c) {
+  py::dict d;
+  d["width"] = c.width_px, d["height"] = c.height_px;
+  d["horizontal_fov"] = c.horizontal_fov_rad, d["vertical_fov"] = c.vertical_fov_rad;
+  d["min_range"] = c.min_range_m, d["max_range"] = c.max_range_m;
+  d["xyz"] = c.p_M_m;
+  d["noise"] = c.noise;
+  return d;
+}
+
 void BindFlightBatch(py::module_& m) {
+  py::class_<ObstacleField, std::shared_ptr<ObstacleField>>(
+      m, "ObstacleField", "Static obstacles, one set per environment (see rotors_sim.clutter).")
+      .def(py::init<int, double>(), py::arg("environments"), py::arg("max_sphere_radius"))
+      .def_property_readonly("environments", &ObstacleField::Environments)
+      .def(
+          "set",
+          [](ObstacleField& f, int env, const py::array_t<double, py::array::c_style | py::array::forcecast>& rows) {
+            f.Set(env, ObstacleRows(rows));
+          },
+          py::arg("env"), py::arg("obstacles"), "Environment env's obstacles: rows (shape, x, y, z, hx, hy, hz, yaw).")
+      .def(
+          "get",
+          [](const ObstacleField& f, int env) {
+            if (env < 0 || env >= f.Environments())
+              throw SimError("ObstacleField.get: environment " + std::to_string(env) + " is not in 0.." +
+                             std::to_string(f.Environments() - 1));
+            const auto& obstacles = f.Get(env);
+            py::array_t<double> a({static_cast<py::ssize_t>(obstacles.size()), static_cast<py::ssize_t>(8)});
+            auto r = a.mutable_unchecked<2>();
+            for (size_t k = 0; k < obstacles.size(); ++k) {
+              const Obstacle& o = obstacles[k];
+              r(k, 0) = o.shape == Obstacle::Shape::kBox ? 0.0 : 1.0;
+              for (int c = 0; c < 3; ++c) r(k, 1 + c) = o.center_W[c], r(k, 4 + c) = o.half_extents_m[c];
+              r(k, 7) = o.yaw_rad;
+            }
+            return a;
+          },
+          py::arg("env"))
+      .def(
+          "distance",
+          [](const ObstacleField& f, int env, const Eigen::Vector3d& p_W) {
+            double d = std::numeric_limits<double>::infinity();
+            for (const Obstacle& o : f.Get(env)) d = std::min(d, o.Distance(p_W));
+            return d;
+          },
+          py::arg("env"), py::arg("point"), "The distance [m] from point to the nearest obstacle of env (inf: none).")
+      .def(
+          "cast",
+          [](const ObstacleField& f, int env, const Eigen::Vector3d& origin,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& dirs, double near, double far) {
+            if (env < 0 || env >= f.Environments())
+              throw SimError("ObstacleField.cast: environment " + std::to_string(env) + " is not in 0.." +
+                             std::to_string(f.Environments() - 1));
+            if (dirs.ndim() != 2 || dirs.shape(1) != 3)
+              throw SimError("ObstacleField.cast: dirs must have shape (n, 3)");
+            std::vector<Eigen::Vector3d> d(dirs.shape(0));
+            auto r = dirs.unchecked<2>();
+            for (size_t k = 0; k < d.size(); ++k) d[k] = Eigen::Vector3d(r(k, 0), r(k, 1), r(k, 2)).normalized();
+            py::array_t<double> t(static_cast<py::ssize_t>(d.size()));
+            {
+              py::gil_scoped_release release;
+              f.Cast(env, origin, d.data(), d.size(), near, far, t.mutable_data());
+            }
+            return t;
+          },
+          py::arg("env"), py::arg("origin"), py::arg("dirs"), py::arg("near") = 0.0, py::arg("far") = 100.0,
+          "Distances along rays to the first obstacle (inf: none).");
+
   py::class_<VehicleDescription>(m, "VehicleDescription",
                                  "What the batched flight engine read from a spawned multirotor.")
       .def_readonly("model_name", &VehicleDescription::model_name)
@@ -313,6 +428,44 @@ void BindFlightBatch(py::module_& m) {
                                FlightBatch& b = self.cast<FlightBatch&>();
                                return View(const_cast<uint64_t*>(b.Steps()), b.Count(), 1, self, false);
                              })
+      .def_property_readonly("collided",
+                             [](py::object self) {
+                               FlightBatch& b = self.cast<FlightBatch&>();
+                               return View(b.Collided(), b.Count(), 1, self, false);
+                             })
+      .def_property_readonly("collision_radius", &FlightBatch::CollisionRadius)
+      .def("set_obstacles", &FlightBatch::SetObstacles, py::arg("field"),
+           "Vehicle i flies among environment i's obstacles of field (None: none).")
+      .def_property_readonly("obstacles", [](const FlightBatch& b) { return b.Obstacles(); })
+      .def(
+          "set_depth_camera",
+          [](FlightBatch& b, const py::object& values) {
+            b.SetDepthCamera(values.is_none()
+                                 ? std::nullopt
+                                 : std::optional<DepthCameraParams>(DepthCameraFrom(values.cast<py::dict>())));
+          },
+          py::arg("camera"), "A depth camera on every vehicle: a dict of its parameters ({} the defaults), or None.")
+      .def_property_readonly("depth_camera",
+                             [](const FlightBatch& b) -> py::object {
+                               if (!b.DepthCamera()) return py::none();
+                               return DepthCameraDict(*b.DepthCamera());
+                             })
+      .def(
+          "render_depth",
+          [](FlightBatch& b) {
+            if (!b.DepthCamera())
+              throw SimError("FlightBatch.render_depth: no depth camera; set one with set_depth_camera");
+            const auto& c = *b.DepthCamera();
+            py::array_t<float> a({static_cast<py::ssize_t>(b.Count()), static_cast<py::ssize_t>(c.height_px),
+                                  static_cast<py::ssize_t>(c.width_px)});
+            float* out = a.mutable_data();
+            {
+              py::gil_scoped_release release;
+              b.RenderDepth(out);
+            }
+            return a;
+          },
+          "Every vehicle's depth image now, N x H x W float32 [m] (NaN: out of range).")
       .def(
           "truth",
           [](py::object self) {

@@ -7,6 +7,7 @@
 #include <exception>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <mutex>
 #include <sstream>
 
@@ -227,6 +228,10 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
                                     corner_B_.data(), contact_reach_m_.data(), motor_constant_.data(),
                                     rotor_drag_coefficient_.data(), rolling_moment_coefficient_.data(),
                                     reaction_factor_.data(), max_rot_velocity_.data(), a_up_.data(), a_down_.data()}};
+  // the collision sphere: about the description's CoG, holding every visual and collision (model frame)
+  collided_.assign(count, 0);
+  sphere_center_M_ = d_.p_M_cog;
+  sphere_radius_m_ = d_.reach_m;
   const Airframe nominal = NominalAirframe();
   airframes_.assign(count, nominal);
   for (size_t i = 0; i < n; ++i) WriteAirframe(i, nominal);  // the padding lanes too
@@ -289,6 +294,121 @@ size_t FlightBatch::NoiseBytesPerVehicle() const {
          (s.imu_noise ? sizeof(rgp::ImuNoiseModel) : 0) + (s.wind ? sizeof(rgp::WindModel) : 0);
 }
 
+rgp::DepthNoiseParams DepthCameraParams::D435Noise() {
+  rgp::DepthNoiseParams p;
+  p.model = rgp::DepthNoiseParams::Model::kD435;
+  p.horizontal_fov_rad = 1.59174;  // the imager's: the error is a disparity error at its resolution
+  p.width_px = 848;
+  p.baseline_m = 0.05;
+  p.subpixel_error_px = 0.25;
+  p.max_stdev_m = 3.0;
+  return p;
+}
+
+std::string DepthCameraParams::Validate() const {
+  if (width_px < 1 || height_px < 1 || width_px > 4096 || height_px > 4096)
+    return "width and height must be 1..4096 pixels (got " + std::to_string(width_px) + " x " +
+           std::to_string(height_px) + ")";
+  if (!(horizontal_fov_rad > 0.0 && horizontal_fov_rad < M_PI && vertical_fov_rad > 0.0 && vertical_fov_rad < M_PI))
+    return "horizontal_fov = " + std::to_string(horizontal_fov_rad) +
+           " and vertical_fov = " + std::to_string(vertical_fov_rad) + " rad must be in (0, pi)";
+  if (!(min_range_m >= 0.0 && max_range_m > min_range_m && std::isfinite(max_range_m)))
+    return "need 0 <= min_range < max_range < inf (got " + std::to_string(min_range_m) + ", " +
+           std::to_string(max_range_m) + ")";
+  if (!p_M_m.allFinite()) return "the mount p_M must be finite";
+  if (noise) {
+    const std::string why = noise_params.Validate();
+    if (!why.empty()) return "noise: " + why;
+  }
+  return "";
+}
+
+void FlightBatch::SetObstacles(std::shared_ptr<const ObstacleField> field) {
+  if (field && field->Environments() < n_)
+    throw SimError("FlightBatch.set_obstacles: the field has " + std::to_string(field->Environments()) +
+                   " environments for " + std::to_string(n_) + " vehicles; give one per vehicle");
+  if (field && field->MaxSphereRadius() < sphere_radius_m_)
+    throw SimError("FlightBatch.set_obstacles: the field tests spheres up to " +
+                   std::to_string(field->MaxSphereRadius()) + " m, the vehicle's is " +
+                   std::to_string(sphere_radius_m_) + " m; make the field for it");
+  obstacles_ = std::move(field);
+  std::fill(collided_.begin(), collided_.end(), 0);
+}
+
+void FlightBatch::SetDepthCamera(std::optional<DepthCameraParams> camera) {
+  if (camera) {
+    const std::string why = camera->Validate();
+    if (!why.empty()) throw SimError("FlightBatch.set_depth_camera: " + why);
+  }
+  depth_camera_ = std::move(camera);
+  depth_dirs_M_.clear();
+  depth_per_distance_.clear();
+  depth_noise_.clear();
+  if (!depth_camera_) return;
+  const DepthCameraParams& c = *depth_camera_;
+  // pixel (u, v) looks along (x, y, 1) in the optical frame, x = (u - (W-1)/2) / fx, y = (v - (H-1)/2) / fy;
+  // the optical frame's z, x, y are the model frame's x, -y, -z
+  const double fx = c.width_px / (2.0 * std::tan(c.horizontal_fov_rad / 2.0));
+  const double fy = c.height_px / (2.0 * std::tan(c.vertical_fov_rad / 2.0));
+  for (int v = 0; v < c.height_px; ++v)
+    for (int u = 0; u < c.width_px; ++u) {
+      const double x = (u - (c.width_px - 1) / 2.0) / fx, y = (v - (c.height_px - 1) / 2.0) / fy;
+      const Eigen::Vector3d ray_M(1.0, -x, -y);
+      depth_dirs_M_.push_back(ray_M.normalized());
+      depth_per_distance_.push_back(1.0 / ray_M.norm());
+    }
+  depth_noise_.resize(n_);
+  for (int i = 0; i < n_; ++i) SeedDepthNoise(i);
+}
+
+void FlightBatch::SeedDepthNoise(int i) {
+  // its own stream beside the odometry's (description seed + 1) and the wind's: the vehicle's random_seed + 7
+  const uint64_t seed = (options_.seeds.empty() ? options_.description_seed : options_.seeds[i]) + 7;
+  depth_noise_[i] =
+      depth_camera_->noise ? std::make_unique<rgp::DepthNoiseModel>(depth_camera_->noise_params, seed) : nullptr;
+}
+
+void FlightBatch::RenderDepth(float* out) {
+  if (!depth_camera_) throw SimError("FlightBatch.render_depth: no depth camera; set one with set_depth_camera");
+  const DepthCameraParams& c = *depth_camera_;
+  const size_t pixels = depth_dirs_M_.size();
+  auto render = [&](int begin, int end) {
+    std::vector<Eigen::Vector3d> dirs_W(pixels);
+    std::vector<double> t(pixels);
+    std::vector<float> depth(pixels);
+    const size_t n = n_pad_;
+    for (int i = begin; i < end; ++i) {
+      Eigen::Matrix3d R;
+      for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col) R(r, col) = R_WB_[(3 * r + col) * n + i];
+      const Eigen::Vector3d origin_W =
+          Eigen::Vector3d(p_W_[i], p_W_[n + i], p_W_[2 * n + i]) + R * (c.p_M_m - airframes_[i].p_M_cog);
+      for (size_t k = 0; k < pixels; ++k) dirs_W[k] = R * depth_dirs_M_[k];
+      const double far_ray = c.max_range_m / *std::min_element(depth_per_distance_.begin(), depth_per_distance_.end());
+      if (obstacles_) {
+        obstacles_->Cast(i, origin_W, dirs_W.data(), pixels, 0.0, far_ray, t.data());
+      } else {
+        std::fill(t.begin(), t.end(), std::numeric_limits<double>::infinity());
+      }
+      for (size_t k = 0; k < pixels; ++k) {
+        // the ground plane z = 0, seen from above
+        if (dirs_W[k].z() < 0.0 && origin_W.z() > 0.0) t[k] = std::min(t[k], -origin_W.z() / dirs_W[k].z());
+        const double z = t[k] * depth_per_distance_[k];
+        depth[k] =
+            z > c.min_range_m && z < c.max_range_m ? static_cast<float>(z) : std::numeric_limits<float>::quiet_NaN();
+      }
+      if (depth_noise_[i]) depth_noise_[i]->Apply(&depth);  // NaN stays NaN; noise may not leave the range
+      std::copy(depth.begin(), depth.end(), out + static_cast<size_t>(i) * pixels);
+    }
+  };
+  if (!pool_ || n_ < 2) {
+    render(0, n_);
+    return;
+  }
+  const int threads = threads_;
+  pool_->Run([&](int t) { render(n_ * t / threads, n_ * (t + 1) / threads); });
+}
+
 uint64_t FlightBatch::SeedFor(uint64_t plugin_seed, int i) const {
   return options_.seeds.empty() ? plugin_seed : options_.seeds[i] + (plugin_seed - options_.description_seed);
 }
@@ -337,6 +457,8 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     }
     steps_[i] = 0;
     in_contact_[i] = 0;
+    collided_[i] = 0;
+    if (depth_camera_) SeedDepthNoise(static_cast<int>(i));
     // no command in flight: the motors get 0 (stopped) for the first actuator_delay_steps steps
     delay_rings_[i].assign(static_cast<size_t>(airframes_[i].actuator_delay_steps) * r_, 0.0);
     delay_heads_[i] = 0;
@@ -648,6 +770,15 @@ void FlightBatch::StepGroup(int i0) {
     in_contact_[i] = (touching >> l) & 1u;
     ++steps_[i];
     Observe(i, before, l);
+    if (obstacles_ && !collided_[i]) {
+      // the sphere's centre: the CoG plus R (c_M - p_M_cog)
+      double r_c[3], R[9];
+      for (int c = 0; c < 9; ++c) R[c] = R_WB_[c * n + i];
+      const Eigen::Vector3d c_B = sphere_center_M_ - airframes_[i].p_M_cog;
+      Rotate(R, c_B, r_c);
+      const Eigen::Vector3d c_W(p_W_[i] + r_c[0], p_W_[n + i] + r_c[1], p_W_[2 * n + i] + r_c[2]);
+      collided_[i] = obstacles_->SphereTouches(i, c_W, sphere_radius_m_) ? 1 : 0;
+    }
   }
 }
 

@@ -7,18 +7,23 @@
 // OdometryNoise) and the IMU plugin (ImuNoiseModel). A controller of rotors_control (Lee position,
 // roll-pitch-yawrate-thrust, attitude-thrust, rate-thrust) answers every new odometry message, as
 // World.attach_controller does. What it leaves out: collisions other than its corners on the
-// ground plane z = 0 (a penalty contact), cameras, lasers and the plugins that only measure.
+// ground plane z = 0 (a penalty contact), cameras, lasers and the plugins that only measure. What it
+// adds for learning: static obstacles per vehicle (obstacle_field.h), a collision flag when the
+// vehicle's sphere touches one, and a low-resolution depth camera cast against them and the ground.
 // No ROS, no engine: see vehicle_description.h for where its numbers come from.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rotors_control/attitude_controllers.h"
 #include "rotors_control/lee_controller.h"
 #include "flight_kernel.h"
+#include "obstacle_field.h"
+#include "rotors_gazebo_plugins/models/depth_noise_model.h"
 #include "vehicle_description.h"
 
 namespace rotors_flight_batch {
@@ -64,6 +69,26 @@ struct Airframe {
 Airframe AirframeOf(const VehicleDescription& d);
 
 constexpr int kMaxActuatorDelaySteps = 1000;
+
+/// A depth camera on every vehicle of a batch, looking along the model frame's x axis from p_M_m
+/// (a pinhole with the pixel centres of ROS' camera_info: fx = W / (2 tan(hfov / 2)),
+/// fy = H / (2 tan(vfov / 2)), so the pixels need not be square). A pixel holds the depth along the
+/// optical axis [m] of the first obstacle or ground point its centre's ray meets, with the depth
+/// noise model's noise; NaN where that depth is outside (min_range_m, max_range_m). The defaults
+/// are the project's RealSense D435 (rgbd_base.xacro: 91.2 deg over 848 x 480, so 60.0 deg
+/// vertically; depth from 0.195 m; Intel's D435 noise sigma = z^2 e / (f b) with e = 0.25 px over
+/// the 848 px imager, b = 50 mm) at 64 x 48 pixels, to Intel's approximate 10 m maximum range.
+struct DepthCameraParams {
+  int width_px = 64, height_px = 48;
+  double horizontal_fov_rad = 1.59174, vertical_fov_rad = 1.04724;
+  double min_range_m = 0.195, max_range_m = 10.0;
+  Eigen::Vector3d p_M_m = Eigen::Vector3d::Zero();  ///< where it sits in the model (base_link) frame [m]
+  bool noise = true;
+  rotors_gazebo_plugins::DepthNoiseParams noise_params = D435Noise();
+  static rotors_gazebo_plugins::DepthNoiseParams D435Noise();
+  /// "" or why not (sizes < 1 or above 4096, a field of view outside (0, pi), 0 <= min < max, the noise's own check).
+  std::string Validate() const;
+};
 
 struct FlightBatchOptions {
   int count = 1;
@@ -114,6 +139,21 @@ class FlightBatch {
   /// naming the vehicle and the bad value (the motor plugin's own checks; mass > 0; an inertia that
   /// is symmetric positive definite), and nothing changes.
   void SetAirframe(int i, const Airframe& airframe);
+
+  /// Vehicle i flies among environment i's obstacles of `field` (nullptr: none): after every
+  /// physics step, Collided()[i] becomes 1 when the vehicle's collision sphere (the sphere around
+  /// its collision bounding box, CollisionRadius()) touches one, until its next Reset. SimError when the
+  /// field has fewer environments than the batch has vehicles or tests smaller spheres.
+  void SetObstacles(std::shared_ptr<const ObstacleField> field);
+  const std::shared_ptr<const ObstacleField>& Obstacles() const { return obstacles_; }
+  uint8_t* Collided() { return collided_.data(); }
+  double CollisionRadius() const { return sphere_radius_m_; }
+  /// Every vehicle carries `camera` from now on (std::nullopt: none); its noise is seeded per vehicle
+  /// at each Reset, as the other sensors are. SimError naming the bad value.
+  void SetDepthCamera(std::optional<DepthCameraParams> camera);
+  const std::optional<DepthCameraParams>& DepthCamera() const { return depth_camera_; }
+  /// Each vehicle's depth image now (N x H x W, row-major; on the pool's threads). SimError without a camera.
+  void RenderDepth(float* out);
 
   /// Vehicle i's random_seed from its next Reset on (a new episode's sensor and wind noise).
   void SetSeed(int i, uint64_t seed);
@@ -202,6 +242,16 @@ class FlightBatch {
   std::vector<std::unique_ptr<Controller>> controllers_;
   std::vector<std::unique_ptr<Sensors>> sensors_;
   std::unique_ptr<Pool> pool_;
+  // obstacles and the depth camera
+  std::shared_ptr<const ObstacleField> obstacles_;
+  std::vector<uint8_t> collided_;
+  Eigen::Vector3d sphere_center_M_ = Eigen::Vector3d::Zero();  ///< the collision sphere's centre, model frame
+  double sphere_radius_m_ = 0.0;
+  std::optional<DepthCameraParams> depth_camera_;
+  std::vector<Eigen::Vector3d> depth_dirs_M_;  ///< per pixel: its ray, a unit vector in the model frame
+  std::vector<double> depth_per_distance_;     ///< per pixel: depth along the axis per metre of ray
+  std::vector<std::unique_ptr<rotors_gazebo_plugins::DepthNoiseModel>> depth_noise_;
+  void SeedDepthNoise(int i);
 };
 
 }  // namespace rotors_flight_batch

@@ -1,6 +1,7 @@
 #include "vehicle_description.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -23,6 +24,38 @@ namespace {
 
 Eigen::Vector3d ToEigen(const physics::Vector3d& v) { return {v.X(), v.Y(), v.Z()}; }
 Eigen::Quaterniond ToEigen(const physics::Quaterniond& q) { return {q.W(), q.X(), q.Y(), q.Z()}; }
+
+/// The largest distance from c_W of a point of `visual` (placed by its link's pose now): a box's
+/// corners, a sphere's far side, a cylinder's rims, a mesh's vertices; 0 for the unbounded shapes.
+double VisualReach(const rotors_sim::geometry::Visual& visual, const Eigen::Vector3d& c_W) {
+  using Type = rotors_sim::geometry::Shape::Type;
+  const rotors_sim::geometry::Shape& s = visual.shape;
+  const physics::Pose3d X_WV = visual.X_LV + visual.link->WorldPose();
+  const Eigen::Vector3d p_WV = ToEigen(X_WV.Pos());
+  const Eigen::Matrix3d R_WV = ToEigen(X_WV.Rot()).toRotationMatrix();
+  auto reach = [&](const Eigen::Vector3d& p_V) { return (p_WV + R_WV * p_V - c_W).norm(); };
+  double r = 0.0;
+  switch (s.type) {
+    case Type::kBox:
+      for (int c = 0; c < 8; ++c)
+        r = std::max(r, reach(Eigen::Vector3d((c & 1) ? 0.5 : -0.5, (c & 2) ? 0.5 : -0.5, (c & 4) ? 0.5 : -0.5)
+                                  .cwiseProduct(ToEigen(s.box_size_m))));
+      break;
+    case Type::kSphere: r = (p_WV - c_W).norm() + s.radius_m; break;
+    case Type::kCylinder:
+      for (int k = 0; k < 360; ++k)
+        for (double z : {-s.length_m / 2.0, s.length_m / 2.0})
+          r = std::max(r, reach({s.radius_m * std::cos(k * M_PI / 180.0), s.radius_m * std::sin(k * M_PI / 180.0), z}));
+      break;
+    case Type::kMesh:
+      if (s.mesh)
+        for (size_t v = 0; v + 2 < s.mesh->vertices_m.size(); v += 3)
+          r = std::max(r, reach({s.mesh->vertices_m[v], s.mesh->vertices_m[v + 1], s.mesh->vertices_m[v + 2]}));
+      break;
+    default: break;
+  }
+  return r;
+}
 
 /// Plugins that only measure or record: the batch leaves them out and says so.
 const std::set<std::string> kMeasuringPlugins = {"librotors_gazebo_multirotor_base_plugin.so",
@@ -213,6 +246,10 @@ VehicleDescription DescribeVehicle(const physics::Model& model, const std::strin
           Eigen::Vector3d((c & 1) ? hi_W.X() : lo_W.X(), (c & 2) ? hi_W.Y() : lo_W.Y(), (c & 4) ? hi_W.Z() : lo_W.Z()) -
           p_W_cog);
   }
+  const Eigen::Vector3d p_W_cog = ToEigen(model.WorldPose().Pos()) + d.p_M_cog;
+  for (const Eigen::Vector3d& corner : d.contact_points_B) d.reach_m = std::max(d.reach_m, corner.norm());
+  for (const auto& visual : model.Visuals())
+    if (visual.link) d.reach_m = std::max(d.reach_m, VisualReach(visual, p_W_cog));
   return d;
 }
 

@@ -74,6 +74,9 @@ struct VehicleDescription {
   std::optional<ImuDescription> imu;
   std::optional<WindDescription> wind;
   std::vector<Eigen::Vector3d> contact_points_B;  ///< corners of the collision bounding box
+  /// The radius [m] of the sphere about the CoG that holds every visual and collision of the vehicle
+  /// (its rotors' discs too): what touches an obstacle.
+  double reach_m = 0.0;
   Eigen::Vector3d gravity_W{0.0, 0.0, -9.8};
   double step_s = 0.001;
   std::vector<std::string> left_out;  ///< plugins that only measure and are not simulated here

@@ -176,6 +176,40 @@ class FlightBatch:
             raise SimError(f"seed = {seed} must be >= 0")
         self._b.set_seed(int(i), int(seed))
 
+    # --- obstacles and the depth camera ---
+    def set_obstacles(self, field: _engine.ObstacleField | None) -> None:
+        """Vehicle i flies among environment i's obstacles of `field` (rotors_sim.clutter makes
+        them; None: none). After every physics step `collided[i]` becomes True when the vehicle's
+        sphere (collision_radius about its CoG, holding its rotors) touches one, until its reset.
+        The batch does not bounce a vehicle off an obstacle: a collision ends an episode."""
+        self._b.set_obstacles(field)
+
+    @property
+    def collided(self) -> np.ndarray:
+        """Per vehicle: it touched an obstacle since its reset (a copy)."""
+        return self._b.collided[:, 0].astype(bool)
+
+    @property
+    def collision_radius(self) -> float:
+        """The radius [m] of the sphere about the CoG that holds every visual and collision."""
+        return self._b.collision_radius
+
+    def set_depth_camera(self, **params: Any) -> None:
+        """A depth camera on every vehicle, looking along the model frame's x axis: "width",
+        "height" [px] (64 x 48), "horizontal_fov", "vertical_fov" [rad] (the project's D435: 1.59174
+        and 1.04724), "min_range", "max_range" [m] (0.195, 10), "xyz" (its place in the model frame),
+        "noise" (the D435's depth noise, True). Its noise is seeded per vehicle at each reset."""
+        self._b.set_depth_camera(dict(params))
+
+    @property
+    def depth_camera(self) -> dict[str, Any] | None:
+        return self._b.depth_camera
+
+    def render_depth(self) -> np.ndarray:
+        """Every vehicle's depth image now (count x H x W float32, depth along the optical axis [m],
+        NaN outside the camera's range): rays cast against its obstacles and the ground z = 0."""
+        return self._b.render_depth()
+
     # --- what it holds ---
     @property
     def count(self) -> int:

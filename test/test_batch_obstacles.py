@@ -1,0 +1,183 @@
+"""Obstacles, depth and collisions in the batched flight engine, against geometry: the distance
+from a point to a box and to a cylinder; a depth camera's pixel depth of a wall and of the ground
+(the pinhole's own equation) and its D435 noise (sigma = z^2 e / (f b)); a vehicle flown straight
+into a wall is flagged at the step its sphere reaches it, never later; seeded courses repeat; and
+RotorS/NavigateClutter-v0 as Gymnasium's vector API and its scripted baseline use it."""
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import rotors_sim as rs
+import rotors_sim.envs  # noqa: F401 (registers the environments)
+from rotors_sim import clutter
+from rotors_sim._engine import ObstacleField, SimError
+from rotors_sim.envs.navigate import FreeDirectionBaseline, NavigateClutterEnv
+
+WALL_X, WALL_HALF = 3.0, 0.1  # a wall across x = 3 m, 0.2 m thick
+
+
+def wall_batch(count: int = 2, noise: bool = False, **camera) -> tuple[rs.FlightBatch, ObstacleField]:
+    batch = rs.FlightBatch("firefly", count=count, mode="lee_position", noise=False)
+    field = ObstacleField(count, batch.collision_radius)
+    for env in range(count):
+        field.set(env, np.array([[clutter.BOX, WALL_X, 0.0, 2.0, WALL_HALF, 5.0, 2.0, 0.0]]))
+    batch.set_obstacles(field)
+    batch.set_depth_camera(noise=noise, **camera)
+    return batch, field
+
+
+def test_distance_to_a_turned_box_and_a_cylinder_is_euclidean():
+    field = ObstacleField(1, 0.5)
+    # a 2 x 1 x 1 m box turned 90 deg about z (its long side along y), a cylinder r 0.5 m, 2 m tall at x = 5
+    field.set(0, np.array([[0, 0.0, 0.0, 0.5, 1.0, 0.5, 0.5, np.pi / 2], [1, 5.0, 0.0, 1.0, 0.5, 0.5, 1.0, 0.0]]))
+    for point, expected in [
+        ((0.0, 1.2, 0.5), 0.2),  # beyond the end of its long side (now along y): 1.2 - 1.0 ...
+        ((1.5, 0.0, 0.5), 1.0),  # ... and beside it: 1.5 - 0.5
+        ((0.8, 1.3, 1.4), np.sqrt(0.3**2 + 0.3**2 + 0.4**2)),  # off a top corner
+        ((0.1, 0.1, 0.5), 0.0),  # inside
+        ((6.0, 0.0, 1.0), 0.5),  # beside the cylinder
+        ((5.0, 0.0, 2.5), 0.5),  # above its top
+        ((5.0 + 0.6 / np.sqrt(2), 0.6 / np.sqrt(2), 2.3), np.hypot(0.1, 0.3)),  # off its rim
+    ]:
+        assert field.distance(0, np.array(point)) == pytest.approx(expected, abs=1e-12), point
+
+
+def test_depth_of_a_wall_and_of_the_ground_is_the_pinholes():
+    batch, _ = wall_batch()
+    batch.step(500)  # hover at (0, 0, 1)
+    depth = batch.render_depth()[0]
+    cam = batch.depth_camera
+    h, w = depth.shape
+    p = batch.truth()[0, 0:3]
+    fy = h / (2 * np.tan(cam["vertical_fov"] / 2))
+    # a wall square to the axis: every pixel that meets it has depth = its distance (a plane at z = d)
+    d_wall = WALL_X - WALL_HALF - p[0] - cam["xyz"][0]
+    wall_rows = depth[: h // 2]
+    assert np.nanmax(np.abs(wall_rows - d_wall)) < 2e-3, (d_wall, np.nanmin(wall_rows), np.nanmax(wall_rows))
+    # the ground under the horizon, nearer than the wall: depth = height / y, y = (v - (H-1)/2) / fy
+    row = h - 1
+    y = (row - (h - 1) / 2) / fy
+    height = p[2] + cam["xyz"][2]
+    expected = height / y
+    assert expected < d_wall
+    assert np.allclose(depth[row], expected, rtol=2e-3), (depth[row, :3], expected)
+    print(
+        f"wall {d_wall:.4f} m: pixels {np.nanmin(wall_rows):.4f}..{np.nanmax(wall_rows):.4f}; ground row {row}: {depth[row, 0]:.4f} m, pinhole {expected:.4f} m"
+    )
+
+
+def test_depth_noise_is_the_d435_model():
+    batch, _ = wall_batch(count=4, noise=True)
+    batch.step(500)
+    depth = batch.render_depth()[:, :20]  # the rows that see the wall
+    d_wall = WALL_X - WALL_HALF - batch.truth()[0, 0]
+    f_px = 848 / (2 * np.tan(1.59174 / 2))
+    sigma = d_wall**2 * 0.25 / (f_px * 0.05)
+    measured = np.nanstd(depth - d_wall)
+    print(f"D435 noise at {d_wall:.2f} m: sigma {measured:.4f} m, model z^2 e / (f b) = {sigma:.4f} m")
+    assert measured == pytest.approx(sigma, rel=0.05)
+    # each vehicle its own stream, and the same again after a reset at the same place
+    assert not np.array_equal(depth[0], depth[1])
+    batch.reset(positions=batch.truth()[:, 0:3], yaws=np.zeros(4))
+    again = batch.render_depth()[:, :20]
+    batch.reset(positions=batch.truth()[:, 0:3], yaws=np.zeros(4))
+    assert np.array_equal(again, batch.render_depth()[:, :20], equal_nan=True)
+
+
+def test_flying_into_a_wall_is_a_collision_at_the_step_it_touches():
+    batch, field = wall_batch(count=1)
+    batch.step(500)
+    batch.commands[:] = [10.0, 0.0, 1.0, 0.0]  # a set point behind the wall: straight into it
+    radius, cog = batch.collision_radius, batch.description.p_M_cog
+    flagged_at = None
+    for step in range(3000):
+        was = batch.collided[0]
+        batch.step(1)
+        p_cog = batch.truth()[0, 0:3] + cog  # level flight: the CoG's offset is the model's
+        gap = field.distance(0, p_cog)
+        if not was and batch.collided[0]:
+            flagged_at = (step, gap, np.linalg.norm(batch.truth()[0, 7:10]))
+            break
+        assert gap > radius - 1e-9, f"the sphere reached the wall at step {step} (gap {gap:.4f} m) without a collision"
+    assert flagged_at is not None, "the vehicle never touched the wall"
+    step, gap, speed = flagged_at
+    print(f"collision at step {step}: gap {gap:.4f} m <= radius {radius:.4f} m at {speed:.2f} m/s")
+    assert radius - speed * batch.step_size * 1.01 <= gap <= radius
+    # a reset clears it
+    batch.reset()
+    assert not batch.collided[0]
+
+
+def test_courses_repeat_for_a_seed_and_bad_input_is_one_line():
+    spec = clutter.ClutterSpec()
+    a, start, goal = clutter.generate(spec, 3)
+    b, start_b, goal_b = clutter.generate(spec, 3)
+    assert np.array_equal(a, b) and np.array_equal(start, start_b) and np.array_equal(goal, goal_b)
+    assert not np.array_equal(a, clutter.generate(spec, 4)[0])
+    expected = round(spec.density * (spec.length_m - 2 * spec.clear_m) * spec.width_m) + 2  # + the side walls
+    assert len(a) == expected
+    field = ObstacleField(1, 0.4)
+    field.set(0, a)
+    for p in (start, goal):  # the start and the goal are clear of the vehicle's sphere
+        assert field.distance(0, p) > 0.4
+    with pytest.raises(SimError, match="obstacle 0: a size is <= 0"):
+        field.set(0, np.array([[0, 0, 0, 0, 0.0, 1, 1, 0]]))
+    with pytest.raises(SimError, match="shape 2.0* is not 0"):
+        field.set(0, np.array([[2, 0, 0, 0, 1, 1, 1, 0]]))
+    with pytest.raises(SimError, match="environment 3 is not in 0..0"):
+        field.set(3, a)
+    with pytest.raises(SimError, match="density_m not known"):
+        clutter.spec_from({"density_m": 1})
+    with pytest.raises(SimError, match="horizontal_fov"):
+        rs.FlightBatch("firefly", count=1).set_depth_camera(horizontal_fov=4.0)
+    with pytest.raises(SimError, match="fewer|environments for 2 vehicles"):
+        rs.FlightBatch("firefly", count=2).set_obstacles(ObstacleField(1, 1.0))
+
+
+def test_navigate_clutter_is_a_gymnasium_vector_env():
+    envs = gym.make_vec("RotorS/NavigateClutter-v0", num_envs=4, vectorization_mode="vector_entry_point")
+    assert isinstance(envs.unwrapped, NavigateClutterEnv)
+    obs, info = envs.reset(seed=5)
+    assert obs in envs.observation_space
+    first = envs.unwrapped.course_seeds.copy()
+    # reset_mask: only vehicle 1 gets a new course
+    envs.reset(options={"reset_mask": np.array([False, True, False, False])})
+    seeds = envs.unwrapped.course_seeds
+    assert seeds[1] != first[1] and np.array_equal(np.delete(seeds, 1), np.delete(first, 1))
+    # a vehicle flown at full speed into what is ahead ends its episode with -10 and a new course at once
+    envs.reset(seed=5)
+    ended = np.zeros(4, dtype=bool)
+    for _ in range(600):
+        obs, reward, terminated, truncated, info = envs.step(np.tile([1.0, 0.0, 0.0, 0.0], (4, 1)))
+        assert obs in envs.observation_space
+        if terminated.any():
+            i = np.flatnonzero(terminated)[0]
+            assert info["_final_obs"][i] and info["final_info"]["_collided"][i]
+            assert reward[i] <= -10.0 + 1.0
+            ended[i] = True
+            if ended.all():
+                break
+    assert ended.any()
+    envs.close()
+
+
+@pytest.mark.long
+def test_scripted_baseline_reaches_the_goal_through_100_courses():
+    count = 100
+    env = NavigateClutterEnv(count, autoreset=False, step_after_end=True)
+    results = {}
+    for name in ("free-direction baseline", "random actions"):
+        obs, _ = env.reset(seed=0)
+        baseline = FreeDirectionBaseline(env)
+        rng = np.random.default_rng(0)
+        outcome = np.full(count, "", dtype=object)
+        while (outcome == "").any():
+            action = baseline(obs) if name != "random actions" else rng.uniform(-1, 1, (count, 4))
+            obs, _, terminated, truncated, info = env.step(action)
+            for i in np.flatnonzero((terminated | truncated) & (outcome == "")):
+                outcome[i] = "goal" if info["success"][i] else "collision" if info["collided"][i] else "left" if terminated[i] else "time"
+        results[name] = {k: int((outcome == k).sum()) for k in ("goal", "collision", "left", "time")}
+        print(f"{name}: {results[name]} of {count} courses (seeds 0..99, density {env.course.density} per m^2)")
+    assert results["random actions"]["goal"] == 0
+    assert results["free-direction baseline"]["goal"] >= 80
