@@ -62,9 +62,8 @@ def test_depth_of_a_wall_and_of_the_ground_is_the_pinholes():
     expected = height / y
     assert expected < d_wall
     assert np.allclose(depth[row], expected, rtol=2e-3), (depth[row, :3], expected)
-    print(
-        f"wall {d_wall:.4f} m: pixels {np.nanmin(wall_rows):.4f}..{np.nanmax(wall_rows):.4f}; ground row {row}: {depth[row, 0]:.4f} m, pinhole {expected:.4f} m"
-    )
+    wall = f"wall {d_wall:.4f} m: pixels {np.nanmin(wall_rows):.4f}..{np.nanmax(wall_rows):.4f}"
+    print(f"{wall}; ground row {row}: {depth[row, 0]:.4f} m, pinhole {expected:.4f} m")
 
 
 def test_depth_noise_is_the_d435_model():
