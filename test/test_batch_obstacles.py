@@ -108,6 +108,46 @@ def test_flying_into_a_wall_is_a_collision_at_the_step_it_touches():
     assert not batch.collided[0]
 
 
+def test_a_shared_world_is_seen_and_touched_where_its_surface_is():
+    """The power plant in every environment: its visuals for the rays, its occupancy (0.25 m cells,
+    RotorS' own octree) for the spheres. Walked along a ray to the plant, a sphere touches it no
+    later than where the ray meets the surface, and where it first touches, rays from its centre
+    find a surface within its radius and one cell's diagonal (the cells hold the surfaces)."""
+    world = rs.World("powerplant")
+    field = ObstacleField(2, 0.4)
+    field.set_world(world.engine, [15.0, -17.0, 15.0], [80.0, 80.0, 30.0], 0.25)
+    assert field.world_occupied_cells > 10000
+    radius, cell = 0.3, 0.25
+    checked = 0
+    for origin, direction in [
+        ((-30.0, -20.0, 5.0), (1.0, 0.0, 0.0)),
+        ((15.0, 30.0, 6.0), (0.0, -1.0, 0.0)),
+        ((60.0, -10.0, 3.0), (-1.0, 0.0, 0.0)),
+    ]:
+        o, d = np.array(origin), np.array(direction)
+        hit = field.cast(1, o, d[None, :], 0.0, 100.0)[0]
+        assert np.isfinite(hit), origin
+        first = None
+        for t in np.arange(0.0, hit, 0.01):
+            if field.sphere_touches(1, o + t * d, radius):
+                first = t
+                break
+        assert first is not None, f"from {origin}: no touch before the surface at {hit:.2f} m"
+        around = np.array([[a, b, c] for a in (-1, 0, 1) for b in (-1, 0, 1) for c in (-1, 0, 1) if (a, b, c) != (0, 0, 0)], float)
+        around /= np.linalg.norm(around, axis=1, keepdims=True)
+        # a fan of 26 directions and a finer ring in the plane of the walk
+        ring = np.array([[np.cos(a), np.sin(a), 0.0] for a in np.linspace(0, 2 * np.pi, 360, endpoint=False)])
+        nearest = field.cast(1, o + first * d, np.vstack([around, ring]), 0.0, 5.0).min()
+        print(
+            f"from {origin}: ray meets the surface at {hit:.2f} m; the sphere ({radius} m) first touches at {first:.2f} m, "
+            f"a surface {nearest:.3f} m from its centre"
+        )
+        assert first <= hit - radius + 0.02  # the walk steps 0.01 m
+        assert nearest <= radius + cell * np.sqrt(3)
+        checked += 1
+    assert checked == 3
+
+
 def test_courses_repeat_for_a_seed_and_bad_input_is_one_line():
     spec = clutter.ClutterSpec()
     a, start, goal = clutter.generate(spec, 3)

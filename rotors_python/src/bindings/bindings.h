@@ -6,6 +6,12 @@
 
 #include "rotors_control/lee_controller.h"
 
+namespace rotors_sim {
+namespace physics {
+class World;
+}
+}  // namespace rotors_sim
+
 namespace rotors_python {
 
 /// A controller that answers each odometry message with rotor speeds [rad/s], as the ROS
@@ -21,6 +27,9 @@ class OdometryController {
 rotors_control::VehicleState StateFromOdometry(const Eigen::Vector3d& position_W, const Eigen::Vector4d& q_xyzw,
                                                const Eigen::Vector3d& velocity_B,
                                                const Eigen::Vector3d& angular_velocity_B);
+
+/// The engine's world inside a rotors_sim._engine.World (SimError for anything else).
+rotors_sim::physics::World& PhysicsWorldOf(const pybind11::handle& world);
 
 void BindWorld(pybind11::module_& m);
 void BindControllers(pybind11::module_& m);

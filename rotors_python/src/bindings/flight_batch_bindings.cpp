@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <octomap/OcTree.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -18,6 +19,8 @@
 #include "flight_batch/flight_batch.h"
 #include "rotors_control/parameter_loading.h"
 #include "rotors_core/error.h"
+#include "rotors_core/geometry/occupancy_mapper.h"
+#include "rotors_core/raycast/ray_scene.h"
 #include "rotors_params/map_param_reader.h"
 
 namespace py = pybind11;
@@ -256,6 +259,41 @@ void BindFlightBatch(py::module_& m) {
             f.Set(env, ObstacleRows(rows));
           },
           py::arg("env"), py::arg("obstacles"), "Environment env's obstacles: rows (shape, x, y, z, hx, hy, hz, yaw).")
+      .def(
+          "set_world",
+          [](ObstacleField& f, const py::object& world, const Eigen::Vector3d& center, const Eigen::Vector3d& lengths,
+             double leaf_m) {
+            if (world.is_none()) {
+              f.SetWorld(nullptr, nullptr, nullptr);
+              return;
+            }
+            rotors_sim::physics::World& w = PhysicsWorldOf(world);
+            auto scene = std::make_shared<rotors_sim::raycast::RayScene>(w);
+            rotors_sim::geometry::OccupancyRequest request;
+            request.center_W = {center.x(), center.y(), center.z()};
+            request.lengths_m = {lengths.x(), lengths.y(), lengths.z()};
+            request.leaf_size_m = leaf_m;
+            py::gil_scoped_release release;
+            scene->Sync();
+            const auto tree = rotors_sim::geometry::BuildOccupancy(w, request);
+            f.SetWorld(scene, tree.get(), nullptr);
+          },
+          py::arg("world"), py::arg("center"), py::arg("lengths"), py::arg("leaf"), py::keep_alive<1, 2>(),
+          "Every environment also holds `world` (a rotors_sim._engine.World; None: none): its visuals for the rays, "
+          "its static collisions' occupancy in the box (center, lengths) at `leaf` m for the spheres.")
+      .def_property_readonly("world_occupied_cells", &ObstacleField::WorldOccupiedCells)
+      .def(
+          "sphere_touches",
+          [](const ObstacleField& f, int env, const Eigen::Vector3d& c_W, double r_m) {
+            if (env < 0 || env >= f.Environments())
+              throw SimError("ObstacleField.sphere_touches: environment " + std::to_string(env) + " is not in 0.." +
+                             std::to_string(f.Environments() - 1));
+            if (!(r_m >= 0.0 && r_m <= f.MaxSphereRadius()))
+              throw SimError("ObstacleField.sphere_touches: radius " + std::to_string(r_m) + " m is not in 0.." +
+                             std::to_string(f.MaxSphereRadius()));
+            return f.SphereTouches(env, c_W, r_m);
+          },
+          py::arg("env"), py::arg("center"), py::arg("radius"))
       .def(
           "get",
           [](const ObstacleField& f, int env) {

@@ -360,6 +360,11 @@ void StepAll(const std::vector<PyWorld*>& worlds, long steps, int threads) {
 
 }  // namespace
 
+rotors_sim::physics::World& PhysicsWorldOf(const py::handle& world) {
+  if (!py::isinstance<PyWorld>(world)) throw SimError("expected a rotors_sim._engine.World (rotors_sim.World.engine)");
+  return world.cast<PyWorld&>().W();
+}
+
 void BindWorld(py::module_& m) {
   static py::exception<SimError> sim_error(m, "SimError", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {

@@ -1,14 +1,17 @@
 #include "obstacle_field.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include <embree3/rtcore.h>
+#include <octomap/OcTree.h>
 #include <Eigen/Geometry>
 
 #include "rotors_core/error.h"
 #include "rotors_core/raycast/ray_packets.h"
+#include "rotors_core/raycast/ray_scene.h"
 #include "rotors_core/rendering/tessellation.h"
 
 namespace rotors_flight_batch {
@@ -57,6 +60,18 @@ struct ObstacleField::Set_ {
   std::vector<uint32_t> cell_start;  ///< nx * ny + 1
   std::vector<uint32_t> cell_items;
   RTCScene scene = nullptr;
+};
+
+/// The world's occupied cells on a dense grid of the octree's resolution, and beside them the cells
+/// "near" one: within the largest sphere's radius of an occupied cell (cube to cube), where the
+/// exact test runs. Bits, x fastest.
+struct ObstacleField::CellGrid {
+  double cell_m = 0.0;
+  Eigen::Vector3d origin_W = Eigen::Vector3d::Zero();  ///< the corner of cell (0, 0, 0)
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<bool> occupied, near;
+  size_t Index(int i, int j, int k) const { return (static_cast<size_t>(k) * ny + j) * nx + i; }
+  bool Inside(int i, int j, int k) const { return i >= 0 && j >= 0 && k >= 0 && i < nx && j < ny && k < nz; }
 };
 
 struct ObstacleField::Embree {
@@ -182,9 +197,109 @@ void ObstacleField::Set(int env, std::vector<Obstacle> obstacles) {
   s.obstacles = std::move(obstacles);
 }
 
+void ObstacleField::SetWorld(std::shared_ptr<const rotors_sim::raycast::RayScene> scene,
+                             const octomap::OcTree* occupied, std::shared_ptr<const void> keep_alive) {
+  world_grid_.reset();
+  world_cells_ = 0;
+  world_scene_ = std::move(scene);
+  world_keep_alive_ = std::move(keep_alive);
+  if (!world_scene_ || !occupied) return;
+  // the occupied leaves (a leaf may span several cells of the finest size)
+  auto grid = std::make_unique<CellGrid>();
+  const double res = occupied->getResolution();
+  grid->cell_m = res;
+  double lo[3], hi[3];
+  bool any = false;
+  for (auto it = occupied->begin_leafs(); it != occupied->end_leafs(); ++it) {
+    if (!occupied->isNodeOccupied(*it)) continue;
+    const double half = it.getSize() / 2.0;
+    const double c[3] = {it.getX(), it.getY(), it.getZ()};
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = any ? std::min(lo[a], c[a] - half) : c[a] - half;
+      hi[a] = any ? std::max(hi[a], c[a] + half) : c[a] + half;
+    }
+    any = true;
+  }
+  if (!any) return;
+  const int pad = static_cast<int>(std::ceil(max_sphere_radius_m_ / res)) + 1;
+  for (int a = 0; a < 3; ++a) grid->origin_W[a] = lo[a] - pad * res;
+  grid->nx = static_cast<int>(std::llround((hi[0] - lo[0]) / res)) + 2 * pad;
+  grid->ny = static_cast<int>(std::llround((hi[1] - lo[1]) / res)) + 2 * pad;
+  grid->nz = static_cast<int>(std::llround((hi[2] - lo[2]) / res)) + 2 * pad;
+  const size_t cells = static_cast<size_t>(grid->nx) * grid->ny * grid->nz;
+  if (cells > (size_t{1} << 33))
+    throw SimError("ObstacleField: the world's occupancy spans " + std::to_string(cells) + " cells of " +
+                   std::to_string(res) + " m; use a coarser leaf or a smaller box");
+  grid->occupied.assign(cells, false);
+  grid->near.assign(cells, false);
+  std::vector<std::array<int, 3>> filled;
+  for (auto it = occupied->begin_leafs(); it != occupied->end_leafs(); ++it) {
+    if (!occupied->isNodeOccupied(*it)) continue;
+    const int n = static_cast<int>(std::llround(it.getSize() / res));
+    const int i0 = static_cast<int>(std::floor((it.getX() - it.getSize() / 2.0 - grid->origin_W.x()) / res + 0.5));
+    const int j0 = static_cast<int>(std::floor((it.getY() - it.getSize() / 2.0 - grid->origin_W.y()) / res + 0.5));
+    const int k0 = static_cast<int>(std::floor((it.getZ() - it.getSize() / 2.0 - grid->origin_W.z()) / res + 0.5));
+    for (int k = k0; k < k0 + n; ++k)
+      for (int j = j0; j < j0 + n; ++j)
+        for (int i = i0; i < i0 + n; ++i)
+          if (grid->Inside(i, j, k) && !grid->occupied[grid->Index(i, j, k)]) {
+            grid->occupied[grid->Index(i, j, k)] = true;
+            filled.push_back({i, j, k});
+          }
+  }
+  world_cells_ = filled.size();
+  // near: cells whose cube lies within the largest radius of an occupied cube (gap per axis
+  // max(|d| - 1, 0) cells); only occupied cells with a free neighbour need spreading
+  const int reach = static_cast<int>(std::ceil(max_sphere_radius_m_ / res));
+  std::vector<std::array<int, 3>> offsets;
+  for (int dk = -reach - 1; dk <= reach + 1; ++dk)
+    for (int dj = -reach - 1; dj <= reach + 1; ++dj)
+      for (int di = -reach - 1; di <= reach + 1; ++di) {
+        const double gx = std::max(std::abs(di) - 1, 0), gy = std::max(std::abs(dj) - 1, 0),
+                     gz = std::max(std::abs(dk) - 1, 0);
+        if (res * std::sqrt(gx * gx + gy * gy + gz * gz) <= max_sphere_radius_m_) offsets.push_back({di, dj, dk});
+      }
+  for (const auto& c : filled) {
+    bool surface = false;
+    for (int a = 0; a < 3 && !surface; ++a)
+      for (int step : {-1, 1}) {
+        std::array<int, 3> n = c;
+        n[a] += step;
+        if (!grid->Inside(n[0], n[1], n[2]) || !grid->occupied[grid->Index(n[0], n[1], n[2])]) surface = true;
+      }
+    grid->near[grid->Index(c[0], c[1], c[2])] = true;
+    if (!surface) continue;
+    for (const auto& o : offsets) {
+      const int i = c[0] + o[0], j = c[1] + o[1], k = c[2] + o[2];
+      if (grid->Inside(i, j, k)) grid->near[grid->Index(i, j, k)] = true;
+    }
+  }
+  world_grid_ = std::move(grid);
+}
+
+bool ObstacleField::WorldSphereTouches(const Eigen::Vector3d& c_W, double r_m) const {
+  const CellGrid& g = *world_grid_;
+  const Eigen::Vector3d u = (c_W - g.origin_W) / g.cell_m;
+  const int i = static_cast<int>(std::floor(u.x())), j = static_cast<int>(std::floor(u.y())),
+            k = static_cast<int>(std::floor(u.z()));
+  if (!g.Inside(i, j, k) || !g.near[g.Index(i, j, k)]) return false;
+  // the exact distance to each occupied cube around: |max(|c - centre| - cell / 2, 0)|
+  const int reach = static_cast<int>(std::ceil(r_m / g.cell_m)) + 1;
+  for (int dk = -reach; dk <= reach; ++dk)
+    for (int dj = -reach; dj <= reach; ++dj)
+      for (int di = -reach; di <= reach; ++di) {
+        if (!g.Inside(i + di, j + dj, k + dk) || !g.occupied[g.Index(i + di, j + dj, k + dk)]) continue;
+        const Eigen::Vector3d centre =
+            g.origin_W + g.cell_m * Eigen::Vector3d(i + di + 0.5, j + dj + 0.5, k + dk + 0.5);
+        if (((c_W - centre).cwiseAbs().array() - g.cell_m / 2.0).cwiseMax(0.0).matrix().norm() <= r_m) return true;
+      }
+  return false;
+}
+
 const std::vector<Obstacle>& ObstacleField::Get(int env) const { return sets_.at(env)->obstacles; }
 
 bool ObstacleField::SphereTouches(int env, const Eigen::Vector3d& c_W, double r_m) const {
+  if (world_grid_ && WorldSphereTouches(c_W, r_m)) return true;
   const Set_& s = *sets_[env];
   const int ix = static_cast<int>(std::floor((c_W.x() - s.x0) / kCellM));
   const int iy = static_cast<int>(std::floor((c_W.y() - s.y0) / kCellM));
@@ -207,6 +322,12 @@ void ObstacleField::Cast(int env, const Eigen::Vector3d& origin_W, const Eigen::
                                                     ? std::numeric_limits<double>::infinity()
                                                     : static_cast<double>(rh.ray.tfar[lane]);
                                      });
+  if (!world_scene_) return;
+  thread_local std::vector<rotors_sim::raycast::RayHit> hits;
+  hits.resize(n);
+  world_scene_->CastFan(origin_W, dirs_W, n, near_m, far_m, nullptr, rotors_sim::raycast::RayScene::kAllVisuals,
+                        hits.data());
+  for (size_t k = 0; k < n; ++k) t_m[k] = std::min(t_m[k], hits[k].distance_m);
 }
 
 }  // namespace rotors_flight_batch

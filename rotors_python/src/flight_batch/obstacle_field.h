@@ -1,9 +1,11 @@
-// Static obstacles for the batched flight engine, one set per environment (per vehicle): boxes
-// turned about z and upright cylinders, as clutter generators and walls make them. Two questions
-// are asked of them: does a vehicle's collision sphere touch one (exact distance of a point to a box
-// and to a cylinder, every physics step; a grid of 1 m cells keeps it to the obstacles near the
-// vehicle), and where do a camera's rays first meet one (Embree 3, each environment its own scene
-// of the obstacles' triangles, rays cast 16 at a time). No ROS, no engine, no multirotor.
+// Static obstacles for the batched flight engine: one set per environment (per vehicle) of boxes
+// turned about z and upright cylinders, as clutter generators and walls make them, and optionally a
+// world that every environment shares (the power plant, the warehouse: its visuals for the rays,
+// its static collisions' occupancy for the spheres). Two questions are asked of them: does a
+// vehicle's sphere touch one (the exact distance of a point to a box, a cylinder, an occupied cell,
+// every physics step; grids keep it to what is near the vehicle), and where do a camera's rays
+// first meet one (Embree 3: each environment its own scene of its obstacles' triangles, the world
+// through its RayScene; 16 rays at a time). No ROS, no multirotor.
 #pragma once
 
 #include <cstddef>
@@ -13,6 +15,15 @@
 #include <vector>
 
 #include <Eigen/Core>
+
+namespace octomap {
+class OcTree;
+}
+namespace rotors_sim {
+namespace raycast {
+class RayScene;
+}
+}  // namespace rotors_sim
 
 namespace rotors_flight_batch {
 
@@ -46,6 +57,16 @@ class ObstacleField {
   void Set(int env, std::vector<Obstacle> obstacles);
   const std::vector<Obstacle>& Get(int env) const;
 
+  /// Every environment also holds the world whose visuals `scene` casts (synced: static geometry
+  /// only) and whose static collision geometry `occupied` holds (BuildOccupancy's octree: a sphere
+  /// touches the world when it touches an occupied cell; the cells hold the surfaces, so a touch is
+  /// found up to a cell before the surface). `keep_alive` is kept as long as the scene is used (the
+  /// world the scene reads). nullptr: no world.
+  void SetWorld(std::shared_ptr<const rotors_sim::raycast::RayScene> scene, const octomap::OcTree* occupied,
+                std::shared_ptr<const void> keep_alive);
+  bool HasWorld() const { return world_scene_ != nullptr; }
+  size_t WorldOccupiedCells() const { return world_cells_; }
+
   /// True when a sphere at c_W of radius r_m (<= MaxSphereRadius) touches or overlaps an obstacle
   /// of environment `env`.
   bool SphereTouches(int env, const Eigen::Vector3d& c_W, double r_m) const;
@@ -61,6 +82,13 @@ class ObstacleField {
   std::vector<std::unique_ptr<Set_>> sets_;
   struct Embree;
   std::unique_ptr<Embree> embree_;
+  // the shared world
+  std::shared_ptr<const rotors_sim::raycast::RayScene> world_scene_;
+  std::shared_ptr<const void> world_keep_alive_;
+  struct CellGrid;
+  std::unique_ptr<CellGrid> world_grid_;
+  size_t world_cells_ = 0;
+  bool WorldSphereTouches(const Eigen::Vector3d& c_W, double r_m) const;
 };
 
 }  // namespace rotors_flight_batch

@@ -117,3 +117,17 @@ def generate(spec: ClutterSpec, seed: int) -> tuple[np.ndarray, np.ndarray, np.n
 def field(count: int, max_sphere_radius_m: float) -> ObstacleField:
     """An empty obstacle field of `count` environments for spheres up to the given radius."""
     return ObstacleField(int(count), float(max_sphere_radius_m))
+
+
+def add_world(
+    obstacles: ObstacleField, world: str, center: Any = (0.0, 0.0, 10.0), lengths: Any = (100.0, 100.0, 20.0), leaf_m: float = 0.25
+) -> Any:
+    """Every environment of `obstacles` also holds the world `world` (a name as World takes it:
+    "powerplant", "warehouse", ...): its visuals for the depth rays and its static collisions'
+    occupancy inside the box (center, lengths) at leaf_m for the collisions. Returns the World,
+    which the field keeps alive."""
+    from rotors_sim.world import World
+
+    loaded = World(world)
+    obstacles.set_world(loaded.engine, np.asarray(center, float), np.asarray(lengths, float), float(leaf_m))
+    return loaded
