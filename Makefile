@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test test-long test-all test-sanitize test-arm64 lint demo demo-msf bench clean train-example train-policy rl-site
+.PHONY: setup build test test-long test-all test-sanitize test-arm64 lint demo demo-msf bench clean train-example train-policy train-navigate rl-site
 
 setup:
 	@bash scripts/setup.sh
@@ -54,6 +54,12 @@ rl-site:
 # (not part of setup: about 900 MB), then rotors_python/examples/train_hover.py (docs/batched_flight.md)
 train-example: build rl-site
 	@bash -c 'source scripts/env.bash && PYTHONPATH=$$PWD/build/rl-site:$$PYTHONPATH python3 rotors_python/examples/train_hover.py'
+
+# PPO on RotorS/NavigateClutter-v0 (depth images through clutter), against random actions and the
+# scripted free-direction baseline: rotors_python/examples/train_navigate.py (docs/batched_flight.md)
+train-navigate: build rl-site
+	@bash -c 'source scripts/env.bash && cd rotors_python/examples && export PYTHONPATH=$$PWD/../../build/rl-site:$$PYTHONPATH \
+	  && python3 train_navigate.py --plot ../../docs/navigate_training.png'
 
 # the policies mav_policy_example.launch flies (rotors_control/policies/): trained again with
 # rotors_python/examples/train_policy.py, with and without randomised airframes (docs/batched_flight.md)

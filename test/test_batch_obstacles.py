@@ -12,7 +12,7 @@ import rotors_sim as rs
 import rotors_sim.envs  # noqa: F401 (registers the environments)
 from rotors_sim import clutter
 from rotors_sim._engine import ObstacleField, SimError
-from rotors_sim.envs.navigate import FreeDirectionBaseline, NavigateClutterEnv
+from rotors_sim.envs.navigate import FreeDirectionBaseline, NavigateClutterEnv, fly_courses
 
 WALL_X, WALL_HALF = 3.0, 0.1  # a wall across x = 3 m, 0.2 m thick
 
@@ -203,20 +203,13 @@ def test_navigate_clutter_is_a_gymnasium_vector_env():
 
 @pytest.mark.long
 def test_scripted_baseline_reaches_the_goal_through_100_courses():
-    count = 100
-    env = NavigateClutterEnv(count, autoreset=False, step_after_end=True)
-    results = {}
-    for name in ("free-direction baseline", "random actions"):
-        obs, _ = env.reset(seed=0)
-        baseline = FreeDirectionBaseline(env)
-        rng = np.random.default_rng(0)
-        outcome = np.full(count, "", dtype=object)
-        while (outcome == "").any():
-            action = baseline(obs) if name != "random actions" else rng.uniform(-1, 1, (count, 4))
-            obs, _, terminated, truncated, info = env.step(action)
-            for i in np.flatnonzero((terminated | truncated) & (outcome == "")):
-                outcome[i] = "goal" if info["success"][i] else "collision" if info["collided"][i] else "left" if terminated[i] else "time"
-        results[name] = {k: int((outcome == k).sum()) for k in ("goal", "collision", "left", "time")}
-        print(f"{name}: {results[name]} of {count} courses (seeds 0..99, density {env.course.density} per m^2)")
+    env = NavigateClutterEnv(100, autoreset=False, step_after_end=True)
+    rng = np.random.default_rng(0)
+    results = {
+        "free-direction baseline": fly_courses(env, FreeDirectionBaseline(env), seed=0),
+        "random actions": fly_courses(env, lambda obs: rng.uniform(-1, 1, (env.num_envs, 4)), seed=0),
+    }
+    for name, counts in results.items():
+        print(f"{name}: {counts} of 100 courses (seeds 0..99, density {env.course.density} per m^2)")
     assert results["random actions"]["goal"] == 0
     assert results["free-direction baseline"]["goal"] >= 80

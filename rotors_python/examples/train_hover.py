@@ -22,9 +22,14 @@ from stable_baselines3.common.vec_env import VecEnv  # noqa: E402
 from rotors_sim.envs import FlightBatchEnv  # noqa: E402
 
 
+def one_row(obs):
+    """One environment's observation as a batch of one (an array's row, or a dict of them)."""
+    return {k: np.asarray(v)[None] for k, v in obs.items()} if isinstance(obs, dict) else np.asarray(obs)[None, :]
+
+
 class FlightBatchVecEnv(VecEnv):
-    """FlightBatchEnv as Stable-Baselines3's VecEnv: both reset an ended episode in the same step;
-    SB3 wants the last observation in info["terminal_observation"]."""
+    """FlightBatchEnv (or NavigateClutterEnv) as Stable-Baselines3's VecEnv: both reset an ended
+    episode in the same step; SB3 wants the last observation in info["terminal_observation"]."""
 
     def __init__(self, envs: FlightBatchEnv, extra_reward=None, features=None, feature_space=None):
         self.envs = envs
@@ -62,7 +67,7 @@ class FlightBatchVecEnv(VecEnv):
         infos = [{} for _ in range(self.num_envs)]
         for i in np.flatnonzero(done):
             infos[i] = {
-                "terminal_observation": self.features(info["final_obs"][i][None, :])[0],
+                "terminal_observation": self.features(one_row(info["final_obs"][i]))[0],
                 "TimeLimit.truncated": bool(truncated[i]),
                 "episode": {"r": float(self.returns[i]), "l": int(self.lengths[i])},
             }
@@ -86,9 +91,9 @@ class FlightBatchVecEnv(VecEnv):
         return [False] * len(self._get_indices(indices))
 
 
-def make_ppo(vec: VecEnv, seed: int) -> PPO:
+def make_ppo(vec: VecEnv, seed: int, net_arch: tuple[int, ...] = (64, 64)) -> PPO:
     """PPO as the examples train it: 128 steps per vehicle per update, batches of 2,048, 5 epochs,
-    64 x 64 tanh networks for the actor and the critic."""
+    tanh networks of `net_arch` (64 x 64) for the actor and the critic."""
     return PPO(
         "MlpPolicy",
         vec,
@@ -97,7 +102,7 @@ def make_ppo(vec: VecEnv, seed: int) -> PPO:
         n_epochs=5,
         learning_rate=3e-4,
         gamma=0.99,
-        policy_kwargs={"net_arch": [64, 64]},
+        policy_kwargs={"net_arch": list(net_arch)},
         seed=seed,
         verbose=0,
     )

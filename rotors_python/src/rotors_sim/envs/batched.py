@@ -48,6 +48,65 @@ def rotate_rows(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
     return v + w * t + cross_rows(u, t)
 
 
+def reset_mask(options: dict[str, Any] | None, num_envs: int) -> np.ndarray:
+    """The vehicles a reset resets: options["reset_mask"] (a numpy bool array, one per vehicle, not
+    all False) or all; SimError naming what is wrong with it."""
+    if options is None or "reset_mask" not in options:
+        return np.ones(num_envs, dtype=bool)
+    mask = options["reset_mask"]
+    if not isinstance(mask, np.ndarray) or mask.dtype != np.bool_ or mask.shape != (num_envs,):
+        raise SimError(f"options['reset_mask'] must be a numpy bool array of shape ({num_envs},), got {mask!r}")
+    if not mask.any():
+        raise SimError("options['reset_mask'] has no True value: nothing to reset")
+    return mask
+
+
+def reseed(rngs: list, seed: int | list[int | None] | None, mask: np.ndarray) -> None:
+    """Vehicle i's episode generator from seed + i (or seed[i]) for the masked vehicles; None: kept."""
+    if seed is None:
+        return
+    seeds = seed if isinstance(seed, list) else [seed + i for i in range(len(rngs))]
+    if len(seeds) != len(rngs):
+        raise SimError(f"reset got {len(seeds)} seeds for {len(rngs)} environments")
+    for i in np.flatnonzero(mask):
+        if seeds[i] is not None:
+            rngs[i] = np.random.default_rng(seeds[i])
+
+
+def checked_actions(actions: Any, shape: tuple[int, ...]) -> np.ndarray:
+    """The actions as float64 clipped to [-1, 1], or SimError naming a wrong shape or a value that is not finite."""
+    a = np.asarray(actions, dtype=np.float64)
+    if a.shape != shape:
+        raise SimError(f"actions have shape {a.shape}, this vector environment needs {shape}")
+    if not np.all(np.isfinite(a)):
+        bad = np.argwhere(~np.isfinite(a))[0]
+        raise SimError(f"actions[{bad[0]}, {bad[1]}] = {a[tuple(bad)]} is not finite")
+    return np.clip(a, -1.0, 1.0)
+
+
+def step_infos(step_info: dict[str, np.ndarray]) -> dict[str, Any]:
+    """A step's info for every vehicle, with gymnasium's masks."""
+    infos: dict[str, Any] = {}
+    for key, value in step_info.items():
+        infos[key], infos["_" + key] = value, np.ones(len(value), dtype=bool)
+    return infos
+
+
+def autoreset_infos(infos: dict[str, Any], step_info: dict[str, np.ndarray], done: np.ndarray, final_obs: np.ndarray, kept=()) -> None:
+    """Gymnasium's same-step autoreset, as SyncVectorEnv writes it: the ended vehicles' last
+    observations and infos under "final_obs" and "final_info", and their infos now the new
+    episode's (none: masked off), except the keys in `kept` (the caller's, already the new ones)."""
+    final_info: dict[str, Any] = {}
+    for key, value in step_info.items():
+        final_info[key], final_info["_" + key] = np.where(done, value, np.zeros_like(value)), done.copy()
+    for key in step_info:
+        if key not in kept:
+            infos[key] = np.where(done, np.zeros_like(infos[key]), infos[key])
+            infos["_" + key] = ~done
+    infos["final_obs"], infos["_final_obs"] = final_obs, done.copy()
+    infos["final_info"], infos["_final_info"] = final_info, done.copy()
+
+
 class FlightBatchEnv(VectorEnv):
     """`task` "hover" or "waypoints" for `num_envs` vehicles `mav_name`; `action_type` "motor" (a
     value in [-1, 1] per rotor: 0 to its maximum speed) or "attitude" (roll and pitch up to
@@ -146,23 +205,11 @@ class FlightBatchEnv(VectorEnv):
         """All vehicles, or with options={"reset_mask": mask} (a bool array, one per vehicle) only
         the masked ones: their observations are new, the others' are those of the last step, and
         the info speaks for the masked ones (gymnasium's SyncVectorEnv semantics)."""
-        mask = np.ones(self.num_envs, dtype=bool)
-        if options is not None and "reset_mask" in options:
-            mask = options["reset_mask"]
-            if not isinstance(mask, np.ndarray) or mask.dtype != np.bool_ or mask.shape != (self.num_envs,):
-                raise SimError(f"options['reset_mask'] must be a numpy bool array of shape ({self.num_envs},), got {mask!r}")
-            if not mask.any():
-                raise SimError("options['reset_mask'] has no True value: nothing to reset")
+        mask = reset_mask(options, self.num_envs)
         if options is not None and "randomization" in options:
             spec = options["randomization"]
             self.randomization = check_spec(spec) if spec is not None else None
-        if seed is not None:
-            seeds = seed if isinstance(seed, list) else [seed + i for i in range(self.num_envs)]
-            if len(seeds) != self.num_envs:
-                raise SimError(f"reset got {len(seeds)} seeds for {self.num_envs} environments")
-            for i in np.flatnonzero(mask):
-                if seeds[i] is not None:
-                    self._rngs[i] = np.random.default_rng(seeds[i])
+        reseed(self._rngs, seed, mask)
         ended = np.flatnonzero(mask)
         self._reset(ended)
         self._ended[ended] = False
@@ -170,18 +217,12 @@ class FlightBatchEnv(VectorEnv):
         return self._obs.copy(), {"time_s": self.batch.time.copy(), "_time_s": mask.copy()}
 
     def step(self, actions):
-        a = np.asarray(actions, dtype=np.float64)
-        if a.shape != self.action_space.shape:
-            raise SimError(f"actions have shape {a.shape}, this vector environment needs {self.action_space.shape}")
-        if not np.all(np.isfinite(a)):
-            bad = np.argwhere(~np.isfinite(a))[0]
-            raise SimError(f"actions[{bad[0]}, {bad[1]}] = {a[tuple(bad)]} is not finite")
+        a = checked_actions(actions, self.action_space.shape)
         if self._ended.any() and not self.step_after_end:
             raise SimError(
                 f"environments {np.flatnonzero(self._ended).tolist()} have ended and autoreset is off; "
                 "reset them first: reset(options={'reset_mask': mask})"
             )
-        a = np.clip(a, -1.0, 1.0)
         if self.action_type == "motor":
             self.batch.commands[:] = (a + 1.0) / 2.0 * self.max_rot_velocity
         else:
@@ -223,28 +264,16 @@ class FlightBatchEnv(VectorEnv):
         if self.task == "waypoints":
             step_info["success"] = success.copy()
             step_info["waypoint"] = np.minimum(self.index, len(self.waypoints))
-        everyone = np.ones(self.num_envs, dtype=bool)
-        infos: dict[str, Any] = {}
-        for key, value in step_info.items():
-            infos[key], infos["_" + key] = value, everyone.copy()
+        infos = step_infos(step_info)
         if self.autoreset and done.any():
             ended = np.flatnonzero(done)
             final_obs = np.full(self.num_envs, None, dtype=object)
             for i in ended:
                 final_obs[i] = obs[i].copy()
-            # the last step's info of the ended vehicles; their info now is the new episode's
-            final_info: dict[str, Any] = {}
-            for key, value in step_info.items():
-                final_info[key], final_info["_" + key] = np.where(done, value, np.zeros_like(value)), done.copy()
             self._reset(ended)
             obs[ended] = self._observe(ended)
-            for key in step_info:
-                if key != "time_s":
-                    infos[key] = np.where(done, np.zeros_like(infos[key]), infos[key])
-                    infos["_" + key] = ~done
             infos["time_s"] = self.batch.time.copy()
-            infos["final_obs"], infos["_final_obs"] = final_obs, done.copy()
-            infos["final_info"], infos["_final_info"] = final_info, done.copy()
+            autoreset_infos(infos, step_info, done, final_obs, kept=("time_s",))
         elif done.any():
             self._ended |= done
         self._obs[:] = obs

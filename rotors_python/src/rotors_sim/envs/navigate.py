@@ -38,7 +38,7 @@ from gymnasium.vector.utils import batch_space
 from rotors_sim import clutter
 from rotors_sim._engine import SimError
 from rotors_sim.controllers import load_yamls
-from rotors_sim.envs.batched import rotate_rows
+from rotors_sim.envs.batched import autoreset_infos, checked_actions, reseed, reset_mask, rotate_rows, step_infos
 from rotors_sim.flight_batch import FlightBatch, controller_yamls
 
 CAMERA_HZ = 30.0
@@ -161,18 +161,8 @@ class NavigateClutterEnv(VectorEnv):
 
     # --- Gymnasium ---
     def reset(self, *, seed: int | list[int | None] | None = None, options: dict[str, Any] | None = None):
-        mask = np.ones(self.num_envs, dtype=bool)
-        if options is not None and "reset_mask" in options:
-            mask = options["reset_mask"]
-            if not isinstance(mask, np.ndarray) or mask.dtype != np.bool_ or mask.shape != (self.num_envs,):
-                raise SimError(f"options['reset_mask'] must be a numpy bool array of shape ({self.num_envs},), got {mask!r}")
-        if seed is not None:
-            seeds = seed if isinstance(seed, list) else [seed + i for i in range(self.num_envs)]
-            if len(seeds) != self.num_envs:
-                raise SimError(f"reset got {len(seeds)} seeds for {self.num_envs} environments")
-            for i in np.flatnonzero(mask):
-                if seeds[i] is not None:
-                    self._rngs[i] = np.random.default_rng(seeds[i])
+        mask = reset_mask(options, self.num_envs)
+        reseed(self._rngs, seed, mask)
         ended = np.flatnonzero(mask)
         self._reset(ended)
         self._ended[ended] = False
@@ -182,18 +172,12 @@ class NavigateClutterEnv(VectorEnv):
         return {k: v.copy() for k, v in self._obs.items()}, {"course_seed": self.course_seeds.copy(), "_course_seed": mask.copy()}
 
     def step(self, actions):
-        a = np.asarray(actions, dtype=np.float64)
-        if a.shape != self.action_space.shape:
-            raise SimError(f"actions have shape {a.shape}, this vector environment needs {self.action_space.shape}")
-        if not np.all(np.isfinite(a)):
-            bad = np.argwhere(~np.isfinite(a))[0]
-            raise SimError(f"actions[{bad[0]}, {bad[1]}] = {a[tuple(bad)]} is not finite")
+        a = checked_actions(actions, self.action_space.shape)
         if self._ended.any() and not self.step_after_end:
             raise SimError(
                 f"environments {np.flatnonzero(self._ended).tolist()} have ended and autoreset is off; "
                 "reset them first: reset(options={'reset_mask': mask})"
             )
-        a = np.clip(a, -1.0, 1.0)
         o = self.batch.odometry
         p, yaw = o[:, 0:3], _yaw_of(o[:, 3:7])
         v_heading = a[:, 0:3] * self.scale
@@ -225,27 +209,17 @@ class NavigateClutterEnv(VectorEnv):
         done = terminated | truncated
         obs = self._observe()
         step_info = {"collided": collided.copy(), "success": success.copy(), "goal_distance": distance.copy()}
-        everyone = np.ones(self.num_envs, dtype=bool)
-        infos: dict[str, Any] = {}
-        for key, value in step_info.items():
-            infos[key], infos["_" + key] = value, everyone.copy()
+        infos = step_infos(step_info)
         if self.autoreset and done.any():
             ended = np.flatnonzero(done)
             final_obs = np.full(self.num_envs, None, dtype=object)
             for i in ended:
                 final_obs[i] = {k: v[i].copy() for k, v in obs.items()}
-            final_info: dict[str, Any] = {}
-            for key, value in step_info.items():
-                final_info[key], final_info["_" + key] = np.where(done, value, np.zeros_like(value)), done.copy()
             self._reset(ended)
             fresh = self._observe()
             for key in obs:
                 obs[key][ended] = fresh[key][ended]
-            for key in step_info:
-                infos[key] = np.where(done, np.zeros_like(infos[key]), infos[key])
-                infos["_" + key] = ~done
-            infos["final_obs"], infos["_final_obs"] = final_obs, done.copy()
-            infos["final_info"], infos["_final_info"] = final_info, done.copy()
+            autoreset_infos(infos, step_info, done, final_obs)
         elif done.any():
             self._ended |= done
         for key in self._obs:
@@ -378,6 +352,27 @@ class FreeDirectionBaseline:
         action[:, 2] = np.clip(goal[:, 2], -1.0, 1.0)
         action[:, 3] = np.where(any_free, np.clip(2.0 * chosen, -1.0, 1.0), self.turn)
         return action
+
+
+OUTCOMES = ("goal", "collision", "left", "time")
+
+
+def fly_courses(env: NavigateClutterEnv, act, seed: int = 0) -> dict[str, float]:
+    """Each vehicle of `env` (autoreset off, step_after_end on) flies one course of reset(seed=seed)
+    under act(obs) -> actions, until every one has ended; how many reached the goal, collided, left
+    the course or ran out of time, and the mean episode return. The vehicles that ended fly on
+    unscored until the last ends."""
+    if env.autoreset or not env.step_after_end:
+        raise SimError("fly_courses needs NavigateClutterEnv(..., autoreset=False, step_after_end=True)")
+    obs, _ = env.reset(seed=seed)
+    outcome = np.full(env.num_envs, "", dtype=object)
+    returns = np.zeros(env.num_envs)
+    while (outcome == "").any():
+        obs, reward, terminated, truncated, info = env.step(act(obs))
+        returns += np.where(outcome == "", reward, 0.0)
+        for i in np.flatnonzero((terminated | truncated) & (outcome == "")):
+            outcome[i] = "goal" if info["success"][i] else "collision" if info["collided"][i] else "left" if terminated[i] else "time"
+    return {**{k: int((outcome == k).sum()) for k in OUTCOMES}, "mean_return": float(returns.mean())}
 
 
 def navigate_clutter_vector_env(num_envs: int = 16, **kwargs: Any) -> NavigateClutterEnv:
