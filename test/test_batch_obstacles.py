@@ -66,6 +66,22 @@ def test_depth_of_a_wall_and_of_the_ground_is_the_pinholes():
     print(f"{wall}; ground row {row}: {depth[row, 0]:.4f} m, pinhole {expected:.4f} m")
 
 
+def test_range_rays_read_the_wall_and_the_ground():
+    batch, _ = wall_batch()
+    batch.step(500)
+    # forward, down, 30 deg down, and up (nothing: no return)
+    tilt = np.radians(30)
+    batch.set_range_rays([[1, 0, 0], [0, 0, -1], [np.cos(tilt), 0, -np.sin(tilt)], [0, 0, 1]], min_range=0.05, max_range=20.0)
+    p = batch.truth()[0, 0:3]
+    ranges = batch.cast_ranges()[0]
+    wall = WALL_X - WALL_HALF - p[0]
+    expected = [wall, p[2], min(wall / np.cos(tilt), p[2] / np.sin(tilt)), np.inf]
+    print(f"ranges {np.round(ranges, 4)} against {np.round(expected, 4)}")
+    assert np.allclose(ranges[:3], expected[:3], atol=2e-3) and np.isinf(ranges[3])
+    with pytest.raises(SimError, match="direction 0 is not finite or is zero"):
+        batch.set_range_rays([[0, 0, 0]])
+
+
 def test_depth_noise_is_the_d435_model():
     batch, _ = wall_batch(count=4, noise=True)
     batch.step(500)

@@ -505,6 +505,41 @@ void BindFlightBatch(py::module_& m) {
           },
           "Every vehicle's depth image now, N x H x W float32 [m] (NaN: out of range).")
       .def(
+          "set_range_rays",
+          [](FlightBatch& b, const py::object& dirs, const Eigen::Vector3d& xyz, double min_range, double max_range) {
+            if (dirs.is_none()) {
+              b.SetRangeRays(std::nullopt);
+              return;
+            }
+            const auto a = dirs.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+            if (a.ndim() != 2 || a.shape(1) != 3)
+              throw SimError("FlightBatch.set_range_rays: dirs must have shape (k, 3)");
+            rotors_flight_batch::RangeRays rays;
+            auto r = a.unchecked<2>();
+            for (py::ssize_t k = 0; k < a.shape(0); ++k) rays.dirs_M.emplace_back(r(k, 0), r(k, 1), r(k, 2));
+            rays.p_M_m = xyz;
+            rays.min_range_m = min_range, rays.max_range_m = max_range;
+            b.SetRangeRays(rays);
+          },
+          py::arg("dirs"), py::arg("xyz") = Eigen::Vector3d::Zero(), py::arg("min_range") = 0.0,
+          py::arg("max_range") = 10.0,
+          "Range rays on every vehicle: directions (k x 3, model frame) from xyz, or None.")
+      .def(
+          "cast_ranges",
+          [](FlightBatch& b) {
+            if (!b.GetRangeRays())
+              throw SimError("FlightBatch.cast_ranges: no range rays; set them with set_range_rays");
+            py::array_t<double> a(
+                {static_cast<py::ssize_t>(b.Count()), static_cast<py::ssize_t>(b.GetRangeRays()->dirs_M.size())});
+            double* out = a.mutable_data();
+            {
+              py::gil_scoped_release release;
+              b.CastRanges(out);
+            }
+            return a;
+          },
+          "Every vehicle's range per ray now, N x k [m] (inf: no return).")
+      .def(
           "truth",
           [](py::object self) {
             FlightBatch& b = self.cast<FlightBatch&>();

@@ -368,31 +368,48 @@ void FlightBatch::SeedDepthNoise(int i) {
       depth_camera_->noise ? std::make_unique<rgp::DepthNoiseModel>(depth_camera_->noise_params, seed) : nullptr;
 }
 
+void FlightBatch::CastFromVehicle(int i, const Eigen::Vector3d& p_M, const std::vector<Eigen::Vector3d>& dirs_M,
+                                  double far_m, std::vector<Eigen::Vector3d>* dirs_W, double* t_m) const {
+  const size_t n = n_pad_, rays = dirs_M.size();
+  Eigen::Matrix3d R;
+  for (int r = 0; r < 3; ++r)
+    for (int col = 0; col < 3; ++col) R(r, col) = R_WB_[(3 * r + col) * n + i];
+  const Eigen::Vector3d origin_W =
+      Eigen::Vector3d(p_W_[i], p_W_[n + i], p_W_[2 * n + i]) + R * (p_M - airframes_[i].p_M_cog);
+  dirs_W->resize(rays);
+  for (size_t k = 0; k < rays; ++k) (*dirs_W)[k] = R * dirs_M[k];
+  if (obstacles_) {
+    obstacles_->Cast(i, origin_W, dirs_W->data(), rays, 0.0, far_m, t_m);
+  } else {
+    std::fill(t_m, t_m + rays, std::numeric_limits<double>::infinity());
+  }
+  for (size_t k = 0; k < rays; ++k) {  // the ground plane z = 0, seen from above
+    const Eigen::Vector3d& d = (*dirs_W)[k];
+    if (d.z() < 0.0 && origin_W.z() > 0.0) t_m[k] = std::min(t_m[k], -origin_W.z() / d.z());
+  }
+}
+
+void FlightBatch::ForEachVehicle(const std::function<void(int, int)>& work) {
+  if (!pool_ || n_ < 2) {
+    work(0, n_);
+    return;
+  }
+  const int threads = threads_;
+  pool_->Run([&](int t) { work(n_ * t / threads, n_ * (t + 1) / threads); });
+}
+
 void FlightBatch::RenderDepth(float* out) {
   if (!depth_camera_) throw SimError("FlightBatch.render_depth: no depth camera; set one with set_depth_camera");
   const DepthCameraParams& c = *depth_camera_;
   const size_t pixels = depth_dirs_M_.size();
-  auto render = [&](int begin, int end) {
-    std::vector<Eigen::Vector3d> dirs_W(pixels);
+  const double far_ray = c.max_range_m / *std::min_element(depth_per_distance_.begin(), depth_per_distance_.end());
+  ForEachVehicle([&](int begin, int end) {
+    std::vector<Eigen::Vector3d> dirs_W;
     std::vector<double> t(pixels);
     std::vector<float> depth(pixels);
-    const size_t n = n_pad_;
     for (int i = begin; i < end; ++i) {
-      Eigen::Matrix3d R;
-      for (int r = 0; r < 3; ++r)
-        for (int col = 0; col < 3; ++col) R(r, col) = R_WB_[(3 * r + col) * n + i];
-      const Eigen::Vector3d origin_W =
-          Eigen::Vector3d(p_W_[i], p_W_[n + i], p_W_[2 * n + i]) + R * (c.p_M_m - airframes_[i].p_M_cog);
-      for (size_t k = 0; k < pixels; ++k) dirs_W[k] = R * depth_dirs_M_[k];
-      const double far_ray = c.max_range_m / *std::min_element(depth_per_distance_.begin(), depth_per_distance_.end());
-      if (obstacles_) {
-        obstacles_->Cast(i, origin_W, dirs_W.data(), pixels, 0.0, far_ray, t.data());
-      } else {
-        std::fill(t.begin(), t.end(), std::numeric_limits<double>::infinity());
-      }
+      CastFromVehicle(i, c.p_M_m, depth_dirs_M_, far_ray, &dirs_W, t.data());
       for (size_t k = 0; k < pixels; ++k) {
-        // the ground plane z = 0, seen from above
-        if (dirs_W[k].z() < 0.0 && origin_W.z() > 0.0) t[k] = std::min(t[k], -origin_W.z() / dirs_W[k].z());
         const double z = t[k] * depth_per_distance_[k];
         depth[k] =
             z > c.min_range_m && z < c.max_range_m ? static_cast<float>(z) : std::numeric_limits<float>::quiet_NaN();
@@ -400,13 +417,41 @@ void FlightBatch::RenderDepth(float* out) {
       if (depth_noise_[i]) depth_noise_[i]->Apply(&depth);  // NaN stays NaN; noise may not leave the range
       std::copy(depth.begin(), depth.end(), out + static_cast<size_t>(i) * pixels);
     }
-  };
-  if (!pool_ || n_ < 2) {
-    render(0, n_);
-    return;
+  });
+}
+
+void FlightBatch::SetRangeRays(std::optional<RangeRays> rays) {
+  if (rays) {
+    if (rays->dirs_M.empty() || rays->dirs_M.size() > 4096)
+      throw SimError("FlightBatch.set_range_rays: give 1..4096 directions (got " + std::to_string(rays->dirs_M.size()) +
+                     ")");
+    for (size_t k = 0; k < rays->dirs_M.size(); ++k) {
+      if (!rays->dirs_M[k].allFinite() || rays->dirs_M[k].norm() < 1e-9)
+        throw SimError("FlightBatch.set_range_rays: direction " + std::to_string(k) + " is not finite or is zero");
+      rays->dirs_M[k].normalize();
+    }
+    if (!(rays->min_range_m >= 0.0 && rays->max_range_m > rays->min_range_m && std::isfinite(rays->max_range_m)) ||
+        !rays->p_M_m.allFinite())
+      throw SimError("FlightBatch.set_range_rays: need 0 <= min_range < max_range < inf (got " +
+                     std::to_string(rays->min_range_m) + ", " + std::to_string(rays->max_range_m) +
+                     ") and a finite xyz");
   }
-  const int threads = threads_;
-  pool_->Run([&](int t) { render(n_ * t / threads, n_ * (t + 1) / threads); });
+  range_rays_ = std::move(rays);
+}
+
+void FlightBatch::CastRanges(double* out) {
+  if (!range_rays_) throw SimError("FlightBatch.cast_ranges: no range rays; set them with set_range_rays");
+  const RangeRays& r = *range_rays_;
+  const size_t rays = r.dirs_M.size();
+  ForEachVehicle([&](int begin, int end) {
+    std::vector<Eigen::Vector3d> dirs_W;
+    for (int i = begin; i < end; ++i) {
+      double* t = out + static_cast<size_t>(i) * rays;
+      CastFromVehicle(i, r.p_M_m, r.dirs_M, r.max_range_m, &dirs_W, t);
+      for (size_t k = 0; k < rays; ++k)
+        if (!(t[k] >= r.min_range_m && t[k] <= r.max_range_m)) t[k] = std::numeric_limits<double>::infinity();
+    }
+  });
 }
 
 uint64_t FlightBatch::SeedFor(uint64_t plugin_seed, int i) const {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -69,6 +70,15 @@ struct Airframe {
 Airframe AirframeOf(const VehicleDescription& d);
 
 constexpr int kMaxActuatorDelaySteps = 1000;
+
+/// Range rays on every vehicle (a rangefinder's beam, a ring of them): unit directions in the model
+/// frame from p_M_m; each reads the distance to the first obstacle, world surface or ground point
+/// along it, +inf outside [min_range_m, max_range_m] (REP 117's "no return"). No noise.
+struct RangeRays {
+  std::vector<Eigen::Vector3d> dirs_M;
+  Eigen::Vector3d p_M_m = Eigen::Vector3d::Zero();
+  double min_range_m = 0.0, max_range_m = 10.0;
+};
 
 /// A depth camera on every vehicle of a batch, looking along the model frame's x axis from p_M_m
 /// (a pinhole with the pixel centres of ROS' camera_info: fx = W / (2 tan(hfov / 2)),
@@ -154,6 +164,12 @@ class FlightBatch {
   const std::optional<DepthCameraParams>& DepthCamera() const { return depth_camera_; }
   /// Each vehicle's depth image now (N x H x W, row-major; on the pool's threads). SimError without a camera.
   void RenderDepth(float* out);
+
+  /// Every vehicle carries `rays` from now on (std::nullopt: none); SimError naming a bad direction or range.
+  void SetRangeRays(std::optional<RangeRays> rays);
+  const std::optional<RangeRays>& GetRangeRays() const { return range_rays_; }
+  /// Each vehicle's range per ray now (N x rays [m], +inf: no return; on the pool's threads).
+  void CastRanges(double* out);
 
   /// Vehicle i's random_seed from its next Reset on (a new episode's sensor and wind noise).
   void SetSeed(int i, uint64_t seed);
@@ -251,7 +267,14 @@ class FlightBatch {
   std::vector<Eigen::Vector3d> depth_dirs_M_;  ///< per pixel: its ray, a unit vector in the model frame
   std::vector<double> depth_per_distance_;     ///< per pixel: depth along the axis per metre of ray
   std::vector<std::unique_ptr<rotors_gazebo_plugins::DepthNoiseModel>> depth_noise_;
+  std::optional<RangeRays> range_rays_;
   void SeedDepthNoise(int i);
+  /// Casts dirs_M (model frame) of vehicle i from p_M against its obstacles and the ground: the
+  /// distances t_m (+inf: nothing within far_m), the directions in the world in *dirs_W.
+  void CastFromVehicle(int i, const Eigen::Vector3d& p_M, const std::vector<Eigen::Vector3d>& dirs_M, double far_m,
+                       std::vector<Eigen::Vector3d>* dirs_W, double* t_m) const;
+  /// work(begin, end) over all vehicles, split across the pool's threads.
+  void ForEachVehicle(const std::function<void(int, int)>& work);
 };
 
 }  // namespace rotors_flight_batch

@@ -210,6 +210,18 @@ class FlightBatch:
         NaN outside the camera's range): rays cast against its obstacles and the ground z = 0."""
         return self._b.render_depth()
 
+    def set_range_rays(self, dirs: Any, *, xyz: Any = (0.0, 0.0, 0.0), min_range: float = 0.0, max_range: float = 10.0) -> None:
+        """Range rays on every vehicle (a rangefinder's beam, a ring of them): `dirs` (k x 3, the
+        model frame; normalised here) from `xyz`, each reading the distance to the first obstacle or
+        ground point along it, inf outside [min_range, max_range] (no return); None removes them."""
+        self._b.set_range_rays(
+            None if dirs is None else np.asarray(dirs, float), np.asarray(xyz, float), float(min_range), float(max_range)
+        )
+
+    def cast_ranges(self) -> np.ndarray:
+        """Every vehicle's range per ray now (count x k [m]; inf: no return)."""
+        return self._b.cast_ranges()
+
     # --- what it holds ---
     @property
     def count(self) -> int:
