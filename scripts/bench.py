@@ -746,6 +746,7 @@ def batch_depth(vehicles: int = 64, frames: int = 90) -> dict:
 
     import rotors_sim as rs
     from rotors_sim import _engine
+    from rotors_sim.envs.batched import rotation_rows
 
     world = rs.World("powerplant")
     angle = np.arange(vehicles) * 2 * np.pi / vehicles
@@ -776,17 +777,8 @@ def batch_depth(vehicles: int = 64, frames: int = 90) -> dict:
     rays_M = np.column_stack([np.ones(pixels), -u.ravel(), -v.ravel()])
     rays_M /= np.linalg.norm(rays_M, axis=1, keepdims=True)
     truth = batch.truth()
-    jobs = []
-    for i in range(vehicles):
-        x, y, z, w = truth[i, 3:7]
-        R = np.array(
-            [
-                [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-            ]
-        )
-        jobs.append((i, truth[i, 0:3] + R @ np.asarray(cam["xyz"]), np.ascontiguousarray(rays_M @ R.T)))
+    rotations = rotation_rows(truth[:, 3:7])
+    jobs = [(i, truth[i, 0:3] + R @ np.asarray(cam["xyz"]), np.ascontiguousarray(rays_M @ R.T)) for i, R in enumerate(rotations)]
     far = cam["max_range"] * float(np.linalg.norm(rays_M, axis=1).max() / rays_M[:, 0].min())
     with ThreadPoolExecutor(batch.threads) as pool:
         t1 = time.perf_counter()

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from rotors_sim.envs import FlightBatchEnv
+from rotors_sim.envs.batched import rotation_rows
 
 POLICIES = Path(__file__).resolve().parents[2] / "rotors_control" / "policies"
 # the airframe the docs score: 20 % more mass, 15 % weaker motors (mass_scale:=1.2 motor_constant_scale:=0.85)
@@ -22,15 +23,7 @@ def features(obs: np.ndarray) -> np.ndarray:
     where a quaternion's components jump with its sign (the batch keeps w >= 0, so q_z flips at a
     yaw of 180 deg)."""
     o = np.asarray(obs, dtype=np.float64)
-    x, y, z, w = o[:, 6], o[:, 7], o[:, 8], o[:, 9]
-    rotation = np.stack(
-        [
-            1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),
-            2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-            2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y),
-        ],
-        axis=1,
-    )  # fmt: skip
+    rotation = rotation_rows(o[:, 6:10]).reshape(len(o), 9)
     return np.hstack([o[:, 0:6], rotation, o[:, 10:13]])
 
 

@@ -41,6 +41,19 @@ def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
+def rotation_rows(q_xyzw: np.ndarray) -> np.ndarray:
+    """R(q) for rows of unit quaternions (x, y, z, w): N x 3 x 3."""
+    x, y, z, w = np.asarray(q_xyzw, dtype=np.float64).T
+    return np.stack(
+        [
+            np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=-1),
+            np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], axis=-1),
+            np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], axis=-1),
+        ],
+        axis=1,
+    )
+
+
 def rotate_rows(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
     """R(q) v for rows of unit quaternions (x, y, z, w) and vectors."""
     u, w = q_xyzw[:, :3], q_xyzw[:, 3:4]

@@ -38,7 +38,7 @@ from gymnasium.vector.utils import batch_space
 from rotors_sim import clutter
 from rotors_sim._engine import SimError
 from rotors_sim.controllers import load_yamls
-from rotors_sim.envs.batched import autoreset_infos, checked_actions, reseed, reset_mask, rotate_rows, step_infos
+from rotors_sim.envs.batched import autoreset_infos, checked_actions, reseed, reset_mask, rotate_rows, rotation_rows, step_infos
 from rotors_sim.flight_batch import FlightBatch, controller_yamls
 
 CAMERA_HZ = 30.0
@@ -50,19 +50,6 @@ STATE_HIGH = np.array([50.0] * 3 + [20.0] * 3 + [1.0] * 3 + [20.0], dtype=np.flo
 def _yaw_of(q_xyzw: np.ndarray) -> np.ndarray:
     x, y, z, w = q_xyzw.T
     return np.arctan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
-
-
-def _rotation_rows(q_xyzw: np.ndarray) -> np.ndarray:
-    """R(q) for rows of unit quaternions (x, y, z, w): N x 3 x 3."""
-    x, y, z, w = q_xyzw.T
-    return np.stack(
-        [
-            np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=-1),
-            np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], axis=-1),
-            np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], axis=-1),
-        ],
-        axis=1,
-    )
 
 
 def _to_heading(yaw: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -256,9 +243,7 @@ class NavigateClutterEnv(VectorEnv):
         state = np.empty((self.num_envs, STATE_SIZE))
         state[:, 0:3] = _to_heading(yaw, self.goals - o[:, 0:3])
         state[:, 3:6] = _to_heading(yaw, rotate_rows(q, o[:, 7:10]))
-        # the world's up in the body frame: R^T e_z, the third row of R(q)
-        x, y, z, w = q.T
-        state[:, 6:9] = np.column_stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)])
+        state[:, 6:9] = rotation_rows(q)[:, 2, :]  # the world's up in the body frame: R^T e_z, R(q)'s third row
         state[:, 9] = o[:, 12]
         np.clip(state, -STATE_HIGH, STATE_HIGH, out=state)
         return {"depth": depth[:, None].astype(np.float32), "state": state.astype(np.float32)}
@@ -304,7 +289,7 @@ class FreeDirectionBaseline:
 
     def __call__(self, obs: dict[str, np.ndarray]) -> np.ndarray:
         odometry = self.env.batch.odometry
-        R = _rotation_rows(odometry[:, 3:7])
+        R = rotation_rows(odometry[:, 3:7])
         depth = obs["depth"][:, 0][:, self.level, :] * self.max_range_m  # N x L x W, along the axis [m]
         # a pixel's point in the model frame: camera + d (1, -x, -y); its height: p_z + (R that)_z
         point_M = np.stack(
