@@ -46,7 +46,9 @@ def test_distance_to_a_turned_box_and_a_cylinder_is_euclidean():
 def test_depth_of_a_wall_and_of_the_ground_is_the_pinholes():
     batch, _ = wall_batch()
     batch.step(500)  # hover at (0, 0, 1)
-    depth = batch.render_depth()[0]
+    everyone = batch.render_depth()
+    assert np.array_equal(batch.render_depth([1]), everyone[1:2], equal_nan=True)  # one vehicle's rows alone
+    depth = everyone[0]
     cam = batch.depth_camera
     h, w = depth.shape
     p = batch.truth()[0, 0:3]

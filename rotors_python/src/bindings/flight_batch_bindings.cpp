@@ -490,20 +490,27 @@ void BindFlightBatch(py::module_& m) {
                              })
       .def(
           "render_depth",
-          [](FlightBatch& b) {
+          [](FlightBatch& b, const py::object& indices) {
             if (!b.DepthCamera())
               throw SimError("FlightBatch.render_depth: no depth camera; set one with set_depth_camera");
+            std::vector<int> vehicles;
+            if (indices.is_none()) {
+              for (int i = 0; i < b.Count(); ++i) vehicles.push_back(i);
+            } else {
+              vehicles = indices.cast<std::vector<int>>();
+            }
             const auto& c = *b.DepthCamera();
-            py::array_t<float> a({static_cast<py::ssize_t>(b.Count()), static_cast<py::ssize_t>(c.height_px),
+            py::array_t<float> a({static_cast<py::ssize_t>(vehicles.size()), static_cast<py::ssize_t>(c.height_px),
                                   static_cast<py::ssize_t>(c.width_px)});
             float* out = a.mutable_data();
             {
               py::gil_scoped_release release;
-              b.RenderDepth(out);
+              b.RenderDepth(vehicles, out);
             }
             return a;
           },
-          "Every vehicle's depth image now, N x H x W float32 [m] (NaN: out of range).")
+          py::arg("indices") = py::none(),
+          "The depth images now of `indices` (default every vehicle), k x H x W float32 [m] (NaN: out of range).")
       .def(
           "set_range_rays",
           [](FlightBatch& b, const py::object& dirs, const Eigen::Vector3d& xyz, double min_range, double max_range) {

@@ -389,25 +389,30 @@ void FlightBatch::CastFromVehicle(int i, const Eigen::Vector3d& p_M, const std::
   }
 }
 
-void FlightBatch::ForEachVehicle(const std::function<void(int, int)>& work) {
-  if (!pool_ || n_ < 2) {
-    work(0, n_);
+void FlightBatch::Split(int count, const std::function<void(int, int)>& work) {
+  if (!pool_ || count < 2) {
+    work(0, count);
     return;
   }
   const int threads = threads_;
-  pool_->Run([&](int t) { work(n_ * t / threads, n_ * (t + 1) / threads); });
+  pool_->Run([&](int t) { work(count * t / threads, count * (t + 1) / threads); });
 }
 
-void FlightBatch::RenderDepth(float* out) {
+void FlightBatch::RenderDepth(const std::vector<int>& vehicles, float* out) {
   if (!depth_camera_) throw SimError("FlightBatch.render_depth: no depth camera; set one with set_depth_camera");
+  for (int i : vehicles)
+    if (i < 0 || i >= n_)
+      throw SimError("FlightBatch.render_depth: vehicle " + std::to_string(i) + " is not in 0.." +
+                     std::to_string(n_ - 1));
   const DepthCameraParams& c = *depth_camera_;
   const size_t pixels = depth_dirs_M_.size();
   const double far_ray = c.max_range_m / *std::min_element(depth_per_distance_.begin(), depth_per_distance_.end());
-  ForEachVehicle([&](int begin, int end) {
+  Split(static_cast<int>(vehicles.size()), [&](int begin, int end) {
     std::vector<Eigen::Vector3d> dirs_W;
     std::vector<double> t(pixels);
     std::vector<float> depth(pixels);
-    for (int i = begin; i < end; ++i) {
+    for (int j = begin; j < end; ++j) {
+      const int i = vehicles[j];
       CastFromVehicle(i, c.p_M_m, depth_dirs_M_, far_ray, &dirs_W, t.data());
       for (size_t k = 0; k < pixels; ++k) {
         const double z = t[k] * depth_per_distance_[k];
@@ -415,7 +420,7 @@ void FlightBatch::RenderDepth(float* out) {
             z > c.min_range_m && z < c.max_range_m ? static_cast<float>(z) : std::numeric_limits<float>::quiet_NaN();
       }
       if (depth_noise_[i]) depth_noise_[i]->Apply(&depth);  // NaN stays NaN; noise may not leave the range
-      std::copy(depth.begin(), depth.end(), out + static_cast<size_t>(i) * pixels);
+      std::copy(depth.begin(), depth.end(), out + static_cast<size_t>(j) * pixels);
     }
   });
 }
@@ -443,7 +448,7 @@ void FlightBatch::CastRanges(double* out) {
   if (!range_rays_) throw SimError("FlightBatch.cast_ranges: no range rays; set them with set_range_rays");
   const RangeRays& r = *range_rays_;
   const size_t rays = r.dirs_M.size();
-  ForEachVehicle([&](int begin, int end) {
+  Split(n_, [&](int begin, int end) {
     std::vector<Eigen::Vector3d> dirs_W;
     for (int i = begin; i < end; ++i) {
       double* t = out + static_cast<size_t>(i) * rays;

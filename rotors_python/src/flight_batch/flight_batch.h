@@ -162,8 +162,9 @@ class FlightBatch {
   /// at each Reset, as the other sensors are. SimError naming the bad value.
   void SetDepthCamera(std::optional<DepthCameraParams> camera);
   const std::optional<DepthCameraParams>& DepthCamera() const { return depth_camera_; }
-  /// Each vehicle's depth image now (N x H x W, row-major; on the pool's threads). SimError without a camera.
-  void RenderDepth(float* out);
+  /// The depth images of `vehicles` now (one H x W image each, in their order, row-major; on the
+  /// pool's threads). SimError without a camera or for a vehicle not in the batch.
+  void RenderDepth(const std::vector<int>& vehicles, float* out);
 
   /// Every vehicle carries `rays` from now on (std::nullopt: none); SimError naming a bad direction or range.
   void SetRangeRays(std::optional<RangeRays> rays);
@@ -273,8 +274,8 @@ class FlightBatch {
   /// distances t_m (+inf: nothing within far_m), the directions in the world in *dirs_W.
   void CastFromVehicle(int i, const Eigen::Vector3d& p_M, const std::vector<Eigen::Vector3d>& dirs_M, double far_m,
                        std::vector<Eigen::Vector3d>* dirs_W, double* t_m) const;
-  /// work(begin, end) over all vehicles, split across the pool's threads.
-  void ForEachVehicle(const std::function<void(int, int)>& work);
+  /// work(begin, end) over 0..count - 1 (vehicles or a list of them), split across the pool's threads.
+  void Split(int count, const std::function<void(int, int)>& work);
 };
 
 }  // namespace rotors_flight_batch

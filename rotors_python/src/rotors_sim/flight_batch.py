@@ -205,10 +205,11 @@ class FlightBatch:
     def depth_camera(self) -> dict[str, Any] | None:
         return self._b.depth_camera
 
-    def render_depth(self) -> np.ndarray:
-        """Every vehicle's depth image now (count x H x W float32, depth along the optical axis [m],
-        NaN outside the camera's range): rays cast against its obstacles and the ground z = 0."""
-        return self._b.render_depth()
+    def render_depth(self, indices: Sequence[int] | None = None) -> np.ndarray:
+        """The depth images now of vehicles `indices` (all by default; k x H x W float32, depth along
+        the optical axis [m], NaN outside the camera's range): rays cast against each vehicle's
+        obstacles and the ground z = 0."""
+        return self._b.render_depth(None if indices is None else [int(i) for i in indices])
 
     def set_range_rays(self, dirs: Any, *, xyz: Any = (0.0, 0.0, 0.0), min_range: float = 0.0, max_range: float = 10.0) -> None:
         """Range rays on every vehicle (a rangefinder's beam, a ring of them): `dirs` (k x 3, the

@@ -153,9 +153,9 @@ class NavigateClutterEnv(VectorEnv):
         ended = np.flatnonzero(mask)
         self._reset(ended)
         self._ended[ended] = False
-        obs = self._observe()
+        obs = self._observe(ended)
         for key in self._obs:
-            self._obs[key][ended] = obs[key][ended]
+            self._obs[key][ended] = obs[key]
         return {k: v.copy() for k, v in self._obs.items()}, {"course_seed": self.course_seeds.copy(), "_course_seed": mask.copy()}
 
     def step(self, actions):
@@ -203,9 +203,9 @@ class NavigateClutterEnv(VectorEnv):
             for i in ended:
                 final_obs[i] = {k: v[i].copy() for k, v in obs.items()}
             self._reset(ended)
-            fresh = self._observe()
+            fresh = self._observe(ended)
             for key in obs:
-                obs[key][ended] = fresh[key][ended]
+                obs[key][ended] = fresh[key]
             autoreset_infos(infos, step_info, done, final_obs)
         elif done.any():
             self._ended |= done
@@ -233,15 +233,17 @@ class NavigateClutterEnv(VectorEnv):
         self.steps[ended] = 0
         self.distance[ended] = np.linalg.norm(positions - self.goals[ended], axis=1)
 
-    def _observe(self) -> dict[str, np.ndarray]:
-        depth = self.batch.render_depth()
+    def _observe(self, rows: np.ndarray | None = None) -> dict[str, np.ndarray]:
+        """The observations of every vehicle, or of `rows` only (their depth images alone rendered)."""
+        rows = np.arange(self.num_envs) if rows is None else rows
+        depth = self.batch.render_depth(rows)
         # NaN (out of range) as nothing seen; the noise may carry a depth just past the range
         depth = np.clip(np.where(np.isnan(depth), self.max_range_m, depth) / self.max_range_m, 0.0, 1.0)
-        o = self.batch.odometry
+        o = self.batch.odometry[rows]
         q = o[:, 3:7]
         yaw = _yaw_of(q)
-        state = np.empty((self.num_envs, STATE_SIZE))
-        state[:, 0:3] = _to_heading(yaw, self.goals - o[:, 0:3])
+        state = np.empty((len(rows), STATE_SIZE))
+        state[:, 0:3] = _to_heading(yaw, self.goals[rows] - o[:, 0:3])
         state[:, 3:6] = _to_heading(yaw, rotate_rows(q, o[:, 7:10]))
         state[:, 6:9] = rotation_rows(q)[:, 2, :]  # the world's up in the body frame: R^T e_z, R(q)'s third row
         state[:, 9] = o[:, 12]
