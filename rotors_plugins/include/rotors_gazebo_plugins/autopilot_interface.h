@@ -15,7 +15,6 @@
 #include "rotors_core/event.h"
 #include "rotors_core/physics/physics_types.h"
 #include "rotors_core/plugin.h"
-#include "rotors_core/ros/message_taps.h"
 #include "rotors_gazebo_plugins/autopilot/control_channels.h"
 #include "rotors_gazebo_plugins/autopilot/vehicle_snapshot.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
@@ -61,7 +60,11 @@ class AutopilotInterface : public rotors_sim::ModelPlugin {
 
  private:
   VehicleSnapshot Snapshot();
-  const rotors_sim::TappedMessage* PinTopic(const std::string& param, const std::string& default_topic);
+  /// The feed (on the vehicle bus) of the sensor publishing on <param> (default_topic when absent);
+  /// nullptr for an empty topic (the autopilot does without that sensor).
+  template <class Reading>
+  const SensorFeed<Reading>* FeedOf(SensorFeeds<Reading>& feeds, const std::string& param,
+                                    const std::string& default_topic);
   void ReadControlChannels();
   /// Without <control_channels>: one per motor (false and a line when the autopilot has too few outputs).
   bool MakeDefaultChannels();
@@ -74,9 +77,14 @@ class AutopilotInterface : public rotors_sim::ModelPlugin {
   bool channels_given_ = false;
   ControlChannels channels_;  ///< made at the first step (the default needs every motor registered)
   bool channels_ready_ = false;
-  const rotors_sim::TappedMessage *imu_ = nullptr, *mag_ = nullptr, *baro_ = nullptr, *gps_ = nullptr,
-                                  *ground_speed_ = nullptr, *range_ = nullptr, *flow_ = nullptr, *airspeed_ = nullptr;
-  double gps_hor_std_m_ = 0.0, gps_ver_std_m_ = 0.0;
+  const SensorFeed<ImuSample>* imu_ = nullptr;
+  const SensorFeed<MagnetometerReading>* mag_ = nullptr;
+  const SensorFeed<BarometerReading>* baro_ = nullptr;
+  const SensorFeed<GpsReading>* gps_ = nullptr;
+  const SensorFeed<GroundSpeedReading>* ground_speed_ = nullptr;
+  const SensorFeed<RangeReading>* range_ = nullptr;
+  const SensorFeed<OpticalFlowReading>* flow_ = nullptr;
+  const SensorFeed<AirspeedReading>* airspeed_ = nullptr;
   std::map<std::string, std::chrono::steady_clock::time_point> last_error_;
   rotors_sim::event::ConnectionPtr update_;
 };

@@ -1,7 +1,8 @@
 // In-process data shared by the plugins of one vehicle (keyed by world and robot namespace): the latest
 // motor command (controller interface -> motor models, no ROS round trip), the real rotor speeds
-// (motor models -> multirotor base, bag), the wind velocity (wind plugin -> motor models) and
-// injected motor faults (multirotor base's service -> motor models).
+// (motor models -> multirotor base, bag), the wind velocity (wind plugin -> motor models), injected
+// motor faults (multirotor base's service -> motor models) and every sensor's latest reading
+// (sensor plugins -> autopilot interfaces, the Python module; sensor_feeds.h).
 #pragma once
 
 #include <functional>
@@ -11,6 +12,9 @@
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "rotors_core/event.h"
+#include "rotors_gazebo_plugins/sensor_feeds.h"
 
 namespace rotors_sim {
 namespace physics {
@@ -58,6 +62,8 @@ struct VehicleBus {
   uint64_t rc_count = 0;
   /// Outputs the vehicle's autopilot interface has applied so far (its answers).
   uint64_t autopilot_answers = 0;
+  /// Each sensor's latest reading, by its resolved topic (a world reset makes them stale).
+  SensorReadings sensors;
 
   /// The bus of a namespace in a world, shared by the plugins of the vehicle that hold it. It lives
   /// as long as one of them: a model deleted and re-spawned under the same namespace (with another
@@ -84,6 +90,9 @@ struct VehicleBus {
     const MotorFault& f = motor_faults[motor_number];
     return t_s >= f.start_time_s ? f.speed_factor : 1.0;
   }
+
+ private:
+  rotors_sim::event::ConnectionPtr reset_connection_;  ///< the world's reset: sensors.Forget()
 };
 
 }  // namespace rotors_gazebo_plugins

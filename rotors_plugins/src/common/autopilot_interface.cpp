@@ -3,15 +3,7 @@
 #include <cctype>
 #include <cmath>
 
-#include <geometry_msgs/TwistStamped.h>
-#include <geometry_msgs/Vector3Stamped.h>
-#include <mavros_msgs/OpticalFlowRad.h>
 #include <ros/console.h>
-#include <sensor_msgs/FluidPressure.h>
-#include <sensor_msgs/Imu.h>
-#include <sensor_msgs/MagneticField.h>
-#include <sensor_msgs/NavSatFix.h>
-#include <sensor_msgs/Range.h>
 
 #include "rotors_core/error.h"
 #include "rotors_core/physics/link.h"
@@ -24,15 +16,12 @@
 
 namespace rotors_gazebo_plugins {
 namespace {
-Eigen::Vector3d ToEigen(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
-
-/// A new message on a pinned topic since `*seen` (and the message), else nullptr.
-template <class M>
-const M* Latest(const rotors_sim::TappedMessage* slot, uint64_t* count) {
-  if (!slot) return nullptr;
-  const M* m = slot->As<M>();
-  if (m) *count = slot->count;
-  return m;
+/// The feed's reading when it has one since load or the last reset (and its count), else nullptr.
+template <class Reading>
+const Reading* Latest(const SensorFeed<Reading>* feed, uint64_t* count) {
+  if (!feed || !feed->fresh) return nullptr;
+  *count = feed->count;
+  return &feed->latest;
 }
 }  // namespace
 
@@ -44,16 +33,17 @@ void AutopilotInterface::Load(rotors_sim::physics::ModelPtr model, sdf::ElementP
   ReadParam(Params(), "linkName", &link_name);
   link_ = RequireLink(model, link_name);
   bus_ = VehicleBus::For(*world_, namespace_);
-  // the sensors the autopilot reads, by the topics their plugins publish (relative to the namespace;
-  // the plugins are loaded after this one, as RotorS' xacros order them)
-  imu_ = PinTopic("imuSubTopic", "imu");
-  mag_ = PinTopic("magSubTopic", "magnetic_field");
-  baro_ = PinTopic("baroSubTopic", "air_pressure");
-  gps_ = PinTopic("gpsSubTopic", "gps");
-  ground_speed_ = PinTopic("groundSpeedSubTopic", "ground_speed");
-  range_ = PinTopic("lidarSubTopic", "lidar");
-  flow_ = PinTopic("opticalFlowSubTopic", "px4flow/raw/optical_flow_rad");
-  airspeed_ = PinTopic("airspeedSubTopic", "air_speed");
+  // the sensors the autopilot reads: their feeds on the vehicle bus, by the topics their plugins
+  // publish (relative to the namespace; the plugins may load before or after this one)
+  auto& sensors = bus_->sensors;
+  imu_ = FeedOf(sensors.imu, "imuSubTopic", "imu");
+  mag_ = FeedOf(sensors.magnetometer, "magSubTopic", "magnetic_field");
+  baro_ = FeedOf(sensors.barometer, "baroSubTopic", "air_pressure");
+  gps_ = FeedOf(sensors.gps, "gpsSubTopic", "gps");
+  ground_speed_ = FeedOf(sensors.ground_speed, "groundSpeedSubTopic", "ground_speed");
+  range_ = FeedOf(sensors.range, "lidarSubTopic", "lidar");
+  flow_ = FeedOf(sensors.optical_flow, "opticalFlowSubTopic", "px4flow/raw/optical_flow_rad");
+  airspeed_ = FeedOf(sensors.airspeed, "airspeedSubTopic", "air_speed");
   ReadControlChannels();
   LoadProtocol();
   if (channels_given_) {
@@ -114,12 +104,13 @@ double AutopilotInterface::PhysicsStep_s() const { return world_->Physics().max_
 
 double AutopilotInterface::SimTime_s() const { return world_->SimTime().Double(); }
 
-const rotors_sim::TappedMessage* AutopilotInterface::PinTopic(const std::string& param,
-                                                              const std::string& default_topic) {
+template <class Reading>
+const SensorFeed<Reading>* AutopilotInterface::FeedOf(SensorFeeds<Reading>& feeds, const std::string& param,
+                                                      const std::string& default_topic) {
   std::string topic = default_topic;
   ReadParam(Params(), param, &topic);
   if (topic.empty()) return nullptr;
-  return rotors_sim::MessageTaps::Of(*world_).Pin(ResolveTopic(namespace_, topic));
+  return &feeds.Of(ResolveTopic(namespace_, topic));
 }
 
 void AutopilotInterface::ReadControlChannels() {
@@ -164,49 +155,49 @@ VehicleSnapshot AutopilotInterface::Snapshot() {
   s.latitude_longitude_altitude =
       GeodeticFromWorld(GeodeticOrigin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg}, s.p_W);
 
-  if (const auto* imu = Latest<sensor_msgs::Imu>(imu_, &s.imu_count)) {
+  if (const auto* imu = Latest(imu_, &s.imu_count)) {
     s.has_imu = true;
-    s.gyro_B = ToEigen(imu->angular_velocity);
-    s.accel_B = ToEigen(imu->linear_acceleration);
+    s.gyro_B = imu->angular_velocity_I;
+    s.accel_B = imu->linear_acceleration_I;
   }
-  if (const auto* mag = Latest<sensor_msgs::MagneticField>(mag_, &s.mag_count)) {
+  if (const auto* mag = Latest(mag_, &s.mag_count)) {
     s.has_mag = true;
-    s.mag_B_T = ToEigen(mag->magnetic_field);
+    s.mag_B_T = mag->field_B_T;
   }
-  if (const auto* baro = Latest<sensor_msgs::FluidPressure>(baro_, &s.baro_count)) {
+  if (const auto* baro = Latest(baro_, &s.baro_count)) {
     s.has_baro = true;
-    s.pressure_Pa = baro->fluid_pressure;
+    s.pressure_Pa = baro->pressure_Pa;
   }
-  if (const auto* fix = Latest<sensor_msgs::NavSatFix>(gps_, &s.gps_count)) {
+  if (const auto* gps = Latest(gps_, &s.gps_count)) {
     s.has_gps = true;
-    s.gps_latitude_longitude_altitude = {fix->latitude, fix->longitude, fix->altitude};
-    s.gps_hor_std_m = std::sqrt(std::max(0.0, fix->position_covariance[0]));
-    s.gps_ver_std_m = std::sqrt(std::max(0.0, fix->position_covariance[8]));
+    s.gps_latitude_longitude_altitude = gps->fix.latitude_longitude_altitude;
+    s.gps_hor_std_m = gps->horizontal_std_m;
+    s.gps_ver_std_m = gps->vertical_std_m;
     uint64_t speed_count = 0;
-    if (const auto* speed = Latest<geometry_msgs::TwistStamped>(ground_speed_, &speed_count))
-      s.gps_velocity_W = ToEigen(speed->twist.linear);
+    if (const auto* speed = Latest(ground_speed_, &speed_count)) s.gps_velocity_W = speed->velocity_W_m_s;
   }
-  if (const auto* range = Latest<sensor_msgs::Range>(range_, &s.range_count)) {
+  if (const auto* range = Latest(range_, &s.range_count)) {
     s.has_range = true;
-    s.range_m = range->range;
-    s.range_min_m = range->min_range;
-    s.range_max_m = range->max_range;
+    s.range_m = range->range_m;
+    s.range_min_m = range->min_range_m;
+    s.range_max_m = range->max_range_m;
   }
-  if (const auto* flow = Latest<mavros_msgs::OpticalFlowRad>(flow_, &s.flow_count)) {
+  if (const auto* flow = Latest(flow_, &s.flow_count)) {
     s.has_flow = true;
     s.flow_integration_time_us = flow->integration_time_us;
-    s.flow_integrated_xy_rad = {flow->integrated_x, flow->integrated_y};
-    s.flow_integrated_gyro_rad = {flow->integrated_xgyro, flow->integrated_ygyro, flow->integrated_zgyro};
-    s.flow_distance_m = flow->distance;
+    s.flow_integrated_xy_rad = flow->integrated_xy_rad;
+    s.flow_integrated_gyro_rad = flow->integrated_gyro_rad;
+    s.flow_distance_m = flow->distance_m;
     s.flow_quality = flow->quality;
   }
-  if (const auto* airspeed = Latest<geometry_msgs::Vector3Stamped>(airspeed_, &s.diff_pressure_count)) {
+  if (const auto* airspeed = Latest(airspeed_, &s.diff_pressure_count)) {
     s.has_diff_pressure = true;
     // a pitot tube's differential pressure: q = rho v_x^2 / 2, rho the standard atmosphere's at the
     // vehicle's altitude
     const double rho = StandardAtmosphereDensity(s.latitude_longitude_altitude.z());
-    s.diff_pressure_Pa = 0.5 * rho * airspeed->vector.x * airspeed->vector.x;
-    s.airspeed_m_s = ToEigen(airspeed->vector).norm();
+    const double v_x = airspeed->air_velocity_B_m_s.x();
+    s.diff_pressure_Pa = 0.5 * rho * v_x * v_x;
+    s.airspeed_m_s = airspeed->air_velocity_B_m_s.norm();
   }
   return s;
 }

@@ -163,4 +163,17 @@ void LaserPlugin::Reset() {
   published_scans_ = 0;
 }
 
+bool RangePlugin::Advertise() {
+  rotors_sim::physics::World& world = *sensor_->ParentLink()->GetModel()->GetWorldRaw();
+  pub_ = rotors_gazebo_plugins::Advertise<sensor_msgs::Range>(node_, robot_namespace_, topic_, world, 4);
+  bus_ = VehicleBus::For(world, robot_namespace_);
+  feed_ = &bus_->sensors.range.Of(ResolveTopic(robot_namespace_, topic_));
+  return true;  // the bus takes every range
+}
+
+void RangePlugin::PublishRange(const sensor_msgs::RangePtr& msg) {
+  feed_->Put({msg->range, msg->min_range, msg->max_range}, msg->header.stamp.toSec());
+  pub_.publish(msg);
+}
+
 }  // namespace rotors_gazebo_plugins

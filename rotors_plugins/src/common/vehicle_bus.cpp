@@ -24,6 +24,8 @@ std::shared_ptr<VehicleBus> VehicleBus::For(rotors_sim::physics::World& world, c
   std::shared_ptr<VehicleBus> bus = entry.lock();
   if (!bus) {  // first plugin of this vehicle, or the last holder of the previous one is gone
     bus = std::make_shared<VehicleBus>();
+    VehicleBus* raw = bus.get();
+    bus->reset_connection_ = world.Events().world_reset.Connect([raw] { raw->sensors.Forget(); });
     entry = bus;
   }
   return bus;

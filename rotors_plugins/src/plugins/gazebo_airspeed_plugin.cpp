@@ -27,7 +27,7 @@ class GazeboAirspeedPlugin : public LinkSensorPlugin<geometry_msgs::Vector3Stamp
     if (!(rate_hz >= 0.0)) throw rotors_sim::SimError("updateRate must be >= 0 Hz");
     ThrowIfInvalid(p.Validate());
     model_.Emplace(p, ReadSeed(Params()));
-    bus_ = VehicleBus::For(*model->GetWorldRaw(), Namespace());
+    feed_ = Feed(Bus().sensors.airspeed);
     limiter_ = RateLimiter(rate_hz);
     StartPublishing();
   }
@@ -42,13 +42,15 @@ class GazeboAirspeedPlugin : public LinkSensorPlugin<geometry_msgs::Vector3Stamp
     const auto q = X_WB.Rot();
     const Eigen::Matrix3d R_WB = Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z()).toRotationMatrix();
     const auto v = link_->WorldLinearVel();
+    const AirspeedReading reading{model_->Measure(R_WB, Eigen::Vector3d(v.X(), v.Y(), v.Z()), Bus().wind_velocity_W)};
+    feed_->Put(reading, t);
     msg_.header.stamp = ToRos(world_->SimTime());
-    msg_.vector = ToVector3Msg(model_->Measure(R_WB, Eigen::Vector3d(v.X(), v.Y(), v.Z()), bus_->wind_velocity_W));
+    msg_.vector = ToVector3Msg(reading.air_velocity_B_m_s);
     Publish();
   }
 
   SeededModel<AirspeedModel> model_;
-  std::shared_ptr<VehicleBus> bus_;
+  SensorFeed<AirspeedReading>* feed_ = nullptr;
   RateLimiter limiter_{0.0};
 };
 

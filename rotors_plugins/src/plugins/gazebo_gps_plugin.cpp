@@ -17,6 +17,7 @@
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
 #include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
@@ -71,7 +72,11 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
         Advertise<sensor_msgs::NavSatFix>(node_, ns, gps_topic, *sensor->ParentLink()->GetModel()->GetWorldRaw(), 10);
     ground_speed_pub_ = Advertise<geometry_msgs::TwistStamped>(node_, ns, ground_speed_topic,
                                                                *sensor->ParentLink()->GetModel()->GetWorldRaw(), 10);
-    if (!gps_pub_) return;  // neither ROS nor in-process taps: nobody to publish to
+    // the reading goes on the vehicle bus too, whether or not anyone listens
+    bus_ = VehicleBus::For(*sensor->ParentLink()->GetModel()->GetWorldRaw(), ns);
+    fix_feed_ = &bus_->sensors.gps.Of(ResolveTopic(ns, gps_topic));
+    speed_feed_ = &bus_->sensors.ground_speed.Of(ResolveTopic(ns, ground_speed_topic));
+    accuracy_ = {p.hor_pos_std_dev_m, p.ver_pos_std_dev_m};
     connection_ = sensor->ConnectUpdated([this] { OnUpdate(); });
     if (random_walk_) {
       world_ = sensor->ParentLink()->GetModel()->GetWorldRaw();
@@ -110,6 +115,9 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     } else {
       m = model_->Measure(Position(), Velocity());
     }
+    const double t_s = sensor_->LastUpdateTime().Double();
+    fix_feed_->Put({m, accuracy_.first, accuracy_.second}, t_s);
+    speed_feed_->Put({m.ground_speed_W}, t_s);
     fix_.header.stamp = ToRos(sensor_->LastUpdateTime());
     fix_.latitude = m.latitude_longitude_altitude.x();
     fix_.longitude = m.latitude_longitude_altitude.y();
@@ -122,6 +130,10 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
   }
 
   rotors_sim::sensors::SensorPtr sensor_;
+  std::shared_ptr<VehicleBus> bus_;
+  SensorFeed<GpsReading>* fix_feed_ = nullptr;            ///< on the bus
+  SensorFeed<GroundSpeedReading>* speed_feed_ = nullptr;  ///< on the bus
+  std::pair<double, double> accuracy_;                    ///< horizontal, vertical 1 sigma [m]
   SeededModel<GpsModel> model_;
   SeededModel<RandomWalkGpsModel> random_walk_;
   rotors_sim::physics::World* world_ = nullptr;

@@ -50,8 +50,10 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
 
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
+    bus_ = VehicleBus::For(*world_, ns);
+    feed_ = &bus_->sensors.imu.Of(ResolveTopic(ns, topic));
     const ImuVibrationParams vibration = ReadImuVibration(Params());
-    if (vibration.enabled) LoadVibration(model, vibration, seed, ns);
+    if (vibration.enabled) LoadVibration(model, vibration, seed);
     msg_.header.frame_id = link_name;
     msg_.orientation_covariance.fill(-1.0);  // orientation is ground truth (as RotorS), not a measurement
     for (int i = 0; i < 3; ++i) {
@@ -83,6 +85,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     const auto w_I = link_->RelativeAngularVel();
     const ImuSample truth{{w_I.X(), w_I.Y(), w_I.Z()}, {f_I.X(), f_I.Y(), f_I.Z()}};
     const ImuSample m = noise_->Corrupt(vibration_ ? Vibrate(truth, dt) : truth, dt);
+    feed_->Put(m, world_->SimTime().Double());
     if (!pub_) return;
     msg_.header.stamp = ToRos(world_->SimTime());
     msg_.orientation = rotors_sim::QuaternionMsg(X_WI.Rot());
@@ -98,8 +101,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     }
   }
 
-  void LoadVibration(const rotors_sim::physics::ModelPtr& model, const ImuVibrationParams& params, uint64_t seed,
-                     const std::string& ns) {
+  void LoadVibration(const rotors_sim::physics::ModelPtr& model, const ImuVibrationParams& params, uint64_t seed) {
     VibratingBody body;
     bool found = false;
     for (const auto& b : model->BodyMasses())
@@ -116,7 +118,6 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     body.p_B_imu = VectorOf(X_BI.Pos());
     body.R_BI = RotationOf(X_BI.Rot());
     ThrowIfInvalid(body.Validate());
-    bus_ = VehicleBus::For(*world_, ns);
     vibration_.Emplace(params, body, seed + 1);
   }
 
@@ -149,6 +150,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
   SeededModel<ImuNoiseModel> noise_;
   SeededModel<ImuVibrationModel> vibration_;
   std::shared_ptr<VehicleBus> bus_;
+  SensorFeed<ImuSample>* feed_ = nullptr;  ///< on the bus
   std::vector<VibratingRotor> rotors_;
   ImuSample last_truth_;
   bool have_truth_ = false;

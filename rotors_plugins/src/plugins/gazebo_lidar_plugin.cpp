@@ -10,15 +10,9 @@
 
 namespace rotors_gazebo_plugins {
 
-class GazeboLidarPlugin : public LaserPlugin {
+class GazeboLidarPlugin : public RangePlugin {
  protected:
   std::string DefaultTopic() const override { return "lidar"; }
-  // through the world's message taps too: an autopilot interface reads the range in process
-  bool Advertise() override {
-    pub_ = rotors_gazebo_plugins::Advertise<sensor_msgs::Range>(node_, robot_namespace_, topic_,
-                                                                *sensor_->ParentLink()->GetModel()->GetWorldRaw(), 4);
-    return static_cast<bool>(pub_);
-  }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     sensor_msgs::RangePtr msg(new sensor_msgs::Range);
     msg->header.stamp = stamp;
@@ -28,11 +22,8 @@ class GazeboLidarPlugin : public LaserPlugin {
     msg->min_range = static_cast<float>(sensor_->Spec().range_min_m);
     msg->max_range = static_cast<float>(sensor_->Spec().range_max_m);
     msg->range = scan.ranges_m.at(0);
-    pub_.publish(msg);
+    PublishRange(msg);
   }
-
- private:
-  rotors_sim::ListenedPublisher pub_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -38,6 +38,7 @@ class GazeboMagnetometerPlugin : public LinkSensorPlugin<sensor_msgs::MagneticFi
     ThrowIfInvalid(p.Validate());
     model_.Emplace(p, ReadSeed(Params()));
     for (int i = 0; i < 3; ++i) msg_.magnetic_field_covariance[i * 4] = p.noise_normal_T[i] * p.noise_normal_T[i];
+    feed_ = Feed(Bus().sensors.magnetometer);
     StartPublishing();
   }
 
@@ -46,12 +47,15 @@ class GazeboMagnetometerPlugin : public LinkSensorPlugin<sensor_msgs::MagneticFi
  private:
   void OnUpdate() override {
     const auto q = link_->WorldPose().Rot();
+    const MagnetometerReading reading{model_->Measure(Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z()))};
+    feed_->Put(reading, world_->SimTime().Double());
     msg_.header.stamp = ToRos(world_->SimTime());
-    msg_.magnetic_field = ToVector3Msg(model_->Measure(Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z())));
+    msg_.magnetic_field = ToVector3Msg(reading.field_B_T);
     Publish();
   }
 
   SeededModel<MagnetometerModel> model_;
+  SensorFeed<MagnetometerReading>* feed_ = nullptr;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -22,6 +22,7 @@
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/models/odometry_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
 #include "rotors_gazebo_plugins/seeded_model.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
@@ -88,6 +89,8 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     position_pub_ = Advertise<geometry_msgs::PointStamped>(node_, ns, position_topic, *model->GetWorldRaw(), 10);
     transform_pub_ = Advertise<geometry_msgs::TransformStamped>(node_, ns, transform_topic, *model->GetWorldRaw(), 10);
     odometry_pub_ = Advertise<nav_msgs::Odometry>(node_, ns, odometry_topic, *model->GetWorldRaw(), 10);
+    bus_ = VehicleBus::For(*world_, ns);
+    feed_ = &bus_->sensors.odometry.Of(ResolveTopic(ns, odometry_topic));
     if (node_) {
       if (broadcast_tf_) tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
     }
@@ -128,8 +131,9 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
   }
 
   void Publish(const Pending& pending) {
-    if (!odometry_pub_) return;  // neither ROS nor in-process taps
     const OdometryMeasurement m = noise_->Corrupt(pending.truth);
+    feed_->Put(m, pending.stamp.toSec());
+    if (!odometry_pub_) return;  // neither ROS nor in-process taps
     geometry_msgs::Pose pose;
     pose.position.x = m.p_W.x();
     pose.position.y = m.p_W.y();
@@ -194,6 +198,8 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
   // ListenedPublisher: no search through every topic per step
   rotors_sim::ListenedPublisher pose_pub_, pose_cov_pub_, position_pub_, transform_pub_, odometry_pub_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
+  std::shared_ptr<VehicleBus> bus_;
+  SensorFeed<OdometryMeasurement>* feed_ = nullptr;  ///< on the bus
   rotors_sim::event::ConnectionPtr connection_;
 };
 

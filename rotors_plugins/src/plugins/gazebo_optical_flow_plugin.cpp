@@ -20,6 +20,7 @@
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/camera_ros.h"
 #include "rotors_gazebo_plugins/ros/link_sensor_plugin.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
@@ -45,7 +46,11 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     msg_.header.frame_id = topic_.Namespace() + "/" + sensor_->Name();
     msg_.temperature = 2000;  // centi-degC
     msg_.distance = -1.0f;
-    if (!topic_.Advertise(*sensor_->ParentLink()->GetModel()->GetWorldRaw())) return;  // nobody to publish to
+    rotors_sim::physics::World& world = *sensor_->ParentLink()->GetModel()->GetWorldRaw();
+    topic_.Advertise(world);
+    // the sample goes on the vehicle bus too, whether or not anyone listens
+    bus_ = VehicleBus::For(world, topic_.Namespace());
+    feed_ = &bus_->sensors.optical_flow.Of(topic_.Resolved());
     connection_ = sensor_->ConnectUpdated([this] { OnFrame(); });
   }
 
@@ -65,6 +70,13 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     }
     const auto sample = model_->AddFrame(grey, W, H, sensor_->LastUpdateTime().Double());
     if (!sample) return;
+    OpticalFlowReading reading;
+    reading.integration_time_us = sample->integration_time_us;
+    reading.integrated_xy_rad = {sample->integrated_x, sample->integrated_y};
+    reading.integrated_gyro_rad = {msg_.integrated_xgyro, msg_.integrated_ygyro, msg_.integrated_zgyro};
+    reading.distance_m = msg_.distance;
+    reading.quality = sample->quality;
+    feed_->Put(reading, sensor_->LastUpdateTime().Double());
     msg_.header.stamp = ToRos(sensor_->LastUpdateTime());
     msg_.integration_time_us = sample->integration_time_us;
     msg_.integrated_x = sample->integrated_x;
@@ -78,6 +90,8 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
   std::vector<uint8_t> grey_;
   mavros_msgs::OpticalFlowRad msg_;
   SensorTopic<mavros_msgs::OpticalFlowRad> topic_;
+  std::shared_ptr<VehicleBus> bus_;
+  SensorFeed<OpticalFlowReading>* feed_ = nullptr;
   rotors_sim::event::ConnectionPtr connection_;
 };
 

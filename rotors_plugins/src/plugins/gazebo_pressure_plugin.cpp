@@ -20,6 +20,7 @@ class GazeboPressurePlugin : public LinkSensorPlugin<sensor_msgs::FluidPressure>
     ThrowIfInvalid(p.Validate());
     model_.Emplace(p, ReadSeed(Params()));
     msg_.variance = p.pressure_variance_pa2;
+    feed_ = Feed(Bus().sensors.barometer);
     StartPublishing();
   }
 
@@ -27,12 +28,15 @@ class GazeboPressurePlugin : public LinkSensorPlugin<sensor_msgs::FluidPressure>
 
  private:
   void OnUpdate() override {
+    const BarometerReading reading{model_->Measure(link_->WorldPose().Pos().Z())};
+    feed_->Put(reading, world_->SimTime().Double());
     msg_.header.stamp = ToRos(world_->SimTime());
-    msg_.fluid_pressure = model_->Measure(link_->WorldPose().Pos().Z());
+    msg_.fluid_pressure = reading.pressure_Pa;
     Publish();
   }
 
   SeededModel<PressureModel> model_;
+  SensorFeed<BarometerReading>* feed_ = nullptr;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -14,7 +14,7 @@
 
 namespace rotors_gazebo_plugins {
 
-class GazeboRosRange : public LaserPlugin {
+class GazeboRosRange : public RangePlugin {
  protected:
   std::string DefaultTopic() const override { return "range"; }
   void Configure(rotors_sim::SdfParams& params) override {
@@ -32,12 +32,6 @@ class GazeboRosRange : public LaserPlugin {
     msg_.min_range = static_cast<float>(sensor_->Spec().range_min_m);
     msg_.max_range = static_cast<float>(sensor_->Spec().range_max_m);
   }
-  // through the world's message taps too: an autopilot interface reads the range in process
-  bool Advertise() override {
-    pub_ = rotors_gazebo_plugins::Advertise<sensor_msgs::Range>(node_, robot_namespace_, topic_,
-                                                                *sensor_->ParentLink()->GetModel()->GetWorldRaw(), 4);
-    return static_cast<bool>(pub_);
-  }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     float range = NearestReturn(scan);
     if (std::isfinite(range) && noise_m_ > 0.0) {
@@ -48,13 +42,12 @@ class GazeboRosRange : public LaserPlugin {
     msg->range = range;
     msg->header.stamp = stamp;
     msg->header.frame_id = frame_;
-    pub_.publish(msg);
+    PublishRange(msg);
   }
 
  private:
   sensor_msgs::Range msg_;
   double noise_m_ = 0.0;
-  rotors_sim::ListenedPublisher pub_;
 };
 
 }  // namespace rotors_gazebo_plugins

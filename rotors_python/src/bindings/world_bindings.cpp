@@ -14,8 +14,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <nav_msgs/Odometry.h>
-
 #include "bindings.h"
 #include "flight_batch/vehicle_description.h"
 #include "rotors_core/error.h"
@@ -106,17 +104,14 @@ class PyWorld {
   void AttachController(const std::string& ns, const std::string& odometry_topic,
                         std::shared_ptr<OdometryController> controller) {
     auto bus = Bus(ns);
-    auto& taps = rotors_sim::MessageTaps::Of(*world_);
-    const rotors_sim::TappedMessage* slot = taps.Find(odometry_topic);
-    if (!slot) throw SimError("no plugin publishes '" + odometry_topic + "' (the controller's odometry)");
-    if (!slot->wanted) throw SimError("topic '" + odometry_topic + "' was left out by listen()");
+    const OdometryFeed* feed = FeedOfOdometry(*bus, ns, odometry_topic);
     for (Attached& a : attached_)
       if (a.bus == bus) {
         a.controller = std::move(controller);
-        a.slot = slot;
+        a.feed = feed;
         return;
       }
-    attached_.push_back(Attached{ns, bus, slot, std::move(controller), slot->count});
+    attached_.push_back(Attached{ns, bus, feed, std::move(controller), feed->count});
   }
   void DetachControllers() { attached_.clear(); }
 
@@ -193,19 +188,18 @@ class PyWorld {
     const std::string bytes = slot->Serialized();
     return py::make_tuple(slot->datatype, slot->count, py::bytes(bytes));
   }
-  /// The last nav_msgs/Odometry of `topic` as (count, [t, p(3), q xyzw(4), v_B(3), w_B(3)]), without
-  /// deserializing in Python (the fast path of the environments); None before the first message.
-  py::object OdometryArray(const std::string& topic) const {
-    const rotors_sim::TappedMessage* slot = rotors_sim::MessageTaps::Of(*world_).Find(topic);
-    if (!slot || !slot->message) return py::none();
-    if (slot->datatype != "nav_msgs/Odometry")
-      throw SimError("topic '" + topic + "' carries " + slot->datatype + ", not nav_msgs/Odometry");
-    const auto& m = *static_cast<const nav_msgs::Odometry*>(slot->message.get());
-    const auto& p = m.pose.pose.position;
-    const auto &v = m.twist.twist.linear, &w = m.twist.twist.angular;
-    const auto& q = m.pose.pose.orientation;
-    std::vector<double> values{m.header.stamp.toSec(), p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, v.z, w.x, w.y, w.z};
-    return py::make_tuple(slot->count, py::array_t<double>(values.size(), values.data()));
+  /// The last reading of the odometry sensor on `topic` (resolved) as (count, [t, p(3), q xyzw(4),
+  /// v_B(3), w_B(3)]), read from the vehicle bus; None before the first one (or since a reset).
+  py::object OdometryArray(const std::string& ns, const std::string& topic) const {
+    auto bus = rotors_gazebo_plugins::VehicleBus::For(*world_, ns);
+    const OdometryFeed* feed = FeedOfOdometry(*bus, ns, topic);
+    if (!feed->fresh) return py::none();
+    const auto& m = feed->latest;
+    const Eigen::Vector4d q = m.q_WS.coeffs();  // x y z w
+    std::vector<double> values{feed->time_s, m.p_W.x(),     m.p_W.y(),     m.p_W.z(),    q[0],
+                               q[1],         q[2],          q[3],          m.v_S.x(),    m.v_S.y(),
+                               m.v_S.z(),    m.omega_S.x(), m.omega_S.y(), m.omega_S.z()};
+    return py::make_tuple(feed->count, py::array_t<double>(values.size(), values.data()));
   }
 
   std::vector<std::tuple<std::string, std::string, uint64_t>> Topics() const {
@@ -302,22 +296,30 @@ class PyWorld {
   }
 
  private:
+  using OdometryFeed = rotors_gazebo_plugins::SensorFeed<rotors_gazebo_plugins::OdometryMeasurement>;
+  /// The feed of the odometry sensor on `topic` (resolved) in the vehicle `ns` (SimError naming the
+  /// vehicle's odometry topics when none publishes there).
+  static const OdometryFeed* FeedOfOdometry(const rotors_gazebo_plugins::VehicleBus& bus, const std::string& ns,
+                                            const std::string& topic) {
+    if (const OdometryFeed* feed = bus.sensors.odometry.Find(topic)) return feed;
+    std::string topics;
+    for (const std::string& t : bus.sensors.odometry.Topics()) topics += (topics.empty() ? "" : ", ") + t;
+    throw SimError("no odometry sensor publishes '" + topic + "' in vehicle '" + ns +
+                   "' (its odometry: " + (topics.empty() ? "none" : topics) + ")");
+  }
+
   struct Attached {
     std::string ns;
     std::shared_ptr<rotors_gazebo_plugins::VehicleBus> bus;
-    const rotors_sim::TappedMessage* slot;
+    const OdometryFeed* feed;  ///< on `bus`
     std::shared_ptr<OdometryController> controller;
     uint64_t seen;
     void AnswerNewOdometry() {
-      if (!slot->message || slot->count == seen) return;
-      seen = slot->count;
-      const auto& m = *static_cast<const nav_msgs::Odometry*>(slot->message.get());
-      const auto& p = m.pose.pose.position;
-      const auto& q = m.pose.pose.orientation;
-      const auto &v = m.twist.twist.linear, &w = m.twist.twist.angular;
+      if (!feed->fresh || feed->count == seen) return;
+      seen = feed->count;
+      const auto& m = feed->latest;
       const Eigen::VectorXd speeds =
-          controller->Answer(StateFromOdometry({p.x, p.y, p.z}, {q.x, q.y, q.z, q.w}, {v.x, v.y, v.z}, {w.x, w.y, w.z}),
-                             m.header.stamp.toSec());
+          controller->Answer(StateFromOdometry(m.p_W, m.q_WS.coeffs(), m.v_S, m.omega_S), feed->time_s);
       const std::string why = bus->SetMotorCommand(std::vector<double>(speeds.data(), speeds.data() + speeds.size()));
       if (!why.empty()) throw SimError("attached controller of '" + ns + "': motor command " + why);
     }
@@ -422,7 +424,7 @@ void BindWorld(py::module_& m) {
       .def("autopilot_answers", &PyWorld::AutopilotAnswers, py::arg("namespace"))
       .def("set_actuators", &PyWorld::SetActuators, py::arg("namespace"), py::arg("normalized"))
       .def("message", &PyWorld::Message, py::arg("topic"))
-      .def("odometry_array", &PyWorld::OdometryArray, py::arg("topic"))
+      .def("odometry_array", &PyWorld::OdometryArray, py::arg("namespace"), py::arg("topic"))
       .def("topics", &PyWorld::Topics)
       .def("listen", &PyWorld::Listen, py::arg("topics"))
       .def("attach_controller", &PyWorld::AttachController, py::arg("namespace"), py::arg("odometry_topic"),

@@ -217,10 +217,11 @@ class World:
         return message_class(datatype)().deserialize(data), count
 
     def odometry(self, namespace: str, topic: str = "odometry_sensor1/odometry") -> Odometry | None:
-        """The last message of /<namespace>/<topic> (nav_msgs/Odometry), None before the first."""
-        got = self._w.odometry_array(f"/{namespace}/{topic}")
+        """The last reading of the odometry sensor publishing /<namespace>/<topic>, read from the
+        vehicle bus (what nav_msgs/Odometry carries), None before the first. SimError when no odometry
+        sensor publishes there."""
+        got = self._w.odometry_array(namespace, f"/{namespace}/{topic}")
         if got is None:
-            self.message(f"/{namespace}/{topic}")  # raises if nobody publishes it
             return None
         count, a = got
         return Odometry(float(a[0]), a[1:4], a[4:8], a[8:11], a[11:14], count)

@@ -16,7 +16,9 @@
 #include <sensor_msgs/Range.h>
 
 #include "rotors_core/plugin.h"
+#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/sensors/ray_sensor.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace rotors_gazebo_plugins {
 
@@ -79,6 +81,20 @@ class LaserPlugin : public rotors_sim::SensorPlugin {
   double update_rate_hz_ = 0.0, last_published_s_ = -1.0;
   uint64_t published_scans_ = 0;
   rotors_sim::event::ConnectionPtr connection_;
+};
+
+/// What the single-range plugins share (the lidar, gazebo_ros_range): each range on the vehicle bus
+/// (the autopilot interfaces read it there), whether or not anyone listens, and as sensor_msgs/Range.
+class RangePlugin : public LaserPlugin {
+ protected:
+  bool Advertise() final;
+  /// Puts msg's range and limits on the bus and publishes it.
+  void PublishRange(const sensor_msgs::RangePtr& msg);
+
+ private:
+  rotors_sim::ListenedPublisher pub_;
+  std::shared_ptr<VehicleBus> bus_;
+  SensorFeed<RangeReading>* feed_ = nullptr;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -1,10 +1,10 @@
 // The Load() skeleton the small sensor plugins share. SensorTopic: robotNamespace, the topic
 // parameter and one advertised message type (ROS, or the in-process taps), for every one of them
 // (pressure, magnetometer, airspeed, optical flow). LinkSensorPlugin adds what the link-mounted
-// ones share (pressure, magnetometer, airspeed): linkName (required), the link and its world, and
-// OnUpdate() after every world step while someone listens, or at <pubRate> [Hz] (ours, PX4's
-// plugins' parameter; 0 or absent: every step, as RotorS). A plugin reads its own parameters
-// between LoadLink() and StartPublishing().
+// ones share (pressure, magnetometer, airspeed): linkName (required), the link, its world and the
+// vehicle bus, and OnUpdate() after every world step, or at <pubRate> [Hz] (ours, PX4's plugins'
+// parameter; 0 or absent: every step, as RotorS), which puts the reading on the bus and publishes
+// it. A plugin reads its own parameters between LoadLink() and StartPublishing().
 #pragma once
 
 #include <cmath>
@@ -22,6 +22,7 @@
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace rotors_gazebo_plugins {
 
@@ -43,6 +44,8 @@ class SensorTopic {
   }
   void Publish(const Msg& msg) { pub_.publish(msg); }
   const std::string& Namespace() const { return ns_; }
+  /// The resolved topic name ("/firefly/air_pressure"): the key of the sensor's feed on the bus.
+  std::string Resolved() const { return ResolveTopic(ns_, topic_); }
 
  private:
   std::string ns_, topic_;
@@ -62,6 +65,7 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
     RequireParam(Params(), "linkName", &link_name);
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
+    bus_ = VehicleBus::For(*world_, topic_.Namespace());
     msg_.header.frame_id = link_name;
     double rate_hz = 0.0;
     ReadParam(Params(), "pubRate", &rate_hz);
@@ -71,20 +75,26 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
     period_s_ = rate_hz > 0.0 ? 1.0 / rate_hz : 0.0;
   }
 
-  /// Last in Load(): advertises the topic and calls OnUpdate() after each world step (not at all
-  /// when nobody can listen).
+  /// Last in Load(): advertises the topic and calls OnUpdate() after each world step (the bus takes
+  /// the reading whether or not anyone listens).
   void StartPublishing() {
-    if (!topic_.Advertise(*world_)) return;
+    topic_.Advertise(*world_);
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] {
       if (Due()) OnUpdate();
     });
   }
 
-  /// Fills msg_ (its stamp too) and publishes it with Publish().
+  /// Takes the reading, puts it on the bus (Feed), fills msg_ (its stamp too) and publishes it with Publish().
   virtual void OnUpdate() = 0;
   void Publish() { topic_.Publish(msg_); }
   /// robotNamespace, as LoadLink() read it.
   const std::string& Namespace() const { return topic_.Namespace(); }
+  /// This sensor's feed among the bus' feeds of its kind (e.g. Bus().sensors.barometer).
+  template <class Reading>
+  SensorFeed<Reading>* Feed(SensorFeeds<Reading>& feeds) {
+    return &feeds.Of(topic_.Resolved());
+  }
+  VehicleBus& Bus() { return *bus_; }
 
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
@@ -108,6 +118,7 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
   }
 
   SensorTopic<Msg> topic_;
+  std::shared_ptr<VehicleBus> bus_;
   rotors_sim::event::ConnectionPtr connection_;
   double period_s_ = 0.0, last_s_ = -1.0, next_s_ = -1.0;
 };
