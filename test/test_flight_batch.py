@@ -273,6 +273,21 @@ def test_bad_input_is_one_line_and_moves_nothing():
         rs.FlightBatch("firefly", 2, model=vi_sensor)
 
 
+def test_the_batch_reads_what_the_plugins_loaded_with():
+    """The batch's description is what each plugin put on the vehicle bus when it loaded (its model
+    and the parameters it validated): a parameter the plugin refuses is refused by the batch with the
+    plugin's own message, and what the batch leaves out is named by what it is, not by a file name."""
+    with pytest.raises(rs.SimError) as in_world:
+        rs.World("basic").spawn_mav("firefly", odometry_divisor=0)
+    with pytest.raises(rs.SimError) as in_batch:
+        rs.FlightBatch("firefly", control_divisor=0)
+    assert "measurementDivisor = 0 must be >= 1" in str(in_world.value)
+    assert str(in_batch.value) == str(in_world.value)
+    batch = rs.FlightBatch("firefly", enable_ground_truth=True)
+    assert batch.left_out == ["imu (firefly/imugt_link)", "odometry (ground_truth/odometry)"]
+    assert not any(".so" in what for what in batch.left_out)
+
+
 def test_normalized_thrust_at_the_hover_fraction_hovers():
     batch = rs.FlightBatch("hummingbird", 2, mode="normalized_thrust", step_size=DT, noise=False)
     d = batch.description

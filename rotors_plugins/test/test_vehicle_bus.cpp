@@ -1,5 +1,6 @@
 // Two worlds in one process, each with a vehicle named "mav": the vehicle bus belongs to the world,
-// so a motor command sent to one world's vehicle turns only that world's rotor.
+// so a motor command sent to one world's vehicle turns only that world's rotor. The bus carries each
+// sensor's reading and each plugin's record of what it loaded with.
 #include <cmath>
 #include <string>
 
@@ -7,6 +8,8 @@
 
 #include "rotors_core/physics/world.h"
 #include "rotors_core/world_loader.h"
+#include "rotors_core/physics/model.h"
+#include "rotors_gazebo_plugins/models/standard_atmosphere.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace {
@@ -30,6 +33,10 @@ constexpr const char* kWorld = R"(<?xml version="1.0"?><sdf version="1.6"><world
       <motorConstant>8.54858e-06</motorConstant><momentConstant>0.016</momentConstant>
       <motorNumber>0</motorNumber><rotorDragCoefficient>8.06428e-05</rotorDragCoefficient>
       <rollingMomentCoefficient>1e-06</rollingMomentCoefficient><rotorVelocitySlowdownSim>10</rotorVelocitySlowdownSim>
+    </plugin>
+    <plugin name="barometer" filename="librotors_gazebo_pressure_plugin.so">
+      <robotNamespace>mav</robotNamespace><linkName>mav/base_link</linkName>
+      <referenceAltitude>500</referenceAltitude><pressureVariance>0</pressureVariance>
     </plugin></model></world></sdf>)";
 
 TEST(VehicleBus, TwoWorldsWithTheSameVehicleNameDoNotShareMotorCommands) {
@@ -48,6 +55,42 @@ TEST(VehicleBus, TwoWorldsWithTheSameVehicleNameDoNotShareMotorCommands) {
   EXPECT_TRUE(bus_b->motor_command_rad_s.empty());
   a->Fini();
   b->Fini();
+}
+
+TEST(VehicleBus, CarriesEachReadingUntilAReset) {
+  rotors_sim::physics::WorldPtr world = rotors_sim::WorldLoader::LoadString(kWorld, "w");
+  const std::shared_ptr<VehicleBus> bus = VehicleBus::For(*world, "mav");
+  const auto* feed = bus->sensors.barometer.Find("/mav/air_pressure");  // the plugin's resolved topic
+  ASSERT_NE(feed, nullptr);
+  EXPECT_FALSE(feed->fresh);
+  world->Step(10);  // nobody listens: the reading goes on the bus all the same, every step
+  EXPECT_TRUE(feed->fresh);
+  EXPECT_EQ(feed->count, 10u);
+  EXPECT_NEAR(feed->time_s, 0.010, 1e-12);
+  // no noise (pressureVariance 0): the standard atmosphere at referenceAltitude + z_W (z_W = 0)
+  EXPECT_DOUBLE_EQ(feed->latest.pressure_Pa, rotors_gazebo_plugins::StandardAtmospherePressure(500.0));
+  world->ResetWorld();  // no reader sees a reading from before the reset; the count runs on
+  EXPECT_FALSE(feed->fresh);
+  EXPECT_EQ(feed->count, 10u);
+  world->Fini();
+}
+
+TEST(VehicleBus, HoldsWhatEachPluginLoadedWith) {
+  rotors_sim::physics::WorldPtr world = rotors_sim::WorldLoader::LoadString(kWorld, "w");
+  const std::shared_ptr<VehicleBus> bus = VehicleBus::For(*world, "mav");
+  const auto& plugins = world->ModelByName("mav")->Plugins();
+  ASSERT_EQ(plugins.size(), 2u);
+  const auto* motor = std::get_if<rotors_gazebo_plugins::MotorRecord>(bus->RecordOf(plugins[0].get()));
+  ASSERT_NE(motor, nullptr);
+  EXPECT_EQ(motor->motor_type, "velocity");
+  EXPECT_EQ(motor->link_name, "mav/rotor_0");
+  EXPECT_EQ(motor->params.motor_constant, 8.54858e-06);
+  EXPECT_EQ(motor->params.max_rot_velocity, 838.0);
+  EXPECT_EQ(motor->slowdown, 10.0);
+  const auto* barometer = std::get_if<rotors_gazebo_plugins::MeasuringRecord>(bus->RecordOf(plugins[1].get()));
+  ASSERT_NE(barometer, nullptr);
+  EXPECT_EQ(barometer->what, "/mav/air_pressure");
+  world->Fini();
 }
 
 }  // namespace

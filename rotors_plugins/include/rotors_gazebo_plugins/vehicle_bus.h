@@ -6,7 +6,7 @@
 #pragma once
 
 #include <functional>
-
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,9 +14,11 @@
 #include <Eigen/Core>
 
 #include "rotors_core/event.h"
+#include "rotors_gazebo_plugins/plugin_records.h"
 #include "rotors_gazebo_plugins/sensor_feeds.h"
 
 namespace rotors_sim {
+class ModelPlugin;
 namespace physics {
 class World;
 class Link;
@@ -65,6 +67,16 @@ struct VehicleBus {
   /// Each sensor's latest reading, by its resolved topic (a world reset makes them stale).
   SensorReadings sensors;
 
+  /// What `plugin` (of this vehicle's model) loaded with: its model and validated parameters
+  /// (plugin_records.h). A plugin registers once, at the end of its Load.
+  void Register(const rotors_sim::ModelPlugin* plugin, PluginRecord record) { records_[plugin] = std::move(record); }
+  /// The record `plugin` registered, nullptr when it registered none (a plugin another engine
+  /// cannot stand in for: an autopilot link, a fixed wing's aerodynamics, a camera).
+  const PluginRecord* RecordOf(const rotors_sim::ModelPlugin* plugin) const {
+    auto it = records_.find(plugin);
+    return it == records_.end() ? nullptr : &it->second;
+  }
+
   /// The bus of a namespace in a world, shared by the plugins of the vehicle that hold it. It lives
   /// as long as one of them: a model deleted and re-spawned under the same namespace (with another
   /// rotor count, too) starts on a fresh bus. Buses live in the world (World::PluginState), so two
@@ -93,6 +105,7 @@ struct VehicleBus {
 
  private:
   rotors_sim::event::ConnectionPtr reset_connection_;  ///< the world's reset: sensors.Forget()
+  std::map<const rotors_sim::ModelPlugin*, PluginRecord> records_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -65,6 +65,7 @@ class GazeboBagPlugin : public rotors_sim::ModelPlugin {
     model_ = model.get();
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), ns_);
+    bus_->Register(this, MeasuringRecord{"bag"});
     node_ = MakeNode(ns_);
     if (!node_) {  // no ROS, no bag: its topics are not needed
       for (const char* name : {"imuTopic", "odometryTopic", "commandAttitudeThrustTopic", "commandMotorSpeedTopic",

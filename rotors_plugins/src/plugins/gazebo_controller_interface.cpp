@@ -36,6 +36,7 @@ class GazeboControllerInterface : public rotors_sim::ModelPlugin {
                                  " must be >= 0 s (0: hold the last command forever)");
     model_name_ = model->GetName();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
+    bus_->Register(this, PlumbingRecord{});
     if (command_timeout_s_ > 0.0)
       update_ = rotors_sim::event::Events::ConnectWorldUpdateBegin(
           [this](const rotors_sim::common::UpdateInfo& info) { CheckCommandAge(info.simTime.Double()); });

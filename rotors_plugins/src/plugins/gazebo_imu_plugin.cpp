@@ -54,6 +54,7 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     feed_ = &bus_->sensors.imu.Of(ResolveTopic(ns, topic));
     const ImuVibrationParams vibration = ReadImuVibration(Params());
     if (vibration.enabled) LoadVibration(model, vibration, seed);
+    bus_->Register(this, ImuRecord{link_name, p, vibration.enabled, seed});
     msg_.header.frame_id = link_name;
     msg_.orientation_covariance.fill(-1.0);  // orientation is ground truth (as RotorS), not a measurement
     for (int i = 0; i < 3; ++i) {

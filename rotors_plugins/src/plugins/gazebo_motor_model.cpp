@@ -99,6 +99,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     bus_->RegisterRotor(motor_number_, p.max_rot_velocity);
     bus_->RegisterRotorMounting(motor_number_,
                                 {link_, ToEigen(joint_->LocalAxis(0)), link_->GetInertial().Mass(), p.motor_constant});
+    bus_->Register(this, MotorRecord{motor_number_, "velocity", joint_->GetName(), link_name, p, slowdown_});
     speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 1);
   }
 
@@ -117,6 +118,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     std::string position_topic = "motor_position/" + std::to_string(motor_number_);
     ReadParam(Params(), "motorPositionPubTopic", &position_topic);
     bus_->RegisterServo(motor_number_);
+    bus_->Register(this, MotorRecord{motor_number_, "position", joint_->GetName(), "", {}, 1.0});
     speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, position_topic, *model->GetWorldRaw(), 1);
   }
 
@@ -130,6 +132,7 @@ class GazeboMotorModel : public rotors_sim::ModelPlugin {
     std::string speed_topic = "motor_speed/" + std::to_string(motor_number_);
     ReadParam(Params(), "motorSpeedPubTopic", &speed_topic);
     bus_->RegisterServo(motor_number_);
+    bus_->Register(this, MotorRecord{motor_number_, "force", joint_->GetName(), "", {}, 1.0});
     speed_pub_ = Advertise<std_msgs::Float32>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 1);
   }
 

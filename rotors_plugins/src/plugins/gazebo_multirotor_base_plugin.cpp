@@ -36,6 +36,7 @@ class GazeboMultirotorBasePlugin : public rotors_sim::ModelPlugin {
     RequireLink(model, frame_id_);
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
+    bus_->Register(this, PlumbingRecord{});
     node_ = MakeNode(namespace_);
     pub_ = Advertise<mav_msgs::Actuators>(node_, namespace_, topic, *model->GetWorldRaw(), 1);
     failure_pub_ =

@@ -63,7 +63,8 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     if (delay_steps_ < 0)
       throw rotors_sim::SimError("measurementDelay = " + std::to_string(delay_steps_) + " must be >= 0");
     const OdometryNoiseParams noise = ReadOdometryNoise(Params());
-    noise_.Emplace(noise, ReadSeed(Params()));
+    const uint64_t seed = ReadSeed(Params());
+    noise_.Emplace(noise, seed);
     std::string image;
     double scale = 1.0;
     ReadParam(Params(), "covarianceImageScale", &scale);
@@ -91,6 +92,8 @@ class GazeboOdometryPlugin : public rotors_sim::ModelPlugin {
     odometry_pub_ = Advertise<nav_msgs::Odometry>(node_, ns, odometry_topic, *model->GetWorldRaw(), 10);
     bus_ = VehicleBus::For(*world_, ns);
     feed_ = &bus_->sensors.odometry.Of(ResolveTopic(ns, odometry_topic));
+    bus_->Register(this, OdometryRecord{odometry_topic, link_name, divisor_, delay_steps_, unknown_delay_s_,
+                                        outage_map_ != nullptr, noise, seed});
     if (node_) {
       if (broadcast_tf_) tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
     }

@@ -55,17 +55,20 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
       ROS_WARN("[wind_plugin] %s: <customWindFieldPath> '%s' is not used: <useCustomStaticWindField> is false",
                namespace_.c_str(), field_path.c_str());
     try {
-      if (custom_field) field_ = std::make_unique<WindField>(WindField::Load(ResolvePath(field_path)));
-      if (!profile_path.empty()) profile_ = std::make_unique<WindProfile>(WindProfile::Load(ResolvePath(profile_path)));
+      if (custom_field) field_ = std::make_shared<const WindField>(WindField::Load(ResolvePath(field_path)));
+      if (!profile_path.empty())
+        profile_ = std::make_shared<const WindProfile>(WindProfile::Load(ResolvePath(profile_path)));
     } catch (const std::runtime_error& e) {
       throw rotors_sim::SimError(e.what());
     }
     const WindParams p = ReadWindParams(Params());
-    wind_.Emplace(p, ReadSeed(Params()));
+    const uint64_t seed = ReadSeed(Params());
+    wind_.Emplace(p, seed);
     link_ = RequireLink(model, link_name);
     offset_L_ = {offset.x(), offset.y(), offset.z()};
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*model->GetWorldRaw(), namespace_);
+    bus_->Register(this, WindRecord{p, seed, link_name, offset, speed_sub_topic, field_, profile_});
     node_ = MakeNode(namespace_);
     force_pub_ = Advertise<geometry_msgs::WrenchStamped>(node_, namespace_, force_topic, *model->GetWorldRaw(), 10);
     speed_pub_ = Advertise<rotors_comm::WindSpeed>(node_, namespace_, speed_topic, *model->GetWorldRaw(), 10);
@@ -129,8 +132,8 @@ class GazeboWindPlugin : public rotors_sim::ModelPlugin {
   std::string namespace_, frame_id_ = "world";
   rotors_sim::physics::Vector3d offset_L_;
   SeededModel<WindModel> wind_;
-  std::unique_ptr<WindField> field_;
-  std::unique_ptr<WindProfile> profile_;
+  std::shared_ptr<const WindField> field_;      ///< shared with its record on the bus
+  std::shared_ptr<const WindProfile> profile_;  ///< shared with its record on the bus
   std::optional<Eigen::Vector3d> external_speed_W_;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;

@@ -3,16 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <set>
+#include <variant>
 
 #include "rotors_core/error.h"
-#include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/physics/joint.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace rotors_flight_batch {
 
@@ -57,31 +57,80 @@ double VisualReach(const rotors_sim::geometry::Visual& visual, const Eigen::Vect
   return r;
 }
 
-/// Plugins that only measure or record: the batch leaves them out and says so.
-const std::set<std::string> kMeasuringPlugins = {"librotors_gazebo_multirotor_base_plugin.so",
-                                                 "librotors_gazebo_controller_interface.so",
-                                                 "librotors_gazebo_gps_plugin.so",
-                                                 "librotors_gazebo_magnetometer_plugin.so",
-                                                 "librotors_gazebo_pressure_plugin.so",
-                                                 "librotors_gazebo_airspeed_plugin.so",
-                                                 "librotors_gazebo_bag_plugin.so",
-                                                 "librotors_gazebo_octomap_plugin.so"};
-
-std::string Short(const std::string& filename) {
-  std::string s = filename;
-  if (s.rfind("lib", 0) == 0) s = s.substr(3);
-  if (s.size() > 3 && s.compare(s.size() - 3, 3, ".so") == 0) s.resize(s.size() - 3);
-  return s;
-}
-
 /// The pose of a link's frame in the body frame B (origin at the body's CoG).
 Mount MountOf(const physics::Link& link) {
   const physics::Pose3d& X_BL = link.PoseInBody();
   return {ToEigen(X_BL.Pos()), ToEigen(X_BL.Rot())};
 }
 
-std::string ResolvePath(const std::string& path) {
-  return path.rfind("package://", 0) == 0 ? rotors_sim::geometry::UriResolver::Resolve(path) : path;
+RotorMount RotorOf(const physics::Model& model, const rgp::MotorRecord& motor, const std::string& who) {
+  if (motor.motor_type != "velocity")
+    throw SimError(who + ": motor " + std::to_string(motor.motor_number) + " has motorType '" + motor.motor_type +
+                   "' (a servo or a joint effort); the batch flies rotors only (motorType velocity)");
+  RotorMount r;
+  r.motor_number = motor.motor_number;
+  r.params = motor.params;
+  r.slowdown = motor.slowdown;
+  const physics::JointPtr joint = model.GetJoint(motor.joint_name);
+  const physics::LinkPtr link = model.GetLink(motor.link_name);
+  if (!joint->IsKinematic())
+    throw SimError(who + ": rotor joint '" + motor.joint_name +
+                   "' is a solver joint; the batch needs rotors on kinematic joints (<kinematic_joint>)");
+  if (joint->GetChild().get() != link.get())
+    throw SimError(who + ": rotor link '" + motor.link_name + "' is not the child of its joint '" + motor.joint_name +
+                   "'");
+  const Mount m = MountOf(*link);
+  r.p_B_origin = m.p_B;
+  r.p_B_cog = m.p_B + m.q_BS * link->GetInertial().CoG();
+  r.axis_B = m.q_BS * Eigen::Vector3d::UnitZ();
+  r.spin_inertia_kg_m2 = joint->SpinInertia();
+  // the spin moment uses the joint's axis; the rotor's thrust its link's z: RotorS mounts them alike
+  const Eigen::Vector3d joint_axis_B = m.q_BS * ToEigen(joint->LocalAxis(0));
+  if (r.spin_inertia_kg_m2 > 0.0 && (joint_axis_B - r.axis_B).norm() > 1e-9 && (joint_axis_B + r.axis_B).norm() > 1e-9)
+    throw SimError(who + ": rotor joint '" + motor.joint_name + "' turns about another axis than its link's z");
+  return r;
+}
+
+WindDescription WindOf(const physics::Model& model, const rgp::WindRecord& wind, const std::string& who) {
+  if (!wind.speed_topic.empty())
+    throw SimError(who + ": the wind plugin takes its speed from the topic '" + wind.speed_topic +
+                   "'; the batch has no topics (use a wind profile or field)");
+  WindDescription w;
+  w.params = wind.params;
+  w.seed = wind.seed;
+  const Mount m = MountOf(*model.GetLink(wind.link_name));
+  w.p_B_link = m.p_B;
+  w.p_B_force = m.p_B + m.q_BS * wind.offset_L;
+  w.field = wind.field;
+  w.profile = wind.profile;
+  return w;
+}
+
+OdometryDescription OdometryOf(const physics::Model& model, const rgp::OdometryRecord& odometry,
+                               const std::string& who) {
+  if (odometry.outage_map)
+    throw SimError(who + ": odometry '" + odometry.topic + "' has an outage map; the batch has none");
+  OdometryDescription o;
+  o.topic = odometry.topic;
+  o.divisor = odometry.divisor;
+  o.delay_steps = odometry.delay_steps;
+  o.unknown_delay_s = odometry.unknown_delay_s;
+  o.noise = odometry.noise;
+  o.seed = odometry.seed;
+  o.mount = MountOf(*model.GetLink(odometry.link_name));
+  return o;
+}
+
+ImuDescription ImuOf(const physics::Model& model, const rgp::ImuRecord& imu, const std::string& who) {
+  if (imu.rotor_vibration)
+    throw SimError(who + ": IMU '" + imu.link_name +
+                   "' has rotorVibration on; the batch does not step rotor vibration (fly it in a World, "
+                   "or build the vehicle with sensor_realism false)");
+  ImuDescription out;
+  out.noise = imu.noise;
+  out.seed = imu.seed;
+  out.mount = MountOf(*model.GetLink(imu.link_name));
+  return out;
 }
 
 }  // namespace
@@ -108,121 +157,41 @@ VehicleDescription DescribeVehicle(const physics::Model& model, const std::strin
     throw SimError(who + " has the " + sensor->Type() + " sensor '" + sensor->Name() +
                    "'; the batch renders and casts nothing (no cameras, depth cameras or lasers): fly it in a World");
 
+  // what each plugin registered on the vehicle's bus when it loaded (plugin_records.h): its model
+  // and the parameters it read and validated; a plugin without a record is one the batch cannot run
   bool motors_seen = false;
   for (const auto& plugin : model.Plugins()) {
-    const std::string& file = plugin->GetFilename();
     rgp::SdfParams& params = plugin->Params();
-    if (d.robot_namespace.empty() && params.Has("robotNamespace")) d.robot_namespace = rgp::ReadRobotNamespace(params);
-    if (file == "librotors_gazebo_motor_model.so") {
-      std::string type = "velocity", joint_name, link_name;
-      rgp::ReadParam(params, "motorType", &type);
-      if (type != "velocity")
-        throw SimError(who + ": motor with motorType '" + type +
-                       "' (a servo or a joint effort); the batch flies rotors only (motorType velocity)");
-      RotorMount r;
-      rgp::RequireParam(params, "motorNumber", &r.motor_number);
-      rgp::RequireParam(params, "jointName", &joint_name);
-      rgp::RequireParam(params, "linkName", &link_name);
-      r.params = rgp::ReadRotorParams(params);
-      r.slowdown = rgp::ReadRotorSlowdown(params);
-      const physics::JointPtr joint = model.GetJoint(joint_name);
-      const physics::LinkPtr link = model.GetLink(link_name);
-      if (!joint || !link) throw SimError(who + ": motor " + std::to_string(r.motor_number) + " has no joint or link");
-      if (!joint->IsKinematic())
-        throw SimError(who + ": rotor joint '" + joint_name +
-                       "' is a solver joint; the batch needs rotors on kinematic joints (<kinematic_joint>)");
-      if (joint->GetChild().get() != link.get())
-        throw SimError(who + ": rotor link '" + link_name + "' is not the child of its joint '" + joint_name + "'");
-      const Mount m = MountOf(*link);
-      r.p_B_origin = m.p_B;
-      r.p_B_cog = m.p_B + m.q_BS * link->GetInertial().CoG();
-      r.axis_B = m.q_BS * Eigen::Vector3d::UnitZ();
-      r.spin_inertia_kg_m2 = joint->SpinInertia();
-      // the spin moment uses the joint's axis; the rotor's thrust its link's z: RotorS mounts them alike
-      const Eigen::Vector3d joint_axis_B = m.q_BS * ToEigen(joint->LocalAxis(0));
-      if (r.spin_inertia_kg_m2 > 0.0 && (joint_axis_B - r.axis_B).norm() > 1e-9 &&
-          (joint_axis_B + r.axis_B).norm() > 1e-9)
-        throw SimError(who + ": rotor joint '" + joint_name + "' turns about another axis than its link's z");
-      for (const auto& other : d.rotors)
-        if (other.motor_number == r.motor_number)
-          throw SimError(who + ": two motors with motorNumber " + std::to_string(r.motor_number));
-      d.rotors.push_back(r);
-      motors_seen = true;
-    } else if (file == "librotors_gazebo_wind_plugin.so") {
-      WindDescription w;
-      std::string link_name = "base_link", field_path, profile_path, sub_topic;
-      bool custom_field = false;
-      Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-      rgp::ReadParam(params, "linkName", &link_name);
-      rgp::ReadVector(params, "xyzOffset", &offset);
-      rgp::ReadParam(params, "useCustomStaticWindField", &custom_field);
-      rgp::ReadParam(params, "customWindFieldPath", &field_path);
-      rgp::ReadParam(params, "windProfilePath", &profile_path);
-      rgp::ReadParam(params, "windSpeedSubTopic", &sub_topic);
-      if (!sub_topic.empty())
-        throw SimError(who + ": the wind plugin takes its speed from the topic '" + sub_topic +
-                       "'; the batch has no topics (use a wind profile or field)");
-      w.params = rgp::ReadWindParams(params);
-      w.seed = rgp::ReadSeed(params);
-      const physics::LinkPtr link = model.GetLink(link_name);
-      if (!link) throw SimError(who + ": wind plugin linkName '" + link_name + "' is not a link");
-      const Mount m = MountOf(*link);
-      w.p_B_link = m.p_B;
-      w.p_B_force = m.p_B + m.q_BS * offset;
-      w.before_motors = !motors_seen;
-      try {
-        if (custom_field) w.field = std::make_shared<rgp::WindField>(rgp::WindField::Load(ResolvePath(field_path)));
-        if (!profile_path.empty())
-          w.profile = std::make_shared<rgp::WindProfile>(rgp::WindProfile::Load(ResolvePath(profile_path)));
-      } catch (const std::runtime_error& e) {
-        throw SimError(who + ": wind plugin: " + e.what());
-      }
-      d.wind = w;
-    } else if (file == "librotors_gazebo_odometry_plugin.so") {
-      std::string topic = "odometry", link_name = "odometry_sensor_link", image;
-      rgp::ReadParam(params, "odometryTopic", &topic);
-      if (topic != odometry_topic) {
-        d.left_out.push_back("odometry_plugin (" + topic + ")");
-        continue;
-      }
-      if (rgp::ReadParam(params, "covarianceImage", &image) && !image.empty())
-        throw SimError(who + ": odometry '" + topic + "' has an outage map; the batch has none");
-      OdometryDescription o;
-      o.topic = topic;
-      rgp::ReadParam(params, "linkName", &link_name);
-      rgp::ReadParam(params, "measurementDivisor", &o.divisor);
-      rgp::ReadParam(params, "measurementDelay", &o.delay_steps);
-      rgp::ReadParam(params, "unknownDelay", &o.unknown_delay_s);
-      o.noise = rgp::ReadOdometryNoise(params);
-      o.seed = rgp::ReadSeed(params);
-      const physics::LinkPtr link = model.GetLink(link_name);
-      if (!link) throw SimError(who + ": odometry linkName '" + link_name + "' is not a link");
-      o.mount = MountOf(*link);
-      d.odometry = o;
-    } else if (file == "librotors_gazebo_imu_plugin.so") {
-      std::string link_name;
-      rgp::RequireParam(params, "linkName", &link_name);
-      if (d.imu) {
-        d.left_out.push_back("imu_plugin (" + link_name + ")");
-        continue;
-      }
-      ImuDescription imu;
-      imu.noise = rgp::ReadImuNoise(params);
-      if (rgp::ReadImuVibration(params).enabled)
-        throw SimError(who + ": IMU '" + link_name +
-                       "' has rotorVibration on; the batch does not step rotor vibration (fly it in a World, "
-                       "or build the vehicle with sensor_realism false)");
-      imu.seed = rgp::ReadSeed(params);
-      const physics::LinkPtr link = model.GetLink(link_name);
-      if (!link) throw SimError(who + ": IMU linkName '" + link_name + "' is not a link");
-      imu.mount = MountOf(*link);
-      d.imu = imu;
-    } else if (kMeasuringPlugins.count(file)) {
-      if (file != "librotors_gazebo_multirotor_base_plugin.so" && file != "librotors_gazebo_controller_interface.so")
-        d.left_out.push_back(Short(file));
-    } else {
-      throw SimError(who + " loads " + file + ", which the batch does not simulate; fly it in a World");
+    std::shared_ptr<rgp::VehicleBus> bus;  // the plugin's, by its robotNamespace
+    if (params.Has("robotNamespace")) {
+      bus = rgp::VehicleBus::For(*world, rgp::ReadRobotNamespace(params));
+      if (d.robot_namespace.empty()) d.robot_namespace = rgp::ReadRobotNamespace(params);
     }
+    const rgp::PluginRecord* record = bus ? bus->RecordOf(plugin.get()) : nullptr;
+    if (!record)
+      throw SimError(who + " loads " + plugin->GetFilename() + " ('" + plugin->GetHandle() +
+                     "'), which the batch does not simulate; fly it in a World");
+    if (const auto* motor = std::get_if<rgp::MotorRecord>(record)) {
+      d.rotors.push_back(RotorOf(model, *motor, who));
+      motors_seen = true;
+    } else if (const auto* wind = std::get_if<rgp::WindRecord>(record)) {
+      d.wind = WindOf(model, *wind, who);
+      d.wind->before_motors = !motors_seen;
+    } else if (const auto* odometry = std::get_if<rgp::OdometryRecord>(record)) {
+      if (odometry->topic != odometry_topic) {
+        d.left_out.push_back("odometry (" + odometry->topic + ")");
+        continue;
+      }
+      d.odometry = OdometryOf(model, *odometry, who);
+    } else if (const auto* imu = std::get_if<rgp::ImuRecord>(record)) {
+      if (d.imu) {
+        d.left_out.push_back("imu (" + imu->link_name + ")");
+        continue;
+      }
+      d.imu = ImuOf(model, *imu, who);
+    } else if (const auto* measuring = std::get_if<rgp::MeasuringRecord>(record)) {
+      d.left_out.push_back(measuring->what);
+    }  // PlumbingRecord: the batch has its own multirotor base and controller interface
   }
   if (d.rotors.empty()) throw SimError(who + " has no rotors (motor_model plugins); the batch flies multirotors");
   std::sort(d.rotors.begin(), d.rotors.end(),

@@ -78,6 +78,7 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
   /// Last in Load(): advertises the topic and calls OnUpdate() after each world step (the bus takes
   /// the reading whether or not anyone listens).
   void StartPublishing() {
+    bus_->Register(this, MeasuringRecord{topic_.Resolved()});
     topic_.Advertise(*world_);
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] {
       if (Due()) OnUpdate();
