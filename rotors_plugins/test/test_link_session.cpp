@@ -1,4 +1,8 @@
 // LinkSession's table walked as each autopilot's own simulator plugin behaves (link_session.h).
+#include <chrono>
+#include <thread>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "rotors_gazebo_plugins/autopilot/link_session.h"
@@ -70,6 +74,50 @@ TEST(LinkSession, ATrueLockstepFirmwareIsWaitedForFromTheFirstState) {
   bf.On(LinkEvent::kSilent);
   bf.On(LinkEvent::kReset);
   EXPECT_EQ(bf.State(), LinkState::kLockstep);
+}
+
+// The one deadline loop: it reads until the answer is in, and never longer than the policy's limit.
+TEST(LinkSession, AwaitAnswerReadsUntilTheAnswerAndStopsAtTheLimit) {
+  const LinkSession px4({true, /*answer_timeout_s=*/0.03, true, 1});
+  std::vector<double> reads_s;
+  int answered_on = 3;
+  auto read = [&](double timeout_s) {
+    reads_s.push_back(timeout_s);
+    return true;
+  };
+  auto answered = [&] { return static_cast<int>(reads_s.size()) >= answered_on; };
+  EXPECT_EQ(px4.AwaitAnswer(read, answered), AwaitResult::kAnswered);
+  EXPECT_EQ(reads_s.size(), 3u);
+  for (double t : reads_s) EXPECT_TRUE(t > 0.0 && t <= 0.03) << t;  // never past the limit
+
+  reads_s.clear();
+  answered_on = 1 << 30;  // the answer never comes
+  auto slow_read = [&](double timeout_s) {
+    reads_s.push_back(timeout_s);
+    std::this_thread::sleep_for(std::chrono::duration<double>(timeout_s));  // nothing arrives
+    return true;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(px4.AwaitAnswer(slow_read, answered), AwaitResult::kTimedOut);
+  EXPECT_GE(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.03);
+  for (double t : reads_s) EXPECT_LE(t, 0.03);
+
+  // the link closed while waiting
+  EXPECT_EQ(px4.AwaitAnswer([](double) { return false; }, [] { return false; }), AwaitResult::kClosed);
+}
+
+TEST(LinkSession, AwaitAnswerWithoutALimitReadsInSlices) {
+  const LinkSession ardupilot({true, /*answer_timeout_s=*/0.0, false, 1});  // as long as ArduPilot takes
+  std::vector<double> reads_s;
+  EXPECT_EQ(ardupilot.AwaitAnswer(
+                [&](double timeout_s) {
+                  reads_s.push_back(timeout_s);
+                  return true;
+                },
+                [&] { return reads_s.size() == 5; }),
+            AwaitResult::kAnswered);
+  ASSERT_EQ(reads_s.size(), 5u);
+  for (double t : reads_s) EXPECT_EQ(t, LinkSession::kReadSlice_s);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include "rotors_gazebo_plugins/autopilot/link_session.h"
 
+#include <algorithm>
+#include <chrono>
+
 namespace rotors_gazebo_plugins {
 
 LinkState LinkSession::Next(LinkState state, LinkEvent event, bool steady) {
@@ -36,6 +39,18 @@ bool LinkSession::On(LinkEvent event) {
 
 bool LinkSession::Waits(bool armed) const {
   return policy_.lockstep && state_ == LinkState::kLockstep && (armed || !policy_.only_while_armed);
+}
+
+AwaitResult LinkSession::AwaitAnswer(const std::function<bool(double)>& read,
+                                     const std::function<bool()>& answered) const {
+  const double limit_s = policy_.answer_timeout_s;
+  const auto start = std::chrono::steady_clock::now();
+  while (!answered()) {
+    const double waited_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (limit_s > 0.0 && waited_s >= limit_s) return AwaitResult::kTimedOut;
+    if (!read(limit_s > 0.0 ? std::min(kReadSlice_s, limit_s - waited_s) : kReadSlice_s)) return AwaitResult::kClosed;
+  }
+  return AwaitResult::kAnswered;
 }
 
 const char* ToString(LinkState state) {

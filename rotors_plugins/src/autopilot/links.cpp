@@ -68,11 +68,6 @@ UdpSocket::~UdpSocket() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-bool UdpSocket::SendTo(const std::string& addr, int port, const void* data, size_t n) {
-  const sockaddr_in a = Address(addr, port);
-  return ::sendto(fd_, data, n, 0, reinterpret_cast<const sockaddr*>(&a), sizeof(a)) == static_cast<ssize_t>(n);
-}
-
 bool UdpSocket::Send(const void* data, size_t n) {
   if (!has_peer_) return false;
   return ::sendto(fd_, data, n, 0, reinterpret_cast<const sockaddr*>(&peer_), sizeof(peer_)) == static_cast<ssize_t>(n);

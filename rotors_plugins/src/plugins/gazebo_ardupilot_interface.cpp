@@ -52,7 +52,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
     if (!list.eof())
       throw rotors_sim::SimError("centred_outputs '" + centred + "' must be servo output indices, e.g. \"0 1 3\"");
     session_ = LinkSession({lockstep_, link_timeout_s_, /*only_while_armed=*/false, 1});
-    socket_ = std::make_unique<UdpSocket>(addr, port);
+    link_ = std::make_unique<UdpSocket>(addr, port);  // answers go to whoever sent the last frame
     Info("waiting for ArduPilot's servo packets on UDP " + addr + ":" + std::to_string(port) +
          (lockstep_ ? " (lockstep)" : ""));
   }
@@ -68,22 +68,21 @@ class GazeboArdupilotInterface : public AutopilotInterface {
       int non_finite = 0;
       last_json_ = ardupilot::StateJson(WithTruthForMissingImu(s), &non_finite);
       if (non_finite > 0) Error("nan", std::to_string(non_finite) + " state values not finite: sent as 0");
-      socket_->Send(last_json_.data(), last_json_.size());
+      link_->Send(last_json_.data(), last_json_.size());
       answer_due_ = false;
     }
     if (!session_.Waits(true)) {
       ReadFrames(0.0);
       return;
     }
-    const auto start = std::chrono::steady_clock::now();
-    while (!answer_due_) {
-      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (link_timeout_s_ > 0.0 && waited > link_timeout_s_) {
-        LoseLink();
-        return;
-      }
-      ReadFrames(link_timeout_s_ > 0.0 ? std::min(0.05, link_timeout_s_ - waited) : 0.05);
-    }
+    // lockstep: the step waits for ArduPilot's next frame (link_timeout > 0: at most that long)
+    const AwaitResult result = session_.AwaitAnswer(
+        [this](double timeout_s) {
+          ReadFrames(timeout_s);
+          return true;  // a UDP link does not close
+        },
+        [this] { return answer_due_; });
+    if (result == AwaitResult::kTimedOut) LoseLink();
   }
 
  private:
@@ -100,18 +99,18 @@ class GazeboArdupilotInterface : public AutopilotInterface {
     uint8_t buffer[512];
     int n;
     double wait = timeout_s;
-    while ((n = socket_->Receive(buffer, sizeof(buffer), wait)) > 0) {
+    while ((n = link_->Receive(buffer, sizeof(buffer), wait)) > 0) {
       wait = 0.0;
       ardupilot::ServoFrame frame;
       const std::string why = ardupilot::ReadServoPacket(buffer, n, &frame);
       if (!why.empty()) {
-        Error("packet", why + " (from " + socket_->Peer() + "): ignored");
+        Error("packet", why + " (on " + link_->Describe() + "): ignored");
         continue;
       }
       switch (ardupilot::OrderOf(frame.frame_count, have_frame_, last_frame_count_)) {
         case ardupilot::FrameOrder::kRepeated:
           // SIM_JSON resends a frame it got no answer to: the same answer again, no step
-          if (!last_json_.empty()) socket_->Send(last_json_.data(), last_json_.size());
+          if (!last_json_.empty()) link_->Send(last_json_.data(), last_json_.size());
           continue;
         case ardupilot::FrameOrder::kBackwards:
           Info("servo frame_count went back from " + std::to_string(last_frame_count_) + " to " +
@@ -124,7 +123,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
       have_frame_ = true;
       last_frame_count_ = frame.frame_count;
       if (session_.On(LinkEvent::kAnswered)) {
-        Info("servo packets from ArduPilot at " + socket_->Peer() + " (" + std::to_string(frame.frame_rate) + " Hz)" +
+        Info("servo packets from ArduPilot on " + link_->Describe() + " (" + std::to_string(frame.frame_rate) + " Hz)" +
              (lockstep_ ? ": lockstep from now on" : ""));
       }
       std::vector<double> u(frame.pwm_us.size(), 0.0);
@@ -141,7 +140,7 @@ class GazeboArdupilotInterface : public AutopilotInterface {
   double link_timeout_s_ = 0.0;
   std::set<int> centred_;
   std::string last_json_;
-  std::unique_ptr<UdpSocket> socket_;
+  std::unique_ptr<Transport> link_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -70,7 +70,8 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     session_ = firmware_lockstep_ ? LinkSession({true, link_timeout_s_, false, /*from the first state*/ 0})
                                   : LinkSession({lockstep_, answer_timeout_s_, false, kAnswersBeforeLockstep});
     motors_ = std::make_unique<UdpSocket>("127.0.0.1", motor_port);
-    states_ = std::make_unique<UdpSocket>("0.0.0.0", 0);
+    states_ = std::make_unique<UdpSocket>("0.0.0.0", 0, addr_, state_port_);
+    rc_ = std::make_unique<UdpSocket>("0.0.0.0", 0, addr_, rc_port_);
     node_ = MakeNode(Namespace());
     if (node_ && !rc_topic.empty())
       rc_sub_ =
@@ -101,7 +102,7 @@ class GazeboBetaflightInterface : public AutopilotInterface {
     if (!session_.Waits(true)) return;
     // wait for the answer to this state, at most answer_timeout: Betaflight's clock follows the
     // state timestamps (its simRate), and a world that stalled on it would slow its clock to a crawl
-    if (AwaitAnswer(answer_timeout_s_)) return;
+    if (AwaitAnswer()) return;
     session_.On(LinkEvent::kLate);
     if (SilentFor_s() > link_timeout_s_) LoseLink(s.time_s);
   }
@@ -116,29 +117,31 @@ class GazeboBetaflightInterface : public AutopilotInterface {
       SendRc(s);
     }
     SendState(s);
-    if (session_.Waits(true) && !AwaitAnswer(link_timeout_s_)) LoseLink(s.time_s);
+    if (session_.Waits(true) && !AwaitAnswer()) LoseLink(s.time_s);
   }
 
   void SendState(const VehicleSnapshot& s) {
     const betaflight::FdmPacket state = betaflight::StatePacket(WithTruthForMissingImu(s));
-    states_->SendTo(addr_, state_port_, &state, sizeof(state));
+    states_->Send(&state, sizeof(state));
   }
 
   void SendRc(const VehicleSnapshot& s) {
     const betaflight::RcPacket rc = betaflight::MakeRcPacket(s.time_s, Bus().rc_channels_us);
-    states_->SendTo(addr_, rc_port_, &rc, sizeof(rc));
+    rc_->Send(&rc, sizeof(rc));
   }
 
-  /// Reads motor packets until the answer to the state just sent is in, at most limit_s of wall time.
-  bool AwaitAnswer(double limit_s) {
+  /// Reads motor packets until the answer to the state just sent is in, at most the session's
+  /// answer_timeout (answer_timeout, or link_timeout for the lockstep firmware).
+  bool AwaitAnswer() {
     answered_ = false;
-    const auto start = std::chrono::steady_clock::now();
-    while (!answered_) {
-      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (waited >= limit_s) return false;
-      ReadMotors(std::min(0.05, limit_s - waited));
-    }
-    last_answer_ = std::chrono::steady_clock::now();
+    const AwaitResult result = session_.AwaitAnswer(
+        [this](double timeout_s) {
+          ReadMotors(timeout_s);
+          return true;  // a UDP link does not close
+        },
+        [this] { return answered_; });
+    if (result != AwaitResult::kAnswered) return false;
+    last_answer_ = std::chrono::steady_clock::now();  // an answer, used or not
     return true;
   }
 
@@ -205,7 +208,7 @@ class GazeboBetaflightInterface : public AutopilotInterface {
   double rc_rate_hz_ = 0.0, last_rc_s_ = -1e9;
   double link_timeout_s_ = 2.0, answer_timeout_s_ = 0.02;
   std::chrono::steady_clock::time_point last_answer_;
-  std::unique_ptr<UdpSocket> motors_, states_;
+  std::unique_ptr<Transport> motors_, states_, rc_;  ///< motor outputs in; the state and RC packets out
   std::shared_ptr<ros::NodeHandle> node_;
   ros::Subscriber rc_sub_;
 };

@@ -63,7 +63,7 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     if (!(imu_rate_hz >= 0.0)) throw rotors_sim::SimError("imu_rate must be >= 0 Hz (0: every step)");
     if (!(answer_timeout_s_ >= 0.0))
       throw rotors_sim::SimError("answer_timeout = " + std::to_string(answer_timeout_s_) +
-                                 " must be >= 0 s of wall time (PX4's Gazebo plugin waits 0.01 s)");
+                                 " must be >= 0 s of wall time (PX4's Gazebo plugin waits 0.01 s; 0: no limit)");
     if (system_id < 1 || system_id > 255) throw rotors_sim::SimError("system_id must be 1..255");
     imu_interval_s_ = imu_rate_hz > 0.0 ? 1.0 / imu_rate_hz : 0.0;
     // hardware in the loop: a real autopilot runs on its own clock
@@ -115,20 +115,15 @@ class GazeboMavlinkInterface : public AutopilotInterface {
     // lockstep while armed: this step waits for the answer to the HIL_SENSOR just sent, at most answer_timeout
     awaiting_answer_ = true;
     awaited_time_usec_ = px4::Microseconds(s.time_s);
-    const auto start = std::chrono::steady_clock::now();
-    while (awaiting_answer_) {
-      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (waited >= answer_timeout_s_) {
-        session_.On(LinkEvent::kLate);
-        Error("late answer", "no HIL_ACTUATOR_CONTROLS within " + std::to_string(answer_timeout_s_) +
-                                 " s (answer_timeout) for the HIL_SENSOR of t = " + std::to_string(s.time_s) + " s (" +
-                                 std::to_string(session_.LateAnswers()) +
-                                 " so far): the step goes on with the last outputs, the link stays up");
-        awaiting_answer_ = false;
-        return;
-      }
-      if (!Poll(answer_timeout_s_ - waited)) return;  // the link closed
-    }
+    const AwaitResult result = session_.AwaitAnswer([this](double timeout_s) { return Poll(timeout_s); },
+                                                    [this] { return !awaiting_answer_; });
+    awaiting_answer_ = false;
+    if (result != AwaitResult::kTimedOut) return;  // answered, or the link closed (LoseLink said so)
+    session_.On(LinkEvent::kLate);
+    Error("late answer", "no HIL_ACTUATOR_CONTROLS within " + std::to_string(answer_timeout_s_) +
+                             " s (answer_timeout) for the HIL_SENSOR of t = " + std::to_string(s.time_s) + " s (" +
+                             std::to_string(session_.LateAnswers()) +
+                             " so far): the step goes on with the last outputs, the link stays up");
   }
 
  private:

@@ -15,10 +15,13 @@
 //
 // kLockstep waits as each autopilot's own simulator plugin does: PX4's Gazebo plugin at most 10 ms
 // and only while armed (WaitPolicy::answer_timeout_s, only_while_armed), ArduPilot's as long as it
-// takes (answer_timeout_s 0: no limit), Betaflight's at most answer_timeout_s.
+// takes (answer_timeout_s 0: no limit), Betaflight's at most answer_timeout_s. AwaitAnswer is that
+// wait, the one deadline loop of the three links: what a wait that ran out means (a late answer, a
+// lost link) is each protocol's to say.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 namespace rotors_gazebo_plugins {
 
@@ -31,6 +34,13 @@ enum class LinkEvent {
   kSilent,     ///< no answer for the link timeout: the link counts as lost
   kClosed,     ///< the autopilot closed the connection (or the serial device went away)
   kReset,      ///< the world went back (reset_world / reset_simulation)
+};
+
+/// How a wait for an answer ended.
+enum class AwaitResult {
+  kAnswered,  ///< the answer came
+  kTimedOut,  ///< answer_timeout_s of wall time passed without it
+  kClosed,    ///< the link closed while waiting
 };
 
 struct WaitPolicy {
@@ -49,6 +59,11 @@ class LinkSession {
   bool On(LinkEvent event);
   /// Whether this step waits for the autopilot's answer (`armed`: the autopilot's last word).
   bool Waits(bool armed) const;
+  /// Waits for this step's answer: calls read(timeout_s) (takes what arrives within timeout_s of wall
+  /// time; false when the link closed) until answered() is true or the policy's answer_timeout_s has
+  /// passed (0: no limit), each read at most kReadSlice_s long.
+  AwaitResult AwaitAnswer(const std::function<bool(double)>& read, const std::function<bool()>& answered) const;
+  static constexpr double kReadSlice_s = 0.05;
   LinkState State() const { return state_; }
   const WaitPolicy& Policy() const { return policy_; }
   uint64_t AnswersSinceStart() const { return answers_; }

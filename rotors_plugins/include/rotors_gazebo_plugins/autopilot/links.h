@@ -44,8 +44,6 @@ class UdpSocket : public Transport {
   bool Connect(double /*timeout_s*/) override { return has_peer_; }
   /// Sends to the peer; false before there is one, or when the system refused.
   bool Send(const void* data, size_t n) override;
-  /// Sends to `addr`:`port` (another port of the same peer); no listener is not an error for UDP.
-  bool SendTo(const std::string& addr, int port, const void* data, size_t n);
   int Receive(void* buf, size_t size, double timeout_s) override;
   std::string Describe() const override;
   /// The port it is bound to.
