@@ -148,6 +148,8 @@ SPEC = {
     "timeConstantUp": ("uniform", 0.8, 1.5),
     "timeConstantDown": ("uniform", 0.8, 1.5),
     "maxRotVelocity": ("uniform", 0.9, 1.0),
+    "gyroscopeNoiseDensity": ("uniform", 0.5, 2.0),
+    "noiseNormalPosition": ("uniform", 0.0, 0.02),
     "actuatorDelay": ("uniform", 0, 5),
 }
 
@@ -158,6 +160,62 @@ def airframes(envs: FlightBatchEnv) -> list[dict]:
 
 def same(a: dict, b: dict) -> bool:
     return all(np.array_equal(np.asarray(a[k]), np.asarray(b[k])) for k in a)
+
+
+def noisy_urdf(imu_factor: float, odometry_sigma_m: float) -> str:
+    """The firefly's URDF with its IMU plugin's noise parameters scaled by `imu_factor` and its
+    odometry sensor given a position noise of `odometry_sigma_m` (1 sigma, each axis)."""
+    args = dict(mav_name=MAV, namespace=MAV, random_seed=7, enable_logging=False, enable_ground_truth=False, log_file=MAV)
+    args.update(wait_to_record_bag=False, enable_mavlink_interface=False, odometry_divisor=DIVISOR)
+    robot = ET.fromstring(run_xacro(package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo", args))
+    for plugin in robot.iter("plugin"):
+        if plugin.get("filename") == "librotors_gazebo_imu_plugin.so":
+            for element in plugin:
+                if element.tag.startswith(("gyroscope", "accelerometer")) and not element.tag.endswith("CorrelationTime"):
+                    element.text = repr(float(element.text) * imu_factor)
+        if plugin.get("filename") == "librotors_gazebo_odometry_plugin.so":
+            plugin.find("noiseNormalPosition").text = " ".join([repr(odometry_sigma_m)] * 3)
+    return ET.tostring(robot, encoding="unicode")
+
+
+def test_each_vehicle_measures_with_its_own_noise_as_the_world_built_with_it():
+    """Two vehicles of one batch, the second given the airframe of a world whose IMU noise is three
+    times the xacro's and whose odometry has 2 cm of position noise: each vehicle's IMU and odometry
+    readings are its world's, draw for draw (the same seed), over 1 s of free fall from 5 m (rotors
+    stopped: no controller, no ground contact in between)."""
+    worlds = []
+    for urdf in (None, noisy_urdf(3.0, 0.02)):
+        world = rs.World("basic", step_size=DT)
+        if urdf is None:
+            world.spawn_mav(MAV, xyz=(0.0, 0.0, 5.0), random_seed=7, odometry_divisor=DIVISOR, enable_ground_truth=False)
+        else:
+            world.spawn(urdf, MAV, xyz=(0.0, 0.0, 5.0))
+        world.listen([f"/{MAV}/imu"])
+        worlds.append(world)
+    batch = rs.FlightBatch(MAV, 2, step_size=DT, control_divisor=DIVISOR, seeds=[7, 7], mode="rotor_speeds")
+    noisy = worlds[1].engine.describe_multirotor(MAV, "odometry_sensor1/odometry").airframe
+    assert noisy["gyroscopeNoiseDensity"] == 3.0 * batch.nominal_airframe["gyroscopeNoiseDensity"]
+    batch.set_airframe(1, **noisy)
+    batch.reset(positions=np.tile([0.0, 0.0, 5.0], (2, 1)))  # the noise is drawn from the airframe at a reset
+    worst = np.zeros((2, 2))  # vehicle x (IMU [m/s^2], odometry position [m])
+    accel_spread = [[], []]
+    for _ in range(500):
+        batch.step(1)
+        for i, world in enumerate(worlds):
+            world.step(1)
+            imu, _ = world.message(f"/{MAV}/imu")
+            a = np.array([imu.linear_acceleration.x, imu.linear_acceleration.y, imu.linear_acceleration.z])
+            worst[i, 0] = max(worst[i, 0], float(np.abs(a - batch.imu[i, 3:6]).max()))
+            worst[i, 1] = max(worst[i, 1], float(np.abs(world.odometry(MAV).position_W - batch.odometry[i, 0:3]).max()))
+            accel_spread[i].append(batch.imu[i, 3:6].copy())
+    spread = [float(np.std(np.diff(np.array(s), axis=0))) for s in accel_spread]
+    print(
+        f"xacro noise: IMU {worst[0, 0]:.1e} m/s^2, odometry {worst[0, 1]:.1e} m from its world; "
+        f"3x IMU noise, 2 cm odometry: {worst[1, 0]:.1e} m/s^2, {worst[1, 1]:.1e} m; "
+        f"accelerometer step-to-step spread {spread[0]:.3f} and {spread[1]:.3f} m/s^2"
+    )
+    assert np.all(worst[:, 0] < 1e-6) and np.all(worst[:, 1] < 1e-9)
+    assert 2.5 < spread[1] / spread[0] < 3.5  # the white noise scales with its density
 
 
 def test_randomised_airframes_repeat_for_a_seed_and_differ_between_episodes():
@@ -173,6 +231,8 @@ def test_randomised_airframes_repeat_for_a_seed_and_differ_between_episodes():
         assert np.all((a["timeConstantUp"] / nominal["timeConstantUp"] >= 0.8) & (a["timeConstantUp"] / nominal["timeConstantUp"] <= 1.5))
         assert len(set(a["motorConstant"])) == envs.batch.rotor_count  # one draw per rotor
         assert np.all(np.linalg.eigvalsh(a["inertia"]) > 0)
+        assert 0.5 <= a["gyroscopeNoiseDensity"] / nominal["gyroscopeNoiseDensity"] <= 2.0
+        assert np.all((a["noiseNormalPosition"] >= 0.0) & (a["noiseNormalPosition"] <= 0.02))
     rng = np.random.default_rng(0)
     actions = [rng.uniform(-0.2, 0.2, envs.action_space.shape).astype(np.float32) for _ in range(50)]
 

@@ -109,12 +109,41 @@ const std::vector<std::pair<const char*, double rotors_gazebo_plugins::WindParam
     {"windGustForceVariance", &rotors_gazebo_plugins::WindParams::wind_gust_force_variance},
 };
 
+/// The odometry plugin's noise parameters (3 values each), and where OdometryNoiseParams keeps them.
+const std::vector<std::pair<const char*, Eigen::Vector3d rotors_gazebo_plugins::OdometryNoiseParams::*>>
+    kOdometryNoiseFields = {
+        {"noiseNormalPosition", &rotors_gazebo_plugins::OdometryNoiseParams::normal_position_m},
+        {"noiseNormalQuaternion", &rotors_gazebo_plugins::OdometryNoiseParams::normal_quaternion_rad},
+        {"noiseNormalLinearVelocity", &rotors_gazebo_plugins::OdometryNoiseParams::normal_linear_velocity_m_s},
+        {"noiseNormalAngularVelocity", &rotors_gazebo_plugins::OdometryNoiseParams::normal_angular_velocity_rad_s},
+        {"noiseUniformPosition", &rotors_gazebo_plugins::OdometryNoiseParams::uniform_position_m},
+        {"noiseUniformQuaternion", &rotors_gazebo_plugins::OdometryNoiseParams::uniform_quaternion_rad},
+        {"noiseUniformLinearVelocity", &rotors_gazebo_plugins::OdometryNoiseParams::uniform_linear_velocity_m_s},
+        {"noiseUniformAngularVelocity", &rotors_gazebo_plugins::OdometryNoiseParams::uniform_angular_velocity_rad_s},
+};
+
+/// The IMU plugin's noise parameters, and where ImuNoiseParams keeps them.
+const std::vector<std::pair<const char*, double rotors_gazebo_plugins::ImuNoiseParams::*>> kImuNoiseFields = {
+    {"gyroscopeNoiseDensity", &rotors_gazebo_plugins::ImuNoiseParams::gyroscope_noise_density},
+    {"gyroscopeRandomWalk", &rotors_gazebo_plugins::ImuNoiseParams::gyroscope_random_walk},
+    {"gyroscopeBiasCorrelationTime", &rotors_gazebo_plugins::ImuNoiseParams::gyroscope_bias_correlation_time_s},
+    {"gyroscopeTurnOnBiasSigma", &rotors_gazebo_plugins::ImuNoiseParams::gyroscope_turn_on_bias_sigma},
+    {"accelerometerNoiseDensity", &rotors_gazebo_plugins::ImuNoiseParams::accelerometer_noise_density},
+    {"accelerometerRandomWalk", &rotors_gazebo_plugins::ImuNoiseParams::accelerometer_random_walk},
+    {"accelerometerBiasCorrelationTime", &rotors_gazebo_plugins::ImuNoiseParams::accelerometer_bias_correlation_time_s},
+    {"accelerometerTurnOnBiasSigma", &rotors_gazebo_plugins::ImuNoiseParams::accelerometer_turn_on_bias_sigma},
+};
+
 /// {"mass": kg, "inertia": 3 x 3 kg m^2, "cog": the CoG in the model frame [m], "actuatorDelay":
-/// physics steps, "<SDF name>": one value per rotor, ...; with a wind plugin its SDF parameters
-/// ("windForceMean", ..., "windDirection", "windGustDirection")}
-py::dict AirframeDict(const Airframe& a, bool has_wind) {
+/// physics steps, "<SDF name>": one value per rotor, ...; the odometry plugin's noise
+/// ("noiseNormalPosition", ...: 3 values each); with an IMU its noise ("gyroscopeNoiseDensity", ...);
+/// with a wind plugin its SDF parameters ("windForceMean", ..., "windDirection", "windGustDirection")}
+py::dict AirframeDict(const Airframe& a, const VehicleDescription& d) {
   py::dict out;
-  if (has_wind) {
+  for (const auto& [name, field] : kOdometryNoiseFields) out[name] = a.odometry_noise.*field;
+  if (d.imu)
+    for (const auto& [name, field] : kImuNoiseFields) out[name] = a.imu_noise.*field;
+  if (d.wind) {
     for (const auto& [name, field] : kWindFields) out[name] = a.wind.*field;
     out["windDirection"] = a.wind.wind_direction;
     out["windGustDirection"] = a.wind.wind_gust_direction;
@@ -133,11 +162,27 @@ py::dict AirframeDict(const Airframe& a, bool has_wind) {
 
 /// `base` with the entries of `values` (AirframeDict's keys; any subset); SimError naming an unknown
 /// key or an array of the wrong length.
-Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle, bool has_wind) {
+Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle, const VehicleDescription& d) {
   Airframe a = base;
+  const bool has_wind = d.wind.has_value();
   const std::string who = "FlightBatch.set_airframe: vehicle " + std::to_string(vehicle);
   for (const auto& [key, value] : values) {
     const std::string name = py::str(key);
+    auto odometry = std::find_if(kOdometryNoiseFields.begin(), kOdometryNoiseFields.end(),
+                                 [&](const auto& f) { return name == f.first; });
+    if (odometry != kOdometryNoiseFields.end()) {
+      const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+      if (!v || v.ndim() != 1 || v.shape(0) != 3) throw SimError(who + ": " + name + " must be 3 values (x, y, z)");
+      a.odometry_noise.*(odometry->second) = {v.at(0), v.at(1), v.at(2)};
+      continue;
+    }
+    auto imu =
+        std::find_if(kImuNoiseFields.begin(), kImuNoiseFields.end(), [&](const auto& f) { return name == f.first; });
+    if (imu != kImuNoiseFields.end()) {
+      if (!d.imu) throw SimError(who + ": '" + name + "' given, but the vehicle has no IMU");
+      a.imu_noise.*(imu->second) = value.cast<double>();
+      continue;
+    }
     if (name == "mass") {
       a.mass_kg = value.cast<double>();
       continue;
@@ -180,6 +225,9 @@ Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle,
     if (it == kRotorFields.end()) {
       std::string known = "mass, inertia, cog, actuatorDelay";
       for (const auto& f : kRotorFields) known += std::string(", ") + f.first;
+      for (const auto& f : kOdometryNoiseFields) known += std::string(", ") + f.first;
+      if (d.imu)
+        for (const auto& f : kImuNoiseFields) known += std::string(", ") + f.first;
       if (has_wind) {
         for (const auto& f : kWindFields) known += std::string(", ") + f.first;
         known += ", windDirection, windGustDirection";
@@ -354,10 +402,7 @@ void BindFlightBatch(py::module_& m) {
       .def_readonly("left_out", &VehicleDescription::left_out)
       .def_readonly("contact_points_B", &VehicleDescription::contact_points_B)
       .def_property_readonly(
-          "airframe",
-          [](const VehicleDescription& d) {
-            return AirframeDict(rotors_flight_batch::AirframeOf(d), d.wind.has_value());
-          },
+          "airframe", [](const VehicleDescription& d) { return AirframeDict(rotors_flight_batch::AirframeOf(d), d); },
           "The airframe as FlightBatch.set_airframe takes it: {'mass', 'inertia', 'cog', 'motorConstant', ...}.")
       .def_property_readonly("has_imu", [](const VehicleDescription& d) { return d.imu.has_value(); })
       .def_property_readonly("has_wind", [](const VehicleDescription& d) { return d.wind.has_value(); })
@@ -406,17 +451,15 @@ void BindFlightBatch(py::module_& m) {
           },
           py::arg("indices"), py::arg("positions"), py::arg("yaws"))
       .def(
-          "airframe",
-          [](const FlightBatch& b, int i) { return AirframeDict(b.GetAirframe(i), b.Description().wind.has_value()); },
+          "airframe", [](const FlightBatch& b, int i) { return AirframeDict(b.GetAirframe(i), b.Description()); },
           py::arg("i"), "Vehicle i's airframe: {'mass': kg, 'inertia': 3 x 3 kg m^2, 'motorConstant': per rotor, ...}.")
       .def_property_readonly(
-          "nominal_airframe",
-          [](const FlightBatch& b) { return AirframeDict(b.NominalAirframe(), b.Description().wind.has_value()); },
+          "nominal_airframe", [](const FlightBatch& b) { return AirframeDict(b.NominalAirframe(), b.Description()); },
           "The description's airframe (the xacro's).")
       .def(
           "set_airframe",
           [](FlightBatch& b, int i, const py::dict& values) {
-            b.SetAirframe(i, AirframeFrom(b.NominalAirframe(), values, i, b.Description().wind.has_value()));
+            b.SetAirframe(i, AirframeFrom(b.NominalAirframe(), values, i, b.Description()));
           },
           py::arg("i"), py::arg("values"),
           "Vehicle i flies the nominal airframe with `values` (airframe()'s keys, any subset) in place.")

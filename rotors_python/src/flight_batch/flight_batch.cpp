@@ -517,7 +517,7 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
     s.queue.clear();
     s.odometry_step = 0;
     s.steps_to_odometry = 0;
-    const auto& on = d_.odometry->noise;
+    const auto& on = airframes_[i].odometry_noise;
     const bool odometry_noisy =
         options_.noise &&
         (on.normal_position_m.any() || on.normal_quaternion_rad.any() || on.normal_linear_velocity_m_s.any() ||
@@ -525,7 +525,7 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
          on.uniform_linear_velocity_m_s.any() || on.uniform_angular_velocity_rad_s.any());
     s.odometry_noise = odometry_noisy ? std::make_unique<rgp::OdometryNoise>(on, seed_odometry) : nullptr;
     if (d_.imu && options_.imu && options_.noise)
-      s.imu_noise = std::make_unique<rgp::ImuNoiseModel>(d_.imu->noise, SeedFor(d_.imu->seed, i));
+      s.imu_noise = std::make_unique<rgp::ImuNoiseModel>(airframes_[i].imu_noise, SeedFor(d_.imu->seed, i));
     if (d_.wind) {
       rgp::WindParams wp = airframes_[i].wind;
       if (!options_.noise) wp.wind_speed_variance = wp.wind_force_variance = wp.wind_gust_force_variance = 0.0;
@@ -629,6 +629,8 @@ Airframe AirframeOf(const VehicleDescription& d) {
   a.p_M_cog = d.p_M_cog;
   if (d.wind) a.wind = d.wind->params;
   for (const RotorMount& rotor : d.rotors) a.rotors.push_back(rotor.params);
+  if (d.odometry) a.odometry_noise = d.odometry->noise;
+  if (d.imu) a.imu_noise = d.imu->noise;
   return a;
 }
 
@@ -670,6 +672,10 @@ void FlightBatch::SetAirframe(int i, const Airframe& airframe) {
   if (static_cast<int>(airframe.rotors.size()) != r_)
     throw SimError(who + ": " + std::to_string(airframe.rotors.size()) + " rotors given, the vehicle has " +
                    std::to_string(r_));
+  // the noise as the odometry and IMU plugins check theirs
+  std::string why_noise = airframe.odometry_noise.Validate();
+  if (why_noise.empty() && d_.imu) why_noise = airframe.imu_noise.Validate();
+  if (!why_noise.empty()) throw SimError(who + ": " + why_noise);
   Airframe checked = airframe;
   for (int r = 0; r < r_; ++r) {
     checked.rotors[r].turning_direction = d_.rotors[r].params.turning_direction;

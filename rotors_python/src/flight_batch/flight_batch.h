@@ -64,6 +64,10 @@ struct Airframe {
   /// by motor number: motorConstant, momentConstant, rotorDragCoefficient, rollingMomentCoefficient,
   /// timeConstantUp/Down, maxRotVelocity (0: a failed motor; turningDirection stays the description's)
   std::vector<rotors_gazebo_plugins::RotorParams> rotors;
+  /// The odometry plugin's noise (noiseNormalPosition, ...) and the IMU plugin's (gyroscopeNoiseDensity,
+  /// ...; when the vehicle has one): each reset draws the vehicle's noise from them and its seed.
+  rotors_gazebo_plugins::OdometryNoiseParams odometry_noise;
+  rotors_gazebo_plugins::ImuNoiseParams imu_noise;
 };
 
 /// The airframe `d` describes (the xacro's).

@@ -12,8 +12,12 @@ S I S with S = diag(sqrt(s_x), sqrt(s_y), sqrt(s_z)), so its diagonal is s I_ii 
 positive definite); "cog" one offset per axis; "actuatorDelay" a whole number of physics steps
 (uniform: each of low..high alike; normal: rounded, at least 0); the wind plugin's parameters
 ("windForceMean" [N], "windGustStart" [s], ...) one value each, in the SDF's units (a vehicle
-spawned with a wind plugin, e.g. model=mav_with_wind_gust.gazebo). A draw that leaves a value out of the motor
-plugin's range (a factor <= 0 where the parameter must be > 0) is an error naming the parameter.
+spawned with a wind plugin, e.g. model=mav_with_wind_gust.gazebo); the IMU plugin's noise
+("gyroscopeNoiseDensity", "accelerometerTurnOnBiasSigma", ...) a factor on the vehicle's value; the
+odometry plugin's noise ("noiseNormalPosition" [m], "noiseNormalQuaternion" [rad], ...) one value per
+axis in the SDF's units (the shipped odometry sensors have none, so a factor would leave it 0). A
+draw that leaves a value out of its plugin's range (a factor <= 0 where the parameter must be > 0, a
+negative sigma) is an error naming the parameter.
 """
 
 from __future__ import annotations
@@ -45,7 +49,38 @@ WIND_PARAMETERS = (
     "windGustForceMean",
     "windGustForceVariance",
 )
-PARAMETERS = ("mass", "inertia", "cog", "actuatorDelay", *ROTOR_PARAMETERS, *WIND_PARAMETERS)
+# the IMU plugin's noise: factors on the vehicle's own values
+IMU_NOISE_PARAMETERS = (
+    "gyroscopeNoiseDensity",
+    "gyroscopeRandomWalk",
+    "gyroscopeBiasCorrelationTime",
+    "gyroscopeTurnOnBiasSigma",
+    "accelerometerNoiseDensity",
+    "accelerometerRandomWalk",
+    "accelerometerBiasCorrelationTime",
+    "accelerometerTurnOnBiasSigma",
+)
+# the odometry plugin's noise: one value per axis, in the SDF's units
+ODOMETRY_NOISE_PARAMETERS = (
+    "noiseNormalPosition",
+    "noiseNormalQuaternion",
+    "noiseNormalLinearVelocity",
+    "noiseNormalAngularVelocity",
+    "noiseUniformPosition",
+    "noiseUniformQuaternion",
+    "noiseUniformLinearVelocity",
+    "noiseUniformAngularVelocity",
+)
+PARAMETERS = (
+    "mass",
+    "inertia",
+    "cog",
+    "actuatorDelay",
+    *ROTOR_PARAMETERS,
+    *WIND_PARAMETERS,
+    *IMU_NOISE_PARAMETERS,
+    *ODOMETRY_NOISE_PARAMETERS,
+)
 DISTRIBUTIONS = ("uniform", "normal", "fixed")
 
 
@@ -110,6 +145,19 @@ def draw_airframe(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rng: np
             if (name.endswith("Variance") or name == "windGustDuration") and value < 0.0:
                 raise SimError(f"randomization drew {name} = {value:.4g}; it must be >= 0 (narrow its range)")
             out[name] = value
+        elif name in IMU_NOISE_PARAMETERS:
+            factor = float(_draw(spec[name], rng, 1)[0])
+            positive = name.endswith("CorrelationTime")
+            if not (factor > 0.0 if positive else factor >= 0.0):
+                raise SimError(
+                    f"randomization drew a {name} factor of {factor:.4g}; it must be {'> 0' if positive else '>= 0'} (narrow its range)"
+                )
+            out[name] = float(nominal[name]) * factor
+        elif name in ODOMETRY_NOISE_PARAMETERS:
+            values = _draw(spec[name], rng, 3)
+            if not np.all(values >= 0.0):
+                raise SimError(f"randomization drew {name} = {np.round(values, 6).tolist()}; each must be >= 0 (narrow its range)")
+            out[name] = values
         elif name == "actuatorDelay":
             entry = spec[name]
             if entry[0] == "uniform":
