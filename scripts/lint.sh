@@ -14,7 +14,7 @@ compile_db="$root/build/ws/build"
 # the ROS-free libraries clang-tidy checks (the engine's physics, the models, the autopilot codecs,
 # the controller library, the batched flight engine)
 tidy_dirs=(rotors_core_cpp/src/physics rotors_plugins/src/models rotors_plugins/src/autopilot
-  rotors_control/src/library rotors_python/src/flight_batch)
+  rotors_control/src/library rotors_flight_batch/src)
 
 clang_tidy() {
   if [ ! -f "$compile_db/compile_commands.json" ]; then

@@ -282,7 +282,7 @@ def test_unwaited_steps_after_the_flights_end_do_not_count(tmp_path: Path):
     from rotors_evaluation.bag_data import FlightBag
 
     store = get_typestore(Stores.ROS1_NOETIC)
-    msgdef = (REPO / "rotors_gazebo_compat" / "rotors_comm" / "msg" / "SimulationStatus.msg").read_text()
+    msgdef = (REPO / "rotors_msgs" / "rotors_comm" / "msg" / "SimulationStatus.msg").read_text()
     store.register(get_types_from_msg(msgdef, "rotors_comm/msg/SimulationStatus"))
     Status, Header, Time = (
         store.types["rotors_comm/msg/SimulationStatus"],

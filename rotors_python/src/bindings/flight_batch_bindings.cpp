@@ -16,7 +16,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
-#include "flight_batch/flight_batch.h"
+#include "rotors_flight_batch/flight_batch.h"
 #include "rotors_control/parameter_loading.h"
 #include "rotors_core/error.h"
 #include "rotors_core/geometry/occupancy_mapper.h"

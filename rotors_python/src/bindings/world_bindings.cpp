@@ -15,7 +15,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
-#include "flight_batch/vehicle_description.h"
+#include "rotors_flight_batch/vehicle_description.h"
 #include "rotors_core/error.h"
 #include "rotors_core/geometry/uri_resolver.h"
 #include "rotors_core/model_builder.h"

@@ -22,10 +22,10 @@
 
 #include "rotors_control/attitude_controllers.h"
 #include "rotors_control/lee_controller.h"
-#include "flight_kernel.h"
-#include "obstacle_field.h"
+#include "rotors_flight_batch/flight_kernel.h"
+#include "rotors_flight_batch/obstacle_field.h"
 #include "rotors_gazebo_plugins/models/depth_noise_model.h"
-#include "vehicle_description.h"
+#include "rotors_flight_batch/vehicle_description.h"
 
 namespace rotors_flight_batch {
 

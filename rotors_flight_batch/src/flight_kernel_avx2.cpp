@@ -2,7 +2,7 @@
 // so that each lane equals the scalar step): four vehicles at once, or one vehicle's rotors four at
 // a time. Called only where the CPU has AVX2 (FourLaneKernel, StepOneOfFour). Only templates of the
 // AVX2 lane type are instantiated here, so no function compiled for AVX2 stands in for a baseline one.
-#include "flight_kernel.h"
+#include "rotors_flight_batch/flight_kernel.h"
 
 namespace rotors_flight_batch {
 

@@ -1,4 +1,4 @@
-#include "vehicle_description.h"
+#include "rotors_flight_batch/vehicle_description.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // x86-64's kernels: AVX-512 (a lone vehicle's rotors in eight lanes, groups of four vehicles as
 // AVX2), AVX2 (four lanes) and SSE2 (x86-64's baseline: two pairs), each where this CPU has it.
-#include "flight_kernel_target.h"
+#include "rotors_flight_batch/flight_kernel_target.h"
 
 namespace rotors_flight_batch {
 

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "flight_kernel.h"
+#include "rotors_flight_batch/flight_kernel.h"
 
 namespace rotors_flight_batch {
 

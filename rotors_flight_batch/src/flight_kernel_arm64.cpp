@@ -1,5 +1,5 @@
 // AArch64's kernel: NEON (part of every AArch64 CPU), two pairs of lanes.
-#include "flight_kernel_target.h"
+#include "rotors_flight_batch/flight_kernel_target.h"
 
 namespace rotors_flight_batch {
 

@@ -1,4 +1,4 @@
-#include "obstacle_field.h"
+#include "rotors_flight_batch/obstacle_field.h"
 
 #include <algorithm>
 #include <array>

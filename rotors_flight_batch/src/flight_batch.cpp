@@ -1,4 +1,4 @@
-#include "flight_batch.h"
+#include "rotors_flight_batch/flight_batch.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,7 @@
 
 #include "rotors_core/error.h"
 #include "rotors_core/physics/free_body_step.h"
-#include "flight_kernel.h"
+#include "rotors_flight_batch/flight_kernel.h"
 
 namespace rotors_flight_batch {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "flight_kernel.h"
-#include "flight_kernel_target.h"
+#include "rotors_flight_batch/flight_kernel.h"
+#include "rotors_flight_batch/flight_kernel_target.h"
 #include "rotors_core/error.h"
 
 namespace rotors_flight_batch {

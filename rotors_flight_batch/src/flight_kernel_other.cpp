@@ -1,6 +1,6 @@
 // A target that is neither x86-64 nor AArch64: the pairs of lanes as GCC's generic vectors (lowered
 // to what the target has), named "pairs".
-#include "flight_kernel_target.h"
+#include "rotors_flight_batch/flight_kernel_target.h"
 
 namespace rotors_flight_batch {
 

@@ -2,13 +2,13 @@
 // group of four, and the choice of kernels: the instruction sets this build's target offers
 // (TargetKernels: flight_kernel_x86.cpp, flight_kernel_arm64.cpp or flight_kernel_other.cpp, one of
 // them compiled) and what this CPU runs.
-#include "flight_kernel.h"
+#include "rotors_flight_batch/flight_kernel.h"
 
 #include <algorithm>
 #include <iterator>
 #include <vector>
 
-#include "flight_kernel_target.h"
+#include "rotors_flight_batch/flight_kernel_target.h"
 #include "rotors_core/error.h"
 
 namespace rotors_flight_batch {

@@ -3,7 +3,7 @@
 // in one pass. Called only where the CPU has AVX-512F (ChooseKernels). Only templates of the
 // AVX-512 lane type are instantiated here, so no function compiled for AVX-512 stands in for a
 // baseline one.
-#include "flight_kernel.h"
+#include "rotors_flight_batch/flight_kernel.h"
 
 namespace rotors_flight_batch {
 
