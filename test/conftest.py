@@ -1,112 +1,18 @@
-"""Shared fixtures: an isolated ROS master per test and a way to run rospy client code (the functions
-of the package clients/) in a child process (rospy can be initialised once per process, so the test
-process itself never calls init_node)."""
+"""pytest's hooks and fixtures: the long tier's marker, and `ros`, an isolated ROS master per test
+(support.RosGraph) torn down with everything the test started against it."""
 
-import json
-import os
-import signal
-import subprocess
-import sys
-import textwrap
-import time
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
-from rotors_evaluation.processes import kill_graph_leftovers, restore_sigint, stop_process_group
-from rotors_evaluation.ros_master import start_own_master
-
-REPO = Path(__file__).resolve().parents[1]
-TESTS = Path(__file__).resolve().parent  # holds the package clients/
+from rotors_evaluation.processes import restore_sigint
+from support import RosGraph
 
 
 def pytest_configure(config):
     restore_sigint()  # run as a background job (nohup make test &), the ROS processes would ignore Ctrl-C
     config.addinivalue_line("markers", "long: the long tier (minutes each): run by make test-all and make test-long, " "not by make test")
-
-
-# make test-sanitize points ROTORS_WS at a sanitizer's workspace (scripts/test_sanitize.sh)
-WS = Path(os.environ.get("ROTORS_WS", REPO / "build" / "ws"))
-
-
-class RosGraph:
-    """A private ROS master plus the processes a test starts against it."""
-
-    def __init__(self, tmp_path: Path):
-        self.env = dict(os.environ)
-        self.env["ROS_HOME"] = str(tmp_path / "ros_home")
-        self.env["ROS_LOG_DIR"] = str(tmp_path / "ros_log")
-        self.tmp_path = tmp_path
-        self.procs: list[subprocess.Popen] = []
-        # the master is started on a port verified to be its own (runs may overlap)
-        master, self.port = start_own_master(self.env, tmp_path / "master.log")
-        master.log_path = tmp_path / "master.log"  # type: ignore[attr-defined]
-        self.procs.append(master)
-        self.env["ROS_MASTER_URI"] = f"http://127.0.0.1:{self.port}"
-        self.wait_for(lambda: self.run(["rosparam", "set", "/use_sim_time", "true"], check=False).returncode == 0, 20)
-
-    def start(self, cmd: list[str], name: str) -> subprocess.Popen:
-        log = open(self.tmp_path / f"{name}.log", "w")
-        p = subprocess.Popen(cmd, env=self.env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
-        p.log_path = self.tmp_path / f"{name}.log"  # type: ignore[attr-defined]
-        self.procs.append(p)
-        return p
-
-    def run(self, cmd: list[str], check: bool = True, timeout: float = 60) -> subprocess.CompletedProcess:
-        res = subprocess.run(cmd, env=self.env, capture_output=True, text=True, timeout=timeout)
-        if check and res.returncode != 0:
-            raise AssertionError(f"{cmd} failed ({res.returncode}): {res.stdout}{res.stderr}")
-        return res
-
-    def rospy(self, code: str, timeout: float = 120) -> dict:
-        """Runs `code` after rospy.init_node in a child process; it fills the dict `result`. Tests call
-        run_client, which runs a function of test/clients/ this way."""
-        script = "import json, sys, time, rospy\nrospy.init_node('pytest_client', anonymous=True)\nresult = {}\n"
-        script += textwrap.dedent(code) + "\nprint('RESULT=' + json.dumps(result))\n"
-        res = subprocess.run([sys.executable, "-c", script], env=self.env, capture_output=True, text=True, timeout=timeout)
-        for line in res.stdout.splitlines():
-            if line.startswith("RESULT="):
-                return json.loads(line[len("RESULT=") :])
-        raise AssertionError(f"rospy client failed ({res.returncode}):\n{res.stdout}\n{res.stderr}")
-
-    def run_client(self, function: str, timeout: float = 120, **kwargs) -> dict:
-        """Runs the client function `function` ("clients.module:name", a module of test/clients/) in a
-        child process after rospy.init_node, called with `kwargs` (sent as JSON: str, numbers, bools,
-        lists, dicts); returns what it returned (a JSON-serialisable dict; none gives {})."""
-        code = (
-            f"sys.path.insert(0, {str(TESTS)!r})\n"
-            "from clients import call\n"
-            f"result = call({function!r}, json.loads({json.dumps(kwargs)!r}))\n"
-        )
-        return self.rospy(code, timeout=timeout)
-
-    @staticmethod
-    def wait_for(predicate, timeout: float, period: float = 0.2) -> bool:
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if predicate():
-                return True
-            time.sleep(period)
-        return False
-
-    def stop(self) -> None:
-        for p in reversed(self.procs):
-            if p.poll() is None:
-                try:
-                    os.killpg(p.pid, signal.SIGINT)
-                except ProcessLookupError:
-                    pass
-        for p in reversed(self.procs):
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                print(f"TEARDOWN-TIMEOUT {p.args}", file=sys.stderr)
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
-        # the nodes of a roslaunch that was SIGKILLed (a fault test, or the timeout above) outlive it,
-        # each in a session of its own: whatever still talks to this graph's master goes too
-        kill_graph_leftovers(self.port)
 
 
 @pytest.fixture
@@ -116,31 +22,3 @@ def ros(tmp_path: Path) -> Iterator[RosGraph]:
         yield graph
     finally:
         graph.stop()
-
-
-def package_path(name: str) -> Path:
-    res = subprocess.run(["rospack", "find", name], capture_output=True, text=True, check=True)
-    return Path(res.stdout.strip())
-
-
-def launch(ros: RosGraph, package: str, launch_file: str, *args: str, name: str = "launch") -> subprocess.Popen:
-    """roslaunch against this graph's master (headless)."""
-    gui = [] if any(a.startswith("gui:=") for a in args) else ["gui:=false"]
-    return ros.start(["roslaunch", "-p", str(ros.port), package, launch_file, *gui, *args], name)
-
-
-def wait_sim_time(ros: RosGraph, t_s: float, timeout_s: float = 300.0) -> float:
-    """Blocks until /clock reaches t_s; returns the sim time seen."""
-    return ros.run_client("clients.sim:wait_sim_time", timeout=timeout_s + 60, t_s=t_s, timeout_s=timeout_s)["t"]
-
-
-def send_hover_pose(ros: RosGraph, then: str = "", **kwargs) -> dict:
-    """Sends the set point (0, 0, 1) latched on /firefly/command/pose once the controller listens,
-    then calls the client function `then` ("clients.module:name") with `kwargs` in the same client
-    (the latched message lives as long as it); returns what that function returned ({} without one)."""
-    return ros.run_client("clients.sim:send_hover_pose", then=then, then_kwargs=kwargs)
-
-
-def stop_launch(proc: subprocess.Popen, timeout: float = 30.0) -> None:
-    """SIGINT as Ctrl-C does, so that bags are closed and indexed."""
-    stop_process_group(proc, timeout)

@@ -19,14 +19,9 @@ import numpy as np
 import pytest
 
 import rotors_sim as rs
+from support.net import free_udp_port
 
 DT = 0.0025  # [s] ArduPilot runs its frames at the physics rate: 400 Hz
-
-
-def free_udp_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 class ArduPilotSide:

@@ -10,9 +10,9 @@ import time
 import numpy as np
 import pytest
 from pymavlink import mavutil
-from test_px4_mavlink import DT, SteppingWorld, answer, connect, free_port, make_world, next_sensor, start_lockstep
 
 import rotors_sim as rs
+from support.px4 import DT, SteppingWorld, answer, connect, free_port, make_world, next_sensor, start_lockstep
 
 
 def run_until_sensor(link, n=1):

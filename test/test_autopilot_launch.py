@@ -10,9 +10,10 @@ import time
 import numpy as np
 import pytest
 from pymavlink import mavutil
-from test_px4_mavlink import answer
 
-from conftest import launch
+import clients.autopilot_launch
+from support import launch
+from support.px4 import answer
 
 pytestmark = pytest.mark.xdist_group("betaflight_ports")
 
@@ -53,7 +54,7 @@ def test_betaflight_sitl_launch_runs_firmware_flies_on_rc_topic(ros, tmp_path):
     sticks are held for spans of sim time, the firmware's clock). No retry: the lockstep build has no
     start-up race (docs/autopilots.md)."""
     proc = launch(ros, "rotors_gazebo", "mav_betaflight_sitl.launch", f"betaflight_workdir:={tmp_path / 'bf'}", "random_seed:=3")
-    result = ros.run_client("clients.autopilot_launch:betaflight_rc_climb", timeout=300, log_path=str(proc.log_path))
+    result = ros.run_client(clients.autopilot_launch.betaflight_rc_climb, timeout=300, log_path=str(proc.log_path))
     answered = "Betaflight answers" in proc.log_path.read_text(errors="replace")
     print(f"firmware answered: {answered}; climbed to {result['z_max']:.2f} m on RC from /iris/rc")
     assert answered and result["z_max"] > 1.0

@@ -11,10 +11,10 @@ from pathlib import Path
 
 import numpy as np
 
-from conftest import REPO, RosGraph, launch, send_hover_pose, stop_launch, wait_sim_time
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import FlightBag  # noqa: E402
+import clients.clean_runs
+import clients.sim
+from rotors_evaluation.bag_data import FlightBag
+from support import REPO, RosGraph, launch, send_hover_pose, stop_launch, wait_sim_time
 
 EVAL = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts" / "hovering_eval.py"
 STEP_S = 0.01  # basic.world's step = the controller's period in lockstep
@@ -32,7 +32,7 @@ def last_times(bag: Path):
 
 
 def sim_time(ros: RosGraph) -> float:
-    return ros.run_client("clients.sim:clock_now", timeout_s=10)["t"]
+    return ros.run_client(clients.sim.clock_now, timeout_s=10)["t"]
 
 
 def test_ctrl_c_ends_bag_with_flight_and_eval_sees_no_collision(ros: RosGraph):
@@ -73,7 +73,7 @@ def fly_determinism_launch(ros: RosGraph, tag: str, controller_delay_s: float) -
     try:
         assert ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         # the set point is latched and the simulation unpaused at once: a late controller must hold the clock
-        ros.run_client("clients.clean_runs:hover_set_point_then_unpause", timeout=180, until_s=6.0)
+        ros.run_client(clients.clean_runs.hover_set_point_then_unpause, timeout=180, until_s=6.0)
         wait_sim_time(ros, 6.0)
         log = Path(proc.log_path).read_text()
         if controller_delay_s > 0:

@@ -8,7 +8,7 @@ import subprocess
 
 import pytest
 
-from conftest import REPO, WS
+from support import REPO, WS
 
 # binary (devel/lib/<package>/<name>) -> the number of tests it holds; change it when you add or remove tests
 GTESTS = {

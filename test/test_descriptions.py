@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import package_path
+from support import package_path
 
 VEHICLES = ["firefly", "hummingbird", "pelican", "iris", "neo11", "asymmetric_quadrotor", "ardrone", "neo9", "omav"]
 ROTORS = {"firefly": 6, "neo11": 6, "neo9": 6, "omav": 12}  # 4 otherwise

@@ -5,7 +5,8 @@ dvs_msgs/EventArray arrives on <mav>/dvs/events with events of both polarities i
 
 import os
 
-from conftest import RosGraph, launch, stop_launch
+import clients.event_camera
+from support import RosGraph, launch, stop_launch
 
 
 def test_event_camera_fires_while_the_firefly_climbs(ros: RosGraph):
@@ -16,7 +17,7 @@ def test_event_camera_fires_while_the_firefly_climbs(ros: RosGraph):
     try:
         # ROTORS_FIGURE_DIR: docs/sensor_realism.md's figure
         figure = os.path.join(os.environ["ROTORS_FIGURE_DIR"], "dvs.png") if "ROTORS_FIGURE_DIR" in os.environ else ""
-        r = ros.run_client("clients.event_camera:events_while_flying", until_s=7.0, figure=figure, timeout=400)
+        r = ros.run_client(clients.event_camera.events_while_flying, until_s=7.0, figure=figure, timeout=400)
     finally:
         stop_launch(proc)
     print(r)

@@ -20,7 +20,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import RosGraph, launch, stop_launch, wait_sim_time
+import clients.faults
+from support import RosGraph, launch, stop_launch, wait_sim_time
 
 
 @pytest.mark.long  # the long tier (about 40 s): make test under 25 min
@@ -35,7 +36,7 @@ def test_controller_killed_no_lockstep_recovers_or_reports_fall(ros: RosGraph, t
     )
     try:
         wait_sim_time(ros, 12.0)
-        r = ros.run_client("clients.faults:controller_killed_without_lockstep", timeout=240)
+        r = ros.run_client(clients.faults.controller_killed_without_lockstep, timeout=240)
     finally:
         stop_launch(proc)
     bag = next(tmp_path.glob("faults*.bag"))  # the bag plugin appends the date
@@ -72,7 +73,7 @@ def test_simulator_killed_leaves_nodes_idle_bag_recoverable(ros: RosGraph, tmp_p
     )
     try:
         wait_sim_time(ros, 20.0)
-        r = ros.run_client("clients.faults:simulator_killed", timeout=240)
+        r = ros.run_client(clients.faults.simulator_killed, timeout=240)
     finally:
         stop_launch(proc)
     print(f"simulator killed: controller alive {r['lee_alive']}, CPU {r['lee_cpu_s_in_5_s']:.3f} s in 5 s")
@@ -108,7 +109,7 @@ def test_reset_world_and_reset_simulation_mid_flight(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=1")
     try:
         wait_sim_time(ros, 12.0)
-        r = ros.run_client("clients.faults:reset_world_and_simulation", timeout=240)
+        r = ros.run_client(clients.faults.reset_world_and_simulation, timeout=240)
     finally:
         stop_launch(proc)
     print(
@@ -126,7 +127,7 @@ def test_reset_simulation_while_lockstep_waits_for_the_controller(ros: RosGraph)
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=0")
     try:
         wait_sim_time(ros, 1.0)
-        r = ros.run_client("clients.faults:reset_simulation_repeatedly", timeout=300, count=30)
+        r = ros.run_client(clients.faults.reset_simulation_repeatedly, timeout=300, count=30)
     finally:
         stop_launch(proc)
     went_on = [t for t in r["reached"] if t >= 0.5]
@@ -139,7 +140,7 @@ def test_pause_for_10_s_and_resume(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "real_time_factor:=1")
     try:
         wait_sim_time(ros, 12.0)
-        r = ros.run_client("clients.faults:pause_and_resume", timeout=240)
+        r = ros.run_client(clients.faults.pause_and_resume, timeout=240)
     finally:
         stop_launch(proc)
     print(
@@ -159,7 +160,7 @@ def test_controller_stopped_in_debugger_never_freezes_simulator(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=1")
     try:
         wait_sim_time(ros, 8.0)
-        r = ros.run_client("clients.faults:controller_stopped_as_in_a_debugger", timeout=240)
+        r = ros.run_client(clients.faults.controller_stopped_as_in_a_debugger, timeout=240)
     finally:
         stop_launch(proc)
     log = Path(proc.log_path).read_text()

@@ -3,17 +3,17 @@ Python without ROS: trimmed level flight holds altitude and airspeed for 20 s, l
 at trim within 2 %, and an aileron step rolls right wing down at the rate the coefficients predict."""
 
 import math
-import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+import clients.fixed_wing
 import rotors_sim as rs
-from conftest import REPO, launch, stop_launch
 from rotors_sim import _engine
 from rotors_sim.world import run_xacro
+from support import launch, stop_launch
 
 URDF = rs.paths.package_path("rotors_description") / "urdf" / "techpod_base.xacro"
 FW = rs.paths.resource("fixed_wing")
@@ -155,7 +155,7 @@ def test_fixed_wing_with_joy_flies_techpod_on_joystick_commands(ros):
     )
     try:
         got = ros.run_client(
-            "clients.fixed_wing:joystick_flight_from_trim",
+            clients.fixed_wing.joystick_flight_from_trim,
             timeout=240,
             pitch=float(elevator / SURFACE_MAX),
             thrust=float(throttle),
@@ -174,7 +174,6 @@ def test_fixed_wing_with_joy_flies_techpod_on_joystick_commands(ros):
     # enable_logging:=true reaches the techpod's bag plugin (RotorS' spawn_fixed_wing.launch drops it)
     bags = sorted(Path(ros.env["ROS_HOME"]).glob("techpod_*.bag"))
     assert bags, "fixed_wing_with_joy.launch enable_logging:=true wrote no bag"
-    sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
     from rotors_evaluation.bag_data import FlightBag
 
     bag = FlightBag(bags[-1])

@@ -22,7 +22,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import RosGraph, stop_launch, wait_sim_time
+import clients.fuzz
+from support import RosGraph, stop_launch, wait_sim_time
 
 WATCHED = [
     "/gazebo",
@@ -89,7 +90,7 @@ def test_fuzzing_every_input_of_the_hovering_example(ros: RosGraph, tmp_path: Pa
     proc = ros.start(["roslaunch", "-p", str(ros.port), str(launch_file)], "launch")
     try:
         wait_sim_time(ros, 10.0)
-        res = ros.run_client("clients.fuzz:fuzz_every_input", timeout=900, log_path=str(Path(proc.log_path)), watched=WATCHED)
+        res = ros.run_client(clients.fuzz.fuzz_every_input, timeout=900, log_path=str(Path(proc.log_path)), watched=WATCHED)
     finally:
         stop_launch(proc)
     rows = res["rows"]

@@ -6,8 +6,9 @@ import math
 
 import numpy as np
 
+import clients.gimbal
 import rotors_sim as rs
-from conftest import RosGraph, launch, stop_launch, wait_sim_time
+from support import RosGraph, launch, stop_launch, wait_sim_time
 
 
 def rotation(q) -> np.ndarray:
@@ -68,7 +69,7 @@ def test_gimbal_pitch_command_over_ros(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "lockstep:=true", "real_time_factor:=10", "enable_gimbal:=true")
     try:
         wait_sim_time(ros, 7.0)
-        got = ros.run_client("clients.gimbal:pitch_and_roll_beyond_the_joints", timeout=120)
+        got = ros.run_client(clients.gimbal.pitch_and_roll_beyond_the_joints, timeout=120)
     finally:
         stop_launch(proc)
 

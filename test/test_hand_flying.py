@@ -14,12 +14,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import REPO, RosGraph, stop_launch
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_joy_interface" / "src"))
-from rotors_joy_interface.gamepad import GamepadLayout, normalise  # noqa: E402
-from rotors_joy_interface.joy_mapping import JoyError, JoyMapping  # noqa: E402
-from rotors_joy_interface.keyboard import BUTTON_YAW_RIGHT, KeyJoystick, decode_keys  # noqa: E402
+from rotors_joy_interface.gamepad import GamepadLayout, normalise
+from rotors_joy_interface.joy_mapping import JoyError, JoyMapping
+from rotors_joy_interface.keyboard import BUTTON_YAW_RIGHT, KeyJoystick, decode_keys
+from support import RosGraph, stop_launch
 
 
 def test_joy_mapping_is_rotors():

@@ -10,9 +10,10 @@ import time
 
 import numpy as np
 from pymavlink import mavutil
-from test_ardupilot_json import free_udp_port
 
-from conftest import launch
+import clients.hil_interface
+from support import launch
+from support.net import free_udp_port
 
 
 class AutopilotStandIn:
@@ -73,7 +74,7 @@ def test_fixed_wing_hil_launch_exchanges_hil_with_autopilot(ros):
     assert gps and gps[-1].fix_type == 3 and abs(gps[-1].lat) > 0
     # the autopilot's controls: mav_msgs/Actuators, normalized, on command/motor_speed
     results = {}
-    listener = threading.Thread(target=lambda: results.update(ros.run_client("clients.hil_interface:normalized_controls")))
+    listener = threading.Thread(target=lambda: results.update(ros.run_client(clients.hil_interface.normalized_controls)))
     listener.start()
     end = time.monotonic() + 5.0
     while listener.is_alive() and time.monotonic() < end:  # the autopilot answers on its link

@@ -2,17 +2,15 @@
 evaluated with hovering_eval. Runs in lockstep, faster than real time."""
 
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import FlightBag, load_flight  # noqa: E402
-from rotors_evaluation.metrics import rms_error  # noqa: E402
+import clients.hovering_flight
+from rotors_evaluation.bag_data import FlightBag, load_flight
+from rotors_evaluation.metrics import rms_error
+from support import RosGraph, launch, stop_launch, wait_sim_time
 
 # Topics of a spawned firefly (RotorS' rotors_gazebo/launch/mav_hovering_example.launch and spawn_mav.launch).
 ROTORS_TOPICS = [
@@ -43,7 +41,7 @@ def fly(ros: RosGraph, *args: str, until_s: float = 21.0):
     try:
         wait_sim_time(ros, until_s)
         topics = ros.run(["rostopic", "list"]).stdout.split()
-        imu = ros.run_client("clients.hovering_flight:imu_joints_and_rotor_speeds")
+        imu = ros.run_client(clients.hovering_flight.imu_joints_and_rotor_speeds)
     finally:
         stop_launch(proc)
     bags = sorted(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 from rosbags.rosbag1 import Reader
 from rosbags.typesys import Stores, get_typestore
-from test_lockstep_determinism import assert_identical_flights, fly_once, messages
 
-from conftest import RosGraph
+from support import RosGraph
+from support.flights import assert_identical_flights, fly_once, messages
 
 
 def without_seq(msgs, topic: str = "firefly/command/motor_speed"):

@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+import clients.laser_flight
+from support import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 PLANT = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource" / "power_plant.bt"
 LIDAR_ABOVE_BASE_M = 0.15  # lidar_xyz's default
@@ -24,7 +25,7 @@ def test_vlp16_cloud_in_the_power_plant_lies_on_the_plant(ros: RosGraph, tmp_pat
     try:
         wait_sim_time(ros, 1.0)
         result = ros.run_client(
-            "clients.laser_flight:vlp16_clouds", timeout=200, lidar_above_base_m=LIDAR_ABOVE_BASE_M, points_file=str(points_file)
+            clients.laser_flight.vlp16_clouds, timeout=200, lidar_above_base_m=LIDAR_ABOVE_BASE_M, points_file=str(points_file)
         )
     finally:
         stop_launch(proc)
@@ -76,7 +77,7 @@ def test_rangefinder_reads_height_and_hokuyo_publishes_scans(ros: RosGraph):
         )
         try:
             wait_sim_time(ros, 8.0)  # hovering at 1 m since 5 s
-            results[lidar] = ros.run_client("clients.laser_flight:rangefinder_or_hokuyo")
+            results[lidar] = ros.run_client(clients.laser_flight.rangefinder_or_hokuyo)
         finally:
             stop_launch(proc)
     rf = results["rangefinder"]

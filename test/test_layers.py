@@ -5,7 +5,7 @@ includes (C++) or imports (Python) a package of a folder drawn above its own."""
 import re
 import xml.etree.ElementTree as ET
 
-from conftest import REPO
+from support import REPO
 
 PICTURE = REPO / "docs" / "architecture.md"
 DEPENDENCY_TAGS = ("depend", "build_depend", "exec_depend", "run_depend", "build_export_depend", "test_depend")

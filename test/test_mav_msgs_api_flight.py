@@ -3,9 +3,8 @@ builds here and hovers the firefly as the book's figure shows (section 3.6: 0.04
 
 from pathlib import Path
 
-from books_hover import assert_hovers_like_the_book
-
-from conftest import RosGraph, stop_launch, wait_sim_time
+from support import RosGraph, stop_launch, wait_sim_time
+from support.books_hover import assert_hovers_like_the_book
 
 
 def test_mav_msgs_api_controller_hovers_within_books_figure(ros: RosGraph):

@@ -11,10 +11,9 @@ from pathlib import Path
 
 import numpy as np
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import FlightBag, load_flight  # noqa: E402
+import clients.motor_failure
+from rotors_evaluation.bag_data import FlightBag, load_flight
+from support import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 EVAL = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts" / "disturbance_eval.py"
 
@@ -31,7 +30,7 @@ def test_hexacopter_keeps_flying_with_one_motor_out(ros: RosGraph):
     )
     try:
         # one client, as soon as the MAV is spawned: the calls take milliseconds, well before 40 s
-        got = ros.run_client("clients.motor_failure:failure_requests")
+        got = ros.run_client(clients.motor_failure.failure_requests)
         calls = got["calls"]
         assert got["t"] < 39.0, got
         assert calls[0] == [False, "motor_number 6 is not a motor of firefly (0..5)"]

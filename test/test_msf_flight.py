@@ -3,18 +3,16 @@ msf_updates/pose_sensor fusing its biased IMU with a noisy 10 Hz pose that arriv
 Judged against the simulator's ground truth, in lockstep with seeded noise."""
 
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import load_flight  # noqa: E402
-from rotors_evaluation.estimator import NEES_BOUNDS_95, evaluate_estimator, load_tracks  # noqa: E402
-from rotors_evaluation.metrics import rms_error  # noqa: E402
+import clients.msf_flight
+from rotors_evaluation.bag_data import load_flight
+from rotors_evaluation.estimator import NEES_BOUNDS_95, evaluate_estimator, load_tracks
+from rotors_evaluation.metrics import rms_error
+from support import RosGraph, launch, stop_launch, wait_sim_time
 
 STATIC_OFFSET = np.array([0.0, 0.0, 0.0398])  # the Lee controller's mass/gravity mismatch (reference 9)
 INIT_TIME = 5.0  # hovering_example_msf initialises the estimator after 5 s of sim time
@@ -179,7 +177,7 @@ def test_estimator_survives_a_pose_outage_and_reconverges(ros: RosGraph, tmp_pat
 
     def fly_through_band():
         # after hovering at the origin: into the band, hold, and out again (command/pose, sim time)
-        return ros.run_client("clients.msf_flight:fly_through_band", timeout=300)
+        return ros.run_client(clients.msf_flight.fly_through_band, timeout=300)
 
     bag, _, _, log, sent = fly_msf(ros, 47.0, f"pose_sensor_map:={pgm}", during=fly_through_band)
     assert 30.0 <= sent["sent"][0] < 30.5 and 32.5 <= sent["sent"][1] < 33.0, sent  # on time in sim time
@@ -212,7 +210,7 @@ def test_estimator_refuses_what_it_does_not_do_and_names_typos(ros: RosGraph):
     assert "pose_sensor/pose_fixed_scale: false: estimating scale online is not supported" in res.stdout + res.stderr
     # RotorS' msf_simulator.yaml typo is reported, not silently ignored; NaN input is dropped, node lives on
     node = ros.start(["rosrun", "msf_updates", "pose_sensor", "__name:=msf", "_core/fixed_bias:=0"], "msf_node")
-    out = ros.run_client("clients.msf_flight:refusals_and_nan_input")
+    out = ros.run_client(clients.msf_flight.refusals_and_nan_input)
     assert out["init"] == "Not initialized: no pose measurement received yet"
     assert out["height"] == "Not initialized: height 0.001 m is below the minimum of 0.01 m"
     assert out["init_after_pose"] == "Initialized scale"

@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import RosGraph, stop_launch, wait_sim_time
+import clients.navigation_sensors
+from support import RosGraph, stop_launch, wait_sim_time
 
 A, F = 6378137.0, 1 / 298.257223563  # WGS84
 E2 = F * (2 - F)
@@ -46,7 +47,7 @@ def test_gps_magnetometer_barometer_on_the_firefly(ros: RosGraph, tmp_path: Path
     proc = ros.start(["roslaunch", "-p", str(ros.port), str(flight)], "launch")
     try:
         wait_sim_time(ros, 8.0)
-        got = ros.run_client("clients.navigation_sensors:fly_and_log", timeout=300)
+        got = ros.run_client(clients.navigation_sensors.fly_and_log, timeout=300)
     finally:
         stop_launch(proc)
     odom = np.array(got["odom"])

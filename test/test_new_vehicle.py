@@ -4,16 +4,13 @@ example. It must hover within 0.01 m of its set point first time (the simulated 
 more than its body: rotors and sensors; the computed yaml knows it)."""
 
 import math
-import sys
 from pathlib import Path
 
 import yaml
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import load_flight  # noqa: E402
-from rotors_evaluation.metrics import rms_error  # noqa: E402
+from rotors_evaluation.bag_data import load_flight
+from rotors_evaluation.metrics import rms_error
+from support import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 NAME = "readme_xquad"
 URDF = REPO / "rotors_description" / "urdf"

@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 import yaml
 
-from conftest import RosGraph, launch, package_path, stop_launch, wait_sim_time
+import clients.omav
 from rotors_gazebo.vehicle_params import rigid_body_from_urdf, run_xacro
+from support import RosGraph, launch, package_path, stop_launch, wait_sim_time
 
 ROTOR_OFFSET = 0.06  # [m] upper and lower rotor above and below the tilt axis (omav.xacro)
 
@@ -53,7 +54,7 @@ def test_omav_hovers_then_holds_position_while_rolled_20_degrees(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "omav_hovering_example.launch", "lockstep:=true", "real_time_factor:=10")
     try:
         wait_sim_time(ros, 12.0)  # hovering_example's (0, 0, 1) is due at 8.6 s
-        got = ros.run_client("clients.omav:hover_then_roll_20_degrees", timeout=240)
+        got = ros.run_client(clients.omav.hover_then_roll_20_degrees, timeout=240)
     finally:
         stop_launch(proc)
     hover, tilted = np.array(got["hover"]), np.array(got["tilted"])

@@ -8,7 +8,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from conftest import RosGraph, package_path
+from support import RosGraph, package_path
 
 NODE = ["rosrun", "rotors_control", "lee_position_controller_node", "__ns:=/firefly", "__name:=lee_position_controller_node"]
 PARAMS = "/firefly/lee_position_controller_node"

@@ -12,11 +12,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_vehicles_flight import ground_truth
-from test_worlds import EVAL, contacts_with, evaluate, fly_logged
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+import clients.octomap
+import clients.planner_flight
 from rotors_evaluation.bag_data import load_flight
+from support import REPO, RosGraph, launch, stop_launch, wait_sim_time
+from support.flights import EVAL, contacts_with, evaluate, fly_logged, ground_truth
 
 RESOURCE = REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "resource"
 
@@ -101,7 +102,7 @@ def test_goal_behind_wall_reached_with_map_built_in_flight(ros: RosGraph):
 
 
 def send_goal(ros: RosGraph, x: float, y: float, z: float) -> None:
-    ros.run_client("clients.planner_flight:send_goal", x=x, y=y, z=z)
+    ros.run_client(clients.planner_flight.send_goal, x=x, y=y, z=z)
 
 
 @pytest.mark.long  # the long tier (about 20-25 s): make test under 25 min
@@ -186,7 +187,7 @@ def test_map_from_vi_sensor_depth_camera_matches_power_plant(ros: RosGraph, tmp_
         wait_sim_time(ros, 120.0, timeout_s=900.0)  # the first leg (5-74 s) and a hover at the waypoint
         # the truth at the map's resolution, ground included, in the box the MAV flew in
         ros.run_client(
-            "clients.octomap:get_octomap",
+            clients.octomap.get_octomap,
             timeout=300,
             origin=[10.0, -10.0, 14.75],
             lengths=[50.0, 50.0, 30.5],

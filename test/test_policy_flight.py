@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import RosGraph, launch, stop_launch, wait_sim_time
+from support import RosGraph, launch, stop_launch, wait_sim_time
 
 AIRFRAMES = {"xacro": (), "heavy_weak": ("mass_scale:=1.2", "motor_constant_scale:=0.85")}
 

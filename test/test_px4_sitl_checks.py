@@ -15,11 +15,11 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 import yaml
-from px4_checks import MAG_VALUE_EQUAL_COUNT, DataValidatorStale, GnssChecks, gyro_vibration_metric, hil_sensor_channels
 from pygeomag import GeoMag
-from test_px4_mavlink import STRICT_LOCKSTEP_S, answer, frd, free_port, integrate_gyro, rotate, start_lockstep
 
 import rotors_sim as rs
+from support.px4 import STRICT_LOCKSTEP_S, answer, frd, free_port, integrate_gyro, rotate, start_lockstep
+from support.px4_checks import MAG_VALUE_EQUAL_COUNT, DataValidatorStale, GnssChecks, gyro_vibration_metric, hil_sensor_channels
 
 LAUNCH = rs.paths.package_path("rotors_gazebo") / "launch" / "mav_px4_sitl.launch"
 # PX4-SITL_gazebo-classic models/iris/iris.sdf.jinja: each rotor's motor model and the channels

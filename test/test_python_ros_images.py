@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
+import clients.python_ros_images
 import rotors_sim as rs
-from conftest import RosGraph, launch, stop_launch, wait_sim_time
+from support import RosGraph, launch, stop_launch, wait_sim_time
 
 
 def test_python_images_equal_the_ros_images_of_the_same_step(ros: RosGraph, tmp_path: Path):
@@ -16,7 +17,7 @@ def test_python_images_equal_the_ros_images_of_the_same_step(ros: RosGraph, tmp_
     raw = tmp_path / "left.raw"
     try:
         wait_sim_time(ros, 0.5)
-        got = ros.run_client("clients.python_ros_images:vi_left_image", raw_path=str(raw))
+        got = ros.run_client(clients.python_ros_images.vi_left_image, raw_path=str(raw))
     finally:
         stop_launch(proc)
     ros_image = np.frombuffer(raw.read_bytes(), np.uint8).reshape(got["height"], got["width"], -1)

@@ -6,7 +6,8 @@ every message of every /firefly topic repeats the first flight's byte for byte; 
 
 from pathlib import Path
 
-from conftest import REPO, RosGraph, send_hover_pose, stop_launch
+import clients.reset_services
+from support import REPO, RosGraph, send_hover_pose, stop_launch
 
 FLIGHT_S = 3.0
 COMPARED_S = 2.5  # each flight stops at FLIGHT_S, give or take the steps a pause call takes to land
@@ -33,7 +34,7 @@ def test_reset_simulation_and_world_repeat_flight_bit_for_bit(ros: RosGraph):
     try:
         ready = ros.wait_for(lambda: "Successfully spawned" in Path(proc.log_path).read_text(), 60)
         assert ready, Path(proc.log_path).read_text()[-2000:]
-        r = send_hover_pose(ros, then="clients.reset_services:record_and_reset", flight_s=FLIGHT_S)  # the set point, then the flights
+        r = send_hover_pose(ros, then=clients.reset_services.record_and_reset, flight_s=FLIGHT_S)  # the set point, then the flights
     finally:
         stop_launch(proc)
     for name in ("simulation", "world"):

@@ -7,9 +7,9 @@ no rejected motor command."""
 
 from pathlib import Path
 
-from test_sim_server import start_server
-
-from conftest import REPO, RosGraph
+import clients.respawn
+from support import REPO, RosGraph
+from support.sim_server import start_server
 
 
 def spawn(ros: RosGraph, tmp_path: Path, vehicle: str) -> None:
@@ -31,12 +31,12 @@ def spawn(ros: RosGraph, tmp_path: Path, vehicle: str) -> None:
 def test_respawn_with_another_rotor_count_starts_on_a_fresh_bus(ros: RosGraph, tmp_path: Path):
     server = start_server(ros, "--rtf", "1")
     spawn(ros, tmp_path, "firefly")
-    six = ros.run_client("clients.respawn:spin_motors", n=6)["speeds"]
+    six = ros.run_client(clients.respawn.spin_motors, n=6)["speeds"]
     assert len(six) == 6 and min(six) > 299.0, six
     deleted = ros.run(["rosservice", "call", "/gazebo/delete_model", "mav"]).stdout
     assert "success: True" in deleted, deleted
     spawn(ros, tmp_path, "hummingbird")
-    four = ros.run_client("clients.respawn:spin_motors", n=4)["speeds"]
+    four = ros.run_client(clients.respawn.spin_motors, n=4)["speeds"]
     log = Path(server.log_path).read_text()
     assert "rejected motor command" not in log, log[-2000:]
     assert len(four) == 4 and min(four) > 299.0, four

@@ -11,9 +11,9 @@ gives the figures of such a run)."""
 from pathlib import Path
 
 import pytest
-from books_hover import assert_hovers_like_the_book
 
-from conftest import WS, RosGraph, stop_launch, wait_sim_time
+from support import WS, RosGraph, stop_launch, wait_sim_time
+from support.books_hover import assert_hovers_like_the_book
 
 NODES = ["user_lee_position_controller_node"]
 if (WS / "devel" / "lib" / "rotors_control_api_user" / "upstream_lee_position_controller_node").is_file():

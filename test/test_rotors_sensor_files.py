@@ -12,9 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import clients.sensor_files
 import rotors_sim as rs
-from conftest import RosGraph, stop_launch, wait_sim_time
 from rotors_sim.paths import package_path
+from support import RosGraph, stop_launch, wait_sim_time
 
 HERE = Path(__file__).resolve().parent
 URDF = package_path("rotors_description") / "urdf"
@@ -44,7 +45,7 @@ def test_rotors_sensor_files_publish_topics_types_sizes_rates(ros: RosGraph):
     try:
         wait_sim_time(ros, 0.5)
         types = {t: k for t, (k, _, _) in CAMERA_TOPICS.items()}
-        got = ros.run_client("clients.sensor_files:collect", timeout=240, topics=types)
+        got = ros.run_client(clients.sensor_files.collect, timeout=240, topics=types)
     finally:
         stop_launch(launch)
     for topic, (kind, rate_hz, size) in CAMERA_TOPICS.items():

@@ -4,9 +4,10 @@ measurements over black pixels; the IMU at rest reads +g; exact and noisy depth 
 from pathlib import Path
 
 import pytest
-from test_sim_server import start_server
 
-from conftest import RosGraph
+import clients.sensor_plugins
+from support import RosGraph
+from support.sim_server import start_server
 
 
 def sensor_box(name: str) -> str:
@@ -39,7 +40,7 @@ def test_outage_map_suppresses_odometry_over_black_pixels(ros: RosGraph, tmp_pat
         f = tmp_path / f"{name}.urdf"
         f.write_text(sensor_box(name))
         ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(f), "-model", name, "-x", str(x), "-y", str(y), "-z", "0.1"])
-    result = ros.run_client("clients.sensor_plugins:odometry_counts_and_imu")
+    result = ros.run_client(clients.sensor_plugins.odometry_counts_and_imu)
     assert result["white"] > 50  # 100 Hz where the map is white
     assert result["black"] == 0  # nothing over the black blob
     assert abs(result["imu_z"] - 9.8) < 0.05  # at rest: +g (gyro/accel noise left at ADIS defaults is small)
@@ -56,7 +57,7 @@ def test_wind_force_accelerates_a_free_body_as_f_over_m(ros: RosGraph, tmp_path:
         <windDirection>0 1 0</windDirection><windForceMean>2.0</windForceMean><windSpeedMean>3.0</windSpeedMean>
       </plugin></gazebo></robot>""")
     ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(urdf), "-model", "kite", "-z", "100"])
-    result = ros.run_client("clients.sensor_plugins:wind_on_a_falling_kite")
+    result = ros.run_client(clients.sensor_plugins.wind_on_a_falling_kite)
     assert result["wind_y"] == 3.0
     t = result["t"]
     # semi-implicit Euler: y_N = a dt^2 N (N+1) / 2 with a = 2 m/s^2
@@ -94,7 +95,7 @@ def test_depth_cameras_exact_and_kinect_noisy(ros: RosGraph, tmp_path: Path):
     f = tmp_path / "rig.urdf"
     f.write_text(depth_rig("rig"))
     ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(f), "-model", "rig", "-z", "2.0"])
-    result = ros.run_client("clients.sensor_plugins:depth_cameras")
+    result = ros.run_client(clients.sensor_plugins.depth_cameras)
     print(result)
     assert result["encoding"] == "32FC1" and result["frame"] == "rig/optical"
     # depth is the distance along the optical axis: 2 m at every pixel of a camera facing the plane

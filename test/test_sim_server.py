@@ -6,19 +6,13 @@ from pathlib import Path
 
 import pytest
 
-from conftest import RosGraph, package_path
+import clients.sim_server
+from support import RosGraph, package_path
+from support.sim_server import start_server
 
 BOX_URDF = """<robot name="box"><link name="box/base_link"><inertial><mass value="1"/>
 <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
 <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>"""
-
-
-def start_server(ros: RosGraph, *args: str):
-    world = package_path("rotors_gazebo") / "worlds" / "basic.world"
-    proc = ros.start(["rosrun", "rotors_core", "rotors_sim_server", str(world), *args], "server")
-    ok = ros.wait_for(lambda: "/gazebo/unpause_physics" in ros.run(["rosservice", "list"], check=False).stdout, 30)
-    assert ok, Path(proc.log_path).read_text()
-    return proc
 
 
 def test_pause_unpause_reset_and_spawn(ros: RosGraph, tmp_path: Path):
@@ -26,7 +20,7 @@ def test_pause_unpause_reset_and_spawn(ros: RosGraph, tmp_path: Path):
     urdf = tmp_path / "box.urdf"
     urdf.write_text(BOX_URDF)
     ros.run(["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-file", str(urdf), "-model", "box", "-z", "5"])
-    result = ros.run_client("clients.sim_server:pause_unpause_reset")
+    result = ros.run_client(clients.sim_server.pause_unpause_reset)
     assert result["paused_t0"] == result["paused_t1"] == 0.0  # started paused (-u)
     # gazebo_msgs/GetModelState: world pose, pose relative to a model, unknown names
     assert result["state_z"] == [True, 5.0, "world"]
@@ -50,7 +44,7 @@ def test_runtime_spawn_delete_and_tf(ros: RosGraph, tmp_path: Path):
         ["rosrun", "gazebo_ros", "spawn_model", "-urdf", "-param", "/box_description", "-model", "box", "-x", "1", "-y", "2", "-z", "0.1"]
     )
     assert "Successfully spawned entity 'box'" in res.stdout
-    result = ros.run_client("clients.sim_server:box_tf_and_delete")
+    result = ros.run_client(clients.sim_server.box_tf_and_delete)
     assert abs(result["x"] - 1.0) < 2e-3 and abs(result["y"] - 2.0) < 2e-3  # resting on the ground
     assert result["deleted"] and not result["deleted_again"]
     assert "no model named 'box'" in result["msg"]
@@ -79,7 +73,7 @@ def test_sdf_vehicle_with_rotors_plugins_spawns_via_spawn_sdf(ros: RosGraph, tmp
     sdf.write_text(PROBE_SDF)
     res = ros.run(["rosrun", "gazebo_ros", "spawn_model", "-sdf", "-file", str(sdf), "-model", "probe", "-z", "2"])
     assert "Successfully spawned entity 'probe'" in res.stdout, res.stdout + res.stderr
-    result = ros.run_client("clients.sim_server:probe_readings")
+    result = ros.run_client(clients.sim_server.probe_readings)
     # 2 m over the ground of basic.world (elevation 500 m), the beam starts 0.15 m below the link
     assert abs(result["range"] - 1.85) < 1e-4
     assert 90000 < result["pressure"] < 96000
@@ -145,7 +139,7 @@ def test_spawn_normalises_the_quaternion_as_set_model_state_does(ros: RosGraph, 
     start_server(ros, "--rtf", "0")
     urdf = tmp_path / "box.urdf"
     urdf.write_text(BOX_URDF)
-    result = ros.run_client("clients.sim_server:spawn_turned_and_plain", urdf_path=str(urdf))
+    result = ros.run_client(clients.sim_server.spawn_turned_and_plain, urdf_path=str(urdf))
     print(result)
     assert result["ok"] == [True, True]
     assert sum(c * c for c in result["turned"]) == pytest.approx(1.0, abs=1e-9)

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REPO
 from rotors_evaluation.ros_master import unused_port
+from support import REPO
 
 SWEEP = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts" / "sweep.py"
 # the book's deliberate controller mass/gravity mismatch leaves the hover 0.0398 m high (test_hovering_flight)

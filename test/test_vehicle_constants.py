@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from conftest import package_path
 from rotors_gazebo.vehicle_params import compare_with_urdf, rigid_body_from_urdf, run_xacro
+from support import package_path
 
 VEHICLES = ["firefly", "hummingbird", "pelican", "iris", "neo11", "asymmetric_quadrotor", "ardrone", "neo9"]
 WORLD_GRAVITY = 9.8  # every shipped world

@@ -9,7 +9,10 @@ from pathlib import Path
 import pytest
 import yaml
 
-from conftest import RosGraph, launch, package_path, stop_launch, wait_sim_time
+import clients.sim
+import clients.vehicles_flight
+from support import RosGraph, launch, package_path, stop_launch, wait_sim_time
+from support.flights import ground_truth
 
 LEE_KP_Z = {"hummingbird": 4, "pelican": 4, "iris": 6, "neo11": 17, "asymmetric_quadrotor": 4, "firefly": 6, "ardrone": 6, "neo9": 17}
 
@@ -24,10 +27,6 @@ def simulated_mass(ros: RosGraph, mav: str) -> float:
         ]
     ).stdout
     return sum(float(m.get("value")) for m in ET.fromstring(urdf).iter("mass"))
-
-
-def ground_truth(ros: RosGraph, ns: str) -> dict:
-    return ros.run_client("clients.sim:ground_truth", ns=ns)
 
 
 @pytest.mark.parametrize(
@@ -86,7 +85,7 @@ def test_controller_interface_rejects_bad_keeps_last_valid(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav.launch", "real_time_factor:=1")
     try:
         wait_sim_time(ros, 1.0)
-        result = ros.run_client("clients.vehicles_flight:bad_motor_commands")
+        result = ros.run_client(clients.vehicles_flight.bad_motor_commands)
         assert proc.poll() is None
     finally:
         stop_launch(proc)
@@ -104,7 +103,7 @@ def test_swarm_launch_flies_all_nine_fireflies(ros: RosGraph):
     try:
         wait_sim_time(ros, 10.0)
         # the last waypoints go out 10 s after each publisher starts; give them time to arrive
-        t0 = ros.run_client("clients.sim:clock_now")["t"]
+        t0 = ros.run_client(clients.sim.clock_now)["t"]
         wait_sim_time(ros, t0 + 25.0)
         states = [ground_truth(ros, f"firefly{i + 1}") for i in range(9)]
     finally:

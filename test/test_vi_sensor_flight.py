@@ -13,10 +13,8 @@ import pytest
 import yaml
 from PIL import Image
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import FlightBag  # noqa: E402
+from rotors_evaluation.bag_data import FlightBag
+from support import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 F_PX = 752 / (2 * math.tan(1.3962634 / 2))  # f = W / (2 tan(hfov / 2))
 VI_TOPICS = [

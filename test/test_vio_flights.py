@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 import yaml
 
-from conftest import REPO, RosGraph, launch, package_path, stop_launch, wait_sim_time
 from rotors_evaluation.bag_data import FlightBag
 from rotors_evaluation.robot_description import RobotDescription
 from rotors_gazebo.flight_paths import EUROC_SHAPES, VIO_PLACES, mean_speed, mean_yaw_rate_deg_s, read_trajectory_file, vio_flight
+from support import REPO, RosGraph, launch, package_path, stop_launch, wait_sim_time
 
 FLIGHTS = package_path("rotors_gazebo") / "resource" / "vio_flights"
 DELAY_S = 5.0  # trajectory_publisher_file's default: the flight is due 5 s after the first IMU message

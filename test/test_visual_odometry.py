@@ -22,8 +22,9 @@ import numpy as np
 import pytest
 import yaml
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+import clients.visual_odometry
 from rotors_gazebo.flight_paths import WAREHOUSE_FACING, WAREHOUSE_LOOP, WAREHOUSE_START, sample
+from support import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 TRAJECTORY_DUE_S = 6.0  # from take-off on the ground (it replaces the hovering example's waypoint)
 KLT = dict(winSize=(21, 21), maxLevel=3, criteria=(cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 30, 0.01))
@@ -178,7 +179,7 @@ def fly_and_export(ros: RosGraph, tmp_path: Path):
                 ]
             )
         )
-        ros.run_client("clients.visual_odometry:send_trajectory", points_file=str(points), due_s=TRAJECTORY_DUE_S)
+        ros.run_client(clients.visual_odometry.send_trajectory, points_file=str(points), due_s=TRAJECTORY_DUE_S)
         wait_sim_time(ros, TRAJECTORY_DUE_S + path.duration_s, timeout_s=1500)
     finally:
         stop_launch(proc)

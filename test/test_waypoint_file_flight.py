@@ -5,9 +5,10 @@ import math
 from pathlib import Path
 
 import pytest
-from test_vehicles_flight import ground_truth
 
-from conftest import RosGraph, launch, stop_launch, wait_sim_time
+import clients.waypoint_file_flight
+from support import RosGraph, launch, stop_launch, wait_sim_time
+from support.flights import ground_truth
 
 
 def test_waypoint_file_is_flown_and_bad_trajectories_are_ignored(ros: RosGraph, tmp_path: Path):
@@ -27,7 +28,7 @@ def test_waypoint_file_is_flown_and_bad_trajectories_are_ignored(ros: RosGraph, 
         # the publisher waits for the simulation and 30 s of sim time; point 0 holds 4 s, then point 1
         wait_sim_time(ros, 48.0)
         s = ground_truth(ros, "firefly")
-        ros.run_client("clients.waypoint_file_flight:bad_trajectories")
+        ros.run_client(clients.waypoint_file_flight.bad_trajectories)
         wait_sim_time(ros, 55.0)
         after = ground_truth(ros, "firefly")
     finally:

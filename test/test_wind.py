@@ -9,10 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from conftest import REPO, RosGraph, stop_launch, wait_sim_time
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import load_flight  # noqa: E402
+import clients.wind
+from rotors_evaluation.bag_data import load_flight
+from support import REPO, RosGraph, stop_launch, wait_sim_time
 
 EVAL = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts" / "disturbance_eval.py"
 
@@ -64,7 +63,7 @@ def test_custom_static_wind_field_and_wind_from_a_topic(ros: RosGraph, tmp_path:
     )
     try:
         wait_sim_time(ros, 12.0)
-        got = ros.run_client("clients.wind:speed_pairs", count=20)["pairs"]
+        got = ros.run_client(clients.wind.speed_pairs, count=20)["pairs"]
     finally:
         stop_launch(proc)
     # the shear layer: u(z) = 5 (z / 60)^0.2 at levels 0, 3, 12, 30, 60 m, linear in between
@@ -83,7 +82,7 @@ def test_wind_speed_from_a_topic(ros: RosGraph, tmp_path: Path):
     )
     try:
         wait_sim_time(ros, 8.0)
-        got = ros.run_client("clients.wind:wind_from_a_topic")["w"]
+        got = ros.run_client(clients.wind.wind_from_a_topic)["w"]
     finally:
         stop_launch(proc)
     assert got == [3.0, -1.0, 3.0, -1.0]  # NaN input ignored: the last valid wind stays
@@ -102,7 +101,7 @@ def test_airspeed_sensor_reads_plugin_wind_minus_velocity(ros: RosGraph, tmp_pat
     )
     try:
         wait_sim_time(ros, 6.0)
-        result = ros.run_client("clients.wind:airspeed_against_wind_and_velocity")
+        result = ros.run_client(clients.wind.airspeed_against_wind_and_velocity)
     finally:
         stop_launch(proc)
     print(

@@ -3,54 +3,21 @@ wall, the contact is recorded and hovering_eval.py counts it; the power plant ex
 the book says it must (the straight line between its waypoints is in collision, seed section 3);
 no run prints ODE's 'LCP internal error'."""
 
-import subprocess
-import sys
+import importlib.util
 from pathlib import Path
 
 import numpy as np
 
-from conftest import REPO, RosGraph, launch, stop_launch, wait_sim_time
+import clients.octomap
+from rotors_evaluation.metrics import rms_error
+from support import REPO, RosGraph, launch, stop_launch
+from support.flights import contacts_with, evaluate, fly_logged
 
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import FlightBag, load_flight  # noqa: E402
-from rotors_evaluation.metrics import rms_error  # noqa: E402
-
-EVAL = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts"
 WALL_FACE_X_M = 2.0  # obstacle_course.world: the wall spans x = 2.0 .. 2.2
 
 
 def lcp_errors(log: Path) -> int:
     return sum("LCP internal error" in line for line in log.read_text(errors="replace").splitlines())
-
-
-def contacts_with(bag: Path, mav: str, other: str, after_s: float) -> list:
-    b = FlightBag(bag)
-    try:
-        return [t_ns * 1e-9 for msg, _, t_ns in b.messages(f"{mav}/wrench") if other in msg.header.frame_id and t_ns * 1e-9 > after_s]
-    finally:
-        b.close()
-
-
-def fly_logged(ros: RosGraph, launch_file: str, until_s: float, *args: str):
-    """A firefly launch with logging in lockstep, as fast as possible, until `until_s` of sim time;
-    asserts that no LCP error was printed and returns the bag and its flight data."""
-    proc = launch(ros, "rotors_gazebo", launch_file, "enable_logging:=true", "lockstep:=true", "real_time_factor:=0", *args)
-    try:
-        wait_sim_time(ros, until_s)
-    finally:
-        stop_launch(proc)
-    assert lcp_errors(Path(proc.log_path)) == 0
-    bag = next(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
-    return bag, load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
-
-
-def evaluate(script: str, bag: Path, *args: str) -> str:
-    res = subprocess.run(
-        [sys.executable, str(EVAL / script), "-b", str(bag), "--mav_name", "firefly", *args], capture_output=True, text=True
-    )
-    print(res.stdout)
-    assert res.returncode == 0, res.stderr
-    return res.stdout
 
 
 def test_mav_sent_through_wall_stops_and_eval_counts_collision(ros: RosGraph):
@@ -90,7 +57,7 @@ def test_get_octomap_of_power_plant_agrees_with_rotors_octree(ros: RosGraph, tmp
     try:
         # power_plant.bt spans x -15..35, y -35..15, z 0..50; the world holds it 0.25 m lower
         result = ros.run_client(
-            "clients.octomap:get_octomap",
+            clients.octomap.get_octomap,
             timeout=300,
             origin=[10.0, -10.0, 24.75],
             lengths=[50.0, 50.0, 50.0],
@@ -108,8 +75,11 @@ def test_get_octomap_of_power_plant_agrees_with_rotors_octree(ros: RosGraph, tmp
 
 
 def test_mav_sent_into_heightmap_hillside_stops_on_its_surface(ros: RosGraph):
-    sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_gazebo" / "models" / "hills"))
-    from make_hills import height_m  # the terrain the heightmap image was made from
+    # the terrain the heightmap image was made from (the model's own generator script)
+    spec = importlib.util.spec_from_file_location("make_hills", REPO / "rotors_gazebo_compat/rotors_gazebo/models/hills/make_hills.py")
+    make_hills = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(make_hills)
+    height_m = make_hills.height_m
 
     # (20, 0, 3): 3 m above the valley floor but 2.1 m under the hillside at x = 20 (h = 5.15 m)
     for axis, value in (("x", 20.0), ("y", 0.0), ("z", 3.0)):

@@ -1,5 +1,5 @@
-"""rospy client code of the integration tests, run by RosGraph.run_client (conftest.py) in a child
-process after rospy.init_node: `ros.run_client("clients.wind:speed_pairs", count=20)` calls
+"""rospy client code of the integration tests, run by RosGraph.run_client (support/__init__.py) in a child
+process after rospy.init_node: `ros.run_client(clients.wind.speed_pairs, count=20)` calls
 speed_pairs(count=20) of clients/wind.py there and returns what it returned, a JSON-serialisable
 dict. A child process per call, since rospy can be initialised once per process."""
 

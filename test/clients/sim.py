@@ -1,5 +1,5 @@
 """The simulation's clock and the firefly's hover set point: client functions the tests share
-(conftest.py's wait_sim_time and send_hover_pose among them)."""
+(support.wait_sim_time and send_hover_pose among them)."""
 
 import time
 

@@ -14,7 +14,6 @@ from rosbags.typesys import get_types_from_msg
 from synthetic_bags import TS, T, header, pose_stamped, twist_stamped, vec
 
 SCRIPTS = Path(__file__).resolve().parents[1] / "scripts"
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 from rotors_evaluation.estimator import evaluate_estimator  # noqa: E402
 
 for name, text in (

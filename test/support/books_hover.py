@@ -1,16 +1,12 @@
 """The book's hovering figure (section 3.6) as a check on a bag of the hovering example: the set
 point (0, 0, 1), 0.040 m position RMS over the 10 s from 5 s after it, and no rotation."""
 
-import sys
 from pathlib import Path
 
 import numpy as np
 
-from conftest import REPO
-
-sys.path.insert(0, str(REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "src"))
-from rotors_evaluation.bag_data import load_flight  # noqa: E402
-from rotors_evaluation.metrics import rms_error  # noqa: E402
+from rotors_evaluation.bag_data import load_flight
+from rotors_evaluation.metrics import rms_error
 
 
 def assert_hovers_like_the_book(bag: Path, label: str) -> float:
