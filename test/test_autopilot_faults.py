@@ -12,6 +12,7 @@ import pytest
 from pymavlink import mavutil
 
 import rotors_sim as rs
+from support import wait_until
 from support.px4 import DT, SteppingWorld, answer, connect, free_port, make_world, next_sensor, start_lockstep
 
 
@@ -181,10 +182,7 @@ def test_hitl_over_serial_pty_exchanges_sensor_and_controls(tmp_path):
     a, b = tmp_path / "sim", tmp_path / "fc"
     socat = subprocess.Popen(["socat", f"pty,raw,echo=0,link={a}", f"pty,raw,echo=0,link={b}"])
     try:
-        deadline = time.monotonic() + 5
-        while not (a.exists() and b.exists()):
-            assert time.monotonic() < deadline
-            time.sleep(0.05)
+        wait_until(lambda: a.exists() and b.exists(), 5, f"socat's two ptys {a} and {b}")
         world = rs.World("basic", step_size=DT)
         world.spawn_mav(
             "firefly", enable_mavlink_interface=True, mavlink_serial_enabled=True, mavlink_serial_device=str(a), mavlink_baud_rate=921600

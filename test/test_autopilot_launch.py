@@ -12,7 +12,7 @@ import pytest
 from pymavlink import mavutil
 
 import clients.autopilot_launch
-from support import launch
+from support import launch, retry_until
 from support.px4 import answer
 
 pytestmark = pytest.mark.xdist_group("betaflight_ports")
@@ -23,14 +23,11 @@ def test_px4_sitl_launch_listens_on_4560_plus_instance_lockstep(ros):
     # the launch's real_time_factor 1: PX4 has 4 ms of wall time per step (test_autopilot_faults.py
     # checks the waiting itself in process)
     launch(ros, "rotors_gazebo", "mav_px4_sitl.launch", f"instance:={instance}", "random_seed:=2")
-    deadline = time.monotonic() + 60
-    while True:
-        try:
-            link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1, autoreconnect=False)
-            break
-        except OSError:
-            assert time.monotonic() < deadline, "nothing listens on TCP 4583"
-            time.sleep(0.2)
+    link = retry_until(
+        lambda: mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1, autoreconnect=False),
+        60,
+        f"the simulator listening on TCP {4560 + instance}",
+    )
     link.mav.heartbeat_send(2, 12, 0, 0, 0)
     # until the first answer the world does not wait: it may have sent several HIL_SENSOR by then;
     # after it, while PX4 is armed, each HIL_SENSOR waits for its answer at most 10 ms of wall time
@@ -96,14 +93,12 @@ def test_mav_px4_sitl_multi_launch_gives_each_vehicle_its_port(ros):
     open can stall the world before the last one is accepted."""
     launch(ros, "rotors_gazebo", "mav_px4_sitl_multi.launch", "real_time_factor:=0")
     for instance in range(3):
-        deadline = time.monotonic() + 60
-        while True:
-            try:
-                link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{4560 + instance}", source_system=1, autoreconnect=False)
-                break
-            except OSError:
-                assert time.monotonic() < deadline, f"nothing listens on TCP {4560 + instance}"
-                time.sleep(0.2)
+        port = 4560 + instance
+        link = retry_until(
+            lambda port=port: mavutil.mavlink_connection(f"tcp:127.0.0.1:{port}", source_system=1, autoreconnect=False),
+            60,
+            f"the simulator listening on TCP {port}",
+        )
         m = link.recv_match(type="HIL_SENSOR", blocking=True, timeout=30)
         link.close()
         assert m is not None, f"no HIL_SENSOR on TCP {4560 + instance}"

@@ -12,7 +12,7 @@ import numpy as np
 from pymavlink import mavutil
 
 import clients.hil_interface
-from support import launch
+from support import launch, wait_until
 from support.net import free_udp_port
 
 
@@ -39,11 +39,12 @@ class AutopilotStandIn:
 
     def wait_for(self, kind, count=1, timeout=60.0, since_usec=0):
         """The first `count` messages of `kind` stamped at or after `since_usec` of sim time."""
-        deadline = time.monotonic() + timeout
-        while len(found := [m for m in self.of_type(kind) if getattr(m, "time_usec", 0) >= since_usec]) < count:
-            assert time.monotonic() < deadline, f"{len(found)} {kind} from the node since {since_usec} us"
-            time.sleep(0.05)
-        return found[:count]
+
+        def enough() -> list:
+            found = [m for m in self.of_type(kind) if getattr(m, "time_usec", 0) >= since_usec]
+            return found[:count] if len(found) >= count else []
+
+        return wait_until(enough, timeout, f"{count} {kind} from the node since {since_usec} us")
 
 
 def test_fixed_wing_hil_launch_exchanges_hil_with_autopilot(ros):

@@ -11,16 +11,11 @@ from rosbags.rosbag1 import Reader
 
 from rotors_evaluation.bag_data import FlightBag
 from support import RosGraph, stop_launch, wait_sim_time
-from support.flights import assert_identical_flights, fly_once, messages
-
-INPUT_TOPIC = "firefly/command/pose"  # the test's own input; rospy numbers its header.seq per publisher
+from support.flights import SETPOINT_TOPICS, assert_identical_flights, fly_once, messages
 
 
 def test_two_lockstep_runs_write_identical_bags(ros: RosGraph):
     assert_identical_flights(messages(fly_once(ros, "run_a"), 5.5), messages(fly_once(ros, "run_b"), 5.5))
-
-
-SETPOINT_TOPICS = {"firefly/command/trajectory"}  # recorded when they arrive, which may be before or after unpausing
 
 
 def fly_hovering_example(ros: RosGraph, tag: str, cpu_hog: bool) -> Path:

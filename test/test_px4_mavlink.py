@@ -271,20 +271,6 @@ def test_no_control_channels_output_i_drives_motor_i_to_max(exchange):
     np.testing.assert_allclose(np.abs(world.rotor_speeds("firefly")), np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]) * MAX_ROT, rtol=2e-3)
 
 
-def quat_mul(a, b):
-    """Hamilton product of (w, x, y, z) quaternions."""
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array(
-        [
-            aw * bw - ax * bx - ay * by - az * bz,
-            aw * bx + ax * bw + ay * bz - az * by,
-            aw * by - ax * bz + ay * bw + az * bx,
-            aw * bz + ax * by - ay * bx + az * bw,
-        ]
-    )
-
-
 class HilSensorAutopilot:
     """The autopilot's side of a closed loop on HIL_SENSOR alone (no ground truth, no GPS): the gyro
     bias, tilt, heading (magnetometer, with the field's declination) and ground pressure altitude

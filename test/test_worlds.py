@@ -16,10 +16,6 @@ from support.flights import contacts_with, evaluate, fly_logged
 WALL_FACE_X_M = 2.0  # obstacle_course.world: the wall spans x = 2.0 .. 2.2
 
 
-def lcp_errors(log: Path) -> int:
-    return sum("LCP internal error" in line for line in log.read_text(errors="replace").splitlines())
-
-
 def test_mav_sent_through_wall_stops_and_eval_counts_collision(ros: RosGraph):
     # the hovering example's private parameters: the waypoint (4, 0, 1) lies behind the wall
     ros.run(["rosparam", "set", "/firefly/hovering_example/x", "4.0"])

@@ -11,10 +11,11 @@ import textwrap
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
+import clients.sim
 from rotors_evaluation.processes import kill_graph_leftovers, stop_process_group
 from rotors_evaluation.ros_master import start_own_master
-import clients.sim
 
 REPO = Path(__file__).resolve().parents[2]
 TESTS = Path(__file__).resolve().parents[1]  # holds the package clients/
@@ -24,8 +25,30 @@ TESTS = Path(__file__).resolve().parents[1]  # holds the package clients/
 WS = Path(os.environ.get("ROTORS_WS", REPO / "build" / "ws"))
 
 
+def wait_until(predicate: Callable[[], Any], timeout_s: float, what: str, period_s: float = 0.05) -> Any:
+    """Polls `predicate` until it returns a true value, which is returned; after timeout_s of wall
+    time an AssertionError says what did not happen."""
+    deadline = time.monotonic() + timeout_s
+    while not (value := predicate()):
+        assert time.monotonic() < deadline, f"{what}: not within {timeout_s:g} s"
+        time.sleep(period_s)
+    return value
+
+
+def retry_until(make: Callable[[], Any], timeout_s: float, what: str, errors=(OSError,), period_s: float = 0.05) -> Any:
+    """make() once it stops raising one of `errors` (a socket that nobody listens on yet), at most
+    timeout_s of wall time; an AssertionError says what did not happen, with the last error."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        try:
+            return make()
+        except errors as e:
+            assert time.monotonic() < deadline, f"{what}: not within {timeout_s:g} s ({e})"
+            time.sleep(period_s)
+
+
 def client_name(function: Callable) -> str:
-    """"clients.module:name" of a function of test/clients/ (the child process imports it by name)."""
+    """ "clients.module:name" of a function of test/clients/ (the child process imports it by name)."""
     module = getattr(function, "__module__", "")
     if not callable(function) or not module.startswith("clients."):
         raise TypeError(f"{function!r} is not a function of a module of test/clients/")

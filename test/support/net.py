@@ -1,14 +1,6 @@
 """Free local ports for the tests' links."""
 
-import json
-import math
 import socket
-import struct
-import threading
-import time
-import numpy as np
-import pytest
-import rotors_sim as rs
 
 
 def free_udp_port() -> int:

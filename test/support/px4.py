@@ -2,16 +2,29 @@
 Gazebo plugin's link, a TCP client that answers HIL_SENSOR with HIL_ACTUATOR_CONTROLS, and PX4's frames."""
 
 import math
-import re
 import socket
-import subprocess
 import threading
-import time
+
 import numpy as np
-import pytest
 from pymavlink import mavutil
 from pymavlink.dialects.v20 import common as mavlink2
+
 import rotors_sim as rs
+from support import retry_until
+
+
+def quat_mul(a, b):
+    """Hamilton product of (w, x, y, z) quaternions."""
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return np.array(
+        [
+            aw * bw - ax * bx - ay * by - az * bz,
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+        ]
+    )
 
 
 DT = 0.004  # [s] PX4's usual 250 Hz
@@ -72,15 +85,13 @@ def start_lockstep(world: rs.World, port: int, steps: int):
 
 def connect(port: int, timeout_s: float = 10.0):
     """PX4's way in: a TCP client that retries until the simulator listens."""
-    deadline = time.monotonic() + timeout_s
-    while True:
-        try:
-            link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{port}", source_system=1, source_component=1, autoreconnect=False)
-            link.mav.heartbeat_send(mavlink2.MAV_TYPE_QUADROTOR, mavlink2.MAV_AUTOPILOT_PX4, 0, 0, 0)
-            return link
-        except OSError:
-            assert time.monotonic() < deadline, "the interface did not listen"
-            time.sleep(0.05)
+    link = retry_until(
+        lambda: mavutil.mavlink_connection(f"tcp:127.0.0.1:{port}", source_system=1, source_component=1, autoreconnect=False),
+        timeout_s,
+        f"the MAVLink interface listening on TCP {port}",
+    )
+    link.mav.heartbeat_send(mavlink2.MAV_TYPE_QUADROTOR, mavlink2.MAV_AUTOPILOT_PX4, 0, 0, 0)
+    return link
 
 
 def answer(link, controls, armed=True, t_us=0):

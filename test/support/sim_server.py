@@ -1,7 +1,7 @@
 """The simulator server (rotors_sim_server) started against a test's ROS graph."""
 
 from pathlib import Path
-import pytest
+
 from support import RosGraph, package_path
 
 
