@@ -22,7 +22,7 @@ struct VehicleSnapshot {
   Eigen::Vector3d a_W = Eigen::Vector3d::Zero();                          ///< [m/s^2] ENU, true acceleration
   Eigen::Vector3d latitude_longitude_altitude = Eigen::Vector3d::Zero();  ///< [deg, deg, m] of p_W
 
-  // the IMU plugin (imuSubTopic)
+  // the IMU plugin (imuSubTopic; each sensor below: its reading on the vehicle bus, sensor_feeds.h)
   bool has_imu = false;
   uint64_t imu_count = 0;
   Eigen::Vector3d gyro_B = Eigen::Vector3d::Zero();   ///< [rad/s] FLU
@@ -51,7 +51,7 @@ struct VehicleSnapshot {
   Eigen::Vector3d gps_velocity_W = Eigen::Vector3d::Zero();                   ///< [m/s] ENU
   double gps_hor_std_m = 0.0, gps_ver_std_m = 0.0;
 
-  // a range sensor (lidarSubTopic, sensor_msgs/Range)
+  // a range sensor (lidarSubTopic: the lidar or range plugin's reading on the vehicle bus)
   bool has_range = false;
   uint64_t range_count = 0;
   double range_m = 0.0, range_min_m = 0.0, range_max_m = 0.0;
