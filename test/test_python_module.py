@@ -200,6 +200,11 @@ def test_sensors_messages_and_contacts():
         assert topics.get(topic) == kind, (topic, topics.get(topic))
     imu, count = world.message("/firefly/imu")
     assert count == 200 and abs(imu.linear_acceleration.z - 9.8) < 0.5  # at rest: the specific force is -g
+    # the same reading from the vehicle bus, without a message
+    reading = world.imu("firefly")
+    assert reading.count == 200 and reading.time_s == imu.header.stamp.to_sec()
+    assert reading.linear_acceleration.tolist() == [imu.linear_acceleration.x, imu.linear_acceleration.y, imu.linear_acceleration.z]
+    assert reading.angular_velocity.tolist() == [imu.angular_velocity.x, imu.angular_velocity.y, imu.angular_velocity.z]
     gps, _ = world.message("/firefly/gps")
     assert abs(gps.latitude - 47.3667) < 0.01  # basic.world's spherical coordinates (Zurich)
     contacts = world.contacts()
@@ -266,6 +271,11 @@ SPHERE = """<?xml version="1.0"?><sdf version="1.6"><model name="s"><link name="
         (lambda w: w.set_motor_speeds("nobody", [1.0] * 6), "no vehicle with motor models in namespace 'nobody'"),
         (lambda w: w.link_state("nobody"), "no model 'nobody' in the world"),
         (lambda w: w.message("/firefly/imuu"), "no plugin publishes '/firefly/imuu'"),
+        (
+            lambda w: w.imu("firefly", "imuu"),
+            r"no IMU publishes '/firefly/imuu' in vehicle 'firefly' \(its IMUs: /firefly/ground_truth/imu, /firefly/imu\)",
+        ),
+        (lambda w: w.odometry("firefly", "odom"), "no odometry sensor publishes '/firefly/odom'"),
         (lambda w: w.set_model_state("firefly", [0, 0, float("inf")]), "position must be finite"),
         (lambda w: w.step(-1), "must be >= 0"),
         (lambda w: w.laser_scan("firefly", "imu"), "has no sensor 'imu'"),
@@ -303,6 +313,7 @@ def test_listen_keeps_only_the_topics_asked_for():
     world.step(5)
     counts = {topic: count for topic, _, count in world.topics()}
     assert counts["/firefly/odometry_sensor1/odometry"] == 5 and counts["/firefly/imu"] == 0
+    assert world.imu("firefly").count == 5  # the vehicle bus carries every reading all the same
     world.listen()
     world.step(5)
     assert world.message("/firefly/imu")[1] == 5

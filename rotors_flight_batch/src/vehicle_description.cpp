@@ -111,12 +111,7 @@ OdometryDescription OdometryOf(const physics::Model& model, const rgp::OdometryR
   if (odometry.outage_map)
     throw SimError(who + ": odometry '" + odometry.topic + "' has an outage map; the batch has none");
   OdometryDescription o;
-  o.topic = odometry.topic;
-  o.divisor = odometry.divisor;
-  o.delay_steps = odometry.delay_steps;
-  o.unknown_delay_s = odometry.unknown_delay_s;
-  o.noise = odometry.noise;
-  o.seed = odometry.seed;
+  static_cast<rgp::OdometryRecord&>(o) = odometry;
   o.mount = MountOf(*model.GetLink(odometry.link_name));
   return o;
 }
@@ -127,8 +122,7 @@ ImuDescription ImuOf(const physics::Model& model, const rgp::ImuRecord& imu, con
                    "' has rotorVibration on; the batch does not step rotor vibration (fly it in a World, "
                    "or build the vehicle with sensor_realism false)");
   ImuDescription out;
-  out.noise = imu.noise;
-  out.seed = imu.seed;
+  static_cast<rgp::ImuRecord&>(out) = imu;
   out.mount = MountOf(*model.GetLink(imu.link_name));
   return out;
 }

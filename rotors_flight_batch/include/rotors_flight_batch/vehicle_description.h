@@ -14,8 +14,7 @@
 #include <Eigen/Geometry>
 
 #include "rotors_core/physics/physics_types.h"
-#include "rotors_gazebo_plugins/models/imu_noise_model.h"
-#include "rotors_gazebo_plugins/models/odometry_model.h"
+#include "rotors_gazebo_plugins/plugin_records.h"
 #include "rotors_gazebo_plugins/models/rotor_model.h"
 #include "rotors_gazebo_plugins/models/wind_field.h"
 #include "rotors_gazebo_plugins/models/wind_model.h"
@@ -39,19 +38,15 @@ struct RotorMount {
   double slowdown = 10.0;                                ///< rotorVelocitySlowdownSim: the joint turns omega / slowdown
 };
 
-struct OdometryDescription {
-  std::string topic;  ///< e.g. "odometry_sensor1/odometry"
+/// The odometry sensor as its plugin loaded it (topic, divisor, delays, noise, randomEngineSeed), and
+/// where it sits.
+struct OdometryDescription : rotors_gazebo_plugins::OdometryRecord {
   Mount mount;
-  int divisor = 1, delay_steps = 0;
-  double unknown_delay_s = 0.0;
-  rotors_gazebo_plugins::OdometryNoiseParams noise;
-  uint64_t seed = 0;  ///< its randomEngineSeed in the description
 };
 
-struct ImuDescription {
+/// The IMU as its plugin loaded it (noise, seed), and where it sits.
+struct ImuDescription : rotors_gazebo_plugins::ImuRecord {
   Mount mount;
-  rotors_gazebo_plugins::ImuNoiseParams noise;
-  uint64_t seed = 0;
 };
 
 struct WindDescription {

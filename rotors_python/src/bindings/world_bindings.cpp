@@ -202,6 +202,29 @@ class PyWorld {
     return py::make_tuple(feed->count, py::array_t<double>(values.size(), values.data()));
   }
 
+  /// The last reading of the IMU on `topic` (resolved) as (count, [t, gyro_I(3) rad/s, specific
+  /// force_I(3) m/s^2]), read from the vehicle bus; None before the first one (or since a reset).
+  py::object ImuArray(const std::string& ns, const std::string& topic) const {
+    auto bus = rotors_gazebo_plugins::VehicleBus::For(*world_, ns);
+    const auto* feed = bus->sensors.imu.Find(topic);
+    if (!feed) {
+      std::string topics;
+      for (const std::string& t : bus->sensors.imu.Topics()) topics += (topics.empty() ? "" : ", ") + t;
+      throw SimError("no IMU publishes '" + topic + "' in vehicle '" + ns +
+                     "' (its IMUs: " + (topics.empty() ? "none" : topics) + ")");
+    }
+    if (!feed->fresh) return py::none();
+    const auto& m = feed->latest;
+    std::vector<double> values{feed->time_s,
+                               m.angular_velocity_I.x(),
+                               m.angular_velocity_I.y(),
+                               m.angular_velocity_I.z(),
+                               m.linear_acceleration_I.x(),
+                               m.linear_acceleration_I.y(),
+                               m.linear_acceleration_I.z()};
+    return py::make_tuple(feed->count, py::array_t<double>(values.size(), values.data()));
+  }
+
   std::vector<std::tuple<std::string, std::string, uint64_t>> Topics() const {
     std::vector<std::tuple<std::string, std::string, uint64_t>> out;
     auto& taps = rotors_sim::MessageTaps::Of(*world_);
@@ -425,6 +448,7 @@ void BindWorld(py::module_& m) {
       .def("set_actuators", &PyWorld::SetActuators, py::arg("namespace"), py::arg("normalized"))
       .def("message", &PyWorld::Message, py::arg("topic"))
       .def("odometry_array", &PyWorld::OdometryArray, py::arg("namespace"), py::arg("topic"))
+      .def("imu_array", &PyWorld::ImuArray, py::arg("namespace"), py::arg("topic"))
       .def("topics", &PyWorld::Topics)
       .def("listen", &PyWorld::Listen, py::arg("topics"))
       .def("attach_controller", &PyWorld::AttachController, py::arg("namespace"), py::arg("odometry_topic"),

@@ -58,6 +58,17 @@ class Odometry:
     count: int
 
 
+@dataclass
+class Imu:
+    """An IMU's reading as sensor_msgs/Imu carries it, in the IMU's frame: time, angular_velocity
+    [rad/s] and linear_acceleration (the specific force) [m/s^2]."""
+
+    time_s: float
+    angular_velocity: np.ndarray
+    linear_acceleration: np.ndarray
+    count: int
+
+
 class World:
     """A world from rotors_gazebo/worlds (by name), a .world file, or SDF text (`sdf=`)."""
 
@@ -225,6 +236,16 @@ class World:
             return None
         count, a = got
         return Odometry(float(a[0]), a[1:4], a[4:8], a[8:11], a[11:14], count)
+
+    def imu(self, namespace: str, topic: str = "imu") -> Imu | None:
+        """The last reading of the IMU publishing /<namespace>/<topic>, read from the vehicle bus
+        (the plugin puts it there every step, whether or not anyone listens), None before the first.
+        SimError when no IMU publishes there."""
+        got = self._w.imu_array(namespace, f"/{namespace}/{topic}")
+        if got is None:
+            return None
+        count, a = got
+        return Imu(float(a[0]), a[1:4], a[4:7], count)
 
     def listen(self, topics: Sequence[str] = ()) -> None:
         """Keep only these topics' messages (their plugins skip building the others): faster when a
