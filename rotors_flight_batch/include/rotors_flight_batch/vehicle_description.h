@@ -1,7 +1,8 @@
 // What the batched flight engine needs to know of a multirotor, read from the model the full world
 // spawned from the same xacro: the solver body's mass and inertia, each rotor's mount and RotorS
-// constants (read by the motor plugin's own reader), the odometry sensor, the IMU and the wind
-// plugin. One source of truth: a change in the xacro or a yaml reaches both engines.
+// constants, the odometry sensor, the IMU and the wind as their plugins registered them on the
+// vehicle bus when they loaded (plugin_records.h: the parameters they read and validated). One
+// source of truth: a change in the xacro or a yaml reaches both engines.
 #pragma once
 
 #include <cstdint>
