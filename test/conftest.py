@@ -13,6 +13,7 @@ from support import RosGraph
 def pytest_configure(config):
     restore_sigint()  # run as a background job (nohup make test &), the ROS processes would ignore Ctrl-C
     config.addinivalue_line("markers", "long: the long tier (minutes each): run by make test-all and make test-long, " "not by make test")
+    config.addinivalue_line("markers", "ros2: the ROS 2 front end with an rclpy client: run by make test-ros2 (after make ros2-setup)")
 
 
 @pytest.fixture

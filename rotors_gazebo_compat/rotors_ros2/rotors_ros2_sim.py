@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""rotors_ros2_sim: the simulator on a ROS 2 graph (rclpy, PyPI's Jazzy wheels; docs/ros2.md).
+
+    build/ros2-venv/bin/python rotors_gazebo_compat/rotors_ros2/rotors_ros2_sim.py --mav firefly
+
+A node named `gazebo` publishes `/clock` (rosgraph_msgs/msg/Clock), `/<mav>/odometry_sensor1/odometry`
+(nav_msgs/msg/Odometry) and `/<mav>/imu` (sensor_msgs/msg/Imu) with every reading of the vehicle's
+odometry sensor and IMU, stamped with sim time and framed as the ROS 1 messages are; it takes set
+points on `/<mav>/command/trajectory` (trajectory_msgs/msg/MultiDOFJointTrajectory: the first point's
+first transform) and `/<mav>/command/pose` (geometry_msgs/msg/PoseStamped), and serves Gazebo ROS 2's
+`/reset_simulation`, `/reset_world`, `/pause_physics` and `/unpause_physics` (std_srvs/srv/Empty).
+Lee's position controller (the hovering example's yaml) runs inside the world's step loop, so the
+flight is in lockstep with its controller whatever the machine's load.
+
+The world itself is rotors_sim's, stepped in a child process (python3 -m rotors_sim.stepper, ROS 1's
+environment): ROS 1's and ROS 2's Python message packages share module names and cannot live in one
+process. --real-time-factor 1 (the default) paces sim time to wall time; 0 runs as fast as it can.
+A set point with a NaN or a missing transform is refused in one line; the world runs on."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import rclpy
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Odometry
+from rclpy.node import Node
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Imu
+from std_srvs.srv import Empty
+from trajectory_msgs.msg import MultiDOFJointTrajectory
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def to_time(t_s: float) -> Time:
+    ns = int(round(t_s * 1e9))
+    return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+
+
+def yaw_of(x: float, y: float, z: float, w: float) -> float:
+    """The yaw of a quaternion (ZYX Euler angles, as mav_msgs::yawFromQuaternion)."""
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+class StepperLink:
+    """The world's process (rotors_sim.stepper): one JSON request per line, one answer per line."""
+
+    def __init__(self, mav: str, world: str, seed: int):
+        # ROS 1's environment for the world's process (ros2_env.sh saves it before it enters ROS 2's)
+        env = dict(os.environ)
+        for name in ("PYTHONPATH", "LD_LIBRARY_PATH"):
+            if f"ROTORS_ROS1_{name}" in env:
+                env[name] = env[f"ROTORS_ROS1_{name}"]
+        python = env.get("ROTORS_ROS1_PYTHON", str(REPO / "build" / "venv" / "bin" / "python"))
+        cmd = [python, "-m", "rotors_sim.stepper", "--mav", mav, "--world", world, "--seed", str(seed)]
+        self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
+        ready = self._read()
+        if "error" in ready:
+            raise SystemExit(f"rotors_ros2_sim: the world did not start: {ready['error']}")
+
+    def _read(self) -> dict:
+        line = self.proc.stdout.readline()
+        if not line:
+            raise SystemExit(f"rotors_ros2_sim: the world's process ended (exit code {self.proc.wait()})")
+        return json.loads(line)
+
+    def request(self, **req) -> dict:
+        self.proc.stdin.write(json.dumps(req) + "\n")
+        self.proc.stdin.flush()
+        return self._read()
+
+    def close(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.stdin.close()
+            self.proc.wait(timeout=10)
+
+
+class RotorsSim(Node):
+    def __init__(self, link: StepperLink, mav: str, real_time_factor: float):
+        super().__init__("gazebo")
+        self.link, self.mav, self.real_time_factor = link, mav, real_time_factor
+        info = link.request(op="info")
+        self.step_s = info["step_s"]
+        self.frames = info["frames"]
+        self.clock_pub = self.create_publisher(Clock, "/clock", 10)
+        self.odometry_pub = self.create_publisher(Odometry, f"/{mav}/odometry_sensor1/odometry", 10)
+        self.imu_pub = self.create_publisher(Imu, f"/{mav}/imu", 10)
+        self.create_subscription(MultiDOFJointTrajectory, f"/{mav}/command/trajectory", self.on_trajectory, 10)
+        self.create_subscription(PoseStamped, f"/{mav}/command/pose", self.on_pose, 10)
+        self.requests: list[dict] = []  # served between steps, in the order they came
+        self.paused = False
+        for name, op in (("/reset_simulation", "reset"), ("/reset_world", "reset_world")):
+            self.create_service(Empty, name, lambda req, res, op=op: self.queue(res, op=op))
+        self.create_service(Empty, "/pause_physics", lambda req, res: self.pause(res, True))
+        self.create_service(Empty, "/unpause_physics", lambda req, res: self.pause(res, False))
+
+    def queue(self, response, **request):
+        self.requests.append(request)
+        return response
+
+    def pause(self, response, paused: bool):
+        self.paused = paused
+        return response
+
+    def set_point(self, p, yaw: float, source: str) -> None:
+        values = [p.x, p.y, p.z, yaw]
+        if not all(math.isfinite(v) for v in values):
+            self.get_logger().error(f"{source}: set point {values} is not finite: ignored, the last one stays in force")
+            return
+        self.requests.append({"op": "set_point", "position": values[:3], "yaw": yaw})
+
+    def on_trajectory(self, msg: MultiDOFJointTrajectory) -> None:
+        if not msg.points or not msg.points[0].transforms:
+            self.get_logger().error("command/trajectory without a point or a transform: ignored")
+            return
+        tf = msg.points[0].transforms[0]
+        q = tf.rotation
+        self.set_point(tf.translation, yaw_of(q.x, q.y, q.z, q.w), "command/trajectory")
+
+    def on_pose(self, msg: PoseStamped) -> None:
+        q = msg.pose.orientation
+        self.set_point(msg.pose.position, yaw_of(q.x, q.y, q.z, q.w), "command/pose")
+
+    def publish(self, answer: dict) -> None:
+        for row in answer["odometry"]:
+            m = Odometry()
+            m.header.stamp = to_time(row[0])
+            m.header.frame_id, m.child_frame_id = self.frames["odometry"], self.frames["odometry_child"]
+            p, q, v, w = m.pose.pose.position, m.pose.pose.orientation, m.twist.twist.linear, m.twist.twist.angular
+            p.x, p.y, p.z = row[1:4]
+            q.x, q.y, q.z, q.w = row[4:8]
+            v.x, v.y, v.z = row[8:11]  # body frame, as RotorS' odometry plugin
+            w.x, w.y, w.z = row[11:14]
+            self.odometry_pub.publish(m)
+        for row in answer["imu"]:
+            m = Imu()
+            m.header.stamp = to_time(row[0])
+            m.header.frame_id = self.frames["imu"]
+            m.orientation_covariance[0] = -1.0  # no orientation measurement (REP 145), as the ROS 1 IMU says
+            m.angular_velocity.x, m.angular_velocity.y, m.angular_velocity.z = row[1:4]
+            m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z = row[4:7]
+            self.imu_pub.publish(m)
+        self.clock_pub.publish(Clock(clock=to_time(answer["t"])))
+
+    def run(self) -> None:
+        wall_start, sim_start = time.monotonic(), None
+        while rclpy.ok():
+            rclpy.spin_once(self, timeout_sec=0.0)
+            while self.requests:
+                answer = self.link.request(**self.requests.pop(0))
+                if "error" in answer:
+                    self.get_logger().error(answer["error"])
+                sim_start = None  # a reset moves sim time: pace from here
+            if self.paused:
+                rclpy.spin_once(self, timeout_sec=0.01)
+                sim_start = None
+                continue
+            answer = self.link.request(op="step", n=1)
+            self.publish(answer)
+            if self.real_time_factor > 0.0:
+                if sim_start is None:
+                    wall_start, sim_start = time.monotonic(), answer["t"]
+                ahead_s = (answer["t"] - sim_start) / self.real_time_factor - (time.monotonic() - wall_start)
+                if ahead_s > 0.0:
+                    rclpy.spin_once(self, timeout_sec=ahead_s)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--mav", default="firefly")
+    parser.add_argument("--world", default="basic")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--real-time-factor", type=float, default=1.0)
+    args = parser.parse_args(argv)
+    link = StepperLink(args.mav, args.world, args.seed)
+    rclpy.init()
+    node = RotorsSim(link, args.mav, args.real_time_factor)
+    try:
+        node.run()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        link.close()
+        node.destroy_node()
+        if rclpy.ok():
+            rclpy.shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

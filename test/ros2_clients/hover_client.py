@@ -1,0 +1,99 @@
+"""An rclpy client of the ROS 2 front end (run with build/ros2-venv's python in scripts/ros2_env.bash's
+environment): it finds the simulator through ROS 2's graph queries, measures the odometry and IMU
+rates over 2 s of sim time, sends the hovering example's set point (0, 0, 1) on command/trajectory,
+watches the firefly reach it, and calls /reset_simulation. Prints RESULT=<json>."""
+
+import json
+import time
+
+import rclpy
+from geometry_msgs.msg import Transform
+from nav_msgs.msg import Odometry
+from rclpy.parameter import Parameter
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Imu
+from std_srvs.srv import Empty
+from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
+
+ODOMETRY, IMU = "/firefly/odometry_sensor1/odometry", "/firefly/imu"
+
+
+def seconds(stamp) -> float:
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
+def main() -> None:
+    rclpy.init()
+    node = rclpy.create_node("hover_client", parameter_overrides=[Parameter("use_sim_time", Parameter.Type.BOOL, True)])
+    result: dict = {}
+    state = {"clock": -1.0, "odometry": [], "imu": []}
+    node.create_subscription(Clock, "/clock", lambda m: state.update(clock=seconds(m.clock)), 10)
+    node.create_subscription(
+        Odometry,
+        ODOMETRY,
+        lambda m: state["odometry"].append((seconds(m.header.stamp), m.header.frame_id, m.child_frame_id, m.pose.pose.position.z)),
+        100,
+    )
+    node.create_subscription(
+        Imu, IMU, lambda m: state["imu"].append((seconds(m.header.stamp), m.header.frame_id, m.linear_acceleration.z)), 100
+    )
+
+    def spin_until(predicate, timeout_s: float, what: str) -> None:
+        deadline = time.monotonic() + timeout_s
+        while not predicate():
+            if time.monotonic() > deadline:
+                raise SystemExit(f"hover_client: {what}: not within {timeout_s:g} s")
+            rclpy.spin_once(node, timeout_sec=0.05)
+
+    def graph_ready() -> bool:
+        topics = dict(node.get_topic_names_and_types())
+        return "gazebo" in node.get_node_names() and ODOMETRY in topics and IMU in topics and "/clock" in topics
+
+    spin_until(graph_ready, 60, "the simulator's node and topics in the graph")
+    result["nodes"] = node.get_node_names()
+    result["topics"] = {k: v for k, v in node.get_topic_names_and_types() if k.startswith(("/firefly", "/clock"))}
+    result["services"] = [name for name, _ in node.get_service_names_and_types() if "physics" in name or "reset" in name]
+
+    # the rates over 2 s of sim time
+    spin_until(lambda: state["clock"] > 0.5, 60, "sim time past 0.5 s")
+    t0 = state["clock"]
+    spin_until(lambda: state["clock"] >= t0 + 2.0, 60, "2 s more of sim time")
+    for name in ("odometry", "imu"):  # messages per second of their own stamps
+        stamps = [m[0] for m in state[name] if t0 <= m[0] <= t0 + 2.0]
+        result[f"{name}_hz"] = (len(stamps) - 1) / (stamps[-1] - stamps[0])
+        result[f"{name}_gaps"] = sum(b - a > 0.015 for a, b in zip(stamps, stamps[1:]))  # a lost message
+    result["odometry_frames"] = [state["odometry"][-1][1], state["odometry"][-1][2]]
+    result["imu_frame"] = state["imu"][-1][1]
+    result["imu_z_at_rest"] = state["imu"][-1][2]
+    result["sim_time_now_minus_clock"] = node.get_clock().now().nanoseconds * 1e-9 - state["clock"]
+    result["z_before"] = state["odometry"][-1][3]
+
+    # the hovering example's set point
+    pub = node.create_publisher(MultiDOFJointTrajectory, "/firefly/command/trajectory", 10)
+    spin_until(lambda: pub.get_subscription_count() > 0, 30, "the simulator subscribed to command/trajectory")
+    msg = MultiDOFJointTrajectory(points=[MultiDOFJointTrajectoryPoint(transforms=[Transform()])])
+    msg.points[0].transforms[0].translation.z = 1.0
+    msg.points[0].transforms[0].rotation.w = 1.0
+    pub.publish(msg)
+    t_sent = state["clock"]
+    spin_until(lambda: state["clock"] >= t_sent + 10.0, 120, "10 s of sim time after the set point")
+    last_2_s = [m[3] for m in state["odometry"] if m[0] > t_sent + 8.0]
+    result["z_after_10_s"] = state["odometry"][-1][3]
+    result["z_offset_last_2_s"] = sum(last_2_s) / len(last_2_s) - 1.0
+
+    # reset_simulation: time and vehicle back to the start
+    client = node.create_client(Empty, "/reset_simulation")
+    spin_until(client.service_is_ready, 30, "/reset_simulation available")
+    future = client.call_async(Empty.Request())
+    spin_until(future.done, 30, "/reset_simulation answered")
+    state["odometry"].clear()
+    spin_until(lambda: state["odometry"] and state["odometry"][-1][0] < 1.0, 30, "odometry from before 1 s of sim time after the reset")
+    result["clock_after_reset"] = state["odometry"][-1][0]
+    result["z_after_reset"] = state["odometry"][-1][3]
+    print("RESULT=" + json.dumps(result), flush=True)
+    node.destroy_node()
+    rclpy.shutdown()
+
+
+if __name__ == "__main__":
+    main()
