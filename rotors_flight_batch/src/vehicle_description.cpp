@@ -158,8 +158,9 @@ VehicleDescription DescribeVehicle(const physics::Model& model, const std::strin
     rgp::SdfParams& params = plugin->Params();
     std::shared_ptr<rgp::VehicleBus> bus;  // the plugin's, by its robotNamespace
     if (params.Has("robotNamespace")) {
-      bus = rgp::VehicleBus::For(*world, rgp::ReadRobotNamespace(params));
-      if (d.robot_namespace.empty()) d.robot_namespace = rgp::ReadRobotNamespace(params);
+      const std::string ns = rgp::ReadRobotNamespace(params);
+      bus = rgp::VehicleBus::For(*world, ns);
+      if (d.robot_namespace.empty()) d.robot_namespace = ns;
     }
     const rgp::PluginRecord* record = bus ? bus->RecordOf(plugin.get()) : nullptr;
     if (!record)

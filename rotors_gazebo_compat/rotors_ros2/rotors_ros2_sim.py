@@ -156,10 +156,12 @@ class RotorsSim(Node):
         while rclpy.ok():
             rclpy.spin_once(self, timeout_sec=0.0)
             while self.requests:
-                answer = self.link.request(**self.requests.pop(0))
+                request = self.requests.pop(0)
+                answer = self.link.request(**request)
                 if "error" in answer:
                     self.get_logger().error(answer["error"])
-                sim_start = None  # a reset moves sim time: pace from here
+                if request["op"] == "reset":
+                    sim_start = None  # sim time went back to 0: pace from here
             if self.paused:
                 rclpy.spin_once(self, timeout_sec=0.01)
                 sim_start = None

@@ -45,7 +45,6 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     model_ = std::make_unique<OpticalFlowModel>(p);
     msg_.header.frame_id = topic_.Namespace() + "/" + sensor_->Name();
     msg_.temperature = 2000;  // centi-degC
-    msg_.distance = -1.0f;
     rotors_sim::physics::World& world = *sensor_->ParentLink()->GetModel()->GetWorldRaw();
     topic_.Advertise(world);
     // the sample goes on the vehicle bus too, whether or not anyone listens
@@ -70,17 +69,16 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     }
     const auto sample = model_->AddFrame(grey, W, H, sensor_->LastUpdateTime().Double());
     if (!sample) return;
-    OpticalFlowReading reading;
+    OpticalFlowReading reading;  // no gyro integrals (0) and an unknown distance (-1), as its defaults say
     reading.integration_time_us = sample->integration_time_us;
     reading.integrated_xy_rad = {sample->integrated_x, sample->integrated_y};
-    reading.integrated_gyro_rad = {msg_.integrated_xgyro, msg_.integrated_ygyro, msg_.integrated_zgyro};
-    reading.distance_m = msg_.distance;
     reading.quality = sample->quality;
     feed_->Put(reading, sensor_->LastUpdateTime().Double());
     msg_.header.stamp = ToRos(sensor_->LastUpdateTime());
-    msg_.integration_time_us = sample->integration_time_us;
+    msg_.integration_time_us = reading.integration_time_us;
     msg_.integrated_x = sample->integrated_x;
     msg_.integrated_y = sample->integrated_y;
+    msg_.distance = static_cast<float>(reading.distance_m);
     msg_.quality = sample->quality;
     topic_.Publish(msg_);
   }

@@ -206,13 +206,7 @@ class PyWorld {
   /// force_I(3) m/s^2]), read from the vehicle bus; None before the first one (or since a reset).
   py::object ImuArray(const std::string& ns, const std::string& topic) const {
     auto bus = rotors_gazebo_plugins::VehicleBus::For(*world_, ns);
-    const auto* feed = bus->sensors.imu.Find(topic);
-    if (!feed) {
-      std::string topics;
-      for (const std::string& t : bus->sensors.imu.Topics()) topics += (topics.empty() ? "" : ", ") + t;
-      throw SimError("no IMU publishes '" + topic + "' in vehicle '" + ns +
-                     "' (its IMUs: " + (topics.empty() ? "none" : topics) + ")");
-    }
+    const auto* feed = FeedNamed(bus->sensors.imu, ns, topic, "IMU", "IMUs");
     if (!feed->fresh) return py::none();
     const auto& m = feed->latest;
     std::vector<double> values{feed->time_s,
@@ -320,15 +314,21 @@ class PyWorld {
 
  private:
   using OdometryFeed = rotors_gazebo_plugins::SensorFeed<rotors_gazebo_plugins::OdometryMeasurement>;
-  /// The feed of the odometry sensor on `topic` (resolved) in the vehicle `ns` (SimError naming the
-  /// vehicle's odometry topics when none publishes there).
+  /// The feed of the `sensor` on `topic` (resolved) among `feeds` of the vehicle `ns` (SimError
+  /// naming the vehicle's `listed` when none publishes there).
+  template <class Reading>
+  static const rotors_gazebo_plugins::SensorFeed<Reading>* FeedNamed(
+      const rotors_gazebo_plugins::SensorFeeds<Reading>& feeds, const std::string& ns, const std::string& topic,
+      const char* sensor, const char* listed) {
+    if (const auto* feed = feeds.Find(topic)) return feed;
+    std::string topics;
+    for (const std::string& t : feeds.Topics()) topics += (topics.empty() ? "" : ", ") + t;
+    throw SimError(std::string("no ") + sensor + " publishes '" + topic + "' in vehicle '" + ns + "' (its " + listed +
+                   ": " + (topics.empty() ? "none" : topics) + ")");
+  }
   static const OdometryFeed* FeedOfOdometry(const rotors_gazebo_plugins::VehicleBus& bus, const std::string& ns,
                                             const std::string& topic) {
-    if (const OdometryFeed* feed = bus.sensors.odometry.Find(topic)) return feed;
-    std::string topics;
-    for (const std::string& t : bus.sensors.odometry.Topics()) topics += (topics.empty() ? "" : ", ") + t;
-    throw SimError("no odometry sensor publishes '" + topic + "' in vehicle '" + ns +
-                   "' (its odometry: " + (topics.empty() ? "none" : topics) + ")");
+    return FeedNamed(bus.sensors.odometry, ns, topic, "odometry sensor", "odometry");
   }
 
   struct Attached {
