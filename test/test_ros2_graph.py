@@ -27,10 +27,13 @@ def on_loopback_graph(script: str, timeout_s: float) -> subprocess.CompletedProc
 def test_an_rclpy_client_flies_the_hovering_example_on_ros2(tmp_path):
     assert (REPO / "build" / "ros2-venv" / "bin" / "python").exists(), "no build/ros2-venv: run make ros2-setup"
     sim_log = tmp_path / "sim.log"
+    # the client's waits share a budget of 240 s; the simulator gets 10 s to stop after SIGINT, then
+    # SIGKILL: both fit in the 300 s this test gives the whole graph
     res = on_loopback_graph(
         f"python {REPO}/rotors_gazebo_compat/rotors_ros2/rotors_ros2_sim.py --mav firefly --seed 3 > {sim_log} 2>&1 & sim=$!; "
-        f"status=0; python {REPO}/test/ros2_clients/hover_client.py || status=$?; "
-        "kill -INT $sim; wait $sim || true; exit $status",
+        f"status=0; python {REPO}/test/ros2_clients/hover_client.py 240 || status=$?; "
+        "kill -INT $sim; for _ in $(seq 100); do kill -0 $sim 2>/dev/null || break; sleep 0.1; done; "
+        "kill -KILL $sim 2>/dev/null || true; exit $status",
         timeout_s=300,
     )
     lines = [line for line in res.stdout.splitlines() if line.startswith("RESULT=")]

@@ -1,9 +1,11 @@
 """An rclpy client of the ROS 2 front end (run with build/ros2-venv's python in scripts/ros2_env.bash's
 environment): it finds the simulator through ROS 2's graph queries, measures the odometry and IMU
 rates over 2 s of sim time, sends the hovering example's set point (0, 0, 1) on command/trajectory,
-watches the firefly reach it, and calls /reset_simulation. Prints RESULT=<json>."""
+watches the firefly reach it, and calls /reset_simulation. Prints RESULT=<json>. Every wait is
+bounded, and all of them together by the budget given as the first argument [s of wall time]."""
 
 import json
+import sys
 import time
 
 import rclpy
@@ -23,6 +25,7 @@ def seconds(stamp) -> float:
 
 
 def main() -> None:
+    budget_deadline = time.monotonic() + float(sys.argv[1])
     rclpy.init()
     node = rclpy.create_node("hover_client", parameter_overrides=[Parameter("use_sim_time", Parameter.Type.BOOL, True)])
     result: dict = {}
@@ -39,10 +42,10 @@ def main() -> None:
     )
 
     def spin_until(predicate, timeout_s: float, what: str) -> None:
-        deadline = time.monotonic() + timeout_s
+        deadline = min(time.monotonic() + timeout_s, budget_deadline)
         while not predicate():
             if time.monotonic() > deadline:
-                raise SystemExit(f"hover_client: {what}: not within {timeout_s:g} s")
+                raise SystemExit(f"hover_client: {what}: not within {timeout_s:g} s (or the client's budget of {sys.argv[1]} s)")
             rclpy.spin_once(node, timeout_sec=0.05)
 
     def graph_ready() -> bool:
