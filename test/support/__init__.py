@@ -25,13 +25,20 @@ TESTS = Path(__file__).resolve().parents[1]  # holds the package clients/
 WS = Path(os.environ.get("ROTORS_WS", REPO / "build" / "ws"))
 
 
-def wait_until(predicate: Callable[[], Any], timeout_s: float, what: str, period_s: float = 0.05) -> Any:
-    """Polls `predicate` until it returns a true value, which is returned; after timeout_s of wall
-    time an AssertionError says what did not happen."""
+def poll(predicate: Callable[[], Any], timeout_s: float, period_s: float = 0.05) -> Any:
+    """Calls `predicate` every period_s until it returns a true value, at most timeout_s of wall
+    time; its last value (false when the time ran out)."""
     deadline = time.monotonic() + timeout_s
-    while not (value := predicate()):
-        assert time.monotonic() < deadline, f"{what}: not within {timeout_s:g} s"
+    while not (value := predicate()) and time.monotonic() < deadline:
         time.sleep(period_s)
+    return value
+
+
+def wait_until(predicate: Callable[[], Any], timeout_s: float, what: str, period_s: float = 0.05) -> Any:
+    """`predicate`'s first true value (poll); after timeout_s of wall time an AssertionError says
+    what did not happen."""
+    value = poll(predicate, timeout_s, period_s)
+    assert value, f"{what}: not within {timeout_s:g} s"
     return value
 
 
@@ -69,7 +76,9 @@ class RosGraph:
         master.log_path = tmp_path / "master.log"  # type: ignore[attr-defined]
         self.procs.append(master)
         self.env["ROS_MASTER_URI"] = f"http://127.0.0.1:{self.port}"
-        self.wait_for(lambda: self.run(["rosparam", "set", "/use_sim_time", "true"], check=False).returncode == 0, 20)
+        assert self.wait_for(
+            lambda: self.run(["rosparam", "set", "/use_sim_time", "true"], check=False).returncode == 0, 20
+        ), f"the ROS master on port {self.port} did not take /use_sim_time within 20 s"
 
     def start(self, cmd: list[str], name: str) -> subprocess.Popen:
         log = open(self.tmp_path / f"{name}.log", "w")
@@ -108,12 +117,8 @@ class RosGraph:
 
     @staticmethod
     def wait_for(predicate, timeout: float, period: float = 0.2) -> bool:
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if predicate():
-                return True
-            time.sleep(period)
-        return False
+        """Whether `predicate` came true within `timeout` s (poll); the caller says what failed."""
+        return bool(poll(predicate, timeout, period))
 
     def stop(self) -> None:
         for p in reversed(self.procs):
