@@ -1,5 +1,6 @@
 """Client functions of test_fixed_wing.py."""
 
+import queue
 import time
 
 import rospy
@@ -25,8 +26,17 @@ def joystick_flight_from_trim(pitch: float, thrust: float, qy: float, qw: float,
     cmd.pitch, cmd.thrust.x = pitch, thrust
     pub.publish(cmd)
 
+    # one subscriber for the whole flight, every message queued: a new subscription per message (as
+    # rospy.wait_for_message makes) misses the messages while it connects, at 5 x real time long
+    # enough for the techpod to fly past the trim state's first metres before one is seen
+    messages: queue.Queue = queue.Queue()
+    rospy.Subscriber("/techpod/ground_truth/odometry", Odometry, messages.put, queue_size=None)
+
     def odometry():
-        return rospy.wait_for_message("/techpod/ground_truth/odometry", Odometry, timeout=60)
+        try:
+            return messages.get(timeout=60)
+        except queue.Empty:
+            raise RuntimeError("no /techpod/ground_truth/odometry within 60 s of wall time") from None
 
     deadline = time.monotonic() + 60.0
     while pub.get_num_connections() == 0:
@@ -42,6 +52,8 @@ def joystick_flight_from_trim(pitch: float, thrust: float, qy: float, qw: float,
     state.pose.orientation.y, state.pose.orientation.w = qy, qw
     state.twist.linear.x = v_trim
     rospy.wait_for_service("/gazebo/set_model_state", timeout=30)
+    while not messages.empty():  # what came before the reset (the reset's own step follows)
+        messages.get_nowait()
     reply = rospy.ServiceProxy("/gazebo/set_model_state", SetModelState)(state)
     if not reply.success:
         raise RuntimeError(f"/gazebo/set_model_state refused the trim state: {reply.status_message}")
