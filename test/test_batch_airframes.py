@@ -12,7 +12,7 @@ import pytest
 import rotors_sim as rs
 from rotors_sim.envs.batched import FlightBatchEnv
 from rotors_sim.paths import package_path
-from rotors_sim.randomization import check_spec, draw_airframe
+from rotors_sim.randomization import check_spec, draw_airframe, draw_airframe_rows, draw_airframes
 from rotors_sim.world import run_xacro
 
 DT, DIVISOR = 0.002, 5
@@ -321,6 +321,41 @@ def test_draws_follow_the_spec_and_bad_input_is_one_line():
     assert np.isfinite(batch.truth()).all() and not np.array_equal(before, batch.truth())
     with pytest.raises(rs.SimError, match="vehicle 2 is not in 0..1"):
         batch.set_airframe(2, mass=1.0)
+
+
+def test_airframes_set_in_one_call_are_those_set_one_by_one_and_a_bad_row_changes_none():
+    """set_airframes (the environments' reset) gives each vehicle what set_airframe gives it; a bad
+    value names its vehicle and leaves every vehicle as it was; the rows drawn for several
+    generators are the dicts drawn for each."""
+    spec = check_spec(
+        {
+            "mass": ("uniform", 0.8, 1.2),
+            "inertia": ("uniform", 0.8, 1.2),
+            "cog": ("uniform", -0.01, 0.01),
+            "motorConstant": ("normal", 1.0, 0.03),
+            "actuatorDelay": ("uniform", 0, 3),
+        }
+    )
+    one, bulk = rs.FlightBatch(MAV, 6), rs.FlightBatch(MAV, 6)
+    nominal = one.nominal_airframe
+    picked = [1, 4, 5]
+    rows = draw_airframe_rows(spec, nominal, [np.random.default_rng(k) for k in picked])
+    each = draw_airframes(spec, nominal, [np.random.default_rng(k) for k in picked])
+    for i, airframe in zip(picked, each):
+        one.set_airframe(i, **airframe)
+    bulk.set_airframes(picked, **rows)
+    for i in range(6):
+        a, b = one.airframe(i), bulk.airframe(i)
+        assert all(np.array_equal(a[k], b[k]) for k in a), f"vehicle {i}"
+    assert bulk.airframe(4)["mass"] != nominal["mass"] and bulk.airframe(0)["mass"] == nominal["mass"]
+    before = [bulk.airframe(i) for i in range(6)]
+    bad = {k: v.copy() for k, v in rows.items()}
+    bad["mass"][2] = -1.0
+    with pytest.raises(rs.SimError, match=r"^FlightBatch.set_airframe: vehicle 5: mass = -1.000000 kg must be > 0$"):
+        bulk.set_airframes(picked, **bad)
+    with pytest.raises(rs.SimError, match=r"set_airframes: mass must have one row per vehicle \(3\)"):
+        bulk.set_airframes(picked, mass=np.ones(2))
+    assert all(all(np.array_equal(a[k], bulk.airframe(i)[k]) for k in a) for i, a in enumerate(before))
 
 
 def test_each_vehicle_its_own_wind_as_the_world_spawned_with_it():

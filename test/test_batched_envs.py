@@ -185,3 +185,41 @@ def test_a_crash_scores_below_any_hover_that_lasts_longer():
     assert terminated[0] and hover_return > fall_return
     with pytest.raises(rs.SimError, match="alive_bonus = -1.0 must be >= 0"):
         FlightBatchEnv("hover", 1, alive_bonus=-1.0)
+
+
+def test_the_row_math_of_the_observations_matches_its_definition():
+    """rotate_rows is R(q) v (against the rotation matrix of q), odometry_observations is
+    (p - origin, R(q) v_B, q, omega_B) clipped and in float32 (a NaN stays NaN), block_norms the
+    Euclidean norms of its 3-column blocks."""
+    from rotors_sim import _engine
+    from rotors_sim.envs.batched import rotation_rows
+
+    rng = np.random.default_rng(3)
+    q = rng.normal(size=(50, 4))
+    q /= np.linalg.norm(q, axis=1, keepdims=True)
+    v = rng.normal(scale=5.0, size=(50, 3))
+    expected = np.einsum("nij,nj->ni", rotation_rows(q), v)
+    assert np.allclose(_engine.rotate_rows(q, v), expected, rtol=0, atol=1e-13)
+    quarter_turn_z = np.array([[0.0, 0.0, np.sqrt(0.5), np.sqrt(0.5)]])
+    assert np.allclose(_engine.rotate_rows(quarter_turn_z, np.array([[1.0, 0.0, 0.0]])), [[0.0, 1.0, 0.0]], atol=1e-15)
+
+    odometry = np.column_stack([rng.normal(scale=4.0, size=(50, 3)), q, v, rng.normal(scale=40.0, size=(50, 3)), np.zeros(50)])
+    odometry[7, 0] = np.nan
+    high = np.array([5.0] * 3 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3)
+    target = np.array([0.0, 0.0, 1.0])
+    obs = _engine.odometry_observations(odometry, [target], -high, high)
+    reference = np.column_stack([odometry[:, 0:3] - target, expected, q, odometry[:, 10:13]])
+    reference = np.minimum(np.maximum(reference, -high), high).astype(np.float32)
+    assert obs.dtype == np.float32 and obs.shape == (50, 13)
+    assert np.isnan(obs[7, 0]) and np.array_equal(np.isnan(obs), np.isnan(reference))
+    assert np.allclose(obs, reference, rtol=1e-6, atol=1e-6, equal_nan=True)
+    assert np.all(np.abs(obs[~np.isnan(obs)].reshape(-1)) <= np.tile(high, 50)[~np.isnan(obs).reshape(-1)])
+    with pytest.raises(rs.SimError, match="odometry must be N x 14"):
+        _engine.odometry_observations(odometry[:, :13], [target], -high, high)
+
+    x = rng.normal(size=(20, 13))
+    assert np.array_equal(
+        _engine.block_norms(x, [0, 3, 10]), np.column_stack([np.linalg.norm(x[:, k : k + 3], axis=1) for k in (0, 3, 10)])
+    )
+    with pytest.raises(rs.SimError, match="columns 11..13 are outside the 13 columns"):
+        _engine.block_norms(x, [11])

@@ -643,6 +643,25 @@ const Airframe& FlightBatch::GetAirframe(int i) const {
 }
 
 void FlightBatch::SetAirframe(int i, const Airframe& airframe) {
+  const Airframe checked = CheckedAirframe(i, airframe);
+  airframes_[i] = checked;
+  WriteAirframe(i, checked);
+}
+
+void FlightBatch::SetAirframes(const std::vector<int>& indices, const std::vector<Airframe>& airframes) {
+  if (indices.size() != airframes.size())
+    throw SimError("FlightBatch.set_airframes: " + std::to_string(indices.size()) + " vehicles for " +
+                   std::to_string(airframes.size()) + " airframes");
+  std::vector<Airframe> checked;
+  checked.reserve(airframes.size());
+  for (size_t j = 0; j < airframes.size(); ++j) checked.push_back(CheckedAirframe(indices[j], airframes[j]));
+  for (size_t j = 0; j < checked.size(); ++j) {
+    airframes_[indices[j]] = checked[j];
+    WriteAirframe(indices[j], checked[j]);
+  }
+}
+
+Airframe FlightBatch::CheckedAirframe(int i, const Airframe& airframe) const {
   const std::string who = "FlightBatch.set_airframe: vehicle " + std::to_string(i);
   if (i < 0 || i >= n_) throw SimError(who + " is not in 0.." + std::to_string(n_ - 1));
   if (!(airframe.mass_kg > 0.0) || !std::isfinite(airframe.mass_kg))
@@ -685,8 +704,7 @@ void FlightBatch::SetAirframe(int i, const Airframe& airframe) {
     const std::string why = as_plugin.Validate();
     if (!why.empty()) throw SimError(who + ", rotor " + std::to_string(r) + ": " + why);
   }
-  airframes_[i] = checked;
-  WriteAirframe(i, checked);
+  return checked;
 }
 
 void FlightBatch::WriteAirframe(size_t i, const Airframe& a) {

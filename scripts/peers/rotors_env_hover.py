@@ -2,7 +2,8 @@
 motor actions: each rotor's speed, physics at 500 Hz, 100 Hz actions), one FlightBatchEnv.step per
 control period from Python with the actions of a fixed hover (each rotor at the hover speed), with
 its observations, rewards and autoreset; beside it the raw engine in the same mode (rotor_speeds,
-no controller, no IMU, as the environment) stepped in one call. Prints one JSON line.
+no controller, no IMU, as the environment; randomized: every vehicle flying an airframe drawn from
+the same spec, drawn once) stepped in one call. Prints one JSON line.
     python rotors_env_hover.py <vehicles> <seconds> [randomized|nominal]
 randomized: every vehicle its own airframe, drawn again at each reset (docs/batched_flight.md)."""
 
@@ -14,6 +15,7 @@ import numpy as np
 
 import rotors_sim as rs
 from rotors_sim.envs.batched import FlightBatchEnv
+from rotors_sim.randomization import check_spec, draw_airframes
 
 vehicles, seconds = int(sys.argv[1]), float(sys.argv[2])
 randomized = (sys.argv[3] if len(sys.argv) > 3 else "nominal") == "randomized"
@@ -32,6 +34,10 @@ for _ in range(periods):
 env_wall = time.perf_counter() - t0
 
 raw = rs.FlightBatch("firefly", vehicles, mode="rotor_speeds", step_size=0.002, control_divisor=5, imu=False)
+if randomized:
+    rngs = [np.random.default_rng(i) for i in range(vehicles)]
+    for i, airframe in enumerate(draw_airframes(check_spec(SPEC), raw.nominal_airframe, rngs)):
+        raw.set_airframe(i, **airframe)
 raw.commands[:] = hover_speed
 raw.step(50)
 raw.reset()

@@ -153,6 +153,9 @@ class FlightBatch {
   /// naming the vehicle and the bad value (the motor plugin's own checks; mass > 0; an inertia that
   /// is symmetric positive definite), and nothing changes.
   void SetAirframe(int i, const Airframe& airframe);
+  /// Vehicle indices[j] flies airframes[j], each checked as SetAirframe checks it; on the first bad
+  /// one, SimError naming its vehicle, and no vehicle's airframe changes.
+  void SetAirframes(const std::vector<int>& indices, const std::vector<Airframe>& airframes);
 
   /// Vehicle i flies among environment i's obstacles of `field` (nullptr: none): after every
   /// physics step, Collided()[i] becomes 1 when the vehicle's collision sphere (the sphere around
@@ -213,6 +216,8 @@ class FlightBatch {
   /// 4,096 take about a quarter of a millisecond: more than waking the pool's threads costs).
   static constexpr long kPoolMinVehicleSteps = 4096;
   void BuildKernelModel();
+  /// `airframe` as vehicle i flies it (the description's turning directions), or SimError naming the bad value.
+  Airframe CheckedAirframe(int i, const Airframe& airframe) const;
   void WriteAirframe(size_t i, const Airframe& airframe);  ///< into the kernel's arrays
   void ParkPaddingLanes();
   void StepRange(int begin, int end, long steps);

@@ -35,4 +35,5 @@ void BindWorld(pybind11::module_& m);
 void BindControllers(pybind11::module_& m);
 void BindFrames(pybind11::module_& m);
 void BindFlightBatch(pybind11::module_& m);
+void BindRowMath(pybind11::module_& m);
 }  // namespace rotors_python

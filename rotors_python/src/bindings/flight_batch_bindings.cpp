@@ -160,86 +160,130 @@ py::dict AirframeDict(const Airframe& a, const VehicleDescription& d) {
   return out;
 }
 
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// Sets the airframe parameter `name` (AirframeDict's keys) of `a` from the values at `v`, shaped
+/// `shape` (a scalar: no dimension); SimError naming an unknown key or a value of the wrong shape.
+void ApplyAirframeValue(Airframe& a, const std::string& name, const double* v, const std::vector<py::ssize_t>& shape,
+                        const std::string& who, const VehicleDescription& d) {
+  const bool scalar = shape.empty();
+  const bool three = shape.size() == 1 && shape[0] == 3;
+  auto odometry = std::find_if(kOdometryNoiseFields.begin(), kOdometryNoiseFields.end(),
+                               [&](const auto& f) { return name == f.first; });
+  if (odometry != kOdometryNoiseFields.end()) {
+    if (!three) throw SimError(who + ": " + name + " must be 3 values (x, y, z)");
+    a.odometry_noise.*(odometry->second) = {v[0], v[1], v[2]};
+    return;
+  }
+  auto imu =
+      std::find_if(kImuNoiseFields.begin(), kImuNoiseFields.end(), [&](const auto& f) { return name == f.first; });
+  if (imu != kImuNoiseFields.end()) {
+    if (!d.imu) throw SimError(who + ": '" + name + "' given, but the vehicle has no IMU");
+    if (!scalar) throw SimError(who + ": " + name + " must be one number");
+    a.imu_noise.*(imu->second) = v[0];
+    return;
+  }
+  if (name == "mass") {
+    if (!scalar) throw SimError(who + ": mass must be one number [kg]");
+    a.mass_kg = v[0];
+    return;
+  }
+  if (name == "inertia") {
+    if (shape.size() != 2 || shape[0] != 3 || shape[1] != 3)
+      throw SimError(who + ": inertia must be a 3 x 3 array [kg m^2]");
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) a.inertia_B_kg_m2(r, c) = v[3 * r + c];
+    return;
+  }
+  auto wind = std::find_if(kWindFields.begin(), kWindFields.end(), [&](const auto& f) { return name == f.first; });
+  const bool direction = name == "windDirection" || name == "windGustDirection";
+  if ((wind != kWindFields.end() || direction) && !d.wind.has_value())
+    throw SimError(who + ": '" + name + "' given, but the vehicle has no wind plugin (spawn it with one)");
+  if (wind != kWindFields.end()) {
+    if (!scalar) throw SimError(who + ": " + name + " must be one number");
+    a.wind.*(wind->second) = v[0];
+    return;
+  }
+  if (direction) {
+    if (!three) throw SimError(who + ": " + name + " must be 3 values");
+    (name == "windDirection" ? a.wind.wind_direction : a.wind.wind_gust_direction) = {v[0], v[1], v[2]};
+    return;
+  }
+  if (name == "actuatorDelay") {
+    if (!scalar || v[0] != std::floor(v[0]))
+      throw SimError(who + ": actuatorDelay must be a whole number of physics steps");
+    a.actuator_delay_steps = static_cast<int>(v[0]);
+    return;
+  }
+  if (name == "cog") {
+    if (!three) throw SimError(who + ": cog must be 3 values [m] (model frame)");
+    a.p_M_cog = {v[0], v[1], v[2]};
+    return;
+  }
+  auto it = std::find_if(kRotorFields.begin(), kRotorFields.end(), [&](const auto& f) { return name == f.first; });
+  if (it == kRotorFields.end()) {
+    std::string known = "mass, inertia, cog, actuatorDelay";
+    for (const auto& f : kRotorFields) known += std::string(", ") + f.first;
+    for (const auto& f : kOdometryNoiseFields) known += std::string(", ") + f.first;
+    if (d.imu)
+      for (const auto& f : kImuNoiseFields) known += std::string(", ") + f.first;
+    if (d.wind) {
+      for (const auto& f : kWindFields) known += std::string(", ") + f.first;
+      known += ", windDirection, windGustDirection";
+    }
+    throw SimError(who + ": '" + name + "' is not an airframe parameter; use " + known);
+  }
+  if (shape.size() != 1 || shape[0] != static_cast<py::ssize_t>(a.rotors.size()))
+    throw SimError(who + ": " + name + " must have one value per rotor (" + std::to_string(a.rotors.size()) + ")");
+  for (size_t r = 0; r < a.rotors.size(); ++r) a.rotors[r].*(it->second) = v[r];
+}
+
+/// A value of an airframe dict as doubles; SimError naming it when it is not numbers.
+Doubles AirframeValues(const py::handle& value, const std::string& name, const std::string& who) {
+  try {
+    return Doubles(py::reinterpret_borrow<py::object>(value));
+  } catch (const py::error_already_set&) {
+    throw SimError(who + ": " + name + " must be numbers");
+  }
+}
+
 /// `base` with the entries of `values` (AirframeDict's keys; any subset); SimError naming an unknown
 /// key or an array of the wrong length.
 Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle, const VehicleDescription& d) {
   Airframe a = base;
-  const bool has_wind = d.wind.has_value();
   const std::string who = "FlightBatch.set_airframe: vehicle " + std::to_string(vehicle);
   for (const auto& [key, value] : values) {
     const std::string name = py::str(key);
-    auto odometry = std::find_if(kOdometryNoiseFields.begin(), kOdometryNoiseFields.end(),
-                                 [&](const auto& f) { return name == f.first; });
-    if (odometry != kOdometryNoiseFields.end()) {
-      const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-      if (!v || v.ndim() != 1 || v.shape(0) != 3) throw SimError(who + ": " + name + " must be 3 values (x, y, z)");
-      a.odometry_noise.*(odometry->second) = {v.at(0), v.at(1), v.at(2)};
-      continue;
-    }
-    auto imu =
-        std::find_if(kImuNoiseFields.begin(), kImuNoiseFields.end(), [&](const auto& f) { return name == f.first; });
-    if (imu != kImuNoiseFields.end()) {
-      if (!d.imu) throw SimError(who + ": '" + name + "' given, but the vehicle has no IMU");
-      a.imu_noise.*(imu->second) = value.cast<double>();
-      continue;
-    }
-    if (name == "mass") {
-      a.mass_kg = value.cast<double>();
-      continue;
-    }
-    if (name == "inertia") {
-      const auto I = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-      if (!I || I.ndim() != 2 || I.shape(0) != 3 || I.shape(1) != 3)
-        throw SimError(who + ": inertia must be a 3 x 3 array [kg m^2]");
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) a.inertia_B_kg_m2(r, c) = I.at(r, c);
-      continue;
-    }
-    auto wind = std::find_if(kWindFields.begin(), kWindFields.end(), [&](const auto& f) { return name == f.first; });
-    const bool direction = name == "windDirection" || name == "windGustDirection";
-    if ((wind != kWindFields.end() || direction) && !has_wind)
-      throw SimError(who + ": '" + name + "' given, but the vehicle has no wind plugin (spawn it with one)");
-    if (wind != kWindFields.end()) {
-      a.wind.*(wind->second) = value.cast<double>();
-      continue;
-    }
-    if (direction) {
-      const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-      if (!d || d.ndim() != 1 || d.shape(0) != 3) throw SimError(who + ": " + name + " must be 3 values");
-      (name == "windDirection" ? a.wind.wind_direction : a.wind.wind_gust_direction) = {d.at(0), d.at(1), d.at(2)};
-      continue;
-    }
-    if (name == "actuatorDelay") {
-      const double steps = value.cast<double>();
-      if (steps != std::floor(steps)) throw SimError(who + ": actuatorDelay must be a whole number of physics steps");
-      a.actuator_delay_steps = static_cast<int>(steps);
-      continue;
-    }
-    if (name == "cog") {
-      const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-      if (!p || p.ndim() != 1 || p.shape(0) != 3) throw SimError(who + ": cog must be 3 values [m] (model frame)");
-      a.p_M_cog = {p.at(0), p.at(1), p.at(2)};
-      continue;
-    }
-    auto it = std::find_if(kRotorFields.begin(), kRotorFields.end(), [&](const auto& f) { return name == f.first; });
-    if (it == kRotorFields.end()) {
-      std::string known = "mass, inertia, cog, actuatorDelay";
-      for (const auto& f : kRotorFields) known += std::string(", ") + f.first;
-      for (const auto& f : kOdometryNoiseFields) known += std::string(", ") + f.first;
-      if (d.imu)
-        for (const auto& f : kImuNoiseFields) known += std::string(", ") + f.first;
-      if (has_wind) {
-        for (const auto& f : kWindFields) known += std::string(", ") + f.first;
-        known += ", windDirection, windGustDirection";
-      }
-      throw SimError(who + ": '" + name + "' is not an airframe parameter; use " + known);
-    }
-    const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-    if (!v || v.ndim() != 1 || v.shape(0) != static_cast<py::ssize_t>(a.rotors.size()))
-      throw SimError(who + ": " + name + " must have one value per rotor (" + std::to_string(a.rotors.size()) + ")");
-    for (size_t r = 0; r < a.rotors.size(); ++r) a.rotors[r].*(it->second) = v.at(r);
+    const Doubles v = AirframeValues(value, name, who);
+    ApplyAirframeValue(a, name, v.data(), std::vector<py::ssize_t>(v.shape(), v.shape() + v.ndim()), who, d);
   }
   return a;
+}
+
+/// One airframe per vehicle of `indices`: the nominal with row j of each array of `values` (the
+/// dict's keys as set_airframe's, each array with one row per vehicle).
+std::vector<Airframe> AirframesFrom(const Airframe& base, const std::vector<int>& indices, const py::dict& values,
+                                    const VehicleDescription& d) {
+  const py::ssize_t k = static_cast<py::ssize_t>(indices.size());
+  std::vector<std::pair<std::string, Doubles>> columns;
+  for (const auto& [key, value] : values) {
+    const std::string name = py::str(key);
+    Doubles v = AirframeValues(value, name, "FlightBatch.set_airframes");
+    if (v.ndim() < 1 || v.shape(0) != k)
+      throw SimError("FlightBatch.set_airframes: " + name + " must have one row per vehicle (" + std::to_string(k) +
+                     ")");
+    columns.emplace_back(name, std::move(v));
+  }
+  std::vector<Airframe> out(indices.size(), base);
+  for (py::ssize_t j = 0; j < k; ++j) {
+    const std::string who = "FlightBatch.set_airframes: vehicle " + std::to_string(indices[j]);
+    for (const auto& [name, v] : columns) {
+      const std::vector<py::ssize_t> shape(v.shape() + 1, v.shape() + v.ndim());
+      const py::ssize_t row = v.ndim() == 1 ? 1 : v.size() / k;
+      ApplyAirframeValue(out[j], name, v.data() + j * row, shape, who, d);
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -463,6 +507,14 @@ void BindFlightBatch(py::module_& m) {
           },
           py::arg("i"), py::arg("values"),
           "Vehicle i flies the nominal airframe with `values` (airframe()'s keys, any subset) in place.")
+      .def(
+          "set_airframes",
+          [](FlightBatch& b, const std::vector<int>& indices, const py::dict& values) {
+            b.SetAirframes(indices, AirframesFrom(b.NominalAirframe(), indices, values, b.Description()));
+          },
+          py::arg("indices"), py::arg("values"),
+          "Vehicle indices[j] flies the nominal airframe with row j of each array of `values` in place; "
+          "on a bad value no vehicle changes.")
       .def("set_seed", &FlightBatch::SetSeed, py::arg("i"), py::arg("seed"),
            "Vehicle i's random_seed (sensor and wind noise) from its next reset on.")
       .def_property_readonly("count", &FlightBatch::Count)

@@ -8,4 +8,5 @@ PYBIND11_MODULE(_engine, m) {
   rotors_python::BindControllers(m);
   rotors_python::BindFrames(m);
   rotors_python::BindFlightBatch(m);
+  rotors_python::BindRowMath(m);
 }

@@ -170,6 +170,12 @@ class FlightBatch:
         controllers keep the yaml's vehicle: they do not know the airframe they fly."""
         self._b.set_airframe(int(i), values)
 
+    def set_airframes(self, indices: Sequence[int], **values: Any) -> None:
+        """Vehicle indices[j] flies the nominal airframe with row j of each of `values` in place
+        (set_airframe's keys, each an array with one row per vehicle), in one call; checked as
+        set_airframe checks, and on a bad value no vehicle changes."""
+        self._b.set_airframes([int(i) for i in indices], values)
+
     def set_seed(self, i: int, seed: int) -> None:
         """Vehicle i's random_seed (its sensor and wind noise) from its next reset on."""
         if int(seed) < 0:

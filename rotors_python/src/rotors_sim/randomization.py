@@ -111,67 +111,121 @@ def check_spec(spec: Mapping[str, Any] | None) -> dict[str, tuple]:
     return out
 
 
-def _draw(entry: tuple, rng: np.random.Generator, size: int) -> np.ndarray:
-    kind = entry[0]
-    if kind == "uniform":
-        return rng.uniform(entry[1], entry[2], size)
-    if kind == "normal":
-        return rng.normal(entry[1], entry[2], size)
-    return np.full(size, entry[1])
-
-
-def draw_airframe(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rng: np.random.Generator) -> dict[str, Any]:
-    """One airframe from `spec` (check_spec's form) around `nominal` (FlightBatch.nominal_airframe),
-    drawn from `rng` in PARAMETERS' order (each parameter of the spec draws, the others do not)."""
-    out: dict[str, Any] = {}
+def _sizes(spec: Mapping[str, tuple], nominal: Mapping[str, Any]) -> list[tuple[str, int]]:
+    """The spec's parameters in PARAMETERS' order, each with the number of values it draws."""
+    sizes = []
     for name in PARAMETERS:
         if name not in spec:
             continue
-        if name == "mass":
-            factor = float(_draw(spec[name], rng, 1)[0])
-            if not factor > 0.0:
-                raise SimError(f"randomization drew a mass factor of {factor:.4g}; the mass must stay > 0 (narrow its range)")
-            out["mass"] = nominal["mass"] * factor
-        elif name == "inertia":
-            factors = _draw(spec[name], rng, 3)
-            if not np.all(factors > 0.0):
-                raise SimError(f"randomization drew inertia factors {np.round(factors, 4).tolist()}; each must be > 0")
-            s = np.diag(np.sqrt(factors))
-            out["inertia"] = s @ np.asarray(nominal["inertia"]) @ s
-        elif name == "cog":
-            out["cog"] = np.asarray(nominal["cog"]) + _draw(spec[name], rng, 3)
-        elif name in WIND_PARAMETERS:
-            value = float(_draw(spec[name], rng, 1)[0])
-            if (name.endswith("Variance") or name == "windGustDuration") and value < 0.0:
-                raise SimError(f"randomization drew {name} = {value:.4g}; it must be >= 0 (narrow its range)")
-            out[name] = value
-        elif name in IMU_NOISE_PARAMETERS:
-            factor = float(_draw(spec[name], rng, 1)[0])
-            positive = name.endswith("CorrelationTime")
-            if not (factor > 0.0 if positive else factor >= 0.0):
-                raise SimError(
-                    f"randomization drew a {name} factor of {factor:.4g}; it must be {'> 0' if positive else '>= 0'} (narrow its range)"
-                )
-            out[name] = float(nominal[name]) * factor
-        elif name in ODOMETRY_NOISE_PARAMETERS:
-            values = _draw(spec[name], rng, 3)
-            if not np.all(values >= 0.0):
-                raise SimError(f"randomization drew {name} = {np.round(values, 6).tolist()}; each must be >= 0 (narrow its range)")
-            out[name] = values
-        elif name == "actuatorDelay":
-            entry = spec[name]
-            if entry[0] == "uniform":
-                out[name] = int(rng.integers(int(np.ceil(entry[1])), int(np.floor(entry[2])) + 1))
-            else:
-                out[name] = max(0, int(round(float(_draw(entry, rng, 1)[0]))))
+        if name in ("inertia", "cog") or name in ODOMETRY_NOISE_PARAMETERS:
+            sizes.append((name, 3))
+        elif name in ROTOR_PARAMETERS:
+            sizes.append((name, len(nominal[name])))
         else:
-            value = np.asarray(nominal[name], dtype=float)
-            factors = _draw(spec[name], rng, len(value))
-            must_be_positive = name in ("motorConstant", "timeConstantUp", "timeConstantDown")  # maxRotVelocity 0: failed
-            if (must_be_positive and not np.all(factors > 0.0)) or not np.all(factors >= 0.0):
+            sizes.append((name, 1))
+    return sizes
+
+
+def _draws(spec: Mapping[str, tuple], sizes: list[tuple[str, int]], rngs: list[np.random.Generator]) -> dict[str, np.ndarray]:
+    """Each vehicle's draws (one row per generator), each generator called once for all of its
+    uniform values and once for all of its normal ones: {name: len(rngs) x size}."""
+    uniform = [(name, n) for name, n in sizes if spec[name][0] == "uniform"]
+    normal = [(name, n) for name, n in sizes if spec[name][0] == "normal"]
+    u_count, z_count = sum(n for _, n in uniform), sum(n for _, n in normal)
+    u = np.array([rng.random(u_count) for rng in rngs]).reshape(len(rngs), u_count)
+    z = np.array([rng.standard_normal(z_count) for rng in rngs]).reshape(len(rngs), z_count)
+    out: dict[str, np.ndarray] = {}
+    at = 0
+    for name, n in uniform:
+        low, high = spec[name][1], spec[name][2]
+        if name == "actuatorDelay":  # a whole number of steps, each of ceil(low)..floor(high) alike
+            first, last = int(np.ceil(low)), int(np.floor(high))
+            if last < first:
+                raise SimError(f"randomization['actuatorDelay'] = ('uniform', {low}, {high}) holds no whole number of steps")
+            out[name] = np.minimum(first + np.floor(u[:, at : at + n] * (last - first + 1)), last)
+        else:
+            out[name] = low + (high - low) * u[:, at : at + n]
+        at += n
+    at = 0
+    for name, n in normal:
+        out[name] = spec[name][1] + spec[name][2] * z[:, at : at + n]
+        if name == "actuatorDelay":
+            out[name] = np.maximum(0.0, np.round(out[name]))
+        at += n
+    for name, n in sizes:
+        if spec[name][0] == "fixed":
+            out[name] = np.full((len(rngs), n), spec[name][1])
+    return out
+
+
+def _first_bad(values: np.ndarray, ok: np.ndarray) -> np.ndarray | None:
+    """The first row of `values` (one vehicle's draw) where `ok` is False anywhere, or None."""
+    bad = np.flatnonzero(~ok.all(axis=1))
+    return None if len(bad) == 0 else values[bad[0]]
+
+
+def draw_airframe_rows(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rngs: list[np.random.Generator]) -> dict[str, np.ndarray]:
+    """One airframe per generator from `spec` (check_spec's form) around `nominal`
+    (FlightBatch.nominal_airframe), as FlightBatch.set_airframes takes them: {name: one row per
+    generator}. Each generator draws its uniform values in one call and its normal ones in another,
+    in PARAMETERS' order (the parameters of the spec draw, the others do not), and the values are
+    checked as the plugins check theirs (SimError naming the first bad one)."""
+    draws = _draws(spec, _sizes(spec, nominal), rngs)
+    values: dict[str, np.ndarray] = {}
+    for name, d in draws.items():
+        if name == "mass":
+            bad = _first_bad(d, d > 0.0)
+            if bad is not None:
+                raise SimError(f"randomization drew a mass factor of {bad[0]:.4g}; the mass must stay > 0 (narrow its range)")
+            values[name] = nominal["mass"] * d[:, 0]
+        elif name == "inertia":
+            bad = _first_bad(d, d > 0.0)
+            if bad is not None:
+                raise SimError(f"randomization drew inertia factors {np.round(bad, 4).tolist()}; each must be > 0")
+            s = np.sqrt(d)  # S I S with S = diag(sqrt(s)): element (j, k) scaled by sqrt(s_j s_k)
+            values[name] = s[:, :, None] * np.asarray(nominal["inertia"])[None, :, :] * s[:, None, :]
+        elif name == "cog":
+            values[name] = np.asarray(nominal["cog"])[None, :] + d
+        elif name in WIND_PARAMETERS:
+            if name.endswith("Variance") or name == "windGustDuration":
+                bad = _first_bad(d, d >= 0.0)
+                if bad is not None:
+                    raise SimError(f"randomization drew {name} = {bad[0]:.4g}; it must be >= 0 (narrow its range)")
+            values[name] = d[:, 0]
+        elif name in IMU_NOISE_PARAMETERS:
+            positive = name.endswith("CorrelationTime")
+            bad = _first_bad(d, d > 0.0 if positive else d >= 0.0)
+            if bad is not None:
                 raise SimError(
-                    f"randomization drew {name} factors {np.round(factors, 4).tolist()}; "
+                    f"randomization drew a {name} factor of {bad[0]:.4g}; it must be {'> 0' if positive else '>= 0'} (narrow its range)"
+                )
+            values[name] = float(nominal[name]) * d[:, 0]
+        elif name in ODOMETRY_NOISE_PARAMETERS:
+            bad = _first_bad(d, d >= 0.0)
+            if bad is not None:
+                raise SimError(f"randomization drew {name} = {np.round(bad, 6).tolist()}; each must be >= 0 (narrow its range)")
+            values[name] = d
+        elif name == "actuatorDelay":
+            values[name] = d[:, 0].astype(np.int64)
+        else:
+            must_be_positive = name in ("motorConstant", "timeConstantUp", "timeConstantDown")  # maxRotVelocity 0: failed
+            bad = _first_bad(d, (d > 0.0) if must_be_positive else (d >= 0.0))
+            if bad is not None:
+                raise SimError(
+                    f"randomization drew {name} factors {np.round(bad, 4).tolist()}; "
                     f"each must be {'> 0' if must_be_positive else '>= 0'} (narrow its range)"
                 )
-            out[name] = value * factors
-    return out
+            values[name] = np.asarray(nominal[name], dtype=float)[None, :] * d
+    return values
+
+
+def draw_airframes(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rngs: list[np.random.Generator]) -> list[dict[str, Any]]:
+    """draw_airframe_rows' airframes, one dict per generator (FlightBatch.set_airframe's keywords)."""
+    rows = draw_airframe_rows(spec, nominal, rngs)
+    scalars = {"mass", "actuatorDelay", *WIND_PARAMETERS, *IMU_NOISE_PARAMETERS}
+    return [{name: (v[i].item() if name in scalars else v[i]) for name, v in rows.items()} for i in range(len(rngs))]
+
+
+def draw_airframe(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rng: np.random.Generator) -> dict[str, Any]:
+    """One airframe from `spec` around `nominal`, drawn from `rng` (draw_airframes for one)."""
+    return draw_airframes(spec, nominal, [rng])[0]

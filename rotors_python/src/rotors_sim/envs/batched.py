@@ -23,22 +23,14 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from rotors_sim import _engine
 from rotors_sim._engine import SimError
 from rotors_sim.envs import hover, waypoints
 from rotors_sim.flight_batch import FlightBatch
-from rotors_sim.randomization import check_spec, draw_airframe
+from rotors_sim.randomization import check_spec, draw_airframe_rows
 
 TASKS = ("hover", "waypoints")
 ACTION_TYPES = ("motor", "attitude")
-
-
-def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b for rows of 3-vectors (np.cross's operations, without its generic set-up)."""
-    out = np.empty_like(b)
-    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
-    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
-    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-    return out
 
 
 def rotation_rows(q_xyzw: np.ndarray) -> np.ndarray:
@@ -55,10 +47,9 @@ def rotation_rows(q_xyzw: np.ndarray) -> np.ndarray:
 
 
 def rotate_rows(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """R(q) v for rows of unit quaternions (x, y, z, w) and vectors."""
-    u, w = q_xyzw[:, :3], q_xyzw[:, 3:4]
-    t = 2.0 * cross_rows(u, v)
-    return v + w * t + cross_rows(u, t)
+    """R(q) v for rows of unit quaternions (x, y, z, w) and vectors (rotors_sim.envs.flight.rotate's
+    formula, row by row in C++)."""
+    return _engine.rotate_rows(q_xyzw, v)
 
 
 def reset_mask(options: dict[str, Any] | None, num_envs: int) -> np.ndarray:
@@ -91,10 +82,10 @@ def checked_actions(actions: Any, shape: tuple[int, ...]) -> np.ndarray:
     a = np.asarray(actions, dtype=np.float64)
     if a.shape != shape:
         raise SimError(f"actions have shape {a.shape}, this vector environment needs {shape}")
-    if not np.all(np.isfinite(a)):
+    if not np.isfinite(a).all():
         bad = np.argwhere(~np.isfinite(a))[0]
         raise SimError(f"actions[{bad[0]}, {bad[1]}] = {a[tuple(bad)]} is not finite")
-    return np.clip(a, -1.0, 1.0)
+    return np.minimum(np.maximum(a, -1.0), 1.0)  # np.clip's values, without its wrapper's cost
 
 
 def step_infos(step_info: dict[str, np.ndarray]) -> dict[str, Any]:
@@ -212,6 +203,7 @@ class FlightBatchEnv(VectorEnv):
         self._ended = np.zeros(self.num_envs, dtype=bool)  # with autoreset off: ended, not reset yet
         self._obs = np.zeros(self.observation_space.shape, np.float32)
         self._airframes_drawn = False  # some vehicle flies a drawn airframe: None restores the xacro's
+        self._nominal = self.batch.nominal_airframe
 
     # --- Gymnasium ---
     def reset(self, *, seed: int | list[int | None] | None = None, options: dict[str, Any] | None = None):
@@ -237,7 +229,7 @@ class FlightBatchEnv(VectorEnv):
                 "reset them first: reset(options={'reset_mask': mask})"
             )
         if self.action_type == "motor":
-            self.batch.commands[:] = (a + 1.0) / 2.0 * self.max_rot_velocity
+            np.multiply(a + 1.0, 0.5 * self.max_rot_velocity, out=self.batch.commands)  # = (a + 1) / 2 * max, exactly
         else:
             self.batch.commands[:] = np.column_stack(
                 [
@@ -249,14 +241,15 @@ class FlightBatchEnv(VectorEnv):
             )
         self.batch.step(self.substeps)
         self.steps += 1
-        p = self.batch.odometry[:, 0:3]
-        collided = self.batch.in_contact
+        collided = self.batch.in_contact  # a new array, as batch.time below
         if self.task == "hover":
             obs = self._observe()
-            terminated = collided | np.any(np.abs(obs[:, 0:3]) > hover.BOUND_M, axis=1)
+            e = np.abs(obs[:, 0:3]).T
+            terminated = collided | (e[0] > hover.BOUND_M) | (e[1] > hover.BOUND_M) | (e[2] > hover.BOUND_M)
             reward = np.where(terminated, hover.TERMINATION_REWARD, hover.hover_reward(obs) + self.alive_bonus)
             success = np.zeros(self.num_envs, dtype=bool)
         else:
+            p = self.batch.odometry[:, 0:3]
             last = len(self.waypoints) - 1
             distance = np.linalg.norm(p - self.waypoints[np.minimum(self.index, last)], axis=1)
             reward = 10.0 * (self.distance - distance) - 0.01 * np.linalg.norm(self.batch.odometry[:, 10:13], axis=1)
@@ -273,7 +266,7 @@ class FlightBatchEnv(VectorEnv):
             obs = self._observe()
         truncated = ~terminated & (self.steps >= self.max_steps)
         done = terminated | truncated
-        step_info: dict[str, np.ndarray] = {"time_s": self.batch.time.copy(), "collided": collided.copy()}
+        step_info: dict[str, np.ndarray] = {"time_s": self.batch.time, "collided": collided}
         if self.task == "waypoints":
             step_info["success"] = success.copy()
             step_info["waypoint"] = np.minimum(self.index, len(self.waypoints))
@@ -285,34 +278,33 @@ class FlightBatchEnv(VectorEnv):
                 final_obs[i] = obs[i].copy()
             self._reset(ended)
             obs[ended] = self._observe(ended)
-            infos["time_s"] = self.batch.time.copy()
+            infos["time_s"] = self.batch.time
             autoreset_infos(infos, step_info, done, final_obs, kept=("time_s",))
         elif done.any():
             self._ended |= done
         self._obs[:] = obs
-        return obs, reward.astype(np.float64), terminated, truncated, infos
+        return obs, reward, terminated, truncated, infos  # reward: float64 from np.where
 
     def close_extras(self, **kwargs: Any) -> None:
         self.batch = None
 
     # --- the tasks ---
     def _reset(self, ended: np.ndarray) -> None:
-        k = len(ended)
-        positions = np.empty((k, 3))
-        yaws = np.zeros(k)
-        for j, i in enumerate(ended):
-            rng = self._rngs[i]
-            if self.task == "hover":
-                positions[j] = self.target + rng.uniform(-hover.START_OFFSET_M, hover.START_OFFSET_M, 3)
-                positions[j, 2] = max(positions[j, 2], 0.3)
-                yaws[j] = rng.uniform(-np.pi, np.pi)
-            else:
-                positions[j] = self.start + rng.uniform(-0.2, 0.2, 3)
+        # the start: uniform offsets from the target (and a uniform yaw) or from the start point,
+        # low + (high - low) u as Generator.uniform computes them, from one call per vehicle
+        rngs = [self._rngs[i] for i in ended]
+        if self.task == "hover":
+            u = np.array([rng.random(4) for rng in rngs]).reshape(len(rngs), 4)
+            positions = self.target + (-hover.START_OFFSET_M + (2.0 * hover.START_OFFSET_M) * u[:, 0:3])
+            positions[:, 2] = np.maximum(positions[:, 2], 0.3)
+            yaws = -np.pi + (2.0 * np.pi) * u[:, 3]
+        else:
+            u = np.array([rng.random(3) for rng in rngs]).reshape(len(rngs), 3)
+            positions = self.start + (-0.2 + 0.4 * u)
+            yaws = np.zeros(len(rngs))
         if self.randomization is not None:
-            nominal = self.batch.nominal_airframe
-            for i in ended:
-                rng = self._rngs[i]
-                self.batch.set_airframe(i, **draw_airframe(self.randomization, nominal, rng))
+            self.batch.set_airframes(ended, **draw_airframe_rows(self.randomization, self._nominal, rngs))
+            for i, rng in zip(ended, rngs):
                 self.batch.set_seed(i, int(rng.integers(0, 2**31)))
             self._airframes_drawn = True
         elif self._airframes_drawn:
@@ -327,26 +319,16 @@ class FlightBatchEnv(VectorEnv):
         self.distance[ended] = np.linalg.norm(self.batch.odometry[ended, 0:3] - self.waypoints[0], axis=1)
 
     def _observe(self, rows: np.ndarray | None = None) -> np.ndarray:
-        """The observations of every vehicle, or of `rows` only."""
+        """The observations of every vehicle, or of `rows` only: the position relative to the target
+        (hover) or to the current and the next waypoint, then velocity_W, q and the body rates, clipped."""
         o = self.batch.odometry if rows is None else self.batch.odometry[rows]
-        index = self.index if rows is None else self.index[rows]
-        p, q = o[:, 0:3], o[:, 3:7]
-        obs = np.empty((len(o), len(self._high)))
         if self.task == "hover":
-            np.subtract(p, self.target, out=obs[:, 0:3])
-            v_at = 3
+            origins = [self.target]
         else:
+            index = self.index if rows is None else self.index[rows]
             last = len(self.waypoints) - 1
-            np.subtract(p, self.waypoints[np.minimum(index, last)], out=obs[:, 0:3])
-            np.subtract(p, self.waypoints[np.minimum(index + 1, last)], out=obs[:, 3:6])
-            v_at = 6
-        obs[:, v_at : v_at + 3] = rotate_rows(q, o[:, 7:10])
-        obs[:, v_at + 3 : v_at + 7] = q
-        obs[:, v_at + 7 : v_at + 10] = o[:, 10:13]
-        # np.clip's values, without its wrapper's cost
-        np.maximum(obs, self._low, out=obs)
-        np.minimum(obs, self._high, out=obs)
-        return obs.astype(np.float32)
+            origins = [self.waypoints[np.minimum(index, last)], self.waypoints[np.minimum(index + 1, last)]]
+        return _engine.odometry_observations(o, origins, self._low, self._high)
 
 
 def hover_vector_env(num_envs: int = 16, **kwargs: Any) -> FlightBatchEnv:

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import gymnasium as gym
 import numpy as np
 
+from rotors_sim import _engine
 from rotors_sim._engine import SimError
 from rotors_sim.controllers import AttitudeLevelController, LeePositionController
 from rotors_sim.paths import resource
@@ -24,13 +25,9 @@ ACTION_TYPES = ("motor", "attitude")
 
 
 def rotate(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """R(q) v for a unit quaternion (x, y, z, w): v + 2 u x (u x v + w v), written out (np.cross is
-    slow for single vectors)."""
-    x, y, z, w = (float(c) for c in q_xyzw)
-    a, b, c = (float(c) for c in v)
-    # t = u x v + w v
-    tx, ty, tz = y * c - z * b + w * a, z * a - x * c + w * b, x * b - y * a + w * c
-    return np.array([a + 2.0 * (y * tz - z * ty), b + 2.0 * (z * tx - x * tz), c + 2.0 * (x * ty - y * tx)])
+    """R(q) v for a unit quaternion (x, y, z, w): v + 2 u x (u x v + w v) (rotors_sim._engine.rotate_rows,
+    the formula the vector environments use, for one row)."""
+    return _engine.rotate_rows(np.asarray(q_xyzw, dtype=float).reshape(1, 4), np.asarray(v, dtype=float).reshape(1, 3))[0]
 
 
 @dataclass

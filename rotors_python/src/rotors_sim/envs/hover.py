@@ -20,6 +20,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from rotors_sim._engine import block_norms
 from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, rotate
 
 OBSERVATION_HIGH = np.array([5.0] * 3 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
@@ -41,7 +42,9 @@ def hover_observation(odometry, target: np.ndarray) -> np.ndarray:
 def hover_cost(obs: np.ndarray) -> np.ndarray:
     """c = |e_p| + 0.1 |v| + 0.05 |omega| of one observation or of rows of them."""
     o = np.asarray(obs, dtype=np.float64)
-    return np.linalg.norm(o[..., 0:3], axis=-1) + 0.1 * np.linalg.norm(o[..., 3:6], axis=-1) + 0.05 * np.linalg.norm(o[..., 10:13], axis=-1)
+    norms = block_norms(o.reshape(-1, o.shape[-1]), [0, 3, 10]).T  # |e_p|, |v|, |omega| per row
+    c = norms[0] + 0.1 * norms[1] + 0.05 * norms[2]
+    return c.reshape(o.shape[:-1])
 
 
 def hover_reward(obs: np.ndarray) -> np.ndarray:
