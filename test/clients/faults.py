@@ -43,6 +43,15 @@ class Watch:
             time.sleep(0.01)
         return self.state["clock"]
 
+    def wait_stamp(self, accept, what, limit_s=60):
+        """Until the latest ground truth's stamp satisfies accept(stamp); SystemExit naming `what`."""
+        deadline = time.monotonic() + limit_s
+        while not accept(self.state["t"]):
+            if time.monotonic() > deadline:
+                raise SystemExit("no ground truth {} within {} s (last stamp {:.3f} s)".format(what, limit_s, self.state["t"]))
+            time.sleep(0.01)
+        return self.state["t"]
+
     def send_set_point(self):
         # a restarted controller has no reference: send (0, 0, 1) again, as a ground station would
         point = MultiDOFJointTrajectoryPoint(transforms=[Transform(translation=Vector3(0, 0, 1), rotation=Quaternion(0, 0, 0, 1))])
@@ -128,13 +137,18 @@ def reset_world_and_simulation() -> dict:
     watch.wait_clock(12.0)
     p_hover = state["p"]
     rospy.ServiceProxy("/gazebo/reset_world", Empty)()
-    time.sleep(0.3)
+    # the height 50 ms of sim time after the reset (the clock this client holds lags the world's by a
+    # step or two, so a stamp 50 ms past it is after the reset), not after some wall time
+    t_reset = state["clock"]
+    watch.wait_stamp(lambda t: t >= t_reset + 0.05, "50 ms after reset_world")
     result["z_after_reset_world"] = state["p"][2]
     watch.wait_clock(state["clock"] + 8.0)
     result["error_8_s_after_reset_world"] = distance(state["p"], p_hover)
+    t_before = state["t"]
     rospy.ServiceProxy("/gazebo/reset_simulation", Empty)()
-    time.sleep(0.3)
-    result["clock_after_reset_simulation"] = state["clock"]
+    # the first ground truth of the new run stamped at 50 ms or later (the clock went back to 0)
+    watch.wait_stamp(lambda t: 0.05 <= t < t_before - 1.0, "50 ms into the run after reset_simulation")
+    result["clock_after_reset_simulation"] = state["t"]
     result["z_after_reset_simulation"] = state["p"][2]
     watch.wait_clock(8.0)
     result["error_8_s_after_reset_simulation"] = distance(state["p"], p_hover)

@@ -33,7 +33,9 @@ def refusals_and_nan_input() -> dict:
     rospy.wait_for_service("/msf/pose_sensor/initialize_msf_scale", timeout=20)
     imu_pub = rospy.Publisher("/msf_core/imu_state_input", Imu, queue_size=10)
     pose_pub = rospy.Publisher("/msf_updates/pose_input", PoseStamped, queue_size=10)
-    time.sleep(1.0)
+    deadline = time.monotonic() + 30
+    while (imu_pub.get_num_connections() == 0 or pose_pub.get_num_connections() == 0) and time.monotonic() < deadline:
+        time.sleep(0.05)  # until the estimator subscribes to both (30 s at most)
 
     def imu(t, az):
         m = Imu()
@@ -59,7 +61,9 @@ def refusals_and_nan_input() -> dict:
     result["init_after_pose"] = init(1.0).result
     sub_msgs = []
     _subscriber = rospy.Subscriber("/msf_core/odometry", Odometry, sub_msgs.append)  # held while waiting
-    time.sleep(0.5)
+    deadline = time.monotonic() + 30
+    while _subscriber.get_num_connections() == 0 and time.monotonic() < deadline:
+        time.sleep(0.05)  # until connected to the estimator's publisher (30 s at most)
     imu(1.01, 9.81)
     deadline = time.monotonic() + 5
     while not sub_msgs and time.monotonic() < deadline:

@@ -26,14 +26,16 @@ def wind_from_a_topic() -> dict:
     pub = rospy.Publisher("/firefly/wind_input", WindSpeed, queue_size=1, latch=True)
     msg = WindSpeed()
     msg.velocity.x, msg.velocity.y = 3.0, -1.0
-    time.sleep(0.5)
-    pub.publish(msg)
-    time.sleep(1.0)
-    w = rospy.wait_for_message("/firefly/wind_speed", WindSpeed, timeout=10)
+    pub.publish(msg)  # latched: the plugin gets it when it connects
+    deadline = time.monotonic() + 30
+    while True:  # until the plugin publishes the wind it took (30 s of wall time at most)
+        w = rospy.wait_for_message("/firefly/wind_speed", WindSpeed, timeout=10)
+        if (w.velocity.x, w.velocity.y) == (3.0, -1.0) or time.monotonic() > deadline:
+            break
     bad = WindSpeed()
     bad.velocity.x = float("nan")
     pub.publish(bad)
-    time.sleep(1.0)
+    time.sleep(1.0)  # an observation window: the NaN must change nothing in it
     w2 = rospy.wait_for_message("/firefly/wind_speed", WindSpeed, timeout=10)
     return {"w": [w.velocity.x, w.velocity.y, w2.velocity.x, w2.velocity.y]}
 
