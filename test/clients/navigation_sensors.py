@@ -51,7 +51,9 @@ def fly_and_log() -> dict:
         ),
     )
     pub = rospy.Publisher("/firefly/command/pose", PoseStamped, queue_size=1, latch=True)
-    time.sleep(1.0)
+    deadline = time.monotonic() + 30
+    while pub.get_num_connections() == 0 and time.monotonic() < deadline:
+        time.sleep(0.05)  # until the controller subscribes (latched: it would get the pose later too)
     cmd = PoseStamped()
     cmd.pose.position.x, cmd.pose.position.y, cmd.pose.position.z = 6.0, -4.0, 3.0
     cmd.pose.orientation.z, cmd.pose.orientation.w = math.sin(0.4), math.cos(0.4)
