@@ -1,6 +1,6 @@
 # Set-up on a fresh Debian bookworm machine (as root): `make demo` or `make test`.
 # Every target installs what is missing first; a second run is quick.
-.PHONY: setup build test test-long test-all test-sanitize test-arm64 test-ros2 ros2-setup lint demo demo-msf bench clean train-example train-policy train-navigate rl-site
+.PHONY: setup build test test-long test-all test-sanitize test-arm64 test-ros2 ros2-setup ros2-demo lint demo demo-msf bench clean train-example train-policy train-navigate rl-site
 
 setup:
 	@bash scripts/setup.sh
@@ -37,6 +37,10 @@ ros2-setup: setup
 
 test-ros2: build ros2-setup
 	@ROTORS_TEST_TIER=ros2 bash scripts/run_tests.sh
+
+# the hovering example on ROS 2, recorded as a ROS 2 bag and scored by hovering_eval.py (build/ros2-demo)
+ros2-demo: build ros2-setup
+	@bash scripts/ros2_demo.sh
 
 lint: build
 	@bash scripts/lint.sh

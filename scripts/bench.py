@@ -259,6 +259,48 @@ def imu_vibration_cost(sim_s: float = 20.0) -> dict:
     return {name: max(steps_per_s(on) for _ in range(3)) for name, on in (("off", False), ("on", True))}
 
 
+def ros2_closed_loop(runs: int = 3) -> dict:
+    """The hovering example's closed loop on ROS 2 (scripts/ros2_rtf.py: the ROS 2 front end as fast
+    as possible, an rclpy node subscribed to its odometry, IMU and ground truth) beside ROS 1's
+    (closed_loop: lockstep, the controller in its own process, over ROS), sim 5 to 105 s, median of
+    `runs` each, in the same run. Needs build/ros2-venv (make ros2-setup)."""
+    if not (ROOT / "build" / "ros2-venv" / "bin" / "python").exists():
+        return {"not_measured": "no build/ros2-venv: run make ros2-setup"}
+    ros2 = []
+    for _ in range(runs):
+        out = sh(["bash", "-c", f"source {ROOT}/scripts/ros2_env.bash && python {ROOT}/scripts/ros2_rtf.py 5 105"])
+        ros2.append(json.loads(out.strip().splitlines()[-1]))
+    ros1 = [closed_loop(True)["real_time_factor"] for _ in range(runs)]
+    best = max(ros2, key=lambda r: r["real_time_factor"])
+    return {
+        "ros2_real_time_factor": statistics.median(r["real_time_factor"] for r in ros2),
+        "ros2_range": [min(r["real_time_factor"] for r in ros2), max(r["real_time_factor"] for r in ros2)],
+        "ros2_received_of_10000": best["received"],
+        "ros1_real_time_factor": statistics.median(ros1),
+        "ros1_range": [min(ros1), max(ros1)],
+    }
+
+
+def ros2_rows(r: dict) -> list:
+    if "not_measured" in r:
+        return [("ROS 2 closed loop", "not measured: " + r["not_measured"], "")]
+    ratio = r["ros2_real_time_factor"] / r["ros1_real_time_factor"]
+    got = ", ".join(f"{k} {v:,}" for k, v in r["ros2_received_of_10000"].items())
+    return [
+        (
+            "closed loop (hovering example), ROS 1, lockstep, controller in its own process",
+            f"{r['ros1_real_time_factor']:.1f} ({r['ros1_range'][0]:.1f}-{r['ros1_range'][1]:.1f}) x real time",
+            "",
+        ),
+        (
+            "  the same on ROS 2 (Lee in the world's loop, an rclpy node subscribed to 3 sensor topics)",
+            f"{r['ros2_real_time_factor']:.1f} ({r['ros2_range'][0]:.1f}-{r['ros2_range'][1]:.1f}) x real time, "
+            f"{ratio:.2f} x ROS 1's; the subscriber took {got} of 10,000 readings each",
+            ">= 0.5 x ROS 1's",
+        ),
+    ]
+
+
 def sensor_realism_rows(r: dict) -> list:
     fps = r["vi_sensor_fps"]
     rows = [
@@ -961,6 +1003,7 @@ SECTIONS = (
     "soak",
     "batched_flight",
     "sensor_realism",
+    "ros2",
 )
 
 
@@ -1281,6 +1324,9 @@ def main() -> int:
             "sensor_realism vi_sensor_fps.vibration: the IMU's vibration is not in a camera frame's path; "
             "its cost is imu_vibration_steps_per_s"
         )
+    if "ros2" in only:
+        res["ros2"] = ros2_closed_loop()
+        rows += ros2_rows(res["ros2"])
     if "soak" in only:
         soaked = soak(float(os.environ.get("SOAK_SIM_S", "3600")))
         res["soak_9_fireflies_lockstep"] = soaked

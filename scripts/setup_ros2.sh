@@ -13,6 +13,6 @@ if [ -f "$venv/.requirements" ] && cmp -s "$venv/.requirements" "$requirements";
 fi
 python3 -m venv "$venv"
 "$venv/bin/pip" install -q -r "$requirements"
-"$venv/bin/python" -c "import rclpy, nav_msgs.msg, sensor_msgs.msg, trajectory_msgs.msg, std_srvs.srv, rosgraph_msgs.msg"
+"$venv/bin/python" -c "import rclpy, nav_msgs.msg, sensor_msgs.msg, trajectory_msgs.msg, std_srvs.srv, rosgraph_msgs.msg, rosbags.rosbag2"
 cp "$requirements" "$venv/.requirements"
 echo "[ros2-setup] ok ($venv)"

@@ -4,10 +4,12 @@
     build/ros2-venv/bin/python rotors_gazebo_compat/rotors_ros2/rotors_ros2_sim.py --mav firefly
 
 A node named `gazebo` publishes `/clock` (rosgraph_msgs/msg/Clock), `/<mav>/odometry_sensor1/odometry`
-(nav_msgs/msg/Odometry) and `/<mav>/imu` (sensor_msgs/msg/Imu) with every reading of the vehicle's
-odometry sensor and IMU, stamped with sim time and framed as the ROS 1 messages are; it takes set
-points on `/<mav>/command/trajectory` (trajectory_msgs/msg/MultiDOFJointTrajectory: the first point's
-first transform) and `/<mav>/command/pose` (geometry_msgs/msg/PoseStamped), and serves Gazebo ROS 2's
+and `/<mav>/ground_truth/odometry` (nav_msgs/msg/Odometry) and `/<mav>/imu` (sensor_msgs/msg/Imu) with
+every reading of the vehicle's odometry sensor, ground truth and IMU, stamped with sim time and
+framed as the ROS 1 messages are; it takes set points on `/<mav>/command/trajectory`
+(trajectory_msgs/msg/MultiDOFJointTrajectory: the first point's first transform, in force from its
+stamp + time_from_start, as the ROS 1 Lee node releases it) and `/<mav>/command/pose`
+(geometry_msgs/msg/PoseStamped, from its stamp), and serves Gazebo ROS 2's
 `/reset_simulation`, `/reset_world`, `/pause_physics` and `/unpause_physics` (std_srvs/srv/Empty).
 Lee's position controller (the hovering example's yaml) runs inside the world's step loop, so the
 flight is in lockstep with its controller whatever the machine's load.
@@ -15,6 +17,7 @@ flight is in lockstep with its controller whatever the machine's load.
 The world itself is rotors_sim's, stepped in a child process (python3 -m rotors_sim.stepper, ROS 1's
 environment): ROS 1's and ROS 2's Python message packages share module names and cannot live in one
 process. --real-time-factor 1 (the default) paces sim time to wall time; 0 runs as fast as it can.
+--paused starts with physics paused (the launch files' paused:=true), until /unpause_physics.
 A set point with a NaN or a missing transform is refused in one line; the world runs on."""
 
 from __future__ import annotations
@@ -33,12 +36,21 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
+from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
 REPO = Path(__file__).resolve().parents[2]
+# the sensors' QoS: reliable, keeping the last 10,000 readings (100 s at 100 Hz, about 7 MB a topic)
+# for a reliable subscriber that falls behind (a recorder while the world runs faster than real
+# time) to catch up; keep-all would let a subscriber that stops reading stall the world (and rcl
+# fails the publish once the writer's resources run out)
+SENSOR_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10_000, reliability=ReliabilityPolicy.RELIABLE)
+# physics steps per exchange with the world when running as fast as possible (10: 0.1 s of basic.world):
+# subscriptions and services are served between exchanges
+STEPS_PER_EXCHANGE = 10
 
 
 def to_time(t_s: float) -> Time:
@@ -85,19 +97,28 @@ class StepperLink:
 
 
 class RotorsSim(Node):
-    def __init__(self, link: StepperLink, mav: str, real_time_factor: float):
+    def __init__(self, link: StepperLink, mav: str, real_time_factor: float, paused: bool = False):
         super().__init__("gazebo")
         self.link, self.mav, self.real_time_factor = link, mav, real_time_factor
         info = link.request(op="info")
         self.step_s = info["step_s"]
         self.frames = info["frames"]
         self.clock_pub = self.create_publisher(Clock, "/clock", 10)
-        self.odometry_pub = self.create_publisher(Odometry, f"/{mav}/odometry_sensor1/odometry", 10)
-        self.imu_pub = self.create_publisher(Imu, f"/{mav}/imu", 10)
+        self.odometry_pubs = {"odometry": self.create_publisher(Odometry, f"/{mav}/odometry_sensor1/odometry", SENSOR_QOS)}
+        if "ground_truth" in self.frames:
+            self.odometry_pubs["ground_truth"] = self.create_publisher(Odometry, f"/{mav}/ground_truth/odometry", SENSOR_QOS)
+        self.imu_pub = self.create_publisher(Imu, f"/{mav}/imu", SENSOR_QOS)
+        self.messages = {key: Odometry() for key in self.odometry_pubs}
+        for key, m in self.messages.items():
+            m.header.frame_id, m.child_frame_id = self.frames[key], self.frames[f"{key}_child"]
+        self.messages["imu"] = Imu()
+        self.messages["imu"].header.frame_id = self.frames["imu"]
+        self.messages["imu"].orientation_covariance[0] = -1.0  # no orientation measurement (REP 145), as the ROS 1 IMU says
         self.create_subscription(MultiDOFJointTrajectory, f"/{mav}/command/trajectory", self.on_trajectory, 10)
         self.create_subscription(PoseStamped, f"/{mav}/command/pose", self.on_pose, 10)
         self.requests: list[dict] = []  # served between steps, in the order they came
-        self.paused = False
+        self.due: list[tuple[float, dict]] = []  # set points stamped for later: (sim time, request)
+        self.paused = paused
         for name, op in (("/reset_simulation", "reset"), ("/reset_world", "reset_world")):
             self.create_service(Empty, name, lambda req, res, op=op: self.queue(res, op=op))
         self.create_service(Empty, "/pause_physics", lambda req, res: self.pause(res, True))
@@ -111,12 +132,15 @@ class RotorsSim(Node):
         self.paused = paused
         return response
 
-    def set_point(self, p, yaw: float, source: str) -> None:
+    def set_point(self, p, yaw: float, source: str, due_s: float = 0.0) -> None:
+        """A set point now, or from sim time due_s on (a message stamped ahead, as the ROS 1
+        hovering example sends its waypoint and the Lee node releases it at its stamp)."""
         values = [p.x, p.y, p.z, yaw]
         if not all(math.isfinite(v) for v in values):
             self.get_logger().error(f"{source}: set point {values} is not finite: ignored, the last one stays in force")
             return
-        self.requests.append({"op": "set_point", "position": values[:3], "yaw": yaw})
+        self.due.append((due_s, {"op": "set_point", "position": values[:3], "yaw": yaw}))
+        self.due.sort(key=lambda d: d[0])
 
     def on_trajectory(self, msg: MultiDOFJointTrajectory) -> None:
         if not msg.points or not msg.points[0].transforms:
@@ -124,37 +148,54 @@ class RotorsSim(Node):
             return
         tf = msg.points[0].transforms[0]
         q = tf.rotation
-        self.set_point(tf.translation, yaw_of(q.x, q.y, q.z, q.w), "command/trajectory")
+        offset = msg.points[0].time_from_start
+        due_s = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9 + offset.sec + offset.nanosec * 1e-9
+        self.set_point(tf.translation, yaw_of(q.x, q.y, q.z, q.w), "command/trajectory", due_s)
 
     def on_pose(self, msg: PoseStamped) -> None:
         q = msg.pose.orientation
-        self.set_point(msg.pose.position, yaw_of(q.x, q.y, q.z, q.w), "command/pose")
+        self.set_point(
+            msg.pose.position, yaw_of(q.x, q.y, q.z, q.w), "command/pose", msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        )
 
     def publish(self, answer: dict) -> None:
-        for row in answer["odometry"]:
-            m = Odometry()
-            m.header.stamp = to_time(row[0])
-            m.header.frame_id, m.child_frame_id = self.frames["odometry"], self.frames["odometry_child"]
+        """Every reading of the answer, then the clock at its end. One message object per topic is
+        filled and published again (rclpy serialises it at publish; building a message costs more
+        than publishing it)."""
+        for key, pub in self.odometry_pubs.items():
+            m = self.messages[key]
             p, q, v, w = m.pose.pose.position, m.pose.pose.orientation, m.twist.twist.linear, m.twist.twist.angular
-            p.x, p.y, p.z = row[1:4]
-            q.x, q.y, q.z, q.w = row[4:8]
-            v.x, v.y, v.z = row[8:11]  # body frame, as RotorS' odometry plugin
-            w.x, w.y, w.z = row[11:14]
-            self.odometry_pub.publish(m)
+            for row in answer[key]:
+                m.header.stamp = to_time(row[0])
+                p.x, p.y, p.z = row[1:4]
+                q.x, q.y, q.z, q.w = row[4:8]
+                v.x, v.y, v.z = row[8:11]  # body frame, as RotorS' odometry plugin
+                w.x, w.y, w.z = row[11:14]
+                pub.publish(m)
+        m = self.messages["imu"]
         for row in answer["imu"]:
-            m = Imu()
             m.header.stamp = to_time(row[0])
-            m.header.frame_id = self.frames["imu"]
-            m.orientation_covariance[0] = -1.0  # no orientation measurement (REP 145), as the ROS 1 IMU says
             m.angular_velocity.x, m.angular_velocity.y, m.angular_velocity.z = row[1:4]
             m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z = row[4:7]
             self.imu_pub.publish(m)
         self.clock_pub.publish(Clock(clock=to_time(answer["t"])))
 
+    def steps_to_take(self, now_s: float) -> int:
+        """Paced: one step per exchange with the world. As fast as possible: up to STEPS_PER_EXCHANGE,
+        never past the next set point's due time (it takes effect at its step, as when paced)."""
+        if self.real_time_factor > 0.0:
+            return 1
+        n = STEPS_PER_EXCHANGE
+        if self.due:
+            n = min(n, max(1, math.ceil((self.due[0][0] - now_s) / self.step_s - 1e-9)))
+        return n
+
     def run(self) -> None:
-        wall_start, sim_start = time.monotonic(), None
+        wall_start, sim_start, now_s = time.monotonic(), None, 0.0
         while rclpy.ok():
             rclpy.spin_once(self, timeout_sec=0.0)
+            while self.due and self.due[0][0] <= now_s + 1e-9:
+                self.requests.append(self.due.pop(0)[1])
             while self.requests:
                 request = self.requests.pop(0)
                 answer = self.link.request(**request)
@@ -162,11 +203,13 @@ class RotorsSim(Node):
                     self.get_logger().error(answer["error"])
                 if request["op"] == "reset":
                     sim_start = None  # sim time went back to 0: pace from here
+                    now_s = answer["t"]
             if self.paused:
                 rclpy.spin_once(self, timeout_sec=0.01)
                 sim_start = None
                 continue
-            answer = self.link.request(op="step", n=1)
+            answer = self.link.request(op="step", n=self.steps_to_take(now_s))
+            now_s = answer["t"]
             self.publish(answer)
             if self.real_time_factor > 0.0:
                 if sim_start is None:
@@ -182,10 +225,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--world", default="basic")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--real-time-factor", type=float, default=1.0)
+    parser.add_argument("--paused", action="store_true", help="start with physics paused, until /unpause_physics")
     args = parser.parse_args(argv)
     link = StepperLink(args.mav, args.world, args.seed)
     rclpy.init()
-    node = RotorsSim(link, args.mav, args.real_time_factor)
+    node = RotorsSim(link, args.mav, args.real_time_factor, args.paused)
     try:
         node.run()
     except KeyboardInterrupt:

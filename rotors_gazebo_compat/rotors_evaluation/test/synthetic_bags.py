@@ -159,3 +159,59 @@ def write_old_rotors_flight(
         for t, conn, msgtype, msg in sorted(events, key=lambda e: e[0]):
             w.write(conn, int(round(t * 1e9)), TS.serialize_ros1(msg, msgtype))
     return path
+
+
+# ---- ROS 2 (what rosbag2_record.py writes: ground truth as odometry, CDR, MCAP or SQLite) -------
+def write_ros2_flight(
+    path: Path,
+    position: Callable[[float], tuple[float, float, float]],
+    angular: Callable[[float], tuple[float, float, float]],
+    waypoints: Iterable[tuple[float, tuple]],
+    storage: str = "mcap",
+    duration: float = 40.0,
+) -> Path:
+    """A ROS 2 bag (directory `path`) of /firefly/ground_truth/odometry at 100 Hz and the waypoints
+    on /firefly/command/trajectory, as the ROS 2 hovering example records them."""
+    from rosbags.rosbag2 import StoragePlugin
+    from rosbags.rosbag2 import Writer as Writer2
+
+    ts = get_typestore(Stores.ROS2_JAZZY)
+    t2 = ts.types
+
+    def stamp(t):
+        sec = int(t)
+        return t2["std_msgs/msg/Header"](
+            stamp=t2["builtin_interfaces/msg/Time"](sec=sec, nanosec=int(round((t - sec) * 1e9))), frame_id="world"
+        )
+
+    def v3(x, y, z):
+        return t2["geometry_msgs/msg/Vector3"](x=x, y=y, z=z)
+
+    identity = t2["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0)
+    plugin = {"mcap": StoragePlugin.MCAP, "sqlite3": StoragePlugin.SQLITE3}[storage]
+    with Writer2(path, version=9, storage_plugin=plugin) as w:
+        c_odom = w.add_connection("/firefly/ground_truth/odometry", "nav_msgs/msg/Odometry", typestore=ts)
+        c_wp = w.add_connection("/firefly/command/trajectory", "trajectory_msgs/msg/MultiDOFJointTrajectory", typestore=ts)
+        events = []
+        for k in range(1, int(round(duration * 100)) + 1):
+            t = k * 0.01
+            p = position(t)
+            pose = t2["geometry_msgs/msg/PoseWithCovariance"](
+                pose=t2["geometry_msgs/msg/Pose"](position=t2["geometry_msgs/msg/Point"](x=p[0], y=p[1], z=p[2]), orientation=identity),
+                covariance=np.zeros(36),
+            )
+            twist = t2["geometry_msgs/msg/TwistWithCovariance"](
+                twist=t2["geometry_msgs/msg/Twist"](linear=v3(0.0, 0.0, 0.0), angular=v3(*angular(t))), covariance=np.zeros(36)
+            )
+            msg = t2["nav_msgs/msg/Odometry"](header=stamp(t), child_frame_id="firefly/base_link", pose=pose, twist=twist)
+            events.append((t, c_odom, "nav_msgs/msg/Odometry", msg))
+        for t, (x, y, z) in waypoints:
+            tr = t2["geometry_msgs/msg/Transform"](translation=v3(x, y, z), rotation=identity)
+            point = t2["trajectory_msgs/msg/MultiDOFJointTrajectoryPoint"](
+                transforms=[tr], velocities=[], accelerations=[], time_from_start=t2["builtin_interfaces/msg/Duration"](sec=0, nanosec=0)
+            )
+            msg = t2["trajectory_msgs/msg/MultiDOFJointTrajectory"](header=stamp(t), joint_names=[], points=[point])
+            events.append((t, c_wp, "trajectory_msgs/msg/MultiDOFJointTrajectory", msg))
+        for t, conn, msgtype, msg in sorted(events, key=lambda e: e[0]):
+            w.write(conn, int(round(t * 1e9)), ts.serialize_cdr(msg, msgtype))
+    return path

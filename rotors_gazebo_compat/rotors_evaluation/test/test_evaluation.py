@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from synthetic_bags import write_flight, write_old_rotors_flight
+from synthetic_bags import write_flight, write_old_rotors_flight, write_ros2_flight
 
 SCRIPTS = Path(__file__).resolve().parents[1] / "scripts"
 
@@ -206,3 +206,31 @@ def test_mapping_eval_scores_map_vs_itself_names_bad_files(tmp_path: Path):
     not_a_map.write_text("hello\n")
     res = run("mapping_eval.py", "-m", str(not_a_map), "-t", str(plant))
     assert res.returncode == 1 and res.stdout.strip().count("\n") == 0 and "cannot read" in res.stdout
+
+
+@pytest.mark.parametrize("storage", ["mcap", "sqlite3"])
+def test_a_ros2_bag_is_evaluated_as_a_ros1_bag(tmp_path: Path, storage: str):
+    """The ROS 2 hovering example's bag (ground truth as nav_msgs/msg/Odometry, CDR): the same exact
+    figures as hover_bag's, given as the bag's directory, its metadata.yaml or its storage file; a
+    directory that is not a ROS 2 bag, and a bag whose storage file is gone, are one line each."""
+    bag = write_ros2_flight(
+        tmp_path / "ros2_hover",
+        lambda t: (0.04, 0.0, 1.03) if t > 10.0 else (0.0, 0.0, 0.1 if t < 5 else 0.5),
+        lambda t: (0.08, 0.0, 0.0),
+        [(5.0, (0.0, 0.0, 1.0))],
+        storage=storage,
+    )
+    storage_file = next(p for p in bag.iterdir() if p.name != "metadata.yaml")
+    for given in (bag, bag / "metadata.yaml", storage_file):
+        res = run("hovering_eval.py", "-b", str(given), "--mav_name", "firefly")
+        assert res.returncode == 0, res.stderr
+        assert "[Waypoint 0]: [0.000, 0.000, 1.000, 0.000] at time 5.000 s" in res.stdout
+        assert "Position RMS error: 0.050 m" in res.stdout and "Angular velocity RMS error: 0.080 rad/s" in res.stdout
+        assert "pose from 'firefly/ground_truth/odometry' (nav_msgs/msg/Odometry)" in res.stderr
+    plain = tmp_path / "plain"
+    plain.mkdir()
+    res = run("hovering_eval.py", "-b", str(plain), "-n", "firefly")
+    assert res.returncode == 1 and "is a directory without a ROS 2 bag's metadata.yaml" in res.stderr and "Traceback" not in res.stderr
+    storage_file.unlink()
+    res = run("hovering_eval.py", "-b", str(bag), "-n", "firefly")
+    assert res.returncode == 1 and "Traceback" not in res.stderr and f"cannot read bag '{bag}'" in res.stderr, res.stderr

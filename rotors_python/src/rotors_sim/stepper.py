@@ -8,13 +8,15 @@ xacro and rospkg load) share module names (sensor_msgs, rosgraph_msgs, ...), so 
 One JSON object per line on stdin, one answer per line on stdout:
 
     {"op": "step", "n": 10}                          -> {"t": ..., "odometry": [[t, p(3), q xyzw(4), v_B(3), w_B(3)], ...],
+                                                          "ground_truth": [... as odometry],
                                                           "imu": [[t, gyro(3), specific force(3)], ...]}
     {"op": "set_point", "position": [x, y, z], "yaw": 0.0} -> {"t": ...}
     {"op": "reset"} / {"op": "reset_world"}          -> {"t": ...}
     {"op": "info"}                                   -> {"t": ..., "step_s": ..., "mav": ..., "frames": {"odometry": ..., "imu": ...}}
 
-Each reading of the vehicle's odometry sensor and IMU taken during the steps is answered, read from
-the vehicle bus. Lee's position controller (the hovering example's yaml files) answers each
+Each reading of the vehicle's odometry sensor, its ground-truth odometry (ground_truth/odometry;
+none for a vehicle spawned without ground truth) and its IMU taken during the steps is answered,
+read from the vehicle bus. Lee's position controller (the hovering example's yaml files) answers each
 odometry reading inside the engine's step loop (World.attach_controller), as the ROS node does in
 lockstep. A request that cannot be served answers {"error": "..."} in one line and the world keeps
 its state."""
@@ -40,34 +42,42 @@ class Stepper:
         self.world.spawn_mav(mav, xyz=xyz, random_seed=seed)
         self.lee = LeePositionController.for_mav(mav)
         self.world.attach_controller(mav, self.lee)
-        self.seen = {"odometry": 0, "imu": 0}
-        self.carried: dict = {"odometry": [], "imu": []}  # readings taken outside a step request
+        self.seen = {"odometry": 0, "ground_truth": 0, "imu": 0}
+        self.carried: dict = {"odometry": [], "ground_truth": [], "imu": []}  # readings taken outside a step request
+        self.odometry_topics = {"odometry": "odometry_sensor1/odometry"}
+        if any(t == f"/{mav}/ground_truth/odometry" for t, _, _ in self.world.topics()):
+            self.odometry_topics["ground_truth"] = "ground_truth/odometry"
 
     def step(self, n: int) -> dict:
         if not (isinstance(n, int) and 0 <= n <= 100_000):
             raise SimError(f"step: n = {n!r} must be a whole number of physics steps in 0..100000")
-        odometry, imu = [], []
+        rows: dict[str, list] = {key: [] for key in self.carried}
         for _ in range(n):
             self.world.step(1)
-            o = self.world.odometry(self.mav)
-            if o is not None and o.count != self.seen["odometry"]:
-                self.seen["odometry"] = o.count
-                odometry.append([o.time_s, *o.position_W, *o.orientation, *o.velocity_B, *o.angular_velocity_B])
+            for key, topic in self.odometry_topics.items():
+                o = self.world.odometry(self.mav, topic)
+                if o is not None and o.count != self.seen[key]:
+                    self.seen[key] = o.count
+                    rows[key].append([o.time_s, *o.position_W, *o.orientation, *o.velocity_B, *o.angular_velocity_B])
             r = self.world.imu(self.mav)
             if r is not None and r.count != self.seen["imu"]:
                 self.seen["imu"] = r.count
-                imu.append([r.time_s, *r.angular_velocity, *r.linear_acceleration])
-        odometry, imu = self.carried["odometry"] + odometry, self.carried["imu"] + imu
-        self.carried = {"odometry": [], "imu": []}
-        return {"odometry": [[float(v) for v in row] for row in odometry], "imu": [[float(v) for v in row] for row in imu]}
+                rows["imu"].append([r.time_s, *r.angular_velocity, *r.linear_acceleration])
+        answer = {key: [[float(v) for v in row] for row in self.carried[key] + rows[key]] for key in rows}
+        self.carried = {key: [] for key in self.carried}
+        return answer
 
     def frames(self) -> dict:
         """The frames the ROS 1 messages carry (their plugins' frame ids), from the first messages."""
         if self.world.message(f"/{self.mav}/imu") is None:
             self.carried = self.step(1)  # the first readings go out with the next step's answer
-        odometry, _ = self.world.message(f"/{self.mav}/odometry_sensor1/odometry")
+        frames = {}
+        for key, topic in self.odometry_topics.items():
+            odometry, _ = self.world.message(f"/{self.mav}/{topic}")
+            frames[key], frames[f"{key}_child"] = odometry.header.frame_id, odometry.child_frame_id
         imu, _ = self.world.message(f"/{self.mav}/imu")
-        return {"odometry": odometry.header.frame_id, "odometry_child": odometry.child_frame_id, "imu": imu.header.frame_id}
+        frames["imu"] = imu.header.frame_id
+        return frames
 
     def serve(self, request: dict) -> dict:
         op = request.get("op")

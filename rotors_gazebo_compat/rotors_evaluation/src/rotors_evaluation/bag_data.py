@@ -1,4 +1,5 @@
-"""Reads the series the evaluation needs from a ROS 1 bag with rosbags (pure Python).
+"""Reads the series the evaluation needs from a ROS 1 bag or a ROS 2 bag (its directory, or its
+metadata.yaml, .mcap or .db3 file) with rosbags (pure Python).
 
 Understands bags written by the simulator's bag plugin, bags from `rosbag record` (topics with a
 leading slash; the ground truth taken from ground_truth/odometry when the bag has no
@@ -17,7 +18,9 @@ from typing import Optional
 
 import numpy as np
 from rosbags.rosbag1 import Reader, ReaderError
-from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.rosbag2 import Reader as Reader2
+from rosbags.rosbag2 import ReaderError as ReaderError2
+from rosbags.typesys import Stores, get_types_from_idl, get_types_from_msg, get_typestore
 
 
 class BagError(Exception):
@@ -153,25 +156,48 @@ def _set_points(msg, msgtype: str, topic: str, t_s: float) -> list:
     )
 
 
+def ros2_bag_directory(path: Path) -> Path | None:
+    """The ROS 2 bag `path` names (its directory, or a file in it beside metadata.yaml), else None."""
+    directory = path if path.is_dir() else path.parent
+    return directory if (directory / "metadata.yaml").is_file() else None
+
+
 class FlightBag:
-    """An open bag: topic lookup with RotorS' naming rules and typed message iteration."""
+    """An open bag (ROS 1, or ROS 2 in any storage rosbags reads): topic lookup with RotorS' naming
+    rules and typed message iteration."""
 
     def __init__(self, path: Path):
         self.path = Path(path)
-        if not self.path.is_file():
-            raise BagError(f"bag '{self.path}' does not exist")
-        try:
-            self.reader = Reader(self.path)
-            self.reader.open()
-        except ReaderError as e:
+        ros2 = ros2_bag_directory(self.path) if self.path.exists() else None
+        if not self.path.is_file() and ros2 is None:
             raise BagError(
-                f"cannot read bag '{self.path}': {e} (if it is unindexed or truncated, run: " f"rosbag reindex {self.path})"
-            ) from e
-        self.typestore = get_typestore(Stores.ROS1_NOETIC)
+                f"bag '{self.path}' does not exist"
+                if not self.path.exists()
+                else f"'{self.path}' is a directory without a ROS 2 bag's metadata.yaml"
+            )
+        self.ros2 = ros2 is not None
+        try:
+            if self.ros2:
+                self.path = ros2
+                self.reader = Reader2(ros2)
+            else:
+                self.reader = Reader(self.path)
+            self.reader.open()
+        except (ReaderError, ReaderError2) as e:
+            fix = (
+                "it may be incomplete: was the recorder stopped before it closed the bag?"
+                if self.ros2
+                else f"if it is unindexed or truncated, run: rosbag reindex {self.path}"
+            )
+            raise BagError(f"cannot read bag '{self.path}': {e} ({fix})") from e
+        self.typestore = get_typestore(Stores.ROS2_JAZZY if self.ros2 else Stores.ROS1_NOETIC)
         types = {}
         for conn in self.reader.connections:
             try:
-                types.update(get_types_from_msg(conn.msgdef.data, conn.msgtype))
+                if getattr(conn.msgdef.format, "name", "MSG") == "IDL":
+                    types.update(get_types_from_idl(conn.msgdef.data))
+                else:
+                    types.update(get_types_from_msg(conn.msgdef.data, conn.msgtype))
             except Exception:  # noqa: BLE001 - a definition rosbags cannot parse; the store may know it
                 pass
         self.typestore.register(types)
@@ -267,14 +293,13 @@ class FlightBag:
         try:
             for conn, t_ns, raw in self.reader.messages(connections=conns):
                 try:
-                    msg = self.typestore.deserialize_ros1(raw, conn.msgtype)
+                    msg = (self.typestore.deserialize_cdr if self.ros2 else self.typestore.deserialize_ros1)(raw, conn.msgtype)
                 except Exception as e:  # noqa: BLE001 - a definition that does not match the bytes
                     raise BagError(f"topic '{topic}' of type {conn.msgtype} in bag '{self.path.name}' cannot be " f"decoded: {e}") from e
                 yield msg, conn.msgtype, t_ns
-        except ReaderError as e:
-            raise BagError(
-                f"cannot read topic '{topic}' of bag '{self.path}': {e} (if it is truncated, run: " f"rosbag reindex {self.path})"
-            ) from e
+        except (ReaderError, ReaderError2) as e:
+            fix = "the ROS 2 bag may be incomplete" if self.ros2 else f"if it is truncated, run: rosbag reindex {self.path}"
+            raise BagError(f"cannot read topic '{topic}' of bag '{self.path}': {e} ({fix})") from e
 
 
 def _until(data: FlightData, end: FlightEnd | None) -> FlightData:
