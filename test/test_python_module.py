@@ -368,3 +368,23 @@ def test_world_given_twice_to_step_all_or_batch_is_one_error():
         batch.step(1)
     rs.step_all([world.engine, other.engine], 10)
     assert world.time == pytest.approx(0.1) and other.time == pytest.approx(0.1)
+
+
+def test_camera_messages_are_kept_only_when_named():
+    """A camera's image_raw and camera_info are listed with their types from the start, but kept
+    (and the image built) only once World.listen names them; listen() with no topics keeps every
+    other topic again, not them."""
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=3, model=rs.paths.package_path("rotors_description") / "urdf" / "mav_with_vi_sensor.gazebo")
+    image = "/firefly/vi_sensor/left/image_raw"
+    world.step(20)
+    kinds = {t: kind for t, kind, _ in world.topics()}
+    assert kinds[image] == "sensor_msgs/Image" and kinds["/firefly/vi_sensor/left/camera_info"] == "sensor_msgs/CameraInfo"
+    assert world.message(image) is None and world.message("/firefly/imu") is not None
+    world.listen([image, "/firefly/imu"])
+    world.step(10)
+    msg, count = world.message(image)
+    assert (msg.width, msg.height, msg.encoding, count) == (752, 480, "mono8", 3)  # 30 Hz: 3 frames in 0.1 s
+    world.listen()
+    world.step(10)
+    assert world.message(image)[1] == 3 and world.message("/firefly/odometry_sensor1/odometry") is not None

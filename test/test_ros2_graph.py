@@ -108,3 +108,50 @@ def test_the_hovering_example_on_ros2_records_a_ros2_bag_that_hovering_eval_scor
     assert ev.returncode == 0, ev.stderr
     assert "[Waypoint 0]: [0.000, 0.000, 1.000, 0.000] at time 5.000 s" in ev.stdout
     assert "Position RMS error: 0.040 m" in ev.stdout
+
+
+def test_the_vi_sensors_stereo_pair_reaches_rclpy_with_the_pixels_of_ros1(tmp_path):
+    """The ROS 2 front end with the VI-sensor model (--model mav_with_vi_sensor): an rclpy client
+    receives both cameras' images and camera_info at the VI-sensor's 30 Hz (RotorS' frame_rate; in
+    basic.world's 10 ms steps the frames come 3, 3 and 4 steps apart) of their own stamps, none lost,
+    with the ROS 1 plugins' frames, encoding and intrinsics; the left image at 1 s equals, pixel for
+    pixel, rotors_sim's image of the same step, which test_python_ros_images shows equal
+    to the ROS 1 topic's."""
+    assert (REPO / "build" / "ros2-venv" / "bin" / "python").exists(), "no build/ros2-venv: run make ros2-setup"
+    raw = tmp_path / "left.raw"
+    sim_log = tmp_path / "sim.log"
+    res = on_loopback_graph(
+        f"python {REPO}/rotors_gazebo_compat/rotors_ros2/rotors_ros2_sim.py --mav firefly --seed 3 --model mav_with_vi_sensor "
+        f"> {sim_log} 2>&1 & sim=$!; status=0; python {REPO}/test/ros2_clients/camera_client.py 4.0 1.0 {raw} 200 || status=$?; "
+        "kill -INT $sim; for _ in $(seq 100); do kill -0 $sim 2>/dev/null || break; sleep 0.1; done; "
+        "kill -KILL $sim 2>/dev/null || true; exit $status",
+        timeout_s=260,
+    )
+    lines = [line for line in res.stdout.splitlines() if line.startswith("RESULT=")]
+    assert lines, f"the rclpy client failed ({res.returncode}):\n{res.stdout[-3000:]}\n{res.stderr[-3000:]}\n{sim_log.read_text()[-3000:]}"
+    r = json.loads(lines[0][len("RESULT=") :])
+    for name in ("left/image_raw", "left/camera_info", "right/image_raw", "right/camera_info"):
+        got = r[name]
+        print(f"{name}: {got['count']} messages, {got['hz']:.2f} Hz of their stamps, {got['gaps']} gaps, first {got['first'][:2]}")
+    for side in ("left", "right"):
+        image, info = r[f"{side}/image_raw"], r[f"{side}/camera_info"]
+        assert image["hz"] == pytest.approx(30.0, rel=0.05) and info["hz"] == pytest.approx(30.0, rel=0.05), (side, image, info)
+        assert image["gaps"] == 0 and info["gaps"] == 0
+        frame, encoding, width, height, step = image["first"]
+        assert frame == f"firefly/vi_sensor/camera_{side}_optical_link" and (encoding, width, height, step) == ("mono8", 752, 480, 752)
+        assert info["first"][0] == frame and info["first"][3] == "plumb_bob"
+    # the right camera's projection carries the stereo baseline (P[3] = -f b), the left's none
+    assert r["left/camera_info"]["first"][2][3] == 0.0 and r["right/camera_info"]["first"][2][3] < 0.0
+
+    import numpy as np
+
+    import rotors_sim as rs
+
+    kept = r["kept"]
+    theirs = np.frombuffer(raw.read_bytes(), np.uint8).reshape(kept["height"], kept["width"], -1)
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=3, model=rs.paths.package_path("rotors_description") / "urdf" / "mav_with_vi_sensor.gazebo")
+    world.step(int(round(kept["stamp"] / world.step_size)))
+    ours = world.camera_image("firefly", "firefly_vi_sensor_stereo_camera", 0)
+    assert abs(world.time - kept["stamp"]) < 1e-9 and ours.shape == theirs.shape
+    assert np.array_equal(ours, theirs) and theirs.std() > 5  # the same picture, and a real one

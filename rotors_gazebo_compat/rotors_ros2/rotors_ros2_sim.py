@@ -18,11 +18,15 @@ The world itself is rotors_sim's, stepped in a child process (python3 -m rotors_
 environment): ROS 1's and ROS 2's Python message packages share module names and cannot live in one
 process. --real-time-factor 1 (the default) paces sim time to wall time; 0 runs as fast as it can.
 --paused starts with physics paused (the launch files' paused:=true), until /unpause_physics.
+--model mav_with_vi_sensor (a model of rotors_description/urdf, or a path) spawns that model instead
+of the generic odometry sensor's; its cameras' image_raw and camera_info (sensor_msgs/msg/Image and
+CameraInfo) are the ROS 1 camera plugins' messages, field for field and pixel for pixel.
 A set point with a NaN or a missing transform is refused in one line; the world runs on."""
 
 from __future__ import annotations
 
 import argparse
+import base64
 import json
 import math
 import os
@@ -38,7 +42,7 @@ from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import Imu
+from sensor_msgs.msg import CameraInfo, Image, Imu
 from std_srvs.srv import Empty
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
@@ -51,11 +55,29 @@ SENSOR_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10_000, reliabili
 # physics steps per exchange with the world when running as fast as possible (10: 0.1 s of basic.world):
 # subscriptions and services are served between exchanges
 STEPS_PER_EXCHANGE = 10
+# the cameras' QoS: reliable, the last 100 frames (36 MB of the VI-sensor's 752 x 480 images)
+IMAGE_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=100, reliability=ReliabilityPolicy.RELIABLE)
 
 
 def to_time(t_s: float) -> Time:
     ns = int(round(t_s * 1e9))
     return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+
+
+def camera_message(f: dict):
+    """The ROS 2 sensor_msgs/msg/Image or CameraInfo of a camera message's fields (rotors_sim.stepper:
+    the ROS 1 message the camera plugin built, field by field; the pixels as they were)."""
+    m = Image() if f["type"] == "Image" else CameraInfo()
+    m.header.stamp = Time(sec=f["stamp"][0], nanosec=f["stamp"][1])
+    m.header.frame_id, m.height, m.width = f["frame_id"], f["height"], f["width"]
+    if f["type"] == "Image":
+        m.encoding, m.is_bigendian, m.step = f["encoding"], f["is_bigendian"], f["step"]
+        m.data = base64.b64decode(f["data"])
+    else:
+        m.distortion_model, m.d, m.k, m.r, m.p = f["distortion_model"], f["D"], f["K"], f["R"], f["P"]
+        m.binning_x, m.binning_y = f["binning_x"], f["binning_y"]
+        m.roi.x_offset, m.roi.y_offset, m.roi.height, m.roi.width, m.roi.do_rectify = f["roi"]
+    return m
 
 
 def yaw_of(x: float, y: float, z: float, w: float) -> float:
@@ -66,7 +88,7 @@ def yaw_of(x: float, y: float, z: float, w: float) -> float:
 class StepperLink:
     """The world's process (rotors_sim.stepper): one JSON request per line, one answer per line."""
 
-    def __init__(self, mav: str, world: str, seed: int):
+    def __init__(self, mav: str, world: str, seed: int, model: str | None = None):
         # ROS 1's environment for the world's process (ros2_env.sh saves it before it enters ROS 2's)
         env = dict(os.environ)
         for name in ("PYTHONPATH", "LD_LIBRARY_PATH"):
@@ -74,6 +96,7 @@ class StepperLink:
                 env[name] = env[f"ROTORS_ROS1_{name}"]
         python = env.get("ROTORS_ROS1_PYTHON", str(REPO / "build" / "venv" / "bin" / "python"))
         cmd = [python, "-m", "rotors_sim.stepper", "--mav", mav, "--world", world, "--seed", str(seed)]
+        cmd += ["--model", model] if model else []
         self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
         ready = self._read()
         if "error" in ready:
@@ -108,6 +131,8 @@ class RotorsSim(Node):
         if "ground_truth" in self.frames:
             self.odometry_pubs["ground_truth"] = self.create_publisher(Odometry, f"/{mav}/ground_truth/odometry", SENSOR_QOS)
         self.imu_pub = self.create_publisher(Imu, f"/{mav}/imu", SENSOR_QOS)
+        types = {"Image": Image, "CameraInfo": CameraInfo}
+        self.camera_pubs = {topic: self.create_publisher(types[kind], topic, IMAGE_QOS) for topic, kind in info["cameras"]}
         self.messages = {key: Odometry() for key in self.odometry_pubs}
         for key, m in self.messages.items():
             m.header.frame_id, m.child_frame_id = self.frames[key], self.frames[f"{key}_child"]
@@ -178,6 +203,8 @@ class RotorsSim(Node):
             m.angular_velocity.x, m.angular_velocity.y, m.angular_velocity.z = row[1:4]
             m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z = row[4:7]
             self.imu_pub.publish(m)
+        for fields in answer["cameras"]:
+            self.camera_pubs[fields["topic"]].publish(camera_message(fields))
         self.clock_pub.publish(Clock(clock=to_time(answer["t"])))
 
     def steps_to_take(self, now_s: float) -> int:
@@ -226,8 +253,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--real-time-factor", type=float, default=1.0)
     parser.add_argument("--paused", action="store_true", help="start with physics paused, until /unpause_physics")
+    parser.add_argument("--model", default=None, help="rotors_description/urdf/<model>.gazebo (e.g. mav_with_vi_sensor), or a path")
     args = parser.parse_args(argv)
-    link = StepperLink(args.mav, args.world, args.seed)
+    link = StepperLink(args.mav, args.world, args.seed, args.model)
     rclpy.init()
     node = RotorsSim(link, args.mav, args.real_time_factor, args.paused)
     try:

@@ -232,15 +232,27 @@ bool RateLimiter::Due(double t_s) {
   return true;
 }
 
-CameraChannel::CameraChannel(ros::NodeHandle& node, const CameraRosParams& params, const std::string& prefix,
-                             size_t camera_index, const CameraSpec& camera, std::string frame_id, double baseline_m)
+rotors_sim::physics::World& WorldOf(const rotors_sim::sensors::CameraSensor& sensor) {
+  return *sensor.ParentLink()->GetModel()->GetWorldRaw();
+}
+
+bool CameraHasReaders(const std::shared_ptr<ros::NodeHandle>& node, rotors_sim::physics::World& world) {
+  return node != nullptr || rotors_sim::MessageTaps::Of(world).Enabled();
+}
+
+CameraChannel::CameraChannel(const std::shared_ptr<ros::NodeHandle>& node, rotors_sim::physics::World& world,
+                             const CameraRosParams& params, const std::string& prefix, size_t camera_index,
+                             const CameraSpec& camera, std::string frame_id, double baseline_m)
     : index_(camera_index), frame_id_(std::move(frame_id)), format_(camera.format) {
-  image_pub_ = node.advertise<sensor_msgs::Image>(JoinTopic(prefix, params.image_topic), 2);
-  info_pub_ = node.advertise<sensor_msgs::CameraInfo>(JoinTopic(prefix, params.info_topic), 2);
+  const std::string& ns = params.robot_namespace;
+  // the images are tapped only when a reader names them: building one costs a frame's render
+  image_pub_ = Advertise<sensor_msgs::Image>(node, ns, JoinTopic(prefix, params.image_topic), world, 2, false, true);
+  info_pub_ = Advertise<sensor_msgs::CameraInfo>(node, ns, JoinTopic(prefix, params.info_topic), world, 2, false, true);
   info_ = CameraInfoMsg(camera, baseline_m);
   info_.header.frame_id = frame_id_;
   if (params.ground_truth_depth)
-    depth_pub_ = node.advertise<sensor_msgs::Image>(JoinTopic(prefix, params.ground_truth_depth_topic), 2);
+    depth_pub_ = Advertise<sensor_msgs::Image>(node, ns, JoinTopic(prefix, params.ground_truth_depth_topic), world, 2,
+                                               false, true);
 }
 
 void CameraChannel::Publish(rotors_sim::sensors::CameraSensor& sensor, const ros::Time& stamp) {

@@ -31,7 +31,8 @@ class DepthCameraRosPlugin : public rotors_sim::SensorPlugin {
             ? params_.frame_name
             : JoinTopic(JoinTopic(params_.robot_namespace, params_.camera_name), "camera_optical_link");
     const std::string& prefix = params_.camera_name;
-    image_ = std::make_unique<CameraChannel>(*node_, params_, prefix, 0, sensor_->Camera(0), frame, 0.0);
+    image_ =
+        std::make_unique<CameraChannel>(node_, WorldOf(*sensor_), params_, prefix, 0, sensor_->Camera(0), frame, 0.0);
     depth_pub_ = node_->advertise<sensor_msgs::Image>(JoinTopic(prefix, params_.depth_topic), 2);
     depth_info_pub_ = node_->advertise<sensor_msgs::CameraInfo>(JoinTopic(prefix, params_.depth_info_topic), 2);
     points_pub_ = node_->advertise<sensor_msgs::PointCloud2>(JoinTopic(prefix, params_.points_topic), 2);

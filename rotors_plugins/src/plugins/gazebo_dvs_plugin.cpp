@@ -68,7 +68,8 @@ class GazeboDvsPlugin : public rotors_sim::SensorPlugin {
     msg_.width = in.width_px;
     msg_.height = in.height_px;
     events_pub_ = node_->advertise<dvs_msgs::EventArray>(JoinTopic(params.camera_name, events_topic), 10);
-    channel_ = std::make_unique<CameraChannel>(*node_, params, params.camera_name, 0, sensor_->Camera(0), frame, 0.0);
+    channel_ = std::make_unique<CameraChannel>(node_, WorldOf(*sensor_), params, params.camera_name, 0,
+                                               sensor_->Camera(0), frame, 0.0);
     connection_ = sensor_->ConnectUpdated([this] { OnStep(); });
   }
 

@@ -20,12 +20,13 @@ class GazeboRosCamera : public rotors_sim::SensorPlugin {
     params.Apply(*sensor_);
     limiter_ = RateLimiter(params.update_rate_hz);
     node_ = MakeNode(params.robot_namespace);
-    if (!node_) return;  // no ROS in this process: nothing to publish
+    if (!CameraHasReaders(node_, WorldOf(*sensor_))) return;  // no ROS, no taps: nothing to publish
     const std::string frame =
         !params.frame_name.empty()
             ? params.frame_name
             : JoinTopic(JoinTopic(params.robot_namespace, params.camera_name), "camera_optical_link");
-    channel_ = std::make_unique<CameraChannel>(*node_, params, params.camera_name, 0, sensor_->Camera(0), frame, 0.0);
+    channel_ = std::make_unique<CameraChannel>(node_, WorldOf(*sensor_), params, params.camera_name, 0,
+                                               sensor_->Camera(0), frame, 0.0);
     connection_ = sensor_->ConnectUpdated([this] {
       if (limiter_.Due(sensor_->LastUpdateTime().Double()))
         channel_->Publish(*sensor_, ToRos(sensor_->LastUpdateTime()));

@@ -26,15 +26,15 @@ class GazeboRosMultiCamera : public rotors_sim::SensorPlugin {
                                    "' has no name (its topics are <cameraName>/<name>/...)");
     limiter_ = RateLimiter(params.update_rate_hz);
     node_ = MakeNode(params.robot_namespace);
-    if (!node_) return;
+    if (!CameraHasReaders(node_, WorldOf(*sensor_))) return;  // no ROS, no taps: nothing to publish
     const std::string base = JoinTopic(params.robot_namespace, params.camera_name);
     for (size_t i = 0; i < sensor_->CameraCount(); ++i) {
       const std::string& name = sensor_->Camera(i).name;
       const std::string frame =
           !params.frame_name.empty() ? params.frame_name : JoinTopic(base, "camera_" + name + "_optical_link");
-      channels_.push_back(std::make_unique<CameraChannel>(*node_, params, JoinTopic(params.camera_name, name), i,
-                                                          sensor_->Camera(i), frame,
-                                                          i == 0 ? 0.0 : params.hack_baseline_m));
+      channels_.push_back(std::make_unique<CameraChannel>(node_, WorldOf(*sensor_), params,
+                                                          JoinTopic(params.camera_name, name), i, sensor_->Camera(i),
+                                                          frame, i == 0 ? 0.0 : params.hack_baseline_m));
     }
     connection_ = sensor_->ConnectUpdated([this] {
       if (!limiter_.Due(sensor_->LastUpdateTime().Double())) return;

@@ -3,55 +3,101 @@ own process. ROS 2's Python message packages (PyPI's Jazzy wheels) and ROS 1's (
 xacro and rospkg load) share module names (sensor_msgs, rosgraph_msgs, ...), so the ROS 2 front end
 (rotors_gazebo_compat/rotors_ros2) runs this in a child process with ROS 1's environment.
 
-    python3 -m rotors_sim.stepper --mav firefly --world basic --seed 0
+    python3 -m rotors_sim.stepper --mav firefly --world basic --seed 0 [--model mav_with_vi_sensor]
 
 One JSON object per line on stdin, one answer per line on stdout:
 
     {"op": "step", "n": 10}                          -> {"t": ..., "odometry": [[t, p(3), q xyzw(4), v_B(3), w_B(3)], ...],
                                                           "ground_truth": [... as odometry],
-                                                          "imu": [[t, gyro(3), specific force(3)], ...]}
+                                                          "imu": [[t, gyro(3), specific force(3)], ...],
+                                                          "cameras": [{"topic": ..., "type": "Image" | "CameraInfo", ...}]}
     {"op": "set_point", "position": [x, y, z], "yaw": 0.0} -> {"t": ...}
     {"op": "reset"} / {"op": "reset_world"}          -> {"t": ...}
-    {"op": "info"}                                   -> {"t": ..., "step_s": ..., "mav": ..., "frames": {"odometry": ..., "imu": ...}}
+    {"op": "info"}                                   -> {"t": ..., "step_s": ..., "mav": ..., "frames": {"odometry": ..., "imu": ...},
+                                                          "cameras": [[topic, "Image" | "CameraInfo"], ...]}
 
 Each reading of the vehicle's odometry sensor, its ground-truth odometry (ground_truth/odometry;
 none for a vehicle spawned without ground truth) and its IMU taken during the steps is answered,
-read from the vehicle bus. Lee's position controller (the hovering example's yaml files) answers each
-odometry reading inside the engine's step loop (World.attach_controller), as the ROS node does in
-lockstep. A request that cannot be served answers {"error": "..."} in one line and the world keeps
+read from the vehicle bus. With a model that carries cameras (--model mav_with_vi_sensor: the
+VI-sensor's stereo pair), each new image and camera_info its camera plugins built in the steps is
+answered with its fields (an image's pixels in base64), the ROS 1 messages the plugins publish.
+Lee's position controller (the hovering example's yaml files) answers each odometry reading
+inside the engine's step loop (World.attach_controller), as the ROS node does in lockstep. A
+request that cannot be served answers {"error": "..."} in one line and the world keeps
 its state."""
 
 from __future__ import annotations
 
 import argparse
+import base64
 import json
 import os
 import sys
+from pathlib import Path
 
 from rotors_sim._engine import SimError
 from rotors_sim.controllers import LeePositionController
+from rotors_sim.paths import package_path
 from rotors_sim.world import World
+
+CAMERA_TYPES = ("sensor_msgs/Image", "sensor_msgs/CameraInfo")
+
+
+def model_path(model: str | None) -> Path | None:
+    """--model: a path, or the name of a model in rotors_description/urdf (SimError naming it when it
+    is neither)."""
+    if model is None:
+        return None
+    if Path(model).is_file():
+        return Path(model)
+    path = package_path("rotors_description") / "urdf" / f"{model}.gazebo"
+    if not path.is_file():
+        raise SimError(f"--model {model}: not a file, and rotors_description/urdf has no {model}.gazebo")
+    return path
+
+
+def camera_fields(topic: str, msg) -> dict:
+    """A ROS 1 sensor_msgs/Image or CameraInfo as plain fields (an image's data in base64)."""
+    h = msg.header
+    out = {"topic": topic, "stamp": [h.stamp.secs, h.stamp.nsecs], "frame_id": h.frame_id, "height": msg.height, "width": msg.width}
+    if hasattr(msg, "encoding"):
+        out.update(type="Image", encoding=msg.encoding, is_bigendian=msg.is_bigendian, step=msg.step)
+        out["data"] = base64.b64encode(bytes(msg.data)).decode("ascii")
+    else:
+        roi = msg.roi
+        out.update(type="CameraInfo", distortion_model=msg.distortion_model, D=list(msg.D), K=list(msg.K), R=list(msg.R), P=list(msg.P))
+        out.update(binning_x=msg.binning_x, binning_y=msg.binning_y)
+        out["roi"] = [roi.x_offset, roi.y_offset, roi.height, roi.width, bool(roi.do_rectify)]
+    return out
 
 
 class Stepper:
     """The world, its vehicle and its controller, and the requests they serve."""
 
-    def __init__(self, mav: str, world: str, seed: int, xyz=(0.0, 0.0, 0.1)):
+    def __init__(self, mav: str, world: str, seed: int, xyz=(0.0, 0.0, 0.1), model: str | None = None):
         self.mav = mav
         self.world = World(world)
-        self.world.spawn_mav(mav, xyz=xyz, random_seed=seed)
+        self.world.spawn_mav(mav, xyz=xyz, random_seed=seed, model=model_path(model))
         self.lee = LeePositionController.for_mav(mav)
         self.world.attach_controller(mav, self.lee)
         self.seen = {"odometry": 0, "ground_truth": 0, "imu": 0}
-        self.carried: dict = {"odometry": [], "ground_truth": [], "imu": []}  # readings taken outside a step request
+        self.carried: dict = {"odometry": [], "ground_truth": [], "imu": [], "cameras": []}  # taken outside a step request
         self.odometry_topics = {"odometry": "odometry_sensor1/odometry"}
         if any(t == f"/{mav}/ground_truth/odometry" for t, _, _ in self.world.topics()):
             self.odometry_topics["ground_truth"] = "ground_truth/odometry"
+        # the cameras' images and camera_info are kept only when named: name them, and the
+        # messages frames() reads
+        self.camera_topics = sorted(t for t, kind, _ in self.world.topics() if kind in CAMERA_TYPES)
+        self.camera_seen = dict.fromkeys(self.camera_topics, 0)
+        if self.camera_topics:
+            named = [f"/{mav}/{topic}" for topic in self.odometry_topics.values()] + [f"/{mav}/imu"]
+            self.world.listen(self.camera_topics + named)
 
     def step(self, n: int) -> dict:
         if not (isinstance(n, int) and 0 <= n <= 100_000):
             raise SimError(f"step: n = {n!r} must be a whole number of physics steps in 0..100000")
-        rows: dict[str, list] = {key: [] for key in self.carried}
+        rows: dict[str, list] = {"odometry": [], "ground_truth": [], "imu": []}
+        cameras: list[dict] = self.carried["cameras"]
         for _ in range(n):
             self.world.step(1)
             for key, topic in self.odometry_topics.items():
@@ -63,9 +109,25 @@ class Stepper:
             if r is not None and r.count != self.seen["imu"]:
                 self.seen["imu"] = r.count
                 rows["imu"].append([r.time_s, *r.angular_velocity, *r.linear_acceleration])
+            if self.camera_topics:
+                cameras.extend(self.new_camera_messages())
         answer = {key: [[float(v) for v in row] for row in self.carried[key] + rows[key]] for key in rows}
         self.carried = {key: [] for key in self.carried}
+        answer["cameras"] = cameras
         return answer
+
+    def new_camera_messages(self) -> list[dict]:
+        """The images and camera_info the camera plugins published since the last call."""
+        out = []
+        counts = {t: n for t, _, n in self.world.topics() if t in self.camera_seen}
+        for topic, count in counts.items():
+            if count == self.camera_seen[topic]:
+                continue
+            self.camera_seen[topic] = count
+            got = self.world.message(topic)
+            if got is not None:
+                out.append(camera_fields(topic, got[0]))
+        return out
 
     def frames(self) -> dict:
         """The frames the ROS 1 messages carry (their plugins' frame ids), from the first messages."""
@@ -96,7 +158,8 @@ class Stepper:
             self.world.reset_world()
             answer = {}
         elif op == "info":
-            answer = {"step_s": self.world.step_size, "mav": self.mav, "frames": self.frames()}
+            cameras = [[t, kind.split("/")[1]] for t, kind, _ in self.world.topics() if t in self.camera_seen]
+            answer = {"step_s": self.world.step_size, "mav": self.mav, "frames": self.frames(), "cameras": cameras}
         else:
             raise SimError(f"unknown op {op!r}; use step, set_point, reset, reset_world or info")
         answer["t"] = self.world.time
@@ -108,6 +171,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--mav", default="firefly")
     parser.add_argument("--world", default="basic")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument(
+        "--model", default=None, help="rotors_description/urdf/<model>.gazebo, or a path (default: the generic odometry sensor's)"
+    )
     args = parser.parse_args(argv)
     # the answers keep stdout's pipe; everything else the process prints (the plugins' log lines)
     # goes to stderr, so that no line of theirs lands among the answers
@@ -119,7 +185,7 @@ def main(argv: list[str] | None = None) -> int:
         answers.flush()
 
     try:
-        stepper = Stepper(args.mav, args.world, args.seed)
+        stepper = Stepper(args.mav, args.world, args.seed, model=args.model)
     except SimError as e:
         answer({"error": str(e)})
         return 1

@@ -249,7 +249,8 @@ class World:
 
     def listen(self, topics: Sequence[str] = ()) -> None:
         """Keep only these topics' messages (their plugins skip building the others): faster when a
-        loop reads one or two topics. No argument: all again."""
+        loop reads one or two topics. No argument: all again, except the cameras' images and
+        camera_info, which are kept only when named here (building them costs a frame's render)."""
         self._w.listen(list(topics))
 
     def attach_controller(self, namespace: str, controller: Any, odometry_topic: str = "odometry_sensor1/odometry") -> None:

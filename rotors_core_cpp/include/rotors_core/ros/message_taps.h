@@ -28,6 +28,7 @@ struct TappedMessage {
   bool wanted = true;       ///< false: MessageTaps::Restrict left this topic out (its plugin skips it)
   bool pinned = false;      ///< an in-process reader (MessageTaps::Pin) keeps it whatever the taps' state
   bool advertised = false;  ///< a plugin publishes it (MessageTaps::Slot was asked for it)
+  bool on_request = false;  ///< kept only when a reader names it (MessageTaps::Restrict) or pins it: images
   boost::shared_ptr<const void> message;
   std::function<std::string(const void*)> serialize;  ///< ROS wire format of `message`
 
@@ -81,11 +82,17 @@ class MessageTaps {
   void Enable() { enabled_ = true; }
   bool Enabled() const { return enabled_; }
   /// The slot of a resolved topic name, nullptr when the taps are disabled and nobody pinned the
-  /// topic. Valid as long as the world.
-  TappedMessage* Slot(const std::string& topic) {
+  /// topic. Valid as long as the world. `on_request`: a topic whose messages cost much to build
+  /// (a camera's images), kept only once a reader names it in Restrict (or pins it).
+  TappedMessage* Slot(const std::string& topic, bool on_request = false) {
     TappedMessage* slot = nullptr;
     if (enabled_) {
+      const bool fresh = slots_.find(topic) == slots_.end();
       slot = &slots_[topic];
+      if (on_request) {
+        slot->on_request = true;
+        if (fresh) slot->wanted = false;  // named before the plugin loaded: kept as named
+      }
     } else {
       auto it = slots_.find(topic);
       if (it != slots_.end() && it->second.pinned) slot = &it->second;
@@ -106,9 +113,10 @@ class MessageTaps {
     return it == slots_.end() ? nullptr : &it->second;
   }
   /// Only these topics are kept from now on (the others' plugins need not even build their
-  /// messages: a speed-up when a learning loop reads one or two topics); empty: all again.
+  /// messages: a speed-up when a learning loop reads one or two topics); empty: all again, but for
+  /// the topics kept only on request.
   void Restrict(const std::vector<std::string>& topics) {
-    for (auto& slot : slots_) slot.second.wanted = topics.empty() || slot.second.pinned;
+    for (auto& slot : slots_) slot.second.wanted = (topics.empty() && !slot.second.on_request) || slot.second.pinned;
     for (const std::string& topic : topics) slots_[topic].wanted = true;
   }
   /// The topics some plugin publishes (not those only pinned by a reader).

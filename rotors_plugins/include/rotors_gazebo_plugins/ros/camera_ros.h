@@ -14,6 +14,7 @@
 #include <stereo_msgs/DisparityImage.h>
 
 #include "rotors_core/sdf_params.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_core/rendering/camera_model.h"
 #include "rotors_core/rendering/renderer.h"
 #include "rotors_core/sensors/camera_sensor.h"
@@ -72,19 +73,27 @@ void ToDisparityMsg(const rotors_sim::rendering::RenderedFrame& frame, const rot
 /// per <camera>). Renders only when someone listens to the image.
 class CameraChannel {
  public:
-  /// topics under <prefix>/: prefix is "<cameraName>" or "<cameraName>/<camera name>"
-  CameraChannel(ros::NodeHandle& node, const CameraRosParams& params, const std::string& prefix, size_t camera_index,
+  /// topics under <prefix>/: prefix is "<cameraName>" or "<cameraName>/<camera name>", on ROS when
+  /// `node` is not null, and into the world's MessageTaps when a reader names them (the Python
+  /// module without ROS: World.listen).
+  CameraChannel(const std::shared_ptr<ros::NodeHandle>& node, rotors_sim::physics::World& world,
+                const CameraRosParams& params, const std::string& prefix, size_t camera_index,
                 const rotors_sim::rendering::CameraSpec& camera, std::string frame_id, double baseline_m);
   void Publish(rotors_sim::sensors::CameraSensor& sensor, const ros::Time& stamp);
 
  private:
   size_t index_;
   std::string frame_id_;
-  ros::Publisher image_pub_, info_pub_;
+  rotors_sim::ListenedPublisher image_pub_, info_pub_;
   sensor_msgs::CameraInfo info_;
   rotors_sim::rendering::PixelFormat format_;
-  ros::Publisher depth_pub_;  ///< ground-truth depth, when asked for
+  rotors_sim::ListenedPublisher depth_pub_;  ///< ground-truth depth, when asked for
 };
+
+/// Whether a camera plugin has anywhere to publish: ROS (`node`), or the world's MessageTaps.
+bool CameraHasReaders(const std::shared_ptr<ros::NodeHandle>& node, rotors_sim::physics::World& world);
+/// The world `sensor` is in.
+rotors_sim::physics::World& WorldOf(const rotors_sim::sensors::CameraSensor& sensor);
 
 /// <updateRate> of a plugin below its sensor's rate: true when the next message is due (after a
 /// reset, when the time is before the last update's, the next update is due).

@@ -23,14 +23,17 @@ std::shared_ptr<ros::NodeHandle> MakeNode(const std::string& robot_namespace);
 std::string ResolveTopic(const std::string& robot_namespace, const std::string& topic);
 
 /// A publisher of `topic` (relative to the node's namespace) on ROS when `node` is not null, and
-/// into the world's MessageTaps when they are enabled. Empty (false) when neither.
+/// into the world's MessageTaps when they are enabled (`tap_on_request`: only once a reader names
+/// the topic, for messages that cost much to build). Empty (false) when neither.
 template <class M>
 rotors_sim::ListenedPublisher Advertise(const std::shared_ptr<ros::NodeHandle>& node,
                                         const std::string& robot_namespace, const std::string& topic,
-                                        rotors_sim::physics::World& world, uint32_t queue_size = 10,
-                                        bool latch = false) {
+                                        rotors_sim::physics::World& world, uint32_t queue_size = 10, bool latch = false,
+                                        bool tap_on_request = false) {
   const std::string resolved = node ? node->resolveName(topic) : ResolveTopic(robot_namespace, topic);
-  rotors_sim::TappedMessage* tap = rotors_sim::MessageTaps::Of(world).Slot(resolved);
+  rotors_sim::TappedMessage* tap = rotors_sim::MessageTaps::Of(world).Slot(resolved, tap_on_request);
+  if (tap && tap->datatype.empty())
+    tap->datatype = ros::message_traits::DataType<M>::value();  // before the first message
   if (!node && !tap) return {};
   ros::Publisher publisher;
   if (node) publisher = node->advertise<M>(topic, queue_size, latch);
