@@ -24,21 +24,27 @@ def on_loopback_graph(script: str, timeout_s: float) -> subprocess.CompletedProc
     return subprocess.run(["unshare", "--net", "bash", "-c", body], capture_output=True, text=True, timeout=timeout_s)
 
 
-def test_an_rclpy_client_flies_the_hovering_example_on_ros2(tmp_path):
-    assert (REPO / "build" / "ros2-venv" / "bin" / "python").exists(), "no build/ros2-venv: run make ros2-setup"
+def simulator_and_client(tmp_path, sim_args: str, client: str, timeout_s: float) -> dict:
+    """rotors_ros2_sim.py `sim_args` and the rclpy client command `client` on a loopback graph; the
+    client's RESULT=<json>. The simulator gets 10 s to stop after SIGINT, then SIGKILL, within
+    `timeout_s`."""
     sim_log = tmp_path / "sim.log"
-    # the client's waits share a budget of 240 s; the simulator gets 10 s to stop after SIGINT, then
-    # SIGKILL: both fit in the 300 s this test gives the whole graph
     res = on_loopback_graph(
-        f"python {REPO}/rotors_gazebo_compat/rotors_ros2/rotors_ros2_sim.py --mav firefly --seed 3 > {sim_log} 2>&1 & sim=$!; "
-        f"status=0; python {REPO}/test/ros2_clients/hover_client.py 240 || status=$?; "
+        f"python {REPO}/rotors_gazebo_compat/rotors_ros2/rotors_ros2_sim.py {sim_args} > {sim_log} 2>&1 & sim=$!; "
+        f"status=0; {client} || status=$?; "
         "kill -INT $sim; for _ in $(seq 100); do kill -0 $sim 2>/dev/null || break; sleep 0.1; done; "
         "kill -KILL $sim 2>/dev/null || true; exit $status",
-        timeout_s=300,
+        timeout_s=timeout_s,
     )
     lines = [line for line in res.stdout.splitlines() if line.startswith("RESULT=")]
     assert lines, f"the rclpy client failed ({res.returncode}):\n{res.stdout[-3000:]}\n{res.stderr[-3000:]}\n{sim_log.read_text()[-3000:]}"
-    r = json.loads(lines[0][len("RESULT=") :])
+    return json.loads(lines[0][len("RESULT=") :])
+
+
+def test_an_rclpy_client_flies_the_hovering_example_on_ros2(tmp_path):
+    assert (REPO / "build" / "ros2-venv" / "bin" / "python").exists(), "no build/ros2-venv: run make ros2-setup"
+    # the client's waits share a budget of 240 s, the simulator's stop 10 s: both within the 300 s
+    r = simulator_and_client(tmp_path, "--mav firefly --seed 3", f"python {REPO}/test/ros2_clients/hover_client.py 240", 300)
     print(json.dumps(r, indent=1))
     assert "gazebo" in r["nodes"]
     assert r["topics"]["/firefly/odometry_sensor1/odometry"] == ["nav_msgs/msg/Odometry"]
@@ -119,17 +125,12 @@ def test_the_vi_sensors_stereo_pair_reaches_rclpy_with_the_pixels_of_ros1(tmp_pa
     to the ROS 1 topic's."""
     assert (REPO / "build" / "ros2-venv" / "bin" / "python").exists(), "no build/ros2-venv: run make ros2-setup"
     raw = tmp_path / "left.raw"
-    sim_log = tmp_path / "sim.log"
-    res = on_loopback_graph(
-        f"python {REPO}/rotors_gazebo_compat/rotors_ros2/rotors_ros2_sim.py --mav firefly --seed 3 --model mav_with_vi_sensor "
-        f"> {sim_log} 2>&1 & sim=$!; status=0; python {REPO}/test/ros2_clients/camera_client.py 4.0 1.0 {raw} 200 || status=$?; "
-        "kill -INT $sim; for _ in $(seq 100); do kill -0 $sim 2>/dev/null || break; sleep 0.1; done; "
-        "kill -KILL $sim 2>/dev/null || true; exit $status",
-        timeout_s=260,
+    r = simulator_and_client(
+        tmp_path,
+        "--mav firefly --seed 3 --model mav_with_vi_sensor",
+        f"python {REPO}/test/ros2_clients/camera_client.py 4.0 1.0 {raw} 200",
+        260,
     )
-    lines = [line for line in res.stdout.splitlines() if line.startswith("RESULT=")]
-    assert lines, f"the rclpy client failed ({res.returncode}):\n{res.stdout[-3000:]}\n{res.stderr[-3000:]}\n{sim_log.read_text()[-3000:]}"
-    r = json.loads(lines[0][len("RESULT=") :])
     for name in ("left/image_raw", "left/camera_info", "right/image_raw", "right/camera_info"):
         got = r[name]
         print(f"{name}: {got['count']} messages, {got['hz']:.2f} Hz of their stamps, {got['gaps']} gaps, first {got['first'][:2]}")
