@@ -46,12 +46,6 @@ def rotation_rows(q_xyzw: np.ndarray) -> np.ndarray:
     )
 
 
-def rotate_rows(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """R(q) v for rows of unit quaternions (x, y, z, w) and vectors (rotors_sim.envs.flight.rotate's
-    formula, row by row in C++)."""
-    return _engine.rotate_rows(q_xyzw, v)
-
-
 def reset_mask(options: dict[str, Any] | None, num_envs: int) -> np.ndarray:
     """The vehicles a reset resets: options["reset_mask"] (a numpy bool array, one per vehicle, not
     all False) or all; SimError naming what is wrong with it."""

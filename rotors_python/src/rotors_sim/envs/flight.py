@@ -10,6 +10,7 @@ Observations come from the vehicle's odometry sensor (the noisy one the controll
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import gymnasium as gym
@@ -24,10 +25,15 @@ from rotors_sim.world import Odometry, World
 ACTION_TYPES = ("motor", "attitude")
 
 
-def rotate(q_xyzw: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """R(q) v for a unit quaternion (x, y, z, w): v + 2 u x (u x v + w v) (rotors_sim._engine.rotate_rows,
-    the formula the vector environments use, for one row)."""
-    return _engine.rotate_rows(np.asarray(q_xyzw, dtype=float).reshape(1, 4), np.asarray(v, dtype=float).reshape(1, 3))[0]
+def odometry_observation(odometry: Odometry, origins: Sequence[np.ndarray], high: np.ndarray) -> np.ndarray:
+    """One odometry reading as the vector environments observe theirs (rotors_sim._engine.
+    odometry_observations for one row): p_W - origin for each origin, velocity_W = R(q) velocity_B,
+    q (x, y, z, w), angular_velocity_B, clipped to [-high, high], float32."""
+    row = np.concatenate(
+        [odometry.position_W, odometry.orientation, odometry.velocity_B, odometry.angular_velocity_B, [odometry.time_s]]
+    ).reshape(1, 14)
+    bound = np.asarray(high, dtype=np.float64)
+    return _engine.odometry_observations(row, [np.asarray(o, dtype=np.float64) for o in origins], -bound, bound)[0]
 
 
 @dataclass

@@ -21,7 +21,7 @@ import gymnasium as gym
 import numpy as np
 
 from rotors_sim._engine import block_norms
-from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, rotate
+from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, odometry_observation
 
 OBSERVATION_HIGH = np.array([5.0] * 3 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
 OBSERVATION_SIZE = len(OBSERVATION_HIGH)
@@ -34,9 +34,7 @@ COST_MAX = float(np.sqrt(3.0) * (BOUND_M + 0.1 * OBSERVATION_HIGH[3] + 0.05 * OB
 
 
 def hover_observation(odometry, target: np.ndarray) -> np.ndarray:
-    v_W = rotate(odometry.orientation, odometry.velocity_B)
-    obs = np.concatenate([odometry.position_W - target, v_W, odometry.orientation, odometry.angular_velocity_B])
-    return np.clip(obs, -OBSERVATION_HIGH, OBSERVATION_HIGH).astype(np.float32)
+    return odometry_observation(odometry, [target], OBSERVATION_HIGH)
 
 
 def hover_cost(obs: np.ndarray) -> np.ndarray:

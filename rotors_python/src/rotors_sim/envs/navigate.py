@@ -35,10 +35,10 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from rotors_sim import clutter
+from rotors_sim import _engine, clutter
 from rotors_sim._engine import SimError
 from rotors_sim.controllers import load_yamls
-from rotors_sim.envs.batched import autoreset_infos, checked_actions, reseed, reset_mask, rotate_rows, rotation_rows, step_infos
+from rotors_sim.envs.batched import autoreset_infos, checked_actions, reseed, reset_mask, rotation_rows, step_infos
 from rotors_sim.flight_batch import FlightBatch, controller_yamls
 
 CAMERA_HZ = 30.0
@@ -244,7 +244,7 @@ class NavigateClutterEnv(VectorEnv):
         yaw = _yaw_of(q)
         state = np.empty((len(rows), STATE_SIZE))
         state[:, 0:3] = _to_heading(yaw, self.goals[rows] - o[:, 0:3])
-        state[:, 3:6] = _to_heading(yaw, rotate_rows(q, o[:, 7:10]))
+        state[:, 3:6] = _to_heading(yaw, _engine.rotate_rows(q, o[:, 7:10]))
         state[:, 6:9] = rotation_rows(q)[:, 2, :]  # the world's up in the body frame: R^T e_z, R(q)'s third row
         state[:, 9] = o[:, 12]
         np.clip(state, -STATE_HIGH, STATE_HIGH, out=state)

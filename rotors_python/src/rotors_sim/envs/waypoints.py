@@ -19,7 +19,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, rotate
+from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, odometry_observation
 
 OBSERVATION_HIGH = np.array([10.0] * 6 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
 SQUARE = ((0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 1.0, 1.0), (0.0, 1.0, 1.0), (0.0, 0.0, 1.0))
@@ -51,12 +51,9 @@ class WaypointsEnv(FlightEnv):
         self.steps = 0
 
     def _observe(self, odometry) -> np.ndarray:
-        p = odometry.position_W
         current = self.waypoints[min(self.index, len(self.waypoints) - 1)]
         following = self.waypoints[min(self.index + 1, len(self.waypoints) - 1)]
-        v_W = rotate(odometry.orientation, odometry.velocity_B)
-        obs = np.concatenate([p - current, p - following, v_W, odometry.orientation, odometry.angular_velocity_B])
-        return np.clip(obs, -OBSERVATION_HIGH, OBSERVATION_HIGH).astype(np.float32)
+        return odometry_observation(odometry, [current, following], OBSERVATION_HIGH)
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
