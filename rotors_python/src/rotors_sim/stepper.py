@@ -87,11 +87,11 @@ class Stepper:
             self.odometry_topics["ground_truth"] = "ground_truth/odometry"
         # the cameras' images and camera_info are kept only when named: name them, and the
         # messages frames() reads
-        self.camera_topics = sorted(t for t, kind, _ in self.world.topics() if kind in CAMERA_TYPES)
-        self.camera_seen = dict.fromkeys(self.camera_topics, 0)
-        if self.camera_topics:
+        # each camera topic with the count of its messages answered so far
+        self.camera_seen = {t: 0 for t, kind, _ in self.world.topics() if kind in CAMERA_TYPES}
+        if self.camera_seen:
             named = [f"/{mav}/{topic}" for topic in self.odometry_topics.values()] + [f"/{mav}/imu"]
-            self.world.listen(self.camera_topics + named)
+            self.world.listen([*self.camera_seen, *named])
 
     def step(self, n: int) -> dict:
         if not (isinstance(n, int) and 0 <= n <= 100_000):
@@ -109,7 +109,7 @@ class Stepper:
             if r is not None and r.count != self.seen["imu"]:
                 self.seen["imu"] = r.count
                 rows["imu"].append([r.time_s, *r.angular_velocity, *r.linear_acceleration])
-            if self.camera_topics:
+            if self.camera_seen:
                 cameras.extend(self.new_camera_messages())
         answer = {key: [[float(v) for v in row] for row in self.carried[key] + rows[key]] for key in rows}
         self.carried = {key: [] for key in self.carried}
