@@ -59,7 +59,10 @@ try:
                 marks[name] = (time.monotonic(), clock["t"])
 finally:
     sim.send_signal(signal.SIGINT)
-    sim.wait(timeout=30)
+    try:
+        sim.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        sim.kill()
 if "end" not in marks:
     sys.exit(f"ros2_rtf: sim time reached only {clock['t']:.1f} s")
 (w0, t0), (w1, t1) = marks["begin"], marks["end"]

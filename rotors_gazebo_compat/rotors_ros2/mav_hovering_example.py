@@ -10,8 +10,9 @@ enable_logging:=true a recorder (rosbag2_record.py: a ROS 2 bag in $ROS_HOME, de
 <log_file>_<date> as the ROS 1 bag plugin names its bag), and the hovering example node: once the
 simulator and the recorder listen, it sends the waypoint (x, y, z, yaw; default 0, 0, 1, 0) on
 command/trajectory due 5 s of sim time after the start, then unpauses the simulation, as the ROS 1
-hovering_example does. sim_seconds:=T (ours) stops everything after T s of sim time; without it,
-Ctrl-C stops. An argument the ROS 2 front end does not serve yet is refused in one line."""
+hovering_example does. sim_seconds:=T (ours) stops everything after T s of sim time (and fails when
+sim time stands still for 30 s of wall time first); without it, Ctrl-C stops. An argument the ROS 2
+front end does not serve yet is refused in one line."""
 
 from __future__ import annotations
 
@@ -25,6 +26,12 @@ from datetime import datetime
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+# wall-time budgets, 165 s together for a run that fails at any point (the ROS 2 test gives the
+# whole graph 240 s): the start-up (the simulator, the recorder and the services
+# found) shares one; sim time that stands still while it should run, the pause at the end, and the
+# children's stop each have their own. The recorder drains for up to 30 s before it closes its bag.
+STARTUP_S, STALLED_S, PAUSE_S = 60.0, 30.0, 15.0
+STOP_S = {"rosbag2_record.py": 40.0, "rotors_ros2_sim.py": 20.0}
 
 # mav_hovering_example.launch's arguments that the ROS 2 front end serves, with their defaults
 ARGUMENTS = {
@@ -113,12 +120,12 @@ def main(argv: list[str]) -> int:
                 return f"{Path(child.args[1]).name} ended (exit code {child.returncode})"
         return None
 
-    def wait(condition, what: str, limit_s: float = 120.0) -> None:
-        deadline = time.monotonic() + limit_s
+    def wait(condition, what: str, deadline: float) -> None:
+        """Spins until condition(); SystemExit naming `what` when a child ends or the deadline passes."""
         while not condition():
             why = ended()
             if why or time.monotonic() > deadline:
-                raise SystemExit(f"mav_hovering_example: {what}: {why or f'not within {limit_s:.0f} s'}")
+                raise SystemExit(f"mav_hovering_example: {what}: {why or 'not within its time'}")
             rclpy.spin_once(node, timeout_sec=0.05)
 
     stopping = {"now": False}
@@ -126,12 +133,17 @@ def main(argv: list[str]) -> int:
     code = 0
     try:
         # the simulator listens for set points, and the recorder (if any) to every recorded topic
+        startup = time.monotonic() + STARTUP_S
         listeners = 1 + (args["enable_logging"] == "true")
-        wait(lambda: pub.get_subscription_count() >= listeners, "the simulator and the recorder did not subscribe")
+        wait(
+            lambda: pub.get_subscription_count() >= listeners,
+            f"the simulator and the recorder did not subscribe in {STARTUP_S:.0f} s",
+            startup,
+        )
         if args["enable_logging"] == "true":
-            wait(lambda: all(node.count_subscribers(t) >= 1 for t in recorded), "the recorder did not subscribe to every topic")
+            wait(lambda: all(node.count_subscribers(t) >= 1 for t in recorded), "the recorder did not subscribe to every topic", startup)
         unpause = node.create_client(Empty, "/unpause_physics")
-        wait(lambda: unpause.service_is_ready(), "the simulator's /unpause_physics did not appear")
+        wait(lambda: unpause.service_is_ready(), "the simulator's /unpause_physics did not appear", startup)
         point = MultiDOFJointTrajectoryPoint(transforms=[Transform()])
         t = point.transforms[0]
         t.translation.x, t.translation.y, t.translation.z = (float(args[k]) for k in ("x", "y", "z"))
@@ -144,11 +156,16 @@ def main(argv: list[str]) -> int:
         waypoint = f"[{t.translation.x}, {t.translation.y}, {t.translation.z}, {yaw}]"
         node.get_logger().info(f"Publishing waypoint on namespace /{mav}: {waypoint}, due at t = {due_ns * 1e-9:.1f} s.")
         future = unpause.call_async(Empty.Request())
-        wait(lambda: future.done(), "/unpause_physics did not answer")
+        wait(lambda: future.done(), "/unpause_physics did not answer", startup)
         node.get_logger().info("Unpaused the simulation.")
         sim_seconds = float(args["sim_seconds"])
+        last_t, moved = clock["t"], time.monotonic()
         while not stopping["now"] and (sim_seconds <= 0.0 or clock["t"] < sim_seconds):
             why = ended()
+            if clock["t"] != last_t:
+                last_t, moved = clock["t"], time.monotonic()
+            elif sim_seconds > 0.0 and time.monotonic() - moved > STALLED_S:  # a bounded run only: a user may pause
+                why = f"sim time stood still at {last_t:.2f} s for {STALLED_S:.0f} s"
             if why:
                 print(f"mav_hovering_example: {why}", file=sys.stderr)
                 code = 1
@@ -158,7 +175,7 @@ def main(argv: list[str]) -> int:
         if args["enable_logging"] == "true" and ended() is None:  # the recorder gets what is on its way
             pause = node.create_client(Empty, "/pause_physics")
             paused = pause.call_async(Empty.Request())
-            wait(lambda: paused.done(), "/pause_physics did not answer", limit_s=30.0)
+            wait(lambda: paused.done(), "/pause_physics did not answer", time.monotonic() + PAUSE_S)
     except KeyboardInterrupt:
         pass
     except SystemExit as e:
@@ -169,7 +186,7 @@ def main(argv: list[str]) -> int:
             if child.poll() is None:
                 child.send_signal(signal.SIGINT)
             try:
-                child.wait(timeout=20)
+                child.wait(timeout=STOP_S[Path(child.args[1]).name])
             except subprocess.TimeoutExpired:
                 child.kill()
         node.destroy_node()
