@@ -35,21 +35,30 @@ class Watch:
         p = m.pose.pose.position
         self.state.update(t=m.header.stamp.to_sec(), p=(p.x, p.y, p.z))
 
-    def wait_clock(self, t_s, limit_s=120):
+    @staticmethod
+    def until(condition, limit_s, failure):
+        """Polls condition() every 10 ms; SystemExit with failure() after limit_s of wall time."""
         deadline = time.monotonic() + limit_s
-        while self.state["clock"] < t_s or self.state["p"] is None:
+        while not condition():
             if time.monotonic() > deadline:
-                raise SystemExit("sim time stuck at {:.2f} s (waiting for {:.2f} s)".format(self.state["clock"], t_s))
+                raise SystemExit(failure())
             time.sleep(0.01)
+
+    def wait_clock(self, t_s, limit_s=120):
+        self.until(
+            lambda: self.state["clock"] >= t_s and self.state["p"] is not None,
+            limit_s,
+            lambda: "sim time stuck at {:.2f} s (waiting for {:.2f} s)".format(self.state["clock"], t_s),
+        )
         return self.state["clock"]
 
     def wait_stamp(self, accept, what, limit_s=60):
         """Until the latest ground truth's stamp satisfies accept(stamp); SystemExit naming `what`."""
-        deadline = time.monotonic() + limit_s
-        while not accept(self.state["t"]):
-            if time.monotonic() > deadline:
-                raise SystemExit("no ground truth {} within {} s (last stamp {:.3f} s)".format(what, limit_s, self.state["t"]))
-            time.sleep(0.01)
+        self.until(
+            lambda: accept(self.state["t"]),
+            limit_s,
+            lambda: "no ground truth {} within {} s (last stamp {:.3f} s)".format(what, limit_s, self.state["t"]),
+        )
         return self.state["t"]
 
     def send_set_point(self):
