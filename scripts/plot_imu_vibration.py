@@ -19,9 +19,12 @@ import rotors_sim as rs
 DT = 0.001
 
 
-def hover_record(seconds: float = 16.0) -> tuple[np.ndarray, float]:
+def hover_record(seconds: float = 16.0, axis: str = "x", **xacro) -> tuple[np.ndarray, float]:
+    """The hovering firefly's accelerometer (one axis) at 1 kHz, vibration on, white noise off, and its rotors' Hz."""
     world = rs.World("basic", step_size=DT)
-    world.spawn_mav("firefly", random_seed=3, sensor_realism=True, imu_accelerometer_noise_density=0.0, imu_gyroscope_noise_density=0.0)
+    world.spawn_mav(
+        "firefly", random_seed=3, sensor_realism=True, imu_accelerometer_noise_density=0.0, imu_gyroscope_noise_density=0.0, **xacro
+    )
     lee = rs.LeePositionController.for_mav("firefly")
     world.attach_controller("firefly", lee)
     lee.set_point([0.0, 0.0, 1.0])
@@ -29,7 +32,7 @@ def hover_record(seconds: float = 16.0) -> tuple[np.ndarray, float]:
     ax = []
     for _ in range(int(seconds / DT)):
         world.step()
-        ax.append(world.message("/firefly/imu")[0].linear_acceleration.x)
+        ax.append(getattr(world.message("/firefly/imu")[0].linear_acceleration, axis))
     rotor_hz = abs(world.message("/firefly/motor_speed/0")[0].data) / (2 * np.pi)
     return np.array(ax), rotor_hz
 

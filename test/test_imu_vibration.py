@@ -1,6 +1,7 @@
 """An IMU that feels the rotors (rotorVibration, docs/sensor_realism.md), flown in the full world:
 the firefly hovering with sensor_realism on shows its rotors in the IMU's spectrum at the motor
-model's own speed; motors off, the spectrum is flat at the datasheet noise density; the batch refuses
+model's own speed, through a frame's mode with that mode's transmissibility; motors off, the
+spectrum is flat at the datasheet noise density; the batch refuses
 a vehicle whose IMU vibrates. (The model's equations, the Bartlett filter and aliasing: the gtests in
 rotors_plugins/test/test_imu_vibration_model.cpp.)"""
 
@@ -72,6 +73,41 @@ def test_motors_off_the_spectrum_is_flat_at_the_datasheet_density():
         levels = [psd[(f > lo) & (f < lo + 80.0)].mean() for lo in (20.0, 120.0, 220.0, 320.0, 400.0)]
         print(f"{name}: sqrt(PSD) by band {np.sqrt(levels).round(6)} (datasheet {density})")
         assert np.allclose(np.sqrt(levels), density, rtol=0.1)
+
+
+def frame_transmissibility(f_n: float, zeta: float, f: np.ndarray) -> np.ndarray:
+    """|T(j w)| of the base-excited mode, T = (w_n^2 + j 2 zeta w_n w) / (w_n^2 - w^2 + j 2 zeta w_n w)."""
+    w_n, w = 2 * np.pi * f_n, 2 * np.pi * np.asarray(f)
+    return np.abs((w_n**2 + 2j * zeta * w_n * w) / (w_n**2 - w**2 + 2j * zeta * w_n * w))
+
+
+def test_a_frame_mode_passes_the_rotor_lines_with_its_transmissibility():
+    # The same flight twice (the IMU does not feed Lee, so the rotors turn alike): the IMU rigid on the
+    # body, then on a 100 Hz mode with zeta 0.05 (xacro args). The rotors' line in the accelerometer grows
+    # by |T| at their frequency (about 3.6 at 86.5 Hz).
+    f_n, zeta = 100.0, 0.05
+    quiet = dict(imu_accelerometer_noise_density=0.0, imu_gyroscope_noise_density=0.0)
+    lines = {}
+    for name, xacro in (("rigid", quiet), ("mode", dict(quiet, imu_frame_mode_frequency=f_n, imu_frame_mode_damping=zeta))):
+        acc, _, rotor_hz = record_imu(hovering_firefly(**xacro), 8.0)
+        f, a = amplitude_spectrum(acc[:, 0])
+        band = (f > 80.0) & (f < 92.0)  # the six rotors; the register read's image at 94 Hz left out
+        lines[name] = np.sqrt(np.sum(a[band] ** 2))
+        rotor_hz = rotor_hz.mean(axis=0)
+    expected = np.sqrt(np.mean(frame_transmissibility(f_n, zeta, rotor_hz) ** 2))
+    print(
+        f"rotors at {rotor_hz.round(2)} Hz; accelerometer x line: rigid {lines['rigid']:.3g}, on the mode "
+        f"{lines['mode']:.3g} m/s^2: x {lines['mode'] / lines['rigid']:.3f} (|T| {expected:.3f})"
+    )
+    assert lines["mode"] / lines["rigid"] == pytest.approx(expected, rel=0.1)
+
+
+def test_frame_parameters_without_their_partner_are_refused_in_one_line():
+    world = rs.World("basic", step_size=DT)
+    with pytest.raises(rs.SimError, match="frameModeDamping = -1"):
+        world.spawn_mav("firefly", random_seed=3, sensor_realism=True, imu_frame_mode_frequency=100.0)
+    with pytest.raises(rs.SimError, match="rotorVibration is off"):
+        world.spawn_mav("firefly", random_seed=3, imu_thrust_noise_density=0.01)
 
 
 def test_the_batch_refuses_an_imu_that_vibrates():

@@ -223,3 +223,129 @@ TEST(ImuVibration, SameSeedSamePhasesAndErrorsNameTheValue) {
   p.bartlett_taps = 12;
   EXPECT_EQ(p.Validate(), "");  // off: nothing of it is used
 }
+
+// ------------------------------- the frame's mode -------------------------------
+
+namespace {
+ImuVibrationParams FrameParams(double f_n, double zeta, double thrust_noise_density = 0.0) {
+  ImuVibrationParams p = Params(1);
+  p.frame_mode_frequency_hz = f_n;
+  p.frame_mode_damping = zeta;
+  p.thrust_noise_density = thrust_noise_density;
+  return p;
+}
+
+/// Two-sided spectral density [units^2/Hz] of y sampled at fs at frequency f: Hann-windowed periodograms
+/// of `segment` samples, half overlapping, averaged (white noise of variance s^2 gives s^2 / fs).
+double Density(const std::vector<double>& y, double fs, double f_hz, size_t segment) {
+  std::vector<double> window(segment);
+  double w2 = 0.0;
+  for (size_t k = 0; k < segment; ++k) {
+    window[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * k / segment);
+    w2 += window[k] * window[k];
+  }
+  double sum = 0.0;
+  int count = 0;
+  for (size_t start = 0; start + segment <= y.size(); start += segment / 2, ++count) {
+    double re = 0.0, im = 0.0;
+    for (size_t k = 0; k < segment; ++k) {
+      const double v = window[k] * y[start + k], angle = 2.0 * M_PI * f_hz * k / fs;
+      re += v * std::cos(angle);
+      im -= v * std::sin(angle);
+    }
+    sum += (re * re + im * im) / (fs * w2);
+  }
+  return sum / count;
+}
+}  // namespace
+
+TEST(FrameMode, TransmissibilityIsTheBaseExcitedModes) {
+  // |T| = sqrt(1 + (2 zeta r)^2) / sqrt((1 - r^2)^2 + (2 zeta r)^2), r = f / f_n
+  const double f_n = 120.0, zeta = 0.05;
+  for (double r : {0.0, 0.5, 1.0, std::sqrt(2.0), 3.0}) {
+    const double expected =
+        std::sqrt(1.0 + std::pow(2 * zeta * r, 2)) / std::sqrt(std::pow(1 - r * r, 2) + std::pow(2 * zeta * r, 2));
+    EXPECT_NEAR(std::abs(FrameMode::Transmissibility(f_n, zeta, r * f_n)), expected, 1e-12 * expected) << r;
+  }
+  EXPECT_NEAR(std::abs(FrameMode::Transmissibility(f_n, zeta, std::sqrt(2.0) * f_n)), 1.0, 1e-12);  // crossover
+  EXPECT_EQ(FrameMode::Transmissibility(0.0, zeta, 86.0), std::complex<double>(1.0));               // rigid
+}
+
+TEST(FrameMode, EachRotorLinePassesWithTheModesGainAndPhase) {
+  // One rotor in the IMU's plane, read at the internal rate without the Bartlett filter: the line at the
+  // rotor's frequency is the rigid line times |T|, shifted by arg T. Rotors near, at and past f_n.
+  const double fs = 819.2, dt = 1.0 / fs, f_n = 100.0, zeta = 0.08;
+  for (double w : {400.0, 2.0 * M_PI * f_n, 900.0, -2.0 * M_PI * f_n}) {
+    const double f = std::abs(w) / (2.0 * M_PI);
+    ImuVibrationModel rigid(Params(1), FireflyBody(), 21), framed(FrameParams(f_n, zeta), FireflyBody(), 21);
+    const VibratingRotor rotor = Rotor(w, {0.2, 0.1, 0.0});  // off the CoG: the gyroscope feels it too
+    const Record a = Read(&rigid, {rotor}, dt, 20.0), b = Read(&framed, {rotor}, dt, 20.0);
+    const std::complex<double> t = FrameMode::Transmissibility(f_n, zeta, f);
+    EXPECT_NEAR(Amplitude(b.ax, dt, f) / Amplitude(a.ax, dt, f), std::abs(t), 0.01 * std::abs(t)) << w;
+    EXPECT_NEAR(Amplitude(b.gz, dt, f) / Amplitude(a.gz, dt, f), std::abs(t), 0.01 * std::abs(t)) << w;
+    // phase: the framed line's phase minus the rigid one's, at the rotor's frequency
+    auto phase = [&](const std::vector<double>& y) {
+      double re = 0.0, im = 0.0;
+      for (size_t k = 0; k < y.size(); ++k) {
+        re += y[k] * std::cos(2.0 * M_PI * f * k * dt);
+        im += y[k] * std::sin(2.0 * M_PI * f * k * dt);
+      }
+      return std::atan2(-im, re);
+    };
+    const double shift = std::remainder(phase(b.ax) - phase(a.ax), 2.0 * M_PI);
+    EXPECT_NEAR(shift, std::arg(t), 0.02) << w;
+    std::printf(
+        "rotor at %6.1f Hz through a %.0f Hz mode (zeta %.2f): gain %.3f (|T| %.3f), phase %+.3f rad (arg T %+.3f)\n",
+        f, f_n, zeta, Amplitude(b.ax, dt, f) / Amplitude(a.ax, dt, f), std::abs(t), shift, std::arg(t));
+  }
+}
+
+TEST(FrameMode, BroadbandThrustNoiseHasTheModesSpectrum) {
+  // A rotor's thrust fluctuation, white with density s_T relative to C_T w^2 along its axis, seen through
+  // the mode: the accelerometer's density along the axis is (s_T C_T w^2 / m)^2 |T(f)|^2, summed over the
+  // images of the 819.2 SPS sampling; across the axis nothing. Rigid frame: flat at (s_T C_T w^2 / m)^2.
+  const double fs = 819.2, dt = 1.0 / fs, w = 545.0, s_t = 0.01, f_n = 150.0, zeta = 0.05;
+  const VibratingRotor rotor = Rotor(w);
+  ImuVibrationParams quiet = FrameParams(f_n, zeta, s_t);
+  quiet.balance_grade_mm_s = 0.0;  // the broadband alone
+  ImuVibrationParams rigid_params = quiet;
+  rigid_params.frame_mode_frequency_hz = 0.0;
+  ImuVibrationModel framed(quiet, FireflyBody(), 31), rigid(rigid_params, FireflyBody(), 32);
+  const Record b = Read(&framed, {rotor}, dt, 300.0), r = Read(&rigid, {rotor}, dt, 300.0);
+  const double level = s_t * rotor.motor_constant * w * w / FireflyBody().mass_kg;
+  // each estimate is the mean of 11 bins 1.6 Hz apart (2 bins of the 1024-sample periodogram) around f
+  for (double f : {30.0, 100.0, 150.0, 200.0, 330.0}) {
+    double expected = 0.0, measured = 0.0, rigid_measured = 0.0;
+    for (int j = -5; j <= 5; ++j) {
+      const double fj = f + 1.6 * j;
+      for (int m = -400; m <= 400; ++m) expected += std::norm(FrameMode::Transmissibility(f_n, zeta, fj + m * fs));
+      measured += Density(b.az, fs, fj, 1024);
+      rigid_measured += Density(r.az, fs, fj, 1024);
+    }
+    expected *= level * level / 11.0, measured /= 11.0, rigid_measured /= 11.0;
+    EXPECT_NEAR(measured, expected, 0.05 * expected) << f << " Hz";
+    EXPECT_NEAR(rigid_measured, level * level, 0.05 * level * level) << f << " Hz";
+    std::printf(
+        "broadband through a %.0f Hz mode at %5.1f Hz: density %.3e (model %.3e), rigid %.3e (model %.3e) "
+        "(m/s^2)^2/Hz\n",
+        f_n, f, measured, expected, rigid_measured, level * level);
+  }
+  EXPECT_LT(Density(b.ax, fs, 150.0, 1024), 1e-12 * level * level);  // along the spin axis only
+  // motors off: no broadband
+  ImuVibrationModel off(quiet, FireflyBody(), 33);
+  const Record still = Read(&off, {Rotor(0.0)}, dt, 1.0);
+  for (double v : still.az) EXPECT_NEAR(v, 0.0, 1e-12);
+}
+
+TEST(FrameMode, ErrorsNameTheValue) {
+  ImuVibrationParams p = FrameParams(120.0, -1.0);
+  EXPECT_NE(p.Validate().find("frameModeDamping = -1"), std::string::npos) << p.Validate();
+  p = FrameParams(-3.0, 0.05);
+  EXPECT_NE(p.Validate().find("frameModeFrequency = -3"), std::string::npos) << p.Validate();
+  p = FrameParams(0.0, -1.0, std::nan(""));
+  EXPECT_NE(p.Validate().find("thrustNoiseDensity"), std::string::npos) << p.Validate();
+  EXPECT_EQ(FrameParams(0.0, -1.0).Validate(), "");  // rigid: no damping needed
+  p = FrameParams(120.0, 0.05);
+  p.enabled = false;  // never silently ignored
+  EXPECT_NE(p.Validate().find("rotorVibration is off"), std::string::npos) << p.Validate();
+}

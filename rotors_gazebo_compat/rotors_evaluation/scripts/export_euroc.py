@@ -189,7 +189,17 @@ def _write_imu(bag: FlightBag, mav: str, out: Path, urdf: RobotDescription) -> i
         f"accelerometer_noise_density: {float(p['accelerometerNoiseDensity'])!r}\naccelerometer_random_walk: {float(walk_a)!r}\n"
     )
     # the rotor vibration the IMU felt (docs/sensor_realism.md, S8), or none
-    vibration_keys = ("balanceGrade", "residualUnbalance", "bladeCount", "bladePassThrustRipple", "internalSampleRate", "bartlettTaps")
+    vibration_keys = (
+        "balanceGrade",
+        "residualUnbalance",
+        "bladeCount",
+        "bladePassThrustRipple",
+        "internalSampleRate",
+        "bartlettTaps",
+        "frameModeFrequency",
+        "frameModeDamping",
+        "thrustNoiseDensity",
+    )
     if p.get("rotorVibration", "false").strip().lower() in ("true", "1"):
         vibration = "".join(f"\n  {k}: {float(p[k])!r}" for k in vibration_keys if k in p)
     else:

@@ -66,7 +66,8 @@ OdometryNoiseParams ReadOdometryNoise(SdfParams& params);
 /// The IMU plugin's noise densities, random walks, correlation times and turn-on biases, validated.
 ImuNoiseParams ReadImuNoise(SdfParams& params);
 /// The IMU's rotor vibration and ADIS16448 sampling (rotorVibration, balanceGrade, residualUnbalance,
-/// bladeCount, bladePassThrustRipple, internalSampleRate, bartlettTaps), validated.
+/// bladeCount, bladePassThrustRipple, internalSampleRate, bartlettTaps, frameModeFrequency, frameModeDamping,
+/// thrustNoiseDensity), validated.
 ImuVibrationParams ReadImuVibration(SdfParams& params);
 
 }  // namespace rotors_gazebo_plugins

@@ -153,6 +153,9 @@ ImuVibrationParams ReadImuVibration(SdfParams& params) {
   ReadParam(params, "bladePassThrustRipple", &p.blade_pass_thrust_ripple);
   ReadParam(params, "internalSampleRate", &p.internal_rate_hz);
   ReadParam(params, "bartlettTaps", &p.bartlett_taps);
+  ReadParam(params, "frameModeFrequency", &p.frame_mode_frequency_hz);
+  ReadParam(params, "frameModeDamping", &p.frame_mode_damping);
+  ReadParam(params, "thrustNoiseDensity", &p.thrust_noise_density);
   ThrowIfInvalid(p.Validate());
   return p;
 }

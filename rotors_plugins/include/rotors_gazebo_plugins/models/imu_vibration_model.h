@@ -14,6 +14,15 @@
 //   integral(F_i dt) = U_i w_i (x_i sin phi_i - y_i cos phi_i) + r_bp C_T w_i sin(n_b phi_i) / n_b z_i
 // (the centripetal term omega x (omega x p_imu) of the vibration is second order and left out).
 //
+// The frame between the rotors and the IMU (FrameMode, optional): one structural mode of natural frequency
+// f_n and damping ratio zeta, excited through its base (the rigid body's motion). It passes a sinusoid of
+// angular frequency w with the transmissibility
+//   T(jw) = (w_n^2 + j 2 zeta w_n w) / (w_n^2 - w^2 + j 2 zeta w_n w),   w_n = 2 pi f_n
+// (gain |T| and phase arg T, on all six axes), and the rotors' broadband thrust fluctuation, white with
+// density s_T relative to each rotor's thrust, along its spin axis:
+//   a_bb = sum_i s_T C_T w_i^2 n_i(t) z_i / m,   n_i unit white noise,  seen by the IMU as T * a_bb
+//   (density s_T C_T w_i^2 |T(f)| / m per rotor), stepped exactly at the internal rate.
+//
 // Sampling, as the ADIS16448 does it: the signal (flight + vibration) is sampled at the internal rate
 // f_s (819.2 SPS), filtered by the Bartlett-window FIR of SENS_AVG (two cascaded N_B-tap moving averages,
 //   H(f) = [sin(pi N_B f / f_s) / (N_B sin(pi f / f_s))]^2 ),
@@ -22,6 +31,7 @@
 // The white noise and biases of ImuNoiseModel are added to what is read, as before.
 #pragma once
 
+#include <complex>
 #include <cstdint>
 #include <deque>
 #include <random>
@@ -43,6 +53,9 @@ struct ImuVibrationParams {
       0.0;                          ///< r_bp: amplitude of the n_b/rev thrust over the mean (bladePassThrustRipple)
   double internal_rate_hz = 819.2;  ///< f_s [Hz] (internalSampleRate); the ADIS16448's
   int bartlett_taps = 16;           ///< N_B = 2^B, B = SENS_AVG[2:0] (bartlettTaps); 16 as PX4's driver sets
+  double frame_mode_frequency_hz = 0.0;  ///< f_n [Hz] (frameModeFrequency); 0: the IMU rigid on the body
+  double frame_mode_damping = -1.0;      ///< zeta (frameModeDamping); required with a frame mode
+  double thrust_noise_density = 0.0;     ///< s_T [1/sqrt(Hz)] (thrustNoiseDensity); 0: no broadband
   /// Empty when valid, else one line naming the bad value and the fix.
   std::string Validate() const;
 };
@@ -87,6 +100,32 @@ class BartlettFilter {
   MovingAverage first_, second_;
 };
 
+/// One structural mode of the frame between the rotors and the IMU, excited through its base. The
+/// broadband state is one mode per rotor (relative displacement and velocity), driven by that rotor's
+/// unit white noise and stepped exactly (Van Loan's integral of the noise over a sample period).
+class FrameMode {
+ public:
+  /// natural_frequency_hz 0: a rigid frame (T = 1; the broadband passes as white noise).
+  FrameMode(double natural_frequency_hz, double damping_ratio, double sample_rate_hz, uint64_t seed);
+  /// T(j 2 pi f) of the equation above; 1 for a rigid frame.
+  static std::complex<double> Transmissibility(double natural_frequency_hz, double damping_ratio, double f_hz);
+  std::complex<double> Transmissibility(double f_hz) const;
+  /// The IMU's acceleration [per unit density of the input] from `sources` unit white inputs, one sample
+  /// period on: y_k of each source (density |T(f)| at f, as a density 1 input).
+  const std::vector<double>& Next(size_t sources);
+
+ private:
+  double natural_frequency_hz_, damping_ratio_, sample_rate_hz_;
+  Eigen::Matrix2d phi_ = Eigen::Matrix2d::Identity();          ///< e^{A h}
+  Eigen::Matrix2d noise_chol_ = Eigen::Matrix2d::Zero();       ///< chol(Q_d), Q_d = int_0^h e^{At} B B^T e^{A^T t} dt
+  Eigen::Matrix2d stationary_chol_ = Eigen::Matrix2d::Zero();  ///< chol(P), P = Phi P Phi^T + Q_d
+  Eigen::RowVector2d output_ = Eigen::RowVector2d::Zero();     ///< y = -w_n^2 z - 2 zeta w_n z'
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> normal_;
+  std::vector<Eigen::Vector2d> states_;
+  std::vector<double> outputs_;
+};
+
 class ImuVibrationModel {
  public:
   /// `seed` draws each rotor's initial unbalance angle (uniform), as a real rotor's.
@@ -96,7 +135,11 @@ class ImuVibrationModel {
   double Unbalance(const VibratingRotor& rotor) const;
   /// The vibration's specific force [m/s^2] and angular velocity [rad/s], IMU frame, at the rotor
   /// phases `phases_rad` (the equations above).
+  /// (The rotors' lines pass the frame's mode with its transmissibility T.)
   ImuSample Vibration(const std::vector<VibratingRotor>& rotors, const std::vector<double>& phases_rad) const;
+  /// The rotors' broadband thrust fluctuation through the frame's mode, IMU frame [m/s^2], one internal
+  /// sample on (zero, and no draw, when thrustNoiseDensity is 0).
+  Eigen::Vector3d Broadband(const std::vector<VibratingRotor>& rotors);
   /// One reader's period dt: samples flight (interpolated from truth_begin to truth_end) plus vibration
   /// at the internal rate, filters them and returns what the output register holds at the end.
   ImuSample Step(const ImuSample& truth_begin, const ImuSample& truth_end, const std::vector<VibratingRotor>& rotors,
@@ -111,6 +154,7 @@ class ImuVibrationModel {
   std::vector<double> phases_rad_;         ///< at the start of the next period
   std::vector<double> sample_phases_rad_;  ///< at an internal sample (Step's scratch)
   BartlettFilter filter_;
+  FrameMode frame_;
   double time_to_next_sample_s_ = 0.0;
   bool have_output_ = false;
   BartlettFilter::Vector6d output_ = BartlettFilter::Vector6d::Zero();
