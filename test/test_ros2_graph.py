@@ -156,3 +156,27 @@ def test_the_vi_sensors_stereo_pair_reaches_rclpy_with_the_pixels_of_ros1(tmp_pa
     ours = world.camera_image("firefly", "firefly_vi_sensor_stereo_camera", 0)
     assert abs(world.time - kept["stamp"]) < 1e-9 and ours.shape == theirs.shape
     assert np.array_equal(ours, theirs) and theirs.std() > 5  # the same picture, and a real one
+
+
+def test_mav_msgs_on_ros2_motor_commands_and_roll_pitch_yawrate_thrust(tmp_path):
+    """RotorS' mav_msgs built for ROS 2 (make ros2-setup): motor_speed is published as
+    mav_msgs/msg/Actuators with the signed rotor speeds, command/motor_speed drives the motors
+    (--controller none) and a NaN or short command is refused, and the roll-pitch-yawrate-thrust
+    controller (--controller roll_pitch_yawrate_thrust) flies command/roll_pitch_yawrate_thrust."""
+    client = f"python {REPO}/test/ros2_clients/command_client.py"
+    r = simulator_and_client(tmp_path, "--mav firefly --seed 3 --controller none", f"{client} none 120", 150)
+    print(json.dumps(r))
+    assert r["types"] == {"/firefly/motor_speed": ["mav_msgs/msg/Actuators"], "/firefly/command/motor_speed": ["mav_msgs/msg/Actuators"]}
+    assert r["motor_speed_frame"] == "firefly/base_link"
+    # the firefly's rotors alternate their turning direction; 2 s is many motor time constants
+    assert r["speeds_at_600"] == pytest.approx([600.0, -600.0, 600.0, -600.0, 600.0, -600.0], rel=1e-3)
+    assert r["z_at_600"] > r["z_start"] + 0.5  # 600 rad/s is above hover (about 543): it climbs
+    assert r["speeds_after_bad"] == pytest.approx(r["speeds_at_600"], rel=1e-6)
+    assert max(abs(w) for w in r["speeds_at_0"]) < 30.0
+    log = (tmp_path / "sim.log").read_text()
+    assert "angular_velocities[0] = nan must be a finite speed" in log and "has 3 angular_velocities, the vehicle has 6" in log, log[-2000:]
+    r = simulator_and_client(tmp_path, "--mav firefly --seed 3 --controller roll_pitch_yawrate_thrust", f"{client} rpyt 120", 150)
+    print(json.dumps(r))
+    assert r["types"]["/firefly/command/roll_pitch_yawrate_thrust"] == ["mav_msgs/msg/RollPitchYawrateThrust"]
+    assert r["roll_after_1_s"] == pytest.approx(0.1, abs=0.02)
+    assert r["z_after_1_5_s"] > r["z_start"] + 0.1

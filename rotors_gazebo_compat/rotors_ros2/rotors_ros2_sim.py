@@ -5,14 +5,25 @@
 
 A node named `gazebo` publishes `/clock` (rosgraph_msgs/msg/Clock), `/<mav>/odometry_sensor1/odometry`
 and `/<mav>/ground_truth/odometry` (nav_msgs/msg/Odometry) and `/<mav>/imu` (sensor_msgs/msg/Imu) with
-every reading of the vehicle's odometry sensor, ground truth and IMU, stamped with sim time and
-framed as the ROS 1 messages are; it takes set points on `/<mav>/command/trajectory`
-(trajectory_msgs/msg/MultiDOFJointTrajectory: the first point's first transform, in force from its
-stamp + time_from_start, as the ROS 1 Lee node releases it) and `/<mav>/command/pose`
-(geometry_msgs/msg/PoseStamped, from its stamp), and serves Gazebo ROS 2's
-`/reset_simulation`, `/reset_world`, `/pause_physics` and `/unpause_physics` (std_srvs/srv/Empty).
-Lee's position controller (the hovering example's yaml) runs inside the world's step loop, so the
-flight is in lockstep with its controller whatever the machine's load.
+every reading of the vehicle's odometry sensor, ground truth and IMU, and `/<mav>/motor_speed`
+(mav_msgs/msg/Actuators, the real signed rotor speeds, every step), stamped with sim time and framed as
+the ROS 1 messages are, and serves Gazebo ROS 2's `/reset_simulation`, `/reset_world`,
+`/pause_physics` and `/unpause_physics` (std_srvs/srv/Empty). mav_msgs is RotorS' package built for
+ROS 2 by make ros2-setup (rotors_gazebo_compat/rotors_ros2/interfaces).
+
+The controller runs inside the world's step loop, so the flight is in lockstep with it whatever the
+machine's load; --controller picks it, as the ROS 1 launch files pick a controller node:
+- lee (default; the hovering example's yaml): set points on `/<mav>/command/trajectory`
+  (trajectory_msgs/msg/MultiDOFJointTrajectory: the first point's first transform, in force from its
+  stamp + time_from_start, as the ROS 1 Lee node releases it) and `/<mav>/command/pose`
+  (geometry_msgs/msg/PoseStamped, from its stamp);
+- roll_pitch_yawrate_thrust (roll_pitch_yawrate_thrust_controller_node's yaml): `/<mav>/command/
+  roll_pitch_yawrate_thrust`, `command/attitude_thrust` and `command/rate_thrust` (mav_msgs/msg/...,
+  thrust.z [N]);
+- none: no controller.
+`/<mav>/command/motor_speed` (mav_msgs/msg/Actuators, angular_velocities [rad/s]) reaches the motors
+as RotorS' controller interface plugin passes it; with a controller running, its next answer replaces
+it, as on ROS 1 when the controller node publishes the same topic.
 
 The world itself is rotors_sim's, stepped in a child process (python3 -m rotors_sim.stepper, ROS 1's
 environment): ROS 1's and ROS 2's Python message packages share module names and cannot live in one
@@ -21,7 +32,8 @@ process. --real-time-factor 1 (the default) paces sim time to wall time; 0 runs 
 --model mav_with_vi_sensor (a model of rotors_description/urdf, or a path) spawns that model instead
 of the generic odometry sensor's; its cameras' image_raw and camera_info (sensor_msgs/msg/Image and
 CameraInfo) are the ROS 1 camera plugins' messages, field for field and pixel for pixel.
-A set point with a NaN or a missing transform is refused in one line; the world runs on."""
+A command with a NaN or a missing transform, or a motor command of the wrong length, is refused in one
+line; the world runs on."""
 
 from __future__ import annotations
 
@@ -38,7 +50,9 @@ from pathlib import Path
 import rclpy
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseStamped
+from mav_msgs.msg import Actuators, AttitudeThrust, RateThrust, RollPitchYawrateThrust
 from nav_msgs.msg import Odometry
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rosgraph_msgs.msg import Clock
@@ -88,7 +102,7 @@ def yaw_of(x: float, y: float, z: float, w: float) -> float:
 class StepperLink:
     """The world's process (rotors_sim.stepper): one JSON request per line, one answer per line."""
 
-    def __init__(self, mav: str, world: str, seed: int, model: str | None = None):
+    def __init__(self, mav: str, world: str, seed: int, model: str | None = None, controller: str = "lee"):
         # ROS 1's environment for the world's process (ros2_env.sh saves it before it enters ROS 2's)
         env = dict(os.environ)
         for name in ("PYTHONPATH", "LD_LIBRARY_PATH"):
@@ -97,6 +111,7 @@ class StepperLink:
         python = env.get("ROTORS_ROS1_PYTHON", str(REPO / "build" / "venv" / "bin" / "python"))
         cmd = [python, "-m", "rotors_sim.stepper", "--mav", mav, "--world", world, "--seed", str(seed)]
         cmd += ["--model", model] if model else []
+        cmd += ["--controller", controller]
         self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
         ready = self._read()
         if "error" in ready:
@@ -131,6 +146,7 @@ class RotorsSim(Node):
         if "ground_truth" in self.frames:
             self.odometry_pubs["ground_truth"] = self.create_publisher(Odometry, f"/{mav}/ground_truth/odometry", SENSOR_QOS)
         self.imu_pub = self.create_publisher(Imu, f"/{mav}/imu", SENSOR_QOS)
+        self.motor_speed_pub = self.create_publisher(Actuators, f"/{mav}/motor_speed", SENSOR_QOS)
         types = {"Image": Image, "CameraInfo": CameraInfo}
         self.camera_pubs = {topic: self.create_publisher(types[kind], topic, IMAGE_QOS) for topic, kind in info["cameras"]}
         self.messages = {key: Odometry() for key in self.odometry_pubs}
@@ -139,8 +155,16 @@ class RotorsSim(Node):
         self.messages["imu"] = Imu()
         self.messages["imu"].header.frame_id = self.frames["imu"]
         self.messages["imu"].orientation_covariance[0] = -1.0  # no orientation measurement (REP 145), as the ROS 1 IMU says
-        self.create_subscription(MultiDOFJointTrajectory, f"/{mav}/command/trajectory", self.on_trajectory, 10)
-        self.create_subscription(PoseStamped, f"/{mav}/command/pose", self.on_pose, 10)
+        self.messages["motor_speed"] = Actuators()
+        self.messages["motor_speed"].header.frame_id = self.frames["motor_speed"]
+        if info["controller"] == "lee":
+            self.create_subscription(MultiDOFJointTrajectory, f"/{mav}/command/trajectory", self.on_trajectory, 10)
+            self.create_subscription(PoseStamped, f"/{mav}/command/pose", self.on_pose, 10)
+        elif info["controller"] == "roll_pitch_yawrate_thrust":
+            self.create_subscription(RollPitchYawrateThrust, f"/{mav}/command/roll_pitch_yawrate_thrust", self.on_rpyt, 10)
+            self.create_subscription(AttitudeThrust, f"/{mav}/command/attitude_thrust", self.on_attitude_thrust, 10)
+            self.create_subscription(RateThrust, f"/{mav}/command/rate_thrust", self.on_rate_thrust, 10)
+        self.create_subscription(Actuators, f"/{mav}/command/motor_speed", self.on_motor_speed, 10)
         self.requests: list[dict] = []  # served between steps, in the order they came
         self.due: list[tuple[float, dict]] = []  # set points stamped for later: (sim time, request)
         self.paused = paused
@@ -183,6 +207,22 @@ class RotorsSim(Node):
             msg.pose.position, yaw_of(q.x, q.y, q.z, q.w), "command/pose", msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
         )
 
+    def on_rpyt(self, msg: RollPitchYawrateThrust) -> None:
+        self.requests.append(
+            {"op": "roll_pitch_yawrate_thrust", "roll": msg.roll, "pitch": msg.pitch, "yaw_rate": msg.yaw_rate, "thrust": msg.thrust.z}
+        )
+
+    def on_attitude_thrust(self, msg: AttitudeThrust) -> None:
+        q = msg.attitude
+        self.requests.append({"op": "attitude_thrust", "orientation": [q.x, q.y, q.z, q.w], "thrust": msg.thrust.z})
+
+    def on_rate_thrust(self, msg: RateThrust) -> None:
+        w = msg.angular_rates
+        self.requests.append({"op": "rate_thrust", "angular_velocity": [w.x, w.y, w.z], "thrust": msg.thrust.z})
+
+    def on_motor_speed(self, msg: Actuators) -> None:
+        self.requests.append({"op": "motor_speeds", "speeds": list(msg.angular_velocities)})
+
     def publish(self, answer: dict) -> None:
         """Every reading of the answer, then the clock at its end. One message object per topic is
         filled and published again (rclpy serialises it at publish; building a message costs more
@@ -203,6 +243,11 @@ class RotorsSim(Node):
             m.angular_velocity.x, m.angular_velocity.y, m.angular_velocity.z = row[1:4]
             m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z = row[4:7]
             self.imu_pub.publish(m)
+        m = self.messages["motor_speed"]
+        for row in answer["motor_speed"]:
+            m.header.stamp = to_time(row[0])
+            m.angular_velocities = row[1:]
+            self.motor_speed_pub.publish(m)
         for fields in answer["cameras"]:
             self.camera_pubs[fields["topic"]].publish(camera_message(fields))
         self.clock_pub.publish(Clock(clock=to_time(answer["t"])))
@@ -254,13 +299,16 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--real-time-factor", type=float, default=1.0)
     parser.add_argument("--paused", action="store_true", help="start with physics paused, until /unpause_physics")
     parser.add_argument("--model", default=None, help="rotors_description/urdf/<model>.gazebo (e.g. mav_with_vi_sensor), or a path")
+    parser.add_argument(
+        "--controller", default="lee", choices=("lee", "roll_pitch_yawrate_thrust", "none"), help="the controller in the world's loop"
+    )
     args = parser.parse_args(argv)
-    link = StepperLink(args.mav, args.world, args.seed, args.model)
+    link = StepperLink(args.mav, args.world, args.seed, args.model, args.controller)
     rclpy.init()
     node = RotorsSim(link, args.mav, args.real_time_factor, args.paused)
     try:
         node.run()
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ExternalShutdownException):  # SIGINT: rclpy's handler shuts the context down
         pass
     finally:
         link.close()

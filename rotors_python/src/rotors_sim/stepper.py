@@ -4,14 +4,20 @@ xacro and rospkg load) share module names (sensor_msgs, rosgraph_msgs, ...), so 
 (rotors_gazebo_compat/rotors_ros2) runs this in a child process with ROS 1's environment.
 
     python3 -m rotors_sim.stepper --mav firefly --world basic --seed 0 [--model mav_with_vi_sensor]
+                                  [--controller lee | roll_pitch_yawrate_thrust | none]
 
 One JSON object per line on stdin, one answer per line on stdout:
 
     {"op": "step", "n": 10}                          -> {"t": ..., "odometry": [[t, p(3), q xyzw(4), v_B(3), w_B(3)], ...],
                                                           "ground_truth": [... as odometry],
                                                           "imu": [[t, gyro(3), specific force(3)], ...],
+                                                          "motor_speed": [[t, signed rotor speeds [rad/s]...], ...],
                                                           "cameras": [{"topic": ..., "type": "Image" | "CameraInfo", ...}]}
-    {"op": "set_point", "position": [x, y, z], "yaw": 0.0} -> {"t": ...}
+    {"op": "set_point", "position": [x, y, z], "yaw": 0.0} -> {"t": ...}               (--controller lee)
+    {"op": "roll_pitch_yawrate_thrust", "roll": .., "pitch": .., "yaw_rate": .., "thrust": ..} -> {"t": ...}
+    {"op": "attitude_thrust", "orientation": [x, y, z, w], "thrust": ..} -> {"t": ...}
+    {"op": "rate_thrust", "angular_velocity": [x, y, z], "thrust": ..} -> {"t": ...}  (--controller roll_pitch_yawrate_thrust)
+    {"op": "motor_speeds", "speeds": [...]}        -> {"t": ...}   (command/motor_speed; a controller's next answer replaces it)
     {"op": "reset"} / {"op": "reset_world"}          -> {"t": ...}
     {"op": "info"}                                   -> {"t": ..., "step_s": ..., "mav": ..., "frames": {"odometry": ..., "imu": ...},
                                                           "cameras": [[topic, "Image" | "CameraInfo"], ...]}
@@ -21,8 +27,11 @@ none for a vehicle spawned without ground truth) and its IMU taken during the st
 read from the vehicle bus. With a model that carries cameras (--model mav_with_vi_sensor: the
 VI-sensor's stereo pair), each new image and camera_info its camera plugins built in the steps is
 answered with its fields (an image's pixels in base64), the ROS 1 messages the plugins publish.
-Lee's position controller (the hovering example's yaml files) answers each odometry reading
-inside the engine's step loop (World.attach_controller), as the ROS node does in lockstep. A
+The controller (--controller: Lee's position controller, default, or the roll-pitch-yawrate-thrust
+controller, each with the yaml files the ROS 1 launch files load; none: the motors take only
+command/motor_speed) answers each odometry reading inside the engine's step loop
+(World.attach_controller), as the ROS node does in lockstep; the vehicle's motor speeds
+(motor_speed, RotorS' multirotor base plugin's mav_msgs/Actuators) are answered every step. A
 request that cannot be served answers {"error": "..."} in one line and the world keeps
 its state."""
 
@@ -31,16 +40,18 @@ from __future__ import annotations
 import argparse
 import base64
 import json
+import math
 import os
 import sys
 from pathlib import Path
 
 from rotors_sim._engine import SimError
-from rotors_sim.controllers import LeePositionController
+from rotors_sim.controllers import AttitudeLevelController, LeePositionController
 from rotors_sim.paths import package_path
 from rotors_sim.world import World
 
 CAMERA_TYPES = ("sensor_msgs/Image", "sensor_msgs/CameraInfo")
+CONTROLLERS = {"lee": LeePositionController, "roll_pitch_yawrate_thrust": AttitudeLevelController, "none": None}
 
 
 def model_path(model: str | None) -> Path | None:
@@ -74,14 +85,23 @@ def camera_fields(topic: str, msg) -> dict:
 class Stepper:
     """The world, its vehicle and its controller, and the requests they serve."""
 
-    def __init__(self, mav: str, world: str, seed: int, xyz=(0.0, 0.0, 0.1), model: str | None = None):
-        self.mav = mav
+    def __init__(self, mav: str, world: str, seed: int, xyz=(0.0, 0.0, 0.1), model: str | None = None, controller: str = "lee"):
+        if controller not in CONTROLLERS:
+            raise SimError(f"--controller {controller!r}: use one of {', '.join(CONTROLLERS)}")
+        self.mav, self.controller_name = mav, controller
         self.world = World(world)
         self.world.spawn_mav(mav, xyz=xyz, random_seed=seed, model=model_path(model))
-        self.lee = LeePositionController.for_mav(mav)
-        self.world.attach_controller(mav, self.lee)
+        self.controller = CONTROLLERS[controller].for_mav(mav) if CONTROLLERS[controller] else None
+        if self.controller is not None:
+            self.world.attach_controller(mav, self.controller)
         self.seen = {"odometry": 0, "ground_truth": 0, "imu": 0}
-        self.carried: dict = {"odometry": [], "ground_truth": [], "imu": [], "cameras": []}  # taken outside a step request
+        self.carried: dict = {
+            "odometry": [],
+            "ground_truth": [],
+            "imu": [],
+            "motor_speed": [],
+            "cameras": [],
+        }  # taken outside a step request
         self.odometry_topics = {"odometry": "odometry_sensor1/odometry"}
         if any(t == f"/{mav}/ground_truth/odometry" for t, _, _ in self.world.topics()):
             self.odometry_topics["ground_truth"] = "ground_truth/odometry"
@@ -96,7 +116,7 @@ class Stepper:
     def step(self, n: int) -> dict:
         if not (isinstance(n, int) and 0 <= n <= 100_000):
             raise SimError(f"step: n = {n!r} must be a whole number of physics steps in 0..100000")
-        rows: dict[str, list] = {"odometry": [], "ground_truth": [], "imu": []}
+        rows: dict[str, list] = {"odometry": [], "ground_truth": [], "imu": [], "motor_speed": []}
         cameras: list[dict] = self.carried["cameras"]
         for _ in range(n):
             self.world.step(1)
@@ -109,6 +129,8 @@ class Stepper:
             if r is not None and r.count != self.seen["imu"]:
                 self.seen["imu"] = r.count
                 rows["imu"].append([r.time_s, *r.angular_velocity, *r.linear_acceleration])
+            # the multirotor base plugin publishes every step: the real, signed rotor speeds
+            rows["motor_speed"].append([self.world.time, *self.world.rotor_speeds(self.mav)])
             if self.camera_seen:
                 cameras.extend(self.new_camera_messages())
         answer = {key: [[float(v) for v in row] for row in self.carried[key] + rows[key]] for key in rows}
@@ -139,17 +161,45 @@ class Stepper:
             frames[key], frames[f"{key}_child"] = odometry.header.frame_id, odometry.child_frame_id
         imu, _ = self.world.message(f"/{self.mav}/imu")
         frames["imu"] = imu.header.frame_id
+        motors = self.world.message(f"/{self.mav}/motor_speed")
+        frames["motor_speed"] = motors[0].header.frame_id if motors else f"{self.mav}/base_link"
         return frames
+
+    def command(self, op: str, request: dict) -> None:
+        """A controller's command (set_point for Lee; the three attitude-level commands)."""
+        wanted = "lee" if op == "set_point" else "roll_pitch_yawrate_thrust"
+        if self.controller_name != wanted:
+            raise SimError(f"{op}: the world runs --controller {self.controller_name}; {op} is for --controller {wanted}")
+
+        def numbers(key: str, n: int) -> list[float]:
+            v = request.get(key)
+            v = [v] if n == 1 and not isinstance(v, list) else v
+            if not (isinstance(v, list) and len(v) == n and all(isinstance(x, (int, float)) and math.isfinite(x) for x in v)):
+                raise SimError(f"{op}: {key} {request.get(key)!r} must be {n} finite number(s); ignored, the last command stays in force")
+            return [float(x) for x in v]
+
+        if op == "set_point":
+            self.controller.set_point(numbers("position", 3), yaw=numbers("yaw", 1)[0])
+        elif op == "roll_pitch_yawrate_thrust":
+            args = [numbers(k, 1)[0] for k in ("roll", "pitch", "yaw_rate", "thrust")]
+            self.controller.set_roll_pitch_yawrate_thrust(*args)
+        elif op == "attitude_thrust":
+            self.controller.set_attitude_thrust(numbers("orientation", 4), numbers("thrust", 1)[0])
+        else:
+            self.controller.set_rate_thrust(numbers("angular_velocity", 3), numbers("thrust", 1)[0])
 
     def serve(self, request: dict) -> dict:
         op = request.get("op")
         if op == "step":
             answer = self.step(request.get("n", 1))
-        elif op == "set_point":
-            position = request.get("position")
-            if not (isinstance(position, list) and len(position) == 3):
-                raise SimError(f"set_point: position {position!r} must be 3 numbers [m]")
-            self.lee.set_point([float(v) for v in position], yaw=float(request.get("yaw", 0.0)))
+        elif op in ("set_point", "roll_pitch_yawrate_thrust", "attitude_thrust", "rate_thrust"):
+            self.command(op, request)
+            answer = {}
+        elif op == "motor_speeds":
+            speeds = request.get("speeds")
+            if not isinstance(speeds, list):
+                raise SimError(f"motor_speeds: speeds {speeds!r} must be a list of rotor speeds [rad/s]")
+            self.world.set_motor_speeds(self.mav, speeds)
             answer = {}
         elif op == "reset":
             self.world.reset()
@@ -160,8 +210,12 @@ class Stepper:
         elif op == "info":
             cameras = [[t, kind.split("/")[1]] for t, kind, _ in self.world.topics() if t in self.camera_seen]
             answer = {"step_s": self.world.step_size, "mav": self.mav, "frames": self.frames(), "cameras": cameras}
+            answer["controller"] = self.controller_name
         else:
-            raise SimError(f"unknown op {op!r}; use step, set_point, reset, reset_world or info")
+            raise SimError(
+                f"unknown op {op!r}; use step, set_point, roll_pitch_yawrate_thrust, attitude_thrust, rate_thrust, "
+                "motor_speeds, reset, reset_world or info"
+            )
         answer["t"] = self.world.time
         return answer
 
@@ -174,6 +228,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--model", default=None, help="rotors_description/urdf/<model>.gazebo, or a path (default: the generic odometry sensor's)"
     )
+    parser.add_argument("--controller", default="lee", help=f"one of {', '.join(CONTROLLERS)} (default lee)")
     args = parser.parse_args(argv)
     # the answers keep stdout's pipe; everything else the process prints (the plugins' log lines)
     # goes to stderr, so that no line of theirs lands among the answers
@@ -185,7 +240,7 @@ def main(argv: list[str] | None = None) -> int:
         answers.flush()
 
     try:
-        stepper = Stepper(args.mav, args.world, args.seed, model=args.model)
+        stepper = Stepper(args.mav, args.world, args.seed, model=args.model, controller=args.controller)
     except SimError as e:
         answer({"error": str(e)})
         return 1
