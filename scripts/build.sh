@@ -7,9 +7,11 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 ws="$root/build/ws"
 export PATH="$root/build/venv/bin:$PATH"
 mkdir -p "$ws/src"
-# Every folder holding a package.xml (except build/) becomes a link in build/ws/src.
+# Every folder holding a package.xml (except build/) becomes a link in build/ws/src; ROS 2's
+# interface packages (ament_cmake, built by scripts/setup_ros2.sh) are not catkin's.
 find "$ws/src" -maxdepth 1 -type l -delete
 while IFS= read -r manifest; do
+  grep -q "<build_type>ament_cmake</build_type>" "$manifest" && continue
   dir="$(dirname "$manifest")"
   name="$(sed -n 's:.*<name>\(.*\)</name>.*:\1:p' "$manifest" | head -n1)"
   ln -sfn "$dir" "$ws/src/$name"

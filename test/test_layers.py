@@ -20,16 +20,20 @@ def drawn_layers() -> list[str]:
     return re.findall(r"^ (\w+)/ ", block, flags=re.MULTILINE)
 
 
-def packages() -> dict[str, str]:
-    """Package name -> the top-level folder that holds it (the tests' own packages and the repository's
-    root metapackage left out)."""
-    out = {}
-    for xml in REPO.rglob("package.xml"):
+def manifests():
+    """(package.xml, its top-level folder) of the catkin packages: the tests' own packages, the
+    repository's root metapackage and the ROS 2 interface packages (ament_cmake, built apart by
+    scripts/setup_ros2.sh; the same names as their ROS 1 packages) left out."""
+    for xml in sorted(REPO.rglob("package.xml")):
         parts = xml.relative_to(REPO).parts
-        if parts[0] in ("build", "test") or len(parts) == 1:
+        if parts[0] in ("build", "test") or len(parts) == 1 or ET.parse(xml).getroot().findtext("export/build_type") == "ament_cmake":
             continue
-        out[ET.parse(xml).getroot().findtext("name")] = parts[0]
-    return out
+        yield xml, parts[0]
+
+
+def packages() -> dict[str, str]:
+    """Package name -> the top-level folder that holds it."""
+    return {ET.parse(xml).getroot().findtext("name"): folder for xml, folder in manifests()}
 
 
 def test_the_picture_draws_every_package_folder_once():
@@ -48,13 +52,10 @@ def test_no_package_reaches_a_layer_drawn_above_it():
         if used in folder_of and layer[folder_of[used]] < layer[own_folder]:
             upward.append(f"{where} uses {used} ({folder_of[used]}/, drawn above {own_folder}/)")
 
-    for xml in REPO.rglob("package.xml"):
-        parts = xml.relative_to(REPO).parts
-        if parts[0] in ("build", "test") or len(parts) == 1:
-            continue
+    for xml, folder in manifests():
         for tag in DEPENDENCY_TAGS:
             for dep in ET.parse(xml).getroot().iter(tag):
-                check(str(xml.relative_to(REPO)), parts[0], dep.text.strip())
+                check(str(xml.relative_to(REPO)), folder, dep.text.strip())
     for folder in layer:
         for path in (REPO / folder).rglob("*"):
             if not path.is_file():

@@ -180,3 +180,55 @@ def test_mav_msgs_on_ros2_motor_commands_and_roll_pitch_yawrate_thrust(tmp_path)
     assert r["types"]["/firefly/command/roll_pitch_yawrate_thrust"] == ["mav_msgs/msg/RollPitchYawrateThrust"]
     assert r["roll_after_1_s"] == pytest.approx(0.1, abs=0.02)
     assert r["z_after_1_5_s"] > r["z_start"] + 0.1
+
+
+def test_the_worlds_other_topics_reach_rclpy_as_the_ros1_plugins_built_them(tmp_path):
+    """With enable_navigation_sensors:=true (a xacro argument, as spawn_mav.launch passes it), the
+    GPS, magnetometer, barometer, the ground truth's transform and the IMU's true bias (rotors_comm,
+    built for ROS 2 as mav_msgs is) reach an rclpy client with their ROS 2 types, and each one's first
+    message from 1 s on equals, field for field, the ROS 1 plugin's message of the same step in
+    rotors_sim (the same seed): the front end converts the plugin's own bytes (rosbags' ros1_to_cdr)."""
+    topics = {
+        "/firefly/gps": "sensor_msgs/msg/NavSatFix",
+        "/firefly/magnetic_field": "sensor_msgs/msg/MagneticField",
+        "/firefly/air_pressure": "sensor_msgs/msg/FluidPressure",
+        "/firefly/ground_truth/transform": "geometry_msgs/msg/TransformStamped",
+        "/firefly/ground_truth/imu_bias": "rotors_comm/msg/ImuBias",
+    }
+    wanted = " ".join(f"{t}={kind}" for t, kind in topics.items())
+    r = simulator_and_client(
+        tmp_path,
+        "--mav firefly --seed 3 enable_navigation_sensors:=true",
+        f"python {REPO}/test/ros2_clients/sensors_client.py 1.0 120 {wanted}",
+        150,
+    )
+    assert r["types"] == {t: [kind] for t, kind in topics.items()}
+    assert "/firefly/motor_speed/0 (not a ROS 2 topic name)" in (tmp_path / "sim.log").read_text()
+
+    import rotors_sim as rs
+
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=3, enable_navigation_sensors=True)
+    world.attach_controller("firefly", rs.LeePositionController.for_mav("firefly"))
+
+    def ros1_fields(m) -> object:
+        if hasattr(m, "secs"):  # genpy's time: builtin_interfaces/Time on ROS 2
+            return {"sec": m.secs, "nanosec": m.nsecs}
+        if hasattr(m, "__slots__"):
+            return {name.lower(): ros1_fields(getattr(m, name)) for name in m.__slots__ if name != "seq"}
+        if isinstance(m, (list, tuple)):
+            return [ros1_fields(v) for v in m]
+        return m
+
+    # each topic's ROS 1 message of the step its kept message is stamped with (the GPS runs at 5 Hz;
+    # a topic is sent from its subscriber's discovery on, which takes its time)
+    compared, last_s = set(), max(m["header"]["stamp"]["sec"] + m["header"]["stamp"]["nanosec"] * 1e-9 for m in r["kept"].values())
+    while len(compared) < len(topics) and world.time < last_s + 0.5:
+        world.step()
+        for topic in set(topics) - compared:
+            ros1 = ros1_fields(world.message(topic)[0])
+            if ros1["header"]["stamp"] == r["kept"][topic]["header"]["stamp"]:
+                print(topic, json.dumps(r["kept"][topic])[:150])
+                assert r["kept"][topic] == ros1, topic
+                compared.add(topic)
+    assert compared == set(topics)

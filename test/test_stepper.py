@@ -1,6 +1,7 @@
 """rotors_sim.stepper, the world's side of the ROS 2 front end, without ROS 2: every step answers the
 vehicle's signed rotor speeds (motor_speed); motor commands reach the motors and bad ones are refused in
-one line with the world unchanged; each controller takes only its own commands."""
+one line with the world unchanged; each controller takes only its own commands; the other topics are
+answered as the plugins' ROS 1 bytes once asked for."""
 
 import math
 
@@ -35,3 +36,22 @@ def test_each_controller_takes_its_own_commands_and_refuses_nan():
         s.serve({"op": "rate_thrust", "angular_velocity": [0, 0, 0], "thrust": math.nan})
     with pytest.raises(SimError, match="--controller 'fast'"):
         Stepper("firefly", "basic", 3, controller="fast")
+
+
+def test_other_topics_are_answered_as_ros1_bytes_once_asked_for():
+    import base64
+
+    import rospy  # noqa: F401  (genpy's time for the message class)
+    from geometry_msgs.msg import TransformStamped
+
+    s = Stepper("firefly", "basic", 3)
+    topics = dict(s.serve({"op": "info"})["topics"])
+    assert topics["/firefly/ground_truth/transform"] == "geometry_msgs/TransformStamped" and "/firefly/imu" not in topics
+    assert s.serve({"op": "step", "n": 3})["messages"] == []  # none asked for yet
+    s.serve({"op": "forward", "topics": ["/firefly/ground_truth/transform"]})
+    answer = s.serve({"op": "step", "n": 3})
+    assert [m[:2] for m in answer["messages"]] == [["/firefly/ground_truth/transform", "geometry_msgs/TransformStamped"]] * 3
+    m = TransformStamped().deserialize(base64.b64decode(answer["messages"][-1][2]))
+    assert m.header.stamp.to_sec() == pytest.approx(answer["t"]) and m.child_frame_id == "firefly/base_link"
+    with pytest.raises(SimError, match="not among the world's other topics"):
+        s.serve({"op": "forward", "topics": ["/firefly/imu"]})

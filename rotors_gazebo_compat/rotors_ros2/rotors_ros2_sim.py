@@ -29,9 +29,15 @@ The world itself is rotors_sim's, stepped in a child process (python3 -m rotors_
 environment): ROS 1's and ROS 2's Python message packages share module names and cannot live in one
 process. --real-time-factor 1 (the default) paces sim time to wall time; 0 runs as fast as it can.
 --paused starts with physics paused (the launch files' paused:=true), until /unpause_physics.
---model mav_with_vi_sensor (a model of rotors_description/urdf, or a path) spawns that model instead
-of the generic odometry sensor's; its cameras' image_raw and camera_info (sensor_msgs/msg/Image and
-CameraInfo) are the ROS 1 camera plugins' messages, field for field and pixel for pixel.
+Every other topic the vehicle's plugins publish on ROS 1 is published, to its subscribers, under the
+same name with the ROS 2 form of its type (the ground truth's and the odometry sensor's pose, position and transform,
+motor_speed/<N>, the IMU bias; with enable_navigation_sensors:=true the GPS, ground speed,
+magnetometer and barometer; cameras' image_raw and camera_info; lasers): the plugin's own ROS 1
+message, converted to CDR by rosbags (ros1_to_cdr: the same fields, Header without seq), so field for
+field and pixel for pixel what ROS 1 sees. A type with no ROS 2 package here is named in one line at
+start and not published. --model mav_with_vi_sensor (a model of rotors_description/urdf, or a path)
+spawns that model instead of the generic odometry sensor's; name:=value arguments are further xacro
+arguments of the vehicle, as spawn_mav.launch passes them.
 A command with a NaN or a missing transform, or a motor command of the wrong length, is refused in one
 line; the world runs on."""
 
@@ -39,6 +45,7 @@ from __future__ import annotations
 
 import argparse
 import base64
+import importlib
 import json
 import math
 import os
@@ -52,11 +59,14 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseStamped
 from mav_msgs.msg import Actuators, AttitudeThrust, RateThrust, RollPitchYawrateThrust
 from nav_msgs.msg import Odometry
+from rclpy.event_handler import PublisherEventCallbacks
+from rclpy.exceptions import InvalidTopicNameException
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import CameraInfo, Image, Imu
+from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
@@ -69,8 +79,10 @@ SENSOR_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10_000, reliabili
 # physics steps per exchange with the world when running as fast as possible (10: 0.1 s of basic.world):
 # subscriptions and services are served between exchanges
 STEPS_PER_EXCHANGE = 10
-# the cameras' QoS: reliable, the last 100 frames (36 MB of the VI-sensor's 752 x 480 images)
+# the cameras' and point clouds' QoS: reliable, the last 100 (36 MB of the VI-sensor's 752 x 480 images)
 IMAGE_QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=100, reliability=ReliabilityPolicy.RELIABLE)
+LARGE_TYPES = ("sensor_msgs/msg/Image", "sensor_msgs/msg/PointCloud2")
+INTERFACES = REPO / "rotors_gazebo_compat" / "rotors_ros2" / "interfaces"
 
 
 def to_time(t_s: float) -> Time:
@@ -78,20 +90,54 @@ def to_time(t_s: float) -> Time:
     return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
 
 
-def camera_message(f: dict):
-    """The ROS 2 sensor_msgs/msg/Image or CameraInfo of a camera message's fields (rotors_sim.stepper:
-    the ROS 1 message the camera plugin built, field by field; the pixels as they were)."""
-    m = Image() if f["type"] == "Image" else CameraInfo()
-    m.header.stamp = Time(sec=f["stamp"][0], nanosec=f["stamp"][1])
-    m.header.frame_id, m.height, m.width = f["frame_id"], f["height"], f["width"]
-    if f["type"] == "Image":
-        m.encoding, m.is_bigendian, m.step = f["encoding"], f["is_bigendian"], f["step"]
-        m.data = base64.b64decode(f["data"])
-    else:
-        m.distortion_model, m.d, m.k, m.r, m.p = f["distortion_model"], f["D"], f["K"], f["R"], f["P"]
-        m.binning_x, m.binning_y = f["binning_x"], f["binning_y"]
-        m.roi.x_offset, m.roi.y_offset, m.roi.height, m.roi.width, m.roi.do_rectify = f["roi"]
-    return m
+class Ros1Bridge:
+    """The ROS 2 publishers of the world's other topics: a ROS 1 type pkg/Name becomes pkg/msg/Name, its
+    messages are converted from ROS 1's bytes to CDR (rosbags' ROS 1 to CDR conversion, with the project's
+    ROS 2 interface packages registered) and published as they are. The world sends the messages of the
+    topics someone subscribes to (`listened`, kept by the publishers' matched events): converting and
+    publishing every topic of a vehicle every step would cost more than the step."""
+
+    def __init__(self, node: Node, topics: list):
+        self.typestore = get_typestore(Stores.ROS2_JAZZY)
+        for msg in sorted(INTERFACES.glob("*/msg/*.msg")):
+            self.typestore.register(get_types_from_msg(msg.read_text(), f"{msg.parent.parent.name}/msg/{msg.stem}"))
+        self.publishers, self.ros2_types, skipped = {}, {}, []
+        self.listened: set[str] = set()
+        self.changed = False
+        for topic, ros1_type in topics:
+            package, name = ros1_type.split("/")
+            ros2_type = f"{package}/msg/{name}"
+            try:
+                cls = getattr(importlib.import_module(f"{package}.msg"), name)
+            except (ImportError, AttributeError):
+                skipped.append(f"{topic} ({ros1_type}: no ROS 2 package here)")
+                continue
+            if ros2_type not in self.typestore.fielddefs:
+                skipped.append(f"{topic} ({ros1_type}: rosbags cannot convert it)")
+                continue
+            try:
+                self.publishers[topic] = node.create_publisher(
+                    cls,
+                    topic,
+                    IMAGE_QOS if ros2_type in LARGE_TYPES else SENSOR_QOS,
+                    event_callbacks=PublisherEventCallbacks(matched=lambda status, topic=topic: self.matched(topic, status.current_count)),
+                )
+            except InvalidTopicNameException:  # e.g. motor_speed/0: a ROS 2 name token cannot start with a digit
+                skipped.append(f"{topic} (not a ROS 2 topic name)")
+                continue
+            self.ros2_types[topic] = ros2_type
+        if skipped:
+            node.get_logger().info(f"not on ROS 2: {', '.join(skipped)}")
+
+    def matched(self, topic: str, subscribers: int) -> None:
+        before = set(self.listened)
+        (self.listened.add if subscribers > 0 else self.listened.discard)(topic)
+        self.changed = self.changed or self.listened != before
+
+    def publish(self, topic: str, data_b64: str) -> None:
+        if topic in self.publishers:
+            raw = base64.b64decode(data_b64)
+            self.publishers[topic].publish(bytes(self.typestore.ros1_to_cdr(raw, self.ros2_types[topic])))
 
 
 def yaw_of(x: float, y: float, z: float, w: float) -> float:
@@ -102,7 +148,7 @@ def yaw_of(x: float, y: float, z: float, w: float) -> float:
 class StepperLink:
     """The world's process (rotors_sim.stepper): one JSON request per line, one answer per line."""
 
-    def __init__(self, mav: str, world: str, seed: int, model: str | None = None, controller: str = "lee"):
+    def __init__(self, mav: str, world: str, seed: int, model: str | None = None, controller: str = "lee", xacro_args=()):
         # ROS 1's environment for the world's process (ros2_env.sh saves it before it enters ROS 2's)
         env = dict(os.environ)
         for name in ("PYTHONPATH", "LD_LIBRARY_PATH"):
@@ -111,7 +157,7 @@ class StepperLink:
         python = env.get("ROTORS_ROS1_PYTHON", str(REPO / "build" / "venv" / "bin" / "python"))
         cmd = [python, "-m", "rotors_sim.stepper", "--mav", mav, "--world", world, "--seed", str(seed)]
         cmd += ["--model", model] if model else []
-        cmd += ["--controller", controller]
+        cmd += ["--controller", controller, *xacro_args]
         self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
         ready = self._read()
         if "error" in ready:
@@ -147,8 +193,7 @@ class RotorsSim(Node):
             self.odometry_pubs["ground_truth"] = self.create_publisher(Odometry, f"/{mav}/ground_truth/odometry", SENSOR_QOS)
         self.imu_pub = self.create_publisher(Imu, f"/{mav}/imu", SENSOR_QOS)
         self.motor_speed_pub = self.create_publisher(Actuators, f"/{mav}/motor_speed", SENSOR_QOS)
-        types = {"Image": Image, "CameraInfo": CameraInfo}
-        self.camera_pubs = {topic: self.create_publisher(types[kind], topic, IMAGE_QOS) for topic, kind in info["cameras"]}
+        self.bridge = Ros1Bridge(self, info["topics"])
         self.messages = {key: Odometry() for key in self.odometry_pubs}
         for key, m in self.messages.items():
             m.header.frame_id, m.child_frame_id = self.frames[key], self.frames[f"{key}_child"]
@@ -248,8 +293,8 @@ class RotorsSim(Node):
             m.header.stamp = to_time(row[0])
             m.angular_velocities = row[1:]
             self.motor_speed_pub.publish(m)
-        for fields in answer["cameras"]:
-            self.camera_pubs[fields["topic"]].publish(camera_message(fields))
+        for topic, _, data in answer["messages"]:
+            self.bridge.publish(topic, data)
         self.clock_pub.publish(Clock(clock=to_time(answer["t"])))
 
     def steps_to_take(self, now_s: float) -> int:
@@ -266,6 +311,9 @@ class RotorsSim(Node):
         wall_start, sim_start, now_s = time.monotonic(), None, 0.0
         while rclpy.ok():
             rclpy.spin_once(self, timeout_sec=0.0)
+            if self.bridge.changed:
+                self.bridge.changed = False
+                self.requests.append({"op": "forward", "topics": sorted(self.bridge.listened)})
             while self.due and self.due[0][0] <= now_s + 1e-9:
                 self.requests.append(self.due.pop(0)[1])
             while self.requests:
@@ -302,9 +350,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--controller", default="lee", choices=("lee", "roll_pitch_yawrate_thrust", "none"), help="the controller in the world's loop"
     )
+    parser.add_argument("xacro_args", nargs="*", metavar="name:=value", help="further xacro arguments of the vehicle")
     args = parser.parse_args(argv)
-    link = StepperLink(args.mav, args.world, args.seed, args.model, args.controller)
-    rclpy.init()
+    link = StepperLink(args.mav, args.world, args.seed, args.model, args.controller, args.xacro_args)
+    rclpy.init(args=[a for a in (sys.argv if argv is None else argv) if a not in args.xacro_args])  # xacro's, not remaps
     node = RotorsSim(link, args.mav, args.real_time_factor, args.paused)
     try:
         node.run()

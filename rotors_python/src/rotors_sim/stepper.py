@@ -4,7 +4,10 @@ xacro and rospkg load) share module names (sensor_msgs, rosgraph_msgs, ...), so 
 (rotors_gazebo_compat/rotors_ros2) runs this in a child process with ROS 1's environment.
 
     python3 -m rotors_sim.stepper --mav firefly --world basic --seed 0 [--model mav_with_vi_sensor]
-                                  [--controller lee | roll_pitch_yawrate_thrust | none]
+                                  [--controller lee | roll_pitch_yawrate_thrust | none] [name:=value ...]
+
+(name:=value: further xacro arguments of the vehicle, as spawn_mav.launch passes them, e.g.
+enable_navigation_sensors:=true for the GPS, magnetometer and barometer.)
 
 One JSON object per line on stdin, one answer per line on stdout:
 
@@ -12,21 +15,25 @@ One JSON object per line on stdin, one answer per line on stdout:
                                                           "ground_truth": [... as odometry],
                                                           "imu": [[t, gyro(3), specific force(3)], ...],
                                                           "motor_speed": [[t, signed rotor speeds [rad/s]...], ...],
-                                                          "cameras": [{"topic": ..., "type": "Image" | "CameraInfo", ...}]}
+                                                          "messages": [[topic, ROS 1 type, ROS 1 bytes in base64], ...]}
     {"op": "set_point", "position": [x, y, z], "yaw": 0.0} -> {"t": ...}               (--controller lee)
     {"op": "roll_pitch_yawrate_thrust", "roll": .., "pitch": .., "yaw_rate": .., "thrust": ..} -> {"t": ...}
     {"op": "attitude_thrust", "orientation": [x, y, z, w], "thrust": ..} -> {"t": ...}
     {"op": "rate_thrust", "angular_velocity": [x, y, z], "thrust": ..} -> {"t": ...}  (--controller roll_pitch_yawrate_thrust)
     {"op": "motor_speeds", "speeds": [...]}        -> {"t": ...}   (command/motor_speed; a controller's next answer replaces it)
+    {"op": "forward", "topics": [...]}               -> {"t": ...}   (the other topics to answer, from now on; none at start)
     {"op": "reset"} / {"op": "reset_world"}          -> {"t": ...}
     {"op": "info"}                                   -> {"t": ..., "step_s": ..., "mav": ..., "frames": {"odometry": ..., "imu": ...},
-                                                          "cameras": [[topic, "Image" | "CameraInfo"], ...]}
+                                                          "controller": ..., "topics": [[topic, ROS 1 type], ...]}
 
 Each reading of the vehicle's odometry sensor, its ground-truth odometry (ground_truth/odometry;
 none for a vehicle spawned without ground truth) and its IMU taken during the steps is answered,
-read from the vehicle bus. With a model that carries cameras (--model mav_with_vi_sensor: the
-VI-sensor's stereo pair), each new image and camera_info its camera plugins built in the steps is
-answered with its fields (an image's pixels in base64), the ROS 1 messages the plugins publish.
+read from the vehicle bus. Every other topic the world's plugins publish (GPS, magnetometer,
+barometer, the ground truth's pose and transform, lasers, cameras with their camera_info, ...) is
+answered as the plugin built it, once asked for (op forward: a front end asks for the topics someone
+subscribes to): each new message of the steps, ROS 1's serialised bytes (a front end converts them;
+rosbags' ros1_to_cdr for ROS 2). Cameras included: their messages, kept only when named
+(World.listen), are named here.
 The controller (--controller: Lee's position controller, default, or the roll-pitch-yawrate-thrust
 controller, each with the yaml files the ROS 1 launch files load; none: the motors take only
 command/motor_speed) answers each odometry reading inside the engine's step loop
@@ -50,7 +57,6 @@ from rotors_sim.controllers import AttitudeLevelController, LeePositionControlle
 from rotors_sim.paths import package_path
 from rotors_sim.world import World
 
-CAMERA_TYPES = ("sensor_msgs/Image", "sensor_msgs/CameraInfo")
 CONTROLLERS = {"lee": LeePositionController, "roll_pitch_yawrate_thrust": AttitudeLevelController, "none": None}
 
 
@@ -67,57 +73,48 @@ def model_path(model: str | None) -> Path | None:
     return path
 
 
-def camera_fields(topic: str, msg) -> dict:
-    """A ROS 1 sensor_msgs/Image or CameraInfo as plain fields (an image's data in base64)."""
-    h = msg.header
-    out = {"topic": topic, "stamp": [h.stamp.secs, h.stamp.nsecs], "frame_id": h.frame_id, "height": msg.height, "width": msg.width}
-    if hasattr(msg, "encoding"):
-        out.update(type="Image", encoding=msg.encoding, is_bigendian=msg.is_bigendian, step=msg.step)
-        out["data"] = base64.b64encode(bytes(msg.data)).decode("ascii")
-    else:
-        roi = msg.roi
-        out.update(type="CameraInfo", distortion_model=msg.distortion_model, D=list(msg.D), K=list(msg.K), R=list(msg.R), P=list(msg.P))
-        out.update(binning_x=msg.binning_x, binning_y=msg.binning_y)
-        out["roi"] = [roi.x_offset, roi.y_offset, roi.height, roi.width, bool(roi.do_rectify)]
-    return out
-
-
 class Stepper:
     """The world, its vehicle and its controller, and the requests they serve."""
 
-    def __init__(self, mav: str, world: str, seed: int, xyz=(0.0, 0.0, 0.1), model: str | None = None, controller: str = "lee"):
+    def __init__(
+        self,
+        mav: str,
+        world: str,
+        seed: int,
+        xyz=(0.0, 0.0, 0.1),
+        model: str | None = None,
+        controller: str = "lee",
+        xacro_args: dict | None = None,
+    ):
         if controller not in CONTROLLERS:
             raise SimError(f"--controller {controller!r}: use one of {', '.join(CONTROLLERS)}")
         self.mav, self.controller_name = mav, controller
         self.world = World(world)
-        self.world.spawn_mav(mav, xyz=xyz, random_seed=seed, model=model_path(model))
+        self.world.spawn_mav(mav, xyz=xyz, random_seed=seed, model=model_path(model), **(xacro_args or {}))
         self.controller = CONTROLLERS[controller].for_mav(mav) if CONTROLLERS[controller] else None
         if self.controller is not None:
             self.world.attach_controller(mav, self.controller)
         self.seen = {"odometry": 0, "ground_truth": 0, "imu": 0}
-        self.carried: dict = {
-            "odometry": [],
-            "ground_truth": [],
-            "imu": [],
-            "motor_speed": [],
-            "cameras": [],
-        }  # taken outside a step request
+        # taken outside a step request, answered with the next
+        self.carried: dict = {"odometry": [], "ground_truth": [], "imu": [], "motor_speed": [], "messages": []}
         self.odometry_topics = {"odometry": "odometry_sensor1/odometry"}
-        if any(t == f"/{mav}/ground_truth/odometry" for t, _, _ in self.world.topics()):
+        topics = self.world.topics()
+        if any(t == f"/{mav}/ground_truth/odometry" for t, _, _ in topics):
             self.odometry_topics["ground_truth"] = "ground_truth/odometry"
-        # the cameras' images and camera_info are kept only when named: name them, and the
-        # messages frames() reads
-        # each camera topic with the count of its messages answered so far
-        self.camera_seen = {t: 0 for t, kind, _ in self.world.topics() if kind in CAMERA_TYPES}
-        if self.camera_seen:
-            named = [f"/{mav}/{topic}" for topic in self.odometry_topics.values()] + [f"/{mav}/imu"]
-            self.world.listen([*self.camera_seen, *named])
+        # answered from the vehicle bus instead (above)
+        native = {f"/{mav}/{t}" for t in (*self.odometry_topics.values(), "imu", "motor_speed")}
+        # every other topic, by its plugin's ROS 1 type
+        self.types = {t: kind for t, kind, _ in topics if t not in native}
+        # those asked for (op forward), with the count of their messages answered so far
+        self.forwarded: dict[str, int] = {}
+        # every message is kept, the cameras' too (they are kept only when named)
+        self.world.listen([t for t, _, _ in topics])
 
     def step(self, n: int) -> dict:
         if not (isinstance(n, int) and 0 <= n <= 100_000):
             raise SimError(f"step: n = {n!r} must be a whole number of physics steps in 0..100000")
         rows: dict[str, list] = {"odometry": [], "ground_truth": [], "imu": [], "motor_speed": []}
-        cameras: list[dict] = self.carried["cameras"]
+        messages: list[list] = self.carried["messages"]
         for _ in range(n):
             self.world.step(1)
             for key, topic in self.odometry_topics.items():
@@ -131,24 +128,24 @@ class Stepper:
                 rows["imu"].append([r.time_s, *r.angular_velocity, *r.linear_acceleration])
             # the multirotor base plugin publishes every step: the real, signed rotor speeds
             rows["motor_speed"].append([self.world.time, *self.world.rotor_speeds(self.mav)])
-            if self.camera_seen:
-                cameras.extend(self.new_camera_messages())
+            messages.extend(self.new_messages())
         answer = {key: [[float(v) for v in row] for row in self.carried[key] + rows[key]] for key in rows}
         self.carried = {key: [] for key in self.carried}
-        answer["cameras"] = cameras
+        answer["messages"] = messages
         return answer
 
-    def new_camera_messages(self) -> list[dict]:
-        """The images and camera_info the camera plugins published since the last call."""
+    def new_messages(self) -> list[list]:
+        """[topic, ROS 1 type, base64 bytes] of each forwarded topic's message published since the last call."""
         out = []
-        counts = {t: n for t, _, n in self.world.topics() if t in self.camera_seen}
-        for topic, count in counts.items():
-            if count == self.camera_seen[topic]:
+        if not self.forwarded:
+            return out
+        for topic, _, count in self.world.topics():
+            if self.forwarded.get(topic, count) == count:
                 continue
-            self.camera_seen[topic] = count
-            got = self.world.message(topic)
+            self.forwarded[topic] = count
+            got = self.world.engine.message(topic)  # (datatype, count, ROS 1 bytes)
             if got is not None:
-                out.append(camera_fields(topic, got[0]))
+                out.append([topic, got[0], base64.b64encode(got[2]).decode("ascii")])
         return out
 
     def frames(self) -> dict:
@@ -208,13 +205,21 @@ class Stepper:
             self.world.reset_world()
             answer = {}
         elif op == "info":
-            cameras = [[t, kind.split("/")[1]] for t, kind, _ in self.world.topics() if t in self.camera_seen]
-            answer = {"step_s": self.world.step_size, "mav": self.mav, "frames": self.frames(), "cameras": cameras}
-            answer["controller"] = self.controller_name
+            answer = {"step_s": self.world.step_size, "mav": self.mav, "frames": self.frames(), "controller": self.controller_name}
+            answer["topics"] = [[t, kind] for t, kind in self.types.items()]
+        elif op == "forward":
+            topics = request.get("topics")
+            unknown = [t for t in topics or [] if t not in self.types] if isinstance(topics, list) else None
+            if unknown is None or unknown:
+                raise SimError(f"forward: {unknown or topics!r}: not among the world's other topics (op info lists them)")
+            counts = {t: n for t, _, n in self.world.topics()}
+            # a topic asked for anew starts with its next message
+            self.forwarded = {t: self.forwarded.get(t, counts[t]) for t in topics}
+            answer = {}
         else:
             raise SimError(
                 f"unknown op {op!r}; use step, set_point, roll_pitch_yawrate_thrust, attitude_thrust, rate_thrust, "
-                "motor_speeds, reset, reset_world or info"
+                "motor_speeds, forward, reset, reset_world or info"
             )
         answer["t"] = self.world.time
         return answer
@@ -229,7 +234,10 @@ def main(argv: list[str] | None = None) -> int:
         "--model", default=None, help="rotors_description/urdf/<model>.gazebo, or a path (default: the generic odometry sensor's)"
     )
     parser.add_argument("--controller", default="lee", help=f"one of {', '.join(CONTROLLERS)} (default lee)")
+    parser.add_argument("xacro_args", nargs="*", metavar="name:=value", help="further xacro arguments of the vehicle")
     args = parser.parse_args(argv)
+    bad = [a for a in args.xacro_args if ":=" not in a]
+    xacro_args = dict(a.split(":=", 1) for a in args.xacro_args if ":=" in a)
     # the answers keep stdout's pipe; everything else the process prints (the plugins' log lines)
     # goes to stderr, so that no line of theirs lands among the answers
     answers = os.fdopen(os.dup(sys.stdout.fileno()), "w")
@@ -240,7 +248,9 @@ def main(argv: list[str] | None = None) -> int:
         answers.flush()
 
     try:
-        stepper = Stepper(args.mav, args.world, args.seed, model=args.model, controller=args.controller)
+        if bad:
+            raise SimError(f"{' '.join(bad)}: a xacro argument is name:=value")
+        stepper = Stepper(args.mav, args.world, args.seed, model=args.model, controller=args.controller, xacro_args=xacro_args)
     except SimError as e:
         answer({"error": str(e)})
         return 1
