@@ -1,5 +1,6 @@
-"""RotorS' mav_msgs as a ROS 2 interface package (rotors_gazebo_compat/rotors_ros2/interfaces, built by
-make ros2-setup with PyPI's Jazzy rosidl wheels): every message of the ROS 1 package is there with the
+"""RotorS' mav_msgs and rotors_comm as ROS 2 interface packages (rotors_gazebo_compat/rotors_ros2/
+interfaces, built by make ros2-setup with PyPI's Jazzy rosidl wheels): every message of each ROS 1
+package is there with the
 same fields in the same order and the same constants, in ROS 2's form (std_msgs/Header; field names in
 lower case, as rosidl requires: GpsWaypoint's maxSpeed, maxAcc become max_speed, max_acc). Read from
 the generated Python classes in build/ros2-venv, against the ROS 1 .msg files."""
@@ -14,9 +15,17 @@ from support import REPO
 
 pytestmark = pytest.mark.ros2
 
-ROS1 = REPO / "rotors_msgs" / "mav_msgs" / "msg"
 # ROS 1 builtin -> the rosidl type string of get_fields_and_field_types()
-BUILTIN = {"float64": "double", "float32": "float", "int32": "int32", "uint32": "uint32", "bool": "boolean", "string": "string"}
+BUILTIN = {
+    "float64": "double",
+    "float32": "float",
+    "int32": "int32",
+    "uint32": "uint32",
+    "uint64": "uint64",
+    "uint8": "uint8",
+    "bool": "boolean",
+    "string": "string",
+}
 
 
 def ros2_form(ros1_type: str) -> str:
@@ -40,12 +49,14 @@ def ros1_definition(path) -> tuple[list, dict]:
     return fields, constants
 
 
-def test_the_ros2_mav_msgs_have_the_ros1_fields_and_constants():
+@pytest.mark.parametrize("package", ["mav_msgs", "rotors_comm"])
+def test_the_ros2_interface_packages_have_the_ros1_fields_and_constants(package: str):
     python = REPO / "build" / "ros2-venv" / "bin" / "python"
     assert python.exists(), "no build/ros2-venv: run make ros2-setup"
-    names = sorted(p.stem for p in ROS1.glob("*.msg"))
+    ros1 = REPO / "rotors_msgs" / package / "msg"
+    names = sorted(p.stem for p in ros1.glob("*.msg"))
     probe = (
-        "import json, mav_msgs.msg as m\n"
+        f"import json, {package}.msg as m\n"
         f"out = {{}}\nfor n in {names!r}:\n"
         "    c = getattr(m, n)\n"
         "    consts = {k: getattr(c, k) for k in dir(c) if k.isupper() and isinstance(getattr(c, k), (str, int, float))}\n"
@@ -59,7 +70,7 @@ def test_the_ros2_mav_msgs_have_the_ros1_fields_and_constants():
     assert res.returncode == 0, res.stderr[-2000:]
     ros2 = json.loads(res.stdout.strip().splitlines()[-1])
     for name in names:
-        fields, constants = ros1_definition(ROS1 / f"{name}.msg")
+        fields, constants = ros1_definition(ros1 / f"{name}.msg")
         assert ros2[name][0] == fields, name
-        assert ros2[name][1] == {k: v.strip('"') for k, v in constants.items()}, name
-    print(f"{len(names)} messages: {', '.join(names)}; Status has {len(ros2['Status'][1])} constants")
+        assert ros2[name][1] == {k: int(v) if v.isdigit() else v.strip('"') for k, v in constants.items()}, name
+    print(f"{package}: {len(names)} messages: {', '.join(names)}; {sum(len(c) for _, c in ros2.values())} constants")

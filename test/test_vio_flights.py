@@ -57,16 +57,16 @@ def test_a_broken_trajectory_file_is_one_line(tmp_path: Path):
 
 
 @pytest.mark.long  # the long tier: make test-all / make test-long
-def test_vio_flight_launch_records_a_flight_shaped_like_euroc(ros: RosGraph, tmp_path: Path):
-    difficulty = "medium"
+@pytest.mark.parametrize(("place", "difficulty"), [("warehouse", "medium"), ("powerplant", "difficult")])
+def test_vio_flight_launch_records_a_flight_shaped_like_euroc(ros: RosGraph, tmp_path: Path, place: str, difficulty: str):
     sequence, shape = EUROC_SHAPES[difficulty]
-    flight = read_trajectory_file(FLIGHTS / f"warehouse_{difficulty}.csv")
-    proc = launch(ros, "rotors_gazebo", "mav_vio_flight.launch", f"difficulty:={difficulty}", "gui:=false")
+    flight = read_trajectory_file(FLIGHTS / f"{place}_{difficulty}.csv")
+    proc = launch(ros, "rotors_gazebo", "mav_vio_flight.launch", f"world_name:={place}", f"difficulty:={difficulty}", "gui:=false")
     try:
         wait_sim_time(ros, DELAY_S + flight.duration_s + 2.0, timeout_s=1500)
     finally:
         stop_launch(proc)
-    bags = sorted(Path(ros.env["ROS_HOME"]).glob(f"firefly_vio_warehouse_{difficulty}_*.bag"))
+    bags = sorted(Path(ros.env["ROS_HOME"]).glob(f"firefly_vio_{place}_{difficulty}_*.bag"))
     assert bags, Path(proc.log_path).read_text()[-3000:]
     recorded = FlightBag(bags[-1])
     description = RobotDescription.parse(next(msg for msg, _, _ in recorded.messages("firefly/robot_description")).data)

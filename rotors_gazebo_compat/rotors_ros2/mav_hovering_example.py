@@ -11,13 +11,17 @@ enable_logging:=true a recorder (rosbag2_record.py: a ROS 2 bag in $ROS_HOME, de
 simulator and the recorder listen, it sends the waypoint (x, y, z, yaw; default 0, 0, 1, 0) on
 command/trajectory due 5 s of sim time after the start, then unpauses the simulation, as the ROS 1
 hovering_example does. sim_seconds:=T (ours) stops everything after T s of sim time (and fails when
-sim time stands still for 30 s of wall time first); without it, Ctrl-C stops. An argument the ROS 2
-front end does not serve yet is refused in one line."""
+sim time stands still for 30 s of wall time first); without it, Ctrl-C stops. The launch file's
+arguments that are xacro arguments of the vehicle (sensor_realism, mass_scale, enable_navigation_sensors,
+..., xacro_args:="a:=1 b:=2") go to the simulator's spawn as spawn_mav.launch passes them. An
+argument the ROS 2 front end does not serve yet is refused in one line. mav_hovering_example_with_vi_sensor.py
+is the same with the VI-sensor model and that launch file's own arguments."""
 
 from __future__ import annotations
 
 import math
 import os
+import shlex
 import signal
 import subprocess
 import sys
@@ -51,6 +55,16 @@ ARGUMENTS = {
     "yaw": "0.0",
     "sim_seconds": "0",
 }
+# its arguments that spawn_mav.launch passes to the vehicle's xacro, with their defaults
+XACRO_ARGUMENTS = {
+    "sensor_realism": "false",
+    "mass_scale": "1",
+    "motor_constant_scale": "1",
+    "enable_navigation_sensors": "false",
+    "enable_lidar": "none",
+    "enable_gimbal": "false",
+    "xacro_args": "",
+}
 NOT_YET = {
     "gui": "no rviz on ROS 2 here (gui:=false)",
     "enable_ground_truth": "ground truth is always published on ROS 2",
@@ -58,18 +72,31 @@ NOT_YET = {
 }
 
 
-def parse(argv: list[str]) -> dict:
-    args = {k: v for k, v in ARGUMENTS.items()}
+def parse(argv: list[str], xacro_arguments: dict | None = None) -> dict:
+    """The arguments with their defaults; those for the vehicle's xacro that were given, as name:=value
+    strings, under "xacro"."""
+    xacro_arguments = XACRO_ARGUMENTS if xacro_arguments is None else xacro_arguments
+    known = {**ARGUMENTS, **xacro_arguments}
+    args, xacro = dict(ARGUMENTS), []
     for item in argv:
         name, sep, value = item.partition(":=")
         if not sep:
             raise SystemExit(f"mav_hovering_example: '{item}' is not name:=value")
-        if name not in ARGUMENTS:
+        if name not in known:
             raise SystemExit(
                 f"mav_hovering_example: argument '{name}' is not served on ROS 2 yet (docs/ros2.md); "
-                f"the ROS 2 hovering example takes: {', '.join(ARGUMENTS)}"
+                f"the ROS 2 hovering example takes: {', '.join(known)}"
             )
-        args[name] = value
+        if name == "xacro_args":
+            bad = [a for a in shlex.split(value) if ":=" not in a]
+            if bad:
+                raise SystemExit(f"mav_hovering_example: xacro_args: {' '.join(bad)} is not name:=value")
+            xacro += shlex.split(value)
+        elif name in xacro_arguments:
+            xacro.append(f"{name}:={value}")
+        else:
+            args[name] = value
+    args["xacro"] = xacro
     for name, wanted in (("gui", "false"), ("enable_ground_truth", "true"), ("lockstep", "true")):
         if args[name].lower() != wanted:
             raise SystemExit(f"mav_hovering_example: {name}:={args[name]} is not served: {NOT_YET[name]}")
@@ -85,8 +112,10 @@ def parse(argv: list[str]) -> dict:
     return args
 
 
-def main(argv: list[str]) -> int:
-    args = parse(argv)
+def main(argv: list[str], model: str | None = None, xacro_arguments: dict | None = None, recorded_extra: tuple = ()) -> int:
+    """The example; `model`, `xacro_arguments` and the further topics its bag records (relative to the
+    vehicle's namespace) for a launch file that spawns another model."""
+    args = parse(argv, xacro_arguments)
     import rclpy  # after the arguments: a wrong one costs no start-up
     from geometry_msgs.msg import Transform
     from rclpy.parameter import Parameter
@@ -99,8 +128,11 @@ def main(argv: list[str]) -> int:
     sim_cmd = [sys.executable, str(HERE / "rotors_ros2_sim.py"), "--mav", mav, "--world", args["world_name"]]
     sim_cmd += ["--seed", args["random_seed"], "--real-time-factor", args["real_time_factor"]]
     sim_cmd += ["--paused"] if args["paused"] == "true" else []
+    sim_cmd += ["--model", model] if model else []
+    sim_cmd += args["xacro"]
     children.append(subprocess.Popen(sim_cmd))
     recorded = [f"/{mav}/ground_truth/odometry", f"/{mav}/odometry_sensor1/odometry", f"/{mav}/imu", f"/{mav}/command/trajectory"]
+    recorded += [f"/{mav}/{topic}" for topic in recorded_extra]
     if args["enable_logging"] == "true":
         ros_home = Path(os.environ.get("ROS_HOME", Path.home() / ".ros"))
         ros_home.mkdir(parents=True, exist_ok=True)
