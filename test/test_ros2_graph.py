@@ -263,3 +263,28 @@ def test_the_vi_sensor_hovering_example_on_ros2_takes_the_launch_files_vehicle_a
     steps = [round(b - a, 6) for a, b in zip(stamps, stamps[1:])]
     print(f"{bag.name}: /firefly/vi_sensor/imu {len(stamps)} messages from {stamps[0]:.2f} to {stamps[-1]:.2f} s, frame {frame}")
     assert frame == "firefly/vi_sensor/imu_link" and stamps[-1] >= 7.9 and set(steps) == {0.01}
+
+
+def test_spawn_entity_and_delete_entity_bring_and_take_a_second_vehicle(tmp_path):
+    """Gazebo ROS 2's /spawn_entity with a second firefly's URDF (namespace second) at (2, 0, 0.1): its
+    ground-truth odometry appears on the graph as nav_msgs/msg/Odometry, framed as the ROS 1 plugin
+    frames it, where it was put; /delete_entity removes it, and deleting it again or spawning text
+    that is no model is refused with a message, the world running on."""
+    import rotors_sim as rs
+
+    urdf = tmp_path / "second.urdf"
+    urdf.write_text(
+        rs.world.run_xacro(
+            rs.paths.package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo",
+            {"mav_name": "firefly", "namespace": "second", "random_seed": 4, "enable_ground_truth": True, "enable_logging": False},
+        )
+    )
+    r = simulator_and_client(tmp_path, "--mav firefly --seed 3", f"python {REPO}/test/ros2_clients/spawn_client.py {urdf} 120", 150)
+    print(json.dumps(r))
+    assert r["before"] is False and r["spawn"][0] is True and "spawned 'second'" in r["spawn"][1]
+    assert r["types"] == ["nav_msgs/msg/Odometry"]
+    frame, child, x = r["odometry"]
+    assert (frame, child) == ("world", "second/base_link") and abs(x - 2.0) < 0.05
+    assert r["delete"] == [True, "deleted 'second'"]
+    assert r["delete_again"][0] is False and "no model named 'second'" in r["delete_again"][1]
+    assert r["spawn_broken"][0] is False and "xml must be URDF or SDF text" in r["spawn_broken"][1]

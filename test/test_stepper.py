@@ -55,3 +55,33 @@ def test_other_topics_are_answered_as_ros1_bytes_once_asked_for():
     assert m.header.stamp.to_sec() == pytest.approx(answer["t"]) and m.child_frame_id == "firefly/base_link"
     with pytest.raises(SimError, match="not among the world's other topics"):
         s.serve({"op": "forward", "topics": ["/firefly/imu"]})
+
+
+def test_a_model_spawned_and_deleted_brings_and_takes_its_topics():
+    import rotors_sim as rs
+
+    s = Stepper("firefly", "basic", 3)
+    xml = rs.world.run_xacro(
+        rs.paths.package_path("rotors_description") / "urdf" / "mav_generic_odometry_sensor.gazebo",
+        {"mav_name": "firefly", "namespace": "second", "random_seed": 4, "enable_ground_truth": True, "enable_logging": False},
+    )
+    answer = s.serve({"op": "spawn", "xml": xml, "name": "second", "xyz": [2.0, 0.0, 0.1], "rpy": [0.0, 0.0, 0.0]})
+    topics = dict(answer["topics"])
+    assert answer["name"] == "second" and topics["/second/ground_truth/odometry"] == "nav_msgs/Odometry"
+    s.serve({"op": "forward", "topics": ["/second/ground_truth/position"]})
+    got = s.serve({"op": "step", "n": 2})["messages"]
+    assert [m[0] for m in got] == ["/second/ground_truth/position"] * 2
+    for bad, why in (
+        ({"xml": xml, "name": "second"}, "a model named 'second' exists already"),
+        ({"xml": "not xml", "name": "third"}, "xml must be URDF or SDF text"),
+        ({"xml": xml, "name": "third", "xyz": [math.nan, 0, 0]}, "must be 3 finite numbers"),
+    ):
+        with pytest.raises(SimError, match=why):
+            s.serve({"op": "spawn", **bad})
+    s.serve({"op": "delete", "name": "second"})
+    assert s.serve({"op": "step", "n": 2})["messages"] == []  # gone: nothing more of it
+    with pytest.raises(SimError, match="no model named 'second'"):
+        s.serve({"op": "delete", "name": "second"})
+    s.serve({"op": "delete", "name": "firefly"})  # the vehicle itself: its readings stop, the world runs on
+    answer = s.serve({"op": "step", "n": 2})
+    assert answer["odometry"] == [] and answer["motor_speed"] == [] and answer["t"] > 0

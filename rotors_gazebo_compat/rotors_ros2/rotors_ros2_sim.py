@@ -8,7 +8,9 @@ and `/<mav>/ground_truth/odometry` (nav_msgs/msg/Odometry) and `/<mav>/imu` (sen
 every reading of the vehicle's odometry sensor, ground truth and IMU, and `/<mav>/motor_speed`
 (mav_msgs/msg/Actuators, the real signed rotor speeds, every step), stamped with sim time and framed as
 the ROS 1 messages are, and serves Gazebo ROS 2's `/reset_simulation`, `/reset_world`,
-`/pause_physics` and `/unpause_physics` (std_srvs/srv/Empty). mav_msgs is RotorS' package built for
+`/pause_physics` and `/unpause_physics` (std_srvs/srv/Empty) and `/spawn_entity` and `/delete_entity`
+(gazebo_msgs/srv/SpawnEntity, DeleteEntity: a model from URDF or SDF text; its topics published from
+then on). mav_msgs is RotorS' package built for
 ROS 2 by make ros2-setup (rotors_gazebo_compat/rotors_ros2/interfaces).
 
 The controller runs inside the world's step loop, so the flight is in lockstep with it whatever the
@@ -56,6 +58,7 @@ from pathlib import Path
 
 import rclpy
 from builtin_interfaces.msg import Time
+from gazebo_msgs.srv import DeleteEntity, SpawnEntity
 from geometry_msgs.msg import PoseStamped
 from mav_msgs.msg import Actuators, AttitudeThrust, RateThrust, RollPitchYawrateThrust
 from nav_msgs.msg import Odometry
@@ -98,12 +101,18 @@ class Ros1Bridge:
     publishing every topic of a vehicle every step would cost more than the step."""
 
     def __init__(self, node: Node, topics: list):
+        self.node = node
         self.typestore = get_typestore(Stores.ROS2_JAZZY)
         for msg in sorted(INTERFACES.glob("*/msg/*.msg")):
             self.typestore.register(get_types_from_msg(msg.read_text(), f"{msg.parent.parent.name}/msg/{msg.stem}"))
-        self.publishers, self.ros2_types, skipped = {}, {}, []
+        self.publishers, self.ros2_types = {}, {}
         self.listened: set[str] = set()
         self.changed = False
+        self.add(topics)
+
+    def add(self, topics: list) -> None:
+        """Publishers for [topic, ROS 1 type] pairs (at start, and a spawned model's)."""
+        skipped = []
         for topic, ros1_type in topics:
             package, name = ros1_type.split("/")
             ros2_type = f"{package}/msg/{name}"
@@ -116,7 +125,7 @@ class Ros1Bridge:
                 skipped.append(f"{topic} ({ros1_type}: rosbags cannot convert it)")
                 continue
             try:
-                self.publishers[topic] = node.create_publisher(
+                self.publishers[topic] = self.node.create_publisher(
                     cls,
                     topic,
                     IMAGE_QOS if ros2_type in LARGE_TYPES else SENSOR_QOS,
@@ -127,7 +136,7 @@ class Ros1Bridge:
                 continue
             self.ros2_types[topic] = ros2_type
         if skipped:
-            node.get_logger().info(f"not on ROS 2: {', '.join(skipped)}")
+            self.node.get_logger().info(f"not on ROS 2: {', '.join(skipped)}")
 
     def matched(self, topic: str, subscribers: int) -> None:
         before = set(self.listened)
@@ -215,11 +224,52 @@ class RotorsSim(Node):
         self.paused = paused
         for name, op in (("/reset_simulation", "reset"), ("/reset_world", "reset_world")):
             self.create_service(Empty, name, lambda req, res, op=op: self.queue(res, op=op))
+        self.create_service(SpawnEntity, "/spawn_entity", self.spawn_entity)
+        self.create_service(DeleteEntity, "/delete_entity", self.delete_entity)
         self.create_service(Empty, "/pause_physics", lambda req, res: self.pause(res, True))
         self.create_service(Empty, "/unpause_physics", lambda req, res: self.pause(res, False))
 
     def queue(self, response, **request):
         self.requests.append(request)
+        return response
+
+    def spawn_entity(self, request, response):
+        """Gazebo ROS 2's /spawn_entity: the model from its URDF or SDF text at initial_pose (the world's
+        frame). The plugins take their namespaces from the description, as the ROS 1 spawn does, so a
+        robot_namespace is reported as not applied. Its topics are published from then on."""
+        notes = []
+        if request.reference_frame not in ("", "world", "map"):
+            response.success, response.status_message = (
+                False,
+                f"reference_frame '{request.reference_frame}': only the world's frame is served",
+            )
+            return response
+        if request.robot_namespace and request.robot_namespace.strip("/") != request.name:
+            notes.append(f"robot_namespace '{request.robot_namespace}' not applied: the plugins take theirs from the description")
+        p, q = request.initial_pose.position, request.initial_pose.orientation
+        rpy = [
+            math.atan2(2.0 * (q.w * q.x + q.y * q.z), 1.0 - 2.0 * (q.x * q.x + q.y * q.y)),
+            math.asin(max(-1.0, min(1.0, 2.0 * (q.w * q.y - q.z * q.x)))),
+            yaw_of(q.x, q.y, q.z, q.w),
+        ]
+        answer = self.link.request(op="spawn", xml=request.xml, name=request.name, xyz=[p.x, p.y, p.z], rpy=rpy)
+        if "error" in answer:
+            self.get_logger().error(answer["error"])
+            response.success, response.status_message = False, answer["error"]
+            return response
+        self.bridge.add(answer["topics"])
+        response.success = True
+        response.status_message = "; ".join([f"spawned '{answer['name']}' with {len(answer['topics'])} topics", *notes])
+        return response
+
+    def delete_entity(self, request, response):
+        """Gazebo ROS 2's /delete_entity. Deleting the vehicle this front end serves (--mav) stops its
+        readings; the world runs on."""
+        answer = self.link.request(op="delete", name=request.name)
+        response.success = "error" not in answer
+        response.status_message = answer.get("error", f"deleted '{request.name}'")
+        if not response.success:
+            self.get_logger().error(answer["error"])
         return response
 
     def pause(self, response, paused: bool):

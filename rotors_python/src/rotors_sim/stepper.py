@@ -22,6 +22,9 @@ One JSON object per line on stdin, one answer per line on stdout:
     {"op": "rate_thrust", "angular_velocity": [x, y, z], "thrust": ..} -> {"t": ...}  (--controller roll_pitch_yawrate_thrust)
     {"op": "motor_speeds", "speeds": [...]}        -> {"t": ...}   (command/motor_speed; a controller's next answer replaces it)
     {"op": "forward", "topics": [...]}               -> {"t": ...}   (the other topics to answer, from now on; none at start)
+    {"op": "spawn", "xml": "<robot ...", "name": ..., "xyz": [...], "rpy": [...]}
+                                                     -> {"t": ..., "name": ..., "topics": [[topic, ROS 1 type], ...]}
+    {"op": "delete", "name": ...}                    -> {"t": ...}   (the vehicle itself too: its readings stop)
     {"op": "reset"} / {"op": "reset_world"}          -> {"t": ...}
     {"op": "info"}                                   -> {"t": ..., "step_s": ..., "mav": ..., "frames": {"odometry": ..., "imu": ...},
                                                           "controller": ..., "topics": [[topic, ROS 1 type], ...]}
@@ -90,7 +93,8 @@ class Stepper:
             raise SimError(f"--controller {controller!r}: use one of {', '.join(CONTROLLERS)}")
         self.mav, self.controller_name = mav, controller
         self.world = World(world)
-        self.world.spawn_mav(mav, xyz=xyz, random_seed=seed, model=model_path(model), **(xacro_args or {}))
+        self.mav_model = self.world.spawn_mav(mav, xyz=xyz, random_seed=seed, model=model_path(model), **(xacro_args or {}))
+        self.mav_present = True  # until /delete_entity removes it
         self.controller = CONTROLLERS[controller].for_mav(mav) if CONTROLLERS[controller] else None
         if self.controller is not None:
             self.world.attach_controller(mav, self.controller)
@@ -102,9 +106,9 @@ class Stepper:
         if any(t == f"/{mav}/ground_truth/odometry" for t, _, _ in topics):
             self.odometry_topics["ground_truth"] = "ground_truth/odometry"
         # answered from the vehicle bus instead (above)
-        native = {f"/{mav}/{t}" for t in (*self.odometry_topics.values(), "imu", "motor_speed")}
+        self.native = {f"/{mav}/{t}" for t in (*self.odometry_topics.values(), "imu", "motor_speed")}
         # every other topic, by its plugin's ROS 1 type
-        self.types = {t: kind for t, kind, _ in topics if t not in native}
+        self.types = {t: kind for t, kind, _ in topics if t not in self.native}
         # those asked for (op forward), with the count of their messages answered so far
         self.forwarded: dict[str, int] = {}
         # every message is kept, the cameras' too (they are kept only when named)
@@ -117,6 +121,9 @@ class Stepper:
         messages: list[list] = self.carried["messages"]
         for _ in range(n):
             self.world.step(1)
+            messages.extend(self.new_messages())
+            if not self.mav_present:
+                continue
             for key, topic in self.odometry_topics.items():
                 o = self.world.odometry(self.mav, topic)
                 if o is not None and o.count != self.seen[key]:
@@ -128,7 +135,6 @@ class Stepper:
                 rows["imu"].append([r.time_s, *r.angular_velocity, *r.linear_acceleration])
             # the multirotor base plugin publishes every step: the real, signed rotor speeds
             rows["motor_speed"].append([self.world.time, *self.world.rotor_speeds(self.mav)])
-            messages.extend(self.new_messages())
         answer = {key: [[float(v) for v in row] for row in self.carried[key] + rows[key]] for key in rows}
         self.carried = {key: [] for key in self.carried}
         answer["messages"] = messages
@@ -161,6 +167,26 @@ class Stepper:
         motors = self.world.message(f"/{self.mav}/motor_speed")
         frames["motor_speed"] = motors[0].header.frame_id if motors else f"{self.mav}/base_link"
         return frames
+
+    def spawn(self, request: dict) -> dict:
+        """A model from URDF or SDF text at a pose, as Gazebo's spawn services; its topics join the
+        world's other topics (op forward sends them)."""
+        xml, name = request.get("xml"), request.get("name")
+        if not (isinstance(xml, str) and xml.lstrip().startswith("<")):
+            raise SimError("spawn: xml must be URDF or SDF text (it starts with '<')")
+        if not (isinstance(name, str) and name):
+            raise SimError(f"spawn: name {name!r} must be the new model's name")
+        if name in self.world.models():
+            raise SimError(f"spawn: a model named '{name}' exists already")
+        pose = [request.get(k, [0.0, 0.0, 0.0]) for k in ("xyz", "rpy")]
+        if not all(isinstance(v, list) and len(v) == 3 and all(isinstance(x, (int, float)) and math.isfinite(x) for x in v) for v in pose):
+            raise SimError(f"spawn: xyz {pose[0]!r} and rpy {pose[1]!r} must be 3 finite numbers each")
+        spawned = self.world.spawn(xml, name, pose[0], pose[1])
+        every = self.world.topics()
+        self.world.listen([t for t, _, _ in every])  # its cameras' messages too
+        topics = [[t, kind] for t, kind, _ in every if t not in self.types and t not in self.native]
+        self.types.update(dict(topics))
+        return {"name": spawned, "topics": topics}
 
     def command(self, op: str, request: dict) -> None:
         """A controller's command (set_point for Lee; the three attitude-level commands)."""
@@ -207,6 +233,18 @@ class Stepper:
         elif op == "info":
             answer = {"step_s": self.world.step_size, "mav": self.mav, "frames": self.frames(), "controller": self.controller_name}
             answer["topics"] = [[t, kind] for t, kind in self.types.items()]
+        elif op == "spawn":
+            answer = self.spawn(request)
+        elif op == "delete":
+            name = request.get("name")
+            if not (isinstance(name, str) and name):
+                raise SimError(f"delete: name {name!r} must be a model's name")
+            if not self.world.remove(name):
+                raise SimError(f"delete: no model named '{name}' (the world has {', '.join(self.world.models()) or 'none'})")
+            if name == self.mav_model:
+                self.world.detach_controllers()
+                self.mav_present = False
+            answer = {}
         elif op == "forward":
             topics = request.get("topics")
             unknown = [t for t in topics or [] if t not in self.types] if isinstance(topics, list) else None
@@ -219,7 +257,7 @@ class Stepper:
         else:
             raise SimError(
                 f"unknown op {op!r}; use step, set_point, roll_pitch_yawrate_thrust, attitude_thrust, rate_thrust, "
-                "motor_speeds, forward, reset, reset_world or info"
+                "motor_speeds, forward, spawn, delete, reset, reset_world or info"
             )
         answer["t"] = self.world.time
         return answer
