@@ -15,7 +15,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
-from plot_imu_vibration import DT, hover_record
+from plot_imu_vibration import DT, hover_record, spectrum_axes
 
 
 def transmissibility(f_n: float, zeta: float, f: np.ndarray) -> np.ndarray:
@@ -39,14 +39,7 @@ def main(out: str, f_n: float, zeta: float, s_t: float) -> int:
     ):
         f, a = spectrum(x)
         left.semilogy(f[1:], a[1:], lw=0.7, color=color, label=name)
-    left.axvline(rotor_hz, color="grey", lw=0.6)
-    left.text(rotor_hz + 4, 3e-9, f"rotors {rotor_hz:.1f} Hz", fontsize=8)
-    left.set_xlim(0, 500)
-    left.set_ylim(1e-9, 0.3)
-    left.set_xlabel("frequency [Hz]")
-    left.set_ylabel("amplitude [m/s^2]")
-    left.set_title("hovering firefly, accelerometer z, 16 s at 1 kHz (ADIS16448 16-tap filter)", fontsize=9)
-    left.legend(fontsize=7, loc="upper right")
+    spectrum_axes(left, rotor_hz, "hovering firefly, accelerometer z, 16 s at 1 kHz (ADIS16448 16-tap filter)")
     freqs = np.linspace(0.1, 500, 2000)
     right.semilogy(freqs, transmissibility(f_n, zeta, freqs), lw=1)
     right.axhline(1.0, color="grey", lw=0.5)

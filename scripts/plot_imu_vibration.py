@@ -37,6 +37,18 @@ def hover_record(seconds: float = 16.0, axis: str = "x", **xacro) -> tuple[np.nd
     return np.array(ax), rotor_hz
 
 
+def spectrum_axes(ax, rotor_hz: float, title: str) -> None:
+    """An accelerometer amplitude spectrum's axes: 0-500 Hz, the rotors' frequency marked."""
+    ax.axvline(rotor_hz, color="grey", lw=0.6)
+    ax.text(rotor_hz + 4, 3e-9, f"rotors {rotor_hz:.1f} Hz", fontsize=8)
+    ax.set_xlim(0, 500)
+    ax.set_ylim(1e-9, 0.3)
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("amplitude [m/s^2]")
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7, loc="upper right")
+
+
 def main(out: str) -> int:
     ax, rotor_hz = hover_record()
     window = np.hanning(len(ax))
@@ -47,14 +59,7 @@ def main(out: str) -> int:
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 3.6))
     left.semilogy(f[1:], amplitude[1:], lw=0.7, label="accelerometer x, vibration on, white noise off")
     left.axhline(noise, color="tab:red", ls="--", lw=1, label="ADIS16448 noise density 0.004 m/s^2/sqrt(Hz), these bins")
-    left.axvline(rotor_hz, color="grey", lw=0.6)
-    left.text(rotor_hz + 4, 3e-9, f"rotors {rotor_hz:.1f} Hz", fontsize=8)
-    left.set_xlim(0, 500)
-    left.set_ylim(1e-9, 0.3)
-    left.set_xlabel("frequency [Hz]")
-    left.set_ylabel("amplitude [m/s^2]")
-    left.set_title("hovering firefly, 16 s at 1 kHz", fontsize=9)
-    left.legend(fontsize=7, loc="upper right")
+    spectrum_axes(left, rotor_hz, "hovering firefly, 16 s at 1 kHz")
     fs = 819.2
     freqs = np.linspace(0.1, fs / 2, 2000)
     x = np.pi * freqs / fs
