@@ -1,4 +1,4 @@
-"""RotorS' mav_msgs and rotors_comm as ROS 2 interface packages (rotors_gazebo_compat/rotors_ros2/
+"""RotorS' mav_msgs, mav_planning_msgs and rotors_comm as ROS 2 interface packages (rotors_gazebo_compat/rotors_ros2/
 interfaces, built by make ros2-setup with PyPI's Jazzy rosidl wheels): every message of each ROS 1
 package is there with the
 same fields in the same order and the same constants, in ROS 2's form (std_msgs/Header; field names in
@@ -28,13 +28,16 @@ BUILTIN = {
 }
 
 
-def ros2_form(ros1_type: str) -> str:
+def ros2_form(ros1_type: str, package: str) -> str:
     base, array = (ros1_type[:-2], True) if ros1_type.endswith("[]") else (ros1_type, False)
-    base = {"Header": "std_msgs/Header"}.get(base, BUILTIN.get(base, base))
+    named = {"Header": "std_msgs/Header", "time": "builtin_interfaces/Time", "duration": "builtin_interfaces/Duration"}
+    base = named.get(base, BUILTIN.get(base, base))
+    if base[0].isupper():  # a message of the same package
+        base = f"{package}/{base}"
     return f"sequence<{base}>" if array else base
 
 
-def ros1_definition(path) -> tuple[list, dict]:
+def ros1_definition(path, package: str) -> tuple[list, dict]:
     fields, constants = [], {}
     for line in path.read_text().splitlines():
         code = line.split("#", 1)[0].strip()
@@ -45,11 +48,11 @@ def ros1_definition(path) -> tuple[list, dict]:
             constants[name.strip()] = value.strip()
         else:
             typ, name = code.split()
-            fields.append([re.sub(r"(?<!^)(?=[A-Z])", "_", name).lower(), ros2_form(typ)])
+            fields.append([re.sub(r"(?<!^)(?=[A-Z])", "_", name).lower(), ros2_form(typ, package)])
     return fields, constants
 
 
-@pytest.mark.parametrize("package", ["mav_msgs", "rotors_comm"])
+@pytest.mark.parametrize("package", ["mav_msgs", "mav_planning_msgs", "rotors_comm"])
 def test_the_ros2_interface_packages_have_the_ros1_fields_and_constants(package: str):
     python = REPO / "build" / "ros2-venv" / "bin" / "python"
     assert python.exists(), "no build/ros2-venv: run make ros2-setup"
@@ -70,7 +73,7 @@ def test_the_ros2_interface_packages_have_the_ros1_fields_and_constants(package:
     assert res.returncode == 0, res.stderr[-2000:]
     ros2 = json.loads(res.stdout.strip().splitlines()[-1])
     for name in names:
-        fields, constants = ros1_definition(ros1 / f"{name}.msg")
+        fields, constants = ros1_definition(ros1 / f"{name}.msg", package)
         assert ros2[name][0] == fields, name
         assert ros2[name][1] == {k: int(v) if v.isdigit() else v.strip('"') for k, v in constants.items()}, name
     print(f"{package}: {len(names)} messages: {', '.join(names)}; {sum(len(c) for _, c in ros2.values())} constants")
