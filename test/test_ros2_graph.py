@@ -182,6 +182,50 @@ def test_mav_msgs_on_ros2_motor_commands_and_roll_pitch_yawrate_thrust(tmp_path)
     assert r["z_after_1_5_s"] > r["z_start"] + 0.1
 
 
+def received_as_on_ros1(tmp_path, topics: dict, xacro: dict) -> dict:
+    """The simulator with the vehicle's xacro arguments `xacro`, an rclpy client of `topics` (topic ->
+    ROS 2 type), and each topic's first message from 1 s on compared, field for field, with the ROS 1
+    plugin's message of the same step in rotors_sim (the same seed). The client's result."""
+    wanted = " ".join(f"{t}={kind}" for t, kind in topics.items())
+    args = " ".join(f"{k}:={v}" for k, v in xacro.items())
+    r = simulator_and_client(
+        tmp_path, f"--mav firefly --seed 3 {args}", f"python {REPO}/test/ros2_clients/sensors_client.py 1.0 120 {wanted}", 150
+    )
+    assert r["types"] == {t: [kind] for t, kind in topics.items()}
+
+    import rotors_sim as rs
+
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=3, **xacro)
+    world.attach_controller("firefly", rs.LeePositionController.for_mav("firefly"))
+    world.listen([t for t, _, _ in world.topics()])  # every message kept, as the simulator does
+
+    def ros1_fields(m) -> object:
+        if hasattr(m, "secs"):  # genpy's time: builtin_interfaces/Time on ROS 2
+            return {"sec": m.secs, "nanosec": m.nsecs}
+        if hasattr(m, "__slots__"):
+            return {name.lower(): ros1_fields(getattr(m, name)) for name in m.__slots__ if name != "seq"}
+        if isinstance(m, (list, tuple, bytes)):
+            return [ros1_fields(v) for v in m]
+        return m
+
+    # each topic's ROS 1 message of the step its kept message is stamped with (the GPS runs at 5 Hz;
+    # a topic is sent from its subscriber's discovery on, which takes its time)
+    stamps = [m["header"]["stamp"]["sec"] + m["header"]["stamp"]["nanosec"] * 1e-9 for m in r["kept"].values()]
+    compared = set()
+    while len(compared) < len(topics) and world.time < max(stamps) + 0.5:
+        world.step()
+        for topic in set(topics) - compared:
+            got = world.message(topic)
+            ros1 = ros1_fields(got[0]) if got else None
+            if ros1 and ros1["header"]["stamp"] == r["kept"][topic]["header"]["stamp"]:
+                print(topic, json.dumps(r["kept"][topic])[:150])
+                assert r["kept"][topic] == ros1, topic
+                compared.add(topic)
+    assert compared == set(topics)
+    return r
+
+
 def test_the_worlds_other_topics_reach_rclpy_as_the_ros1_plugins_built_them(tmp_path):
     """With enable_navigation_sensors:=true (a xacro argument, as spawn_mav.launch passes it), the
     GPS, magnetometer, barometer, the ground truth's transform and the IMU's true bias (rotors_comm,
@@ -195,43 +239,15 @@ def test_the_worlds_other_topics_reach_rclpy_as_the_ros1_plugins_built_them(tmp_
         "/firefly/ground_truth/transform": "geometry_msgs/msg/TransformStamped",
         "/firefly/ground_truth/imu_bias": "rotors_comm/msg/ImuBias",
     }
-    wanted = " ".join(f"{t}={kind}" for t, kind in topics.items())
-    r = simulator_and_client(
-        tmp_path,
-        "--mav firefly --seed 3 enable_navigation_sensors:=true",
-        f"python {REPO}/test/ros2_clients/sensors_client.py 1.0 120 {wanted}",
-        150,
-    )
-    assert r["types"] == {t: [kind] for t, kind in topics.items()}
+    received_as_on_ros1(tmp_path, topics, {"enable_navigation_sensors": "true"})
     assert "/firefly/motor_speed/0 (not a ROS 2 topic name)" in (tmp_path / "sim.log").read_text()
 
-    import rotors_sim as rs
 
-    world = rs.World("basic")
-    world.spawn_mav("firefly", random_seed=3, enable_navigation_sensors=True)
-    world.attach_controller("firefly", rs.LeePositionController.for_mav("firefly"))
-
-    def ros1_fields(m) -> object:
-        if hasattr(m, "secs"):  # genpy's time: builtin_interfaces/Time on ROS 2
-            return {"sec": m.secs, "nanosec": m.nsecs}
-        if hasattr(m, "__slots__"):
-            return {name.lower(): ros1_fields(getattr(m, name)) for name in m.__slots__ if name != "seq"}
-        if isinstance(m, (list, tuple)):
-            return [ros1_fields(v) for v in m]
-        return m
-
-    # each topic's ROS 1 message of the step its kept message is stamped with (the GPS runs at 5 Hz;
-    # a topic is sent from its subscriber's discovery on, which takes its time)
-    compared, last_s = set(), max(m["header"]["stamp"]["sec"] + m["header"]["stamp"]["nanosec"] * 1e-9 for m in r["kept"].values())
-    while len(compared) < len(topics) and world.time < last_s + 0.5:
-        world.step()
-        for topic in set(topics) - compared:
-            ros1 = ros1_fields(world.message(topic)[0])
-            if ros1["header"]["stamp"] == r["kept"][topic]["header"]["stamp"]:
-                print(topic, json.dumps(r["kept"][topic])[:150])
-                assert r["kept"][topic] == ros1, topic
-                compared.add(topic)
-    assert compared == set(topics)
+@pytest.mark.parametrize(("lidar", "topic", "kind"), [("hokuyo", "scan", "LaserScan"), ("vlp16", "velodyne_points", "PointCloud2")])
+def test_lasers_reach_rclpy_as_the_ros1_plugins_built_them(tmp_path, lidar: str, topic: str, kind: str):
+    """enable_lidar:=hokuyo (LaserScan) and vlp16 (PointCloud2 with ring and time): the scan reaches
+    an rclpy client with its ROS 2 type, every range and byte as the ROS 1 plugin built it."""
+    received_as_on_ros1(tmp_path, {f"/firefly/{topic}": f"sensor_msgs/msg/{kind}"}, {"enable_lidar": lidar})
 
 
 def test_the_vi_sensor_hovering_example_on_ros2_takes_the_launch_files_vehicle_arguments(tmp_path):

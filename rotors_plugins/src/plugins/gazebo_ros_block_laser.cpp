@@ -13,14 +13,11 @@ class GazeboRosBlockLaser : public LaserPlugin {
     ReadParam(params, "gaussianNoise", &noise_m_);
     if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
   }
-  bool Advertise() override {
-    if (!node_) return false;
-    pub_ = node_->advertise<sensor_msgs::PointCloud>(topic_, 4);
-    return true;
-  }
+  bool Advertise() override { return AdvertiseListened<sensor_msgs::PointCloud>(&pub_); }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     RayScan noisy = scan;
-    AddRangeNoise(noise_m_, &rng_, &noisy);
+    AddRangeNoise(noise_m_, &rng_, &noisy);     // every scan: the noise sequence whoever listens
+    if (pub_.getNumSubscribers() == 0) return;  // nobody on ROS, no in-process reader
     sensor_msgs::PointCloudPtr msg(new sensor_msgs::PointCloud);
     ToBlockCloudMsg(noisy, sensor_->Spec(), sensor_->BeamDirections_S(), msg.get());
     msg->header.stamp = stamp;
@@ -30,7 +27,7 @@ class GazeboRosBlockLaser : public LaserPlugin {
 
  private:
   double noise_m_ = 0.0;
-  ros::Publisher pub_;
+  rotors_sim::ListenedPublisher pub_;
 };
 
 }  // namespace rotors_gazebo_plugins

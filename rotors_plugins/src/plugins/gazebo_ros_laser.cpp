@@ -17,12 +17,9 @@ class GazeboRosLaser : public LaserPlugin {
                                  " vertical samples (use libgazebo_ros_block_laser.so or "
                                  "libgazebo_ros_velodyne_laser.so for a 3D scan)");
   }
-  bool Advertise() override {
-    if (!node_) return false;
-    pub_ = node_->advertise<sensor_msgs::LaserScan>(topic_, 4);
-    return true;
-  }
+  bool Advertise() override { return AdvertiseListened<sensor_msgs::LaserScan>(&pub_); }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
+    if (pub_.getNumSubscribers() == 0) return;  // nobody on ROS, no in-process reader
     sensor_msgs::LaserScanPtr msg(new sensor_msgs::LaserScan);
     const double rate = sensor_->UpdateRate();
     ToLaserScanMsg(scan, sensor_->Spec(), rate > 0 ? 1.0 / rate : 0.0, sensor_->ScanOverTime(), msg.get());
@@ -32,7 +29,7 @@ class GazeboRosLaser : public LaserPlugin {
   }
 
  private:
-  ros::Publisher pub_;
+  rotors_sim::ListenedPublisher pub_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -28,11 +28,7 @@ class GazeboRosVelodyneLaser : public LaserPlugin {
     ReadParam(params, "instantaneous_scan", &instantaneous);
     sensor_->SetScanOverTime(!instantaneous);
   }
-  bool Advertise() override {
-    if (!node_) return false;
-    pub_ = node_->advertise<sensor_msgs::PointCloud2>(topic_, 4);
-    return true;
-  }
+  bool Advertise() override { return AdvertiseListened<sensor_msgs::PointCloud2>(&pub_); }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     if (pub_.getNumSubscribers() == 0) return;
     sensor_msgs::PointCloud2Ptr msg(new sensor_msgs::PointCloud2);
@@ -51,7 +47,7 @@ class GazeboRosVelodyneLaser : public LaserPlugin {
  private:
   VelodyneCloudOptions options_;
   double noise_m_ = 0.0;
-  ros::Publisher pub_;
+  rotors_sim::ListenedPublisher pub_;
 };
 
 }  // namespace rotors_gazebo_plugins

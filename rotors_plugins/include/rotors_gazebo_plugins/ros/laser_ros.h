@@ -18,6 +18,7 @@
 #include "rotors_core/plugin.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/sensors/ray_sensor.h"
+#include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace rotors_gazebo_plugins {
@@ -69,6 +70,14 @@ class LaserPlugin : public rotors_sim::SensorPlugin {
   virtual void Configure(rotors_sim::SdfParams& /*params*/) {}
   /// Advertises topic_ (on node_ when ROS runs); false when there is nobody to publish to.
   virtual bool Advertise() = 0;
+  /// topic_ on ROS (node_) and into the world's message taps once an in-process reader names it
+  /// (World.listen: rotors_sim, the ROS 2 front end); false when there is neither.
+  template <class M>
+  bool AdvertiseListened(rotors_sim::ListenedPublisher* pub) {
+    *pub = rotors_gazebo_plugins::Advertise<M>(node_, robot_namespace_, topic_,
+                                               *sensor_->ParentLink()->GetModel()->GetWorldRaw(), 4, false, true);
+    return static_cast<bool>(*pub);
+  }
   virtual void Publish(const RayScan& scan, const ros::Time& stamp) = 0;
 
   rotors_sim::sensors::RaySensorPtr sensor_;
