@@ -4,7 +4,7 @@
 # build/ros2-venv. Their .pth re-executes Python to set the library path, and their message packages
 # share module names with ROS 1's, so they stay out of the ROS 1 venv (build/venv). Then the
 # interface packages PyPI has no wheel for (rotors_gazebo_compat/rotors_ros2/interfaces: mav_msgs,
-# mav_planning_msgs, rotors_comm, gazebo_msgs' spawning services) are built with the wheels' own
+# mav_planning_msgs, rotors_comm, dvs_msgs, octomap_msgs, gazebo_msgs' spawning services) are built with the wheels' own
 # rosidl generators and ament_cmake (rosidl_generate_interfaces, as colcon would) and installed into
 # the venv. Idempotent: a second run checks the pins and the interfaces' sources.
 set -euo pipefail
@@ -24,7 +24,7 @@ fi
 python3 -m venv "$venv"
 "$venv/bin/pip" install -q -r "$requirements"
 "$venv/bin/python" -c "import rclpy, nav_msgs.msg, sensor_msgs.msg, trajectory_msgs.msg, std_srvs.srv, rosgraph_msgs.msg, rosbags.rosbag2"
-for package in mav_msgs mav_planning_msgs rotors_comm gazebo_msgs; do
+for package in mav_msgs mav_planning_msgs rotors_comm gazebo_msgs dvs_msgs octomap_msgs; do
   build="$root/build/ros2-interfaces/$package"
   rm -rf "$build"
   log="$root/build/ros2-interfaces/$package.log"
@@ -41,6 +41,6 @@ for package in mav_msgs mav_planning_msgs rotors_comm gazebo_msgs; do
     exit 1
   fi
 done
-"$venv/bin/python" -c "from mav_msgs.msg import Actuators, RollPitchYawrateThrust; Actuators(angular_velocities=[1.0]); from rotors_comm.msg import WindSpeed; from gazebo_msgs.srv import SpawnEntity, DeleteEntity; from mav_planning_msgs.srv import PlannerService"
+"$venv/bin/python" -c "from mav_msgs.msg import Actuators, RollPitchYawrateThrust; Actuators(angular_velocities=[1.0]); from rotors_comm.msg import WindSpeed; from gazebo_msgs.srv import SpawnEntity, DeleteEntity; from mav_planning_msgs.srv import PlannerService; from dvs_msgs.msg import EventArray; from octomap_msgs.srv import GetOctomap"
 stamp > "$venv/.requirements"
-echo "[ros2-setup] ok ($venv, with mav_msgs, mav_planning_msgs, rotors_comm and gazebo_msgs)"
+echo "[ros2-setup] ok ($venv, with mav_msgs, mav_planning_msgs, rotors_comm, gazebo_msgs, dvs_msgs and octomap_msgs)"

@@ -1,9 +1,9 @@
-"""RotorS' mav_msgs, mav_planning_msgs and rotors_comm as ROS 2 interface packages (rotors_gazebo_compat/rotors_ros2/
-interfaces, built by make ros2-setup with PyPI's Jazzy rosidl wheels): every message of each ROS 1
-package is there with the
-same fields in the same order and the same constants, in ROS 2's form (std_msgs/Header; field names in
-lower case, as rosidl requires: GpsWaypoint's maxSpeed, maxAcc become max_speed, max_acc). Read from
-the generated Python classes in build/ros2-venv, against the ROS 1 .msg files."""
+"""RotorS' message packages (mav_msgs, mav_planning_msgs, rotors_comm, dvs_msgs, octomap_msgs) as ROS 2
+interface packages (rotors_gazebo_compat/rotors_ros2/interfaces, built by make setup with PyPI's
+Jazzy rosidl wheels): every message of each ROS 1 package is there with the same fields in the same
+order and the same constants, in ROS 2's form (std_msgs/Header, builtin_interfaces/Time and Duration;
+field names in lower case, as rosidl requires: GpsWaypoint's maxSpeed, maxAcc become max_speed,
+max_acc). Read from the generated Python classes in build/ros2-venv, against the ROS 1 .msg files."""
 
 import json
 import re
@@ -23,6 +23,8 @@ BUILTIN = {
     "uint32": "uint32",
     "uint64": "uint64",
     "uint8": "uint8",
+    "uint16": "uint16",
+    "int8": "int8",
     "bool": "boolean",
     "string": "string",
 }
@@ -52,7 +54,7 @@ def ros1_definition(path, package: str) -> tuple[list, dict]:
     return fields, constants
 
 
-@pytest.mark.parametrize("package", ["mav_msgs", "mav_planning_msgs", "rotors_comm"])
+@pytest.mark.parametrize("package", ["mav_msgs", "mav_planning_msgs", "rotors_comm", "dvs_msgs", "octomap_msgs"])
 def test_the_ros2_interface_packages_have_the_ros1_fields_and_constants(package: str):
     python = REPO / "build" / "ros2-venv" / "bin" / "python"
     assert python.exists(), "no build/ros2-venv: run make ros2-setup"
