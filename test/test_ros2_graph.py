@@ -50,7 +50,9 @@ def test_an_rclpy_client_flies_the_hovering_example_on_ros2(tmp_path):
     assert r["topics"]["/firefly/odometry_sensor1/odometry"] == ["nav_msgs/msg/Odometry"]
     assert r["topics"]["/firefly/imu"] == ["sensor_msgs/msg/Imu"]
     assert r["topics"]["/clock"] == ["rosgraph_msgs/msg/Clock"]
-    assert {"/reset_simulation", "/reset_world", "/pause_physics", "/unpause_physics"} <= set(r["services"])
+    assert {"/reset_simulation", "/reset_world", "/pause_physics", "/unpause_physics", "/spawn_entity", "/delete_entity"} <= set(
+        r["services"]
+    )
     # basic.world steps at 100 Hz and the hovering example's odometry and IMU publish every step
     assert r["odometry_hz"] == pytest.approx(100.0, rel=1e-6) and r["imu_hz"] == pytest.approx(100.0, rel=1e-6)
     assert r["odometry_gaps"] == 0 and r["imu_gaps"] == 0  # none lost on the way

@@ -18,6 +18,7 @@ from std_srvs.srv import Empty
 from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
 
 ODOMETRY, IMU = "/firefly/odometry_sensor1/odometry", "/firefly/imu"
+SERVICES = {"/reset_simulation", "/reset_world", "/pause_physics", "/unpause_physics", "/spawn_entity", "/delete_entity"}
 
 
 def seconds(stamp) -> float:
@@ -50,12 +51,14 @@ def main() -> None:
 
     def graph_ready() -> bool:
         topics = dict(node.get_topic_names_and_types())
-        return "gazebo" in node.get_node_names() and ODOMETRY in topics and IMU in topics and "/clock" in topics
+        services = {name for name, _ in node.get_service_names_and_types()}
+        return "gazebo" in node.get_node_names() and {ODOMETRY, IMU, "/clock"} <= set(topics) and SERVICES <= services
 
-    spin_until(graph_ready, 60, "the simulator's node and topics in the graph")
+    # topics and services are discovered one by one: wait for all of them
+    spin_until(graph_ready, 60, "the simulator's node, topics and services in the graph")
     result["nodes"] = node.get_node_names()
     result["topics"] = {k: v for k, v in node.get_topic_names_and_types() if k.startswith(("/firefly", "/clock"))}
-    result["services"] = [name for name, _ in node.get_service_names_and_types() if "physics" in name or "reset" in name]
+    result["services"] = [name for name, _ in node.get_service_names_and_types() if name in SERVICES]
 
     # the rates over 2 s of sim time
     spin_until(lambda: state["clock"] > 0.5, 60, "sim time past 0.5 s")
