@@ -37,6 +37,7 @@ answered as the plugin built it, once asked for (op forward: a front end asks fo
 subscribes to): each new message of the steps, ROS 1's serialised bytes (a front end converts them;
 rosbags' ros1_to_cdr for ROS 2). Cameras included: their messages, kept only when named
 (World.listen), are named here.
+
 The controller (--controller: Lee's position controller, default, or the roll-pitch-yawrate-thrust
 controller, each with the yaml files the ROS 1 launch files load; none: the motors take only
 command/motor_speed) answers each odometry reading inside the engine's step loop
