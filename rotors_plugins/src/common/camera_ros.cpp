@@ -232,10 +232,6 @@ bool RateLimiter::Due(double t_s) {
   return true;
 }
 
-rotors_sim::physics::World& WorldOf(const rotors_sim::sensors::CameraSensor& sensor) {
-  return *sensor.ParentLink()->GetModel()->GetWorldRaw();
-}
-
 bool CameraHasReaders(const std::shared_ptr<ros::NodeHandle>& node, rotors_sim::physics::World& world) {
   return node != nullptr || rotors_sim::MessageTaps::Of(world).Enabled();
 }

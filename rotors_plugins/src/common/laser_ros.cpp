@@ -164,7 +164,7 @@ void LaserPlugin::Reset() {
 }
 
 bool RangePlugin::Advertise() {
-  rotors_sim::physics::World& world = *sensor_->ParentLink()->GetModel()->GetWorldRaw();
+  rotors_sim::physics::World& world = WorldOf(*sensor_);
   pub_ = rotors_gazebo_plugins::Advertise<sensor_msgs::Range>(node_, robot_namespace_, topic_, world, 4);
   bus_ = VehicleBus::For(world, robot_namespace_);
   feed_ = &bus_->sensors.range.Of(ResolveTopic(robot_namespace_, topic_));

@@ -1,6 +1,13 @@
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
+#include "rotors_core/physics/link.h"
+#include "rotors_core/physics/model.h"
+
 namespace rotors_gazebo_plugins {
+
+rotors_sim::physics::World& WorldOf(const rotors_sim::sensors::Sensor& sensor) {
+  return *sensor.ParentLink()->GetModel()->GetWorldRaw();
+}
 
 std::shared_ptr<ros::NodeHandle> MakeNode(const std::string& robot_namespace) {
   if (!ros::isInitialized()) return nullptr;

@@ -57,7 +57,8 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     ReadParam(Params(), "verVelStdDev", &p.ver_vel_std_dev_m_s);
     ThrowIfInvalid(p.Validate());
     sensor_ = sensor;
-    const auto& o = sensor->ParentLink()->GetModel()->GetWorldRaw()->Origin();
+    rotors_sim::physics::World& world = WorldOf(*sensor);
+    const auto& o = world.Origin();
     const GeodeticOrigin origin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg};
     if (p.noise_model == GpsNoiseModel::kRandomWalk) random_walk_.Emplace(p, origin, ReadSeed(Params()));
     else model_.Emplace(p, origin, ReadSeed(Params()));
@@ -68,18 +69,16 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     fix_.position_covariance[0] = fix_.position_covariance[4] = p.hor_pos_std_dev_m * p.hor_pos_std_dev_m;
     fix_.position_covariance[8] = p.ver_pos_std_dev_m * p.ver_pos_std_dev_m;
     node_ = MakeNode(ns);
-    gps_pub_ =
-        Advertise<sensor_msgs::NavSatFix>(node_, ns, gps_topic, *sensor->ParentLink()->GetModel()->GetWorldRaw(), 10);
-    ground_speed_pub_ = Advertise<geometry_msgs::TwistStamped>(node_, ns, ground_speed_topic,
-                                                               *sensor->ParentLink()->GetModel()->GetWorldRaw(), 10);
+    gps_pub_ = Advertise<sensor_msgs::NavSatFix>(node_, ns, gps_topic, world, 10);
+    ground_speed_pub_ = Advertise<geometry_msgs::TwistStamped>(node_, ns, ground_speed_topic, world, 10);
     // the reading goes on the vehicle bus too, whether or not anyone listens
-    bus_ = VehicleBus::For(*sensor->ParentLink()->GetModel()->GetWorldRaw(), ns);
+    bus_ = VehicleBus::For(world, ns);
     fix_feed_ = &bus_->sensors.gps.Of(ResolveTopic(ns, gps_topic));
     speed_feed_ = &bus_->sensors.ground_speed.Of(ResolveTopic(ns, ground_speed_topic));
     accuracy_ = {p.hor_pos_std_dev_m, p.ver_pos_std_dev_m};
     connection_ = sensor->ConnectUpdated([this] { OnUpdate(); });
     if (random_walk_) {
-      world_ = sensor->ParentLink()->GetModel()->GetWorldRaw();
+      world_ = &world;
       step_connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] { OnPhysicsStep(); });
     }
   }

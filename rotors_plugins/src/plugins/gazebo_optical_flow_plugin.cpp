@@ -45,7 +45,7 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     model_ = std::make_unique<OpticalFlowModel>(p);
     msg_.header.frame_id = topic_.Namespace() + "/" + sensor_->Name();
     msg_.temperature = 2000;  // centi-degC
-    rotors_sim::physics::World& world = *sensor_->ParentLink()->GetModel()->GetWorldRaw();
+    rotors_sim::physics::World& world = WorldOf(*sensor_);
     topic_.Advertise(world);
     // the sample goes on the vehicle bus too, whether or not anyone listens
     bus_ = VehicleBus::For(world, topic_.Namespace());

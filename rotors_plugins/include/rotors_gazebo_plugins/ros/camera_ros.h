@@ -92,8 +92,6 @@ class CameraChannel {
 
 /// Whether a camera plugin has anywhere to publish: ROS (`node`), or the world's MessageTaps.
 bool CameraHasReaders(const std::shared_ptr<ros::NodeHandle>& node, rotors_sim::physics::World& world);
-/// The world `sensor` is in.
-rotors_sim::physics::World& WorldOf(const rotors_sim::sensors::CameraSensor& sensor);
 
 /// <updateRate> of a plugin below its sensor's rate: true when the next message is due (after a
 /// reset, when the time is before the last update's, the next update is due).

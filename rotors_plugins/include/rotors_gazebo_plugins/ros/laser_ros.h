@@ -74,8 +74,7 @@ class LaserPlugin : public rotors_sim::SensorPlugin {
   /// (World.listen: rotors_sim, the ROS 2 front end); false when there is neither.
   template <class M>
   bool AdvertiseListened(rotors_sim::ListenedPublisher* pub) {
-    *pub = rotors_gazebo_plugins::Advertise<M>(node_, robot_namespace_, topic_,
-                                               *sensor_->ParentLink()->GetModel()->GetWorldRaw(), 4, false, true);
+    *pub = rotors_gazebo_plugins::Advertise<M>(node_, robot_namespace_, topic_, WorldOf(*sensor_), 4, false, true);
     return static_cast<bool>(*pub);
   }
   virtual void Publish(const RayScan& scan, const ros::Time& stamp) = 0;

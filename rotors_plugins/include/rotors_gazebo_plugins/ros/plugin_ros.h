@@ -13,11 +13,15 @@
 #include "rotors_core/common.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/ros/listened_publisher.h"
+#include "rotors_core/sensors/sensor.h"
 
 namespace rotors_gazebo_plugins {
 
 /// A node handle in /<robot_namespace>, or nullptr when ROS is not initialised in this process.
 std::shared_ptr<ros::NodeHandle> MakeNode(const std::string& robot_namespace);
+
+/// The world a sensor's link belongs to (where its plugin's taps and vehicle bus live).
+rotors_sim::physics::World& WorldOf(const rotors_sim::sensors::Sensor& sensor);
 
 /// `topic` resolved as a node handle in /<robot_namespace> resolves it ("/ns/topic", or `topic` if absolute).
 std::string ResolveTopic(const std::string& robot_namespace, const std::string& topic);
