@@ -77,6 +77,15 @@ def model_path(model: str | None) -> Path | None:
     return path
 
 
+def finite_numbers(request: dict, op: str, key: str, n: int, default=None, then: str = "") -> list[float]:
+    """request[key] as n finite numbers (one may come bare), or SimError naming op, key and the value."""
+    v = request.get(key, default)
+    v = [v] if n == 1 and not isinstance(v, list) else v
+    if not (isinstance(v, list) and len(v) == n and all(isinstance(x, (int, float)) and math.isfinite(x) for x in v)):
+        raise SimError(f"{op}: {key} {request.get(key, default)!r} must be {n} finite number{'s' if n > 1 else ''}{then}")
+    return [float(x) for x in v]
+
+
 class Stepper:
     """The world, its vehicle and its controller, and the requests they serve."""
 
@@ -179,10 +188,8 @@ class Stepper:
             raise SimError(f"spawn: name {name!r} must be the new model's name")
         if name in self.world.models():
             raise SimError(f"spawn: a model named '{name}' exists already")
-        pose = [request.get(k, [0.0, 0.0, 0.0]) for k in ("xyz", "rpy")]
-        if not all(isinstance(v, list) and len(v) == 3 and all(isinstance(x, (int, float)) and math.isfinite(x) for x in v) for v in pose):
-            raise SimError(f"spawn: xyz {pose[0]!r} and rpy {pose[1]!r} must be 3 finite numbers each")
-        spawned = self.world.spawn(xml, name, pose[0], pose[1])
+        xyz, rpy = (finite_numbers(request, "spawn", key, 3, default=[0.0, 0.0, 0.0]) for key in ("xyz", "rpy"))
+        spawned = self.world.spawn(xml, name, xyz, rpy)
         every = self.world.topics()
         self.world.listen([t for t, _, _ in every])  # its cameras' messages too
         topics = [[t, kind] for t, kind, _ in every if t not in self.types and t not in self.native]
@@ -196,11 +203,7 @@ class Stepper:
             raise SimError(f"{op}: the world runs --controller {self.controller_name}; {op} is for --controller {wanted}")
 
         def numbers(key: str, n: int) -> list[float]:
-            v = request.get(key)
-            v = [v] if n == 1 and not isinstance(v, list) else v
-            if not (isinstance(v, list) and len(v) == n and all(isinstance(x, (int, float)) and math.isfinite(x) for x in v)):
-                raise SimError(f"{op}: {key} {request.get(key)!r} must be {n} finite number(s); ignored, the last command stays in force")
-            return [float(x) for x in v]
+            return finite_numbers(request, op, key, n, then="; ignored, the last command stays in force")
 
         if op == "set_point":
             self.controller.set_point(numbers("position", 3), yaw=numbers("yaw", 1)[0])
