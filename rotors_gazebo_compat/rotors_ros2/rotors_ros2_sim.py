@@ -10,8 +10,8 @@ every reading of the vehicle's odometry sensor, ground truth and IMU, and `/<mav
 the ROS 1 messages are, and serves Gazebo ROS 2's `/reset_simulation`, `/reset_world`,
 `/pause_physics` and `/unpause_physics` (std_srvs/srv/Empty) and `/spawn_entity` and `/delete_entity`
 (gazebo_msgs/srv/SpawnEntity, DeleteEntity: a model from URDF or SDF text; its topics published from
-then on). mav_msgs is RotorS' package built for
-ROS 2 by make ros2-setup (rotors_gazebo_compat/rotors_ros2/interfaces).
+then on). mav_msgs, rotors_comm and gazebo_msgs are RotorS' interface packages built for ROS 2 by make
+setup (rotors_gazebo_compat/rotors_ros2/interfaces).
 
 The controller runs inside the world's step loop, so the flight is in lockstep with it whatever the
 machine's load; --controller picks it, as the ROS 1 launch files pick a controller node:
@@ -32,12 +32,13 @@ environment): ROS 1's and ROS 2's Python message packages share module names and
 process. --real-time-factor 1 (the default) paces sim time to wall time; 0 runs as fast as it can.
 --paused starts with physics paused (the launch files' paused:=true), until /unpause_physics.
 Every other topic the vehicle's plugins publish on ROS 1 is published, to its subscribers, under the
-same name with the ROS 2 form of its type (the ground truth's and the odometry sensor's pose, position and transform,
-motor_speed/<N>, the IMU bias; with enable_navigation_sensors:=true the GPS, ground speed,
+same name with the ROS 2 form of its type (the ground truth's and the odometry sensor's pose,
+position and transform, the IMU bias; with enable_navigation_sensors:=true the GPS, ground speed,
 magnetometer and barometer; cameras' image_raw and camera_info; lasers): the plugin's own ROS 1
 message, converted to CDR by rosbags (ros1_to_cdr: the same fields, Header without seq), so field for
-field and pixel for pixel what ROS 1 sees. A type with no ROS 2 package here is named in one line at
-start and not published. --model mav_with_vi_sensor (a model of rotors_description/urdf, or a path)
+field and pixel for pixel what ROS 1 sees. A topic whose type has no ROS 2 package here, or whose name
+ROS 2 cannot carry (motor_speed/<N>: a token starting with a digit), is named in one line at start
+and not published. --model mav_with_vi_sensor (a model of rotors_description/urdf, or a path)
 spawns that model instead of the generic odometry sensor's; name:=value arguments are further xacro
 arguments of the vehicle, as spawn_mav.launch passes them.
 A command with a NaN or a missing transform, or a motor command of the wrong length, is refused in one
