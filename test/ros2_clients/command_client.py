@@ -9,12 +9,11 @@ mav_msgs types, then flies:
   thrust: the firefly lifts off and holds the roll.
 Prints RESULT=<json>. Every wait is bounded, and all together by the budget in argv[2] [s of wall time]."""
 
-import json
 import math
 import sys
-import time
 
 import rclpy
+from budget import Budget, report
 from mav_msgs.msg import Actuators, RollPitchYawrateThrust
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
@@ -32,7 +31,7 @@ def roll_of(q) -> float:
 
 
 def main() -> None:
-    mode, budget_deadline = sys.argv[1], time.monotonic() + float(sys.argv[2])
+    mode = sys.argv[1]
     rclpy.init()
     node = rclpy.create_node("command_client")
     state = {"clock": -1.0, "odometry": [], "motor_speed": []}
@@ -50,21 +49,16 @@ def main() -> None:
         100,
     )
 
-    def spin_until(predicate, timeout_s: float, what: str) -> None:
-        deadline = min(time.monotonic() + timeout_s, budget_deadline)
-        while not predicate():
-            if time.monotonic() > deadline:
-                raise SystemExit(f"command_client: {what}: not within {timeout_s:g} s (or the client's budget of {sys.argv[2]} s)")
-            rclpy.spin_once(node, timeout_sec=0.05)
+    budget = Budget(node, float(sys.argv[2]), "command_client")
 
     def sim_seconds(duration_s: float, what: str) -> None:
         t = state["clock"]
-        spin_until(lambda: state["clock"] >= t + duration_s, 60, what)
+        budget.until(lambda: state["clock"] >= t + duration_s, what, 60)
 
     command = "/firefly/command/motor_speed" if mode == "none" else "/firefly/command/roll_pitch_yawrate_thrust"
-    spin_until(lambda: MOTOR_SPEED in dict(node.get_topic_names_and_types()) and state["motor_speed"], 60, "motor_speed in the graph")
+    budget.until(lambda: MOTOR_SPEED in dict(node.get_topic_names_and_types()) and state["motor_speed"], "motor_speed in the graph", 60)
     pub = node.create_publisher(Actuators if mode == "none" else RollPitchYawrateThrust, command, 10)
-    spin_until(lambda: pub.get_subscription_count() > 0, 30, f"the simulator subscribed to {command}")
+    budget.until(lambda: pub.get_subscription_count() > 0, f"the simulator subscribed to {command}", 30)
     topics = dict(node.get_topic_names_and_types())
     result: dict = {"types": {t: topics[t] for t in (MOTOR_SPEED, command)}}
     result["motor_speed_frame"] = state["motor_speed"][-1][1]
@@ -79,7 +73,7 @@ def main() -> None:
             while state["clock"] < t_end:
                 pub.publish(Actuators(angular_velocities=speeds))
                 next_s = min(state["clock"] + 0.1, t_end)
-                spin_until(lambda next_s=next_s: state["clock"] >= next_s, 30, what)
+                budget.until(lambda next_s=next_s: state["clock"] >= next_s, what, 30)
 
         hold([600.0] * 6, 2.0, "2 s of sim time at 600 rad/s")
         result["speeds_at_600"] = state["motor_speed"][-1][2]
@@ -99,9 +93,7 @@ def main() -> None:
         late = [o for o in state["odometry"] if o[0] > t_sent + 1.0]
         result["roll_after_1_s"] = sum(o[2] for o in late) / len(late)
         result["z_after_1_5_s"] = state["odometry"][-1][1]
-    print("RESULT=" + json.dumps(result), flush=True)
-    node.destroy_node()
-    rclpy.shutdown()
+    report(node, result)
 
 
 if __name__ == "__main__":

@@ -4,11 +4,10 @@ rates over 2 s of sim time, sends the hovering example's set point (0, 0, 1) on 
 watches the firefly reach it, and calls /reset_simulation. Prints RESULT=<json>. Every wait is
 bounded, and all of them together by the budget given as the first argument [s of wall time]."""
 
-import json
 import sys
-import time
 
 import rclpy
+from budget import Budget, report
 from geometry_msgs.msg import Transform
 from nav_msgs.msg import Odometry
 from rclpy.parameter import Parameter
@@ -26,7 +25,6 @@ def seconds(stamp) -> float:
 
 
 def main() -> None:
-    budget_deadline = time.monotonic() + float(sys.argv[1])
     rclpy.init()
     node = rclpy.create_node("hover_client", parameter_overrides=[Parameter("use_sim_time", Parameter.Type.BOOL, True)])
     result: dict = {}
@@ -42,12 +40,7 @@ def main() -> None:
         Imu, IMU, lambda m: state["imu"].append((seconds(m.header.stamp), m.header.frame_id, m.linear_acceleration.z)), 100
     )
 
-    def spin_until(predicate, timeout_s: float, what: str) -> None:
-        deadline = min(time.monotonic() + timeout_s, budget_deadline)
-        while not predicate():
-            if time.monotonic() > deadline:
-                raise SystemExit(f"hover_client: {what}: not within {timeout_s:g} s (or the client's budget of {sys.argv[1]} s)")
-            rclpy.spin_once(node, timeout_sec=0.05)
+    budget = Budget(node, float(sys.argv[1]), "hover_client")
 
     def graph_ready() -> bool:
         topics = dict(node.get_topic_names_and_types())
@@ -55,15 +48,15 @@ def main() -> None:
         return "gazebo" in node.get_node_names() and {ODOMETRY, IMU, "/clock"} <= set(topics) and SERVICES <= services
 
     # topics and services are discovered one by one: wait for all of them
-    spin_until(graph_ready, 60, "the simulator's node, topics and services in the graph")
+    budget.until(graph_ready, "the simulator's node, topics and services in the graph", 60)
     result["nodes"] = node.get_node_names()
     result["topics"] = {k: v for k, v in node.get_topic_names_and_types() if k.startswith(("/firefly", "/clock"))}
     result["services"] = [name for name, _ in node.get_service_names_and_types() if name in SERVICES]
 
     # the rates over 2 s of sim time
-    spin_until(lambda: state["clock"] > 0.5, 60, "sim time past 0.5 s")
+    budget.until(lambda: state["clock"] > 0.5, "sim time past 0.5 s", 60)
     t0 = state["clock"]
-    spin_until(lambda: state["clock"] >= t0 + 2.0, 60, "2 s more of sim time")
+    budget.until(lambda: state["clock"] >= t0 + 2.0, "2 s more of sim time", 60)
     for name in ("odometry", "imu"):  # messages per second of their own stamps
         stamps = [m[0] for m in state[name] if t0 <= m[0] <= t0 + 2.0]
         result[f"{name}_hz"] = (len(stamps) - 1) / (stamps[-1] - stamps[0])
@@ -76,29 +69,27 @@ def main() -> None:
 
     # the hovering example's set point
     pub = node.create_publisher(MultiDOFJointTrajectory, "/firefly/command/trajectory", 10)
-    spin_until(lambda: pub.get_subscription_count() > 0, 30, "the simulator subscribed to command/trajectory")
+    budget.until(lambda: pub.get_subscription_count() > 0, "the simulator subscribed to command/trajectory", 30)
     msg = MultiDOFJointTrajectory(points=[MultiDOFJointTrajectoryPoint(transforms=[Transform()])])
     msg.points[0].transforms[0].translation.z = 1.0
     msg.points[0].transforms[0].rotation.w = 1.0
     pub.publish(msg)
     t_sent = state["clock"]
-    spin_until(lambda: state["clock"] >= t_sent + 10.0, 120, "10 s of sim time after the set point")
+    budget.until(lambda: state["clock"] >= t_sent + 10.0, "10 s of sim time after the set point", 120)
     last_2_s = [m[3] for m in state["odometry"] if m[0] > t_sent + 8.0]
     result["z_after_10_s"] = state["odometry"][-1][3]
     result["z_offset_last_2_s"] = sum(last_2_s) / len(last_2_s) - 1.0
 
     # reset_simulation: time and vehicle back to the start
     client = node.create_client(Empty, "/reset_simulation")
-    spin_until(client.service_is_ready, 30, "/reset_simulation available")
+    budget.until(client.service_is_ready, "/reset_simulation available", 30)
     future = client.call_async(Empty.Request())
-    spin_until(future.done, 30, "/reset_simulation answered")
+    budget.until(future.done, "/reset_simulation answered", 30)
     state["odometry"].clear()
-    spin_until(lambda: state["odometry"] and state["odometry"][-1][0] < 1.0, 30, "odometry from before 1 s of sim time after the reset")
+    budget.until(lambda: state["odometry"] and state["odometry"][-1][0] < 1.0, "odometry from before 1 s of sim time after the reset", 30)
     result["clock_after_reset"] = state["odometry"][-1][0]
     result["z_after_reset"] = state["odometry"][-1][3]
-    print("RESULT=" + json.dumps(result), flush=True)
-    node.destroy_node()
-    rclpy.shutdown()
+    report(node, result)
 
 
 if __name__ == "__main__":

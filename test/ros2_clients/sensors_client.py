@@ -4,11 +4,10 @@ topic=pkg/msg/Type, the ROS 2 type the graph reports and the first message stamp
     python sensors_client.py <keep_s> <budget_s> topic=pkg/msg/Type ..."""
 
 import importlib
-import json
 import sys
-import time
 
 import rclpy
+from budget import Budget, report
 
 
 def fields(m):
@@ -21,7 +20,7 @@ def fields(m):
 
 
 def main() -> None:
-    keep_s, deadline = float(sys.argv[1]), time.monotonic() + float(sys.argv[2])
+    keep_s = float(sys.argv[1])
     wanted = dict(arg.split("=", 1) for arg in sys.argv[3:])
     rclpy.init()
     node = rclpy.create_node("sensors_client")
@@ -35,14 +34,10 @@ def main() -> None:
         package, _, name = ros2_type.split("/")
         cls = getattr(importlib.import_module(f"{package}.msg"), name)
         node.create_subscription(cls, topic, lambda m, topic=topic: keep(topic, m), 100)
-    while len(kept) < len(wanted):
-        if time.monotonic() > deadline:
-            raise SystemExit(f"sensors_client: got {sorted(kept)} of {sorted(wanted)} within {sys.argv[2]} s")
-        rclpy.spin_once(node, timeout_sec=0.05)
+    budget = Budget(node, float(sys.argv[2]), "sensors_client")
+    budget.until(lambda: len(kept) == len(wanted), lambda: f"got {sorted(kept)} of {sorted(wanted)}")
     types = dict(node.get_topic_names_and_types())
-    print("RESULT=" + json.dumps({"types": {t: types.get(t) for t in wanted}, "kept": kept}), flush=True)
-    node.destroy_node()
-    rclpy.shutdown()
+    report(node, {"types": {t: types.get(t) for t in wanted}, "kept": kept})
 
 
 if __name__ == "__main__":

@@ -4,11 +4,10 @@ odometry (a topic that did not exist before), deletes it with /delete_entity, de
 spawns broken text (both refused with a message). Prints RESULT=<json>.
     python spawn_client.py <urdf_path> <budget_s>"""
 
-import json
 import sys
-import time
 
 import rclpy
+from budget import Budget, report
 from gazebo_msgs.srv import DeleteEntity, SpawnEntity
 from nav_msgs.msg import Odometry
 
@@ -16,20 +15,16 @@ TOPIC = "/second/ground_truth/odometry"
 
 
 def main() -> None:
-    xml, deadline = open(sys.argv[1]).read(), time.monotonic() + float(sys.argv[2])
+    xml = open(sys.argv[1]).read()
     rclpy.init()
     node = rclpy.create_node("spawn_client")
 
-    def spin_until(predicate, what: str) -> None:
-        while not predicate():
-            if time.monotonic() > deadline:
-                raise SystemExit(f"spawn_client: {what}: not within the budget of {sys.argv[2]} s")
-            rclpy.spin_once(node, timeout_sec=0.05)
+    budget = Budget(node, float(sys.argv[2]), "spawn_client")
 
     def call(client, request):
-        spin_until(client.service_is_ready, f"{client.srv_name} available")
+        budget.until(client.service_is_ready, f"{client.srv_name} available")
         future = client.call_async(request)
-        spin_until(future.done, f"{client.srv_name} answered")
+        budget.until(future.done, f"{client.srv_name} answered")
         return future.result()
 
     spawn, delete = node.create_client(SpawnEntity, "/spawn_entity"), node.create_client(DeleteEntity, "/delete_entity")
@@ -40,7 +35,7 @@ def main() -> None:
     result["spawn"] = [answer.success, answer.status_message]
     odometry = []
     node.create_subscription(Odometry, TOPIC, lambda m: odometry.append([m.header.frame_id, m.child_frame_id, m.pose.pose.position.x]), 100)
-    spin_until(lambda: len(odometry) >= 5, f"5 messages on {TOPIC}")
+    budget.until(lambda: len(odometry) >= 5, f"5 messages on {TOPIC}")
     result["types"] = dict(node.get_topic_names_and_types()).get(TOPIC)
     result["odometry"] = odometry[-1]
     answer = call(delete, DeleteEntity.Request(name="second"))
@@ -49,9 +44,7 @@ def main() -> None:
     result["delete_again"] = [answer.success, answer.status_message]
     answer = call(spawn, SpawnEntity.Request(name="third", xml="not a robot"))
     result["spawn_broken"] = [answer.success, answer.status_message]
-    print("RESULT=" + json.dumps(result), flush=True)
-    node.destroy_node()
-    rclpy.shutdown()
+    report(node, result)
 
 
 if __name__ == "__main__":
