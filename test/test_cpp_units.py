@@ -18,7 +18,7 @@ GTESTS = {
     "rotors_control/test_rotors_control": 21,
     "rotors_core/test_rotors_core_engine": 79,
     "rotors_gazebo_plugins/test_autopilot_codecs": 16,
-    "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 73,
+    "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 74,
     "rotors_planning/test_rotors_planning": 9,
     "rotors_flight_batch/test_flight_kernel": 4,
 }

@@ -1,14 +1,18 @@
 // Two worlds in one process, each with a vehicle named "mav": the vehicle bus belongs to the world,
 // so a motor command sent to one world's vehicle turns only that world's rotor. The bus carries each
-// sensor's reading and each plugin's record of what it loaded with.
+// sensor's reading and each plugin's record of what it loaded with, and the sensor's message is
+// built from the reading on the bus.
 #include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sensor_msgs/FluidPressure.h>
 
-#include "rotors_core/physics/world.h"
-#include "rotors_core/world_loader.h"
+#include "rotors_core/model_builder.h"
 #include "rotors_core/physics/model.h"
+#include "rotors_core/physics/world.h"
+#include "rotors_core/ros/message_taps.h"
+#include "rotors_core/world_loader.h"
 #include "rotors_gazebo_plugins/models/standard_atmosphere.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
@@ -90,6 +94,43 @@ TEST(VehicleBus, HoldsWhatEachPluginLoadedWith) {
   const auto* barometer = std::get_if<rotors_gazebo_plugins::MeasuringRecord>(bus->RecordOf(plugins[1].get()));
   ASSERT_NE(barometer, nullptr);
   EXPECT_EQ(barometer->what, "/mav/air_pressure");
+  world->Fini();
+}
+
+// ROS publishing reads the bus: every reading put on a feed goes out as its message, built from the
+// reading (stamped with the reading's time, the plugin's frame and variance), into the world's
+// taps (as to ROS); a listener of the feed hears every reading until its connection goes.
+TEST(VehicleBus, EachReadingIsPublishedFromItsFeed) {
+  const std::string text(kWorld);
+  const size_t model_begin = text.find("<model"), model_end = text.find("</model>") + 8;
+  const std::string world_only = text.substr(0, model_begin) + text.substr(model_end);
+  const std::string model = "<sdf version=\"1.6\">" + text.substr(model_begin, model_end - model_begin) + "</sdf>";
+  rotors_sim::physics::WorldPtr world = rotors_sim::WorldLoader::LoadString(world_only, "w");
+  rotors_sim::MessageTaps::Of(*world).Enable();  // before the model's plugins load, as the Python module
+  rotors_sim::ModelBuilder::Spawn(world, {model, "", {}});
+  auto& feed = VehicleBus::For(*world, "mav")->sensors.barometer.Of("/mav/air_pressure");
+  int heard = 0;
+  double heard_t_s = -1.0;
+  auto connection = feed.Listen([&](const rotors_gazebo_plugins::BarometerReading&, double t_s) {
+    ++heard;
+    heard_t_s = t_s;
+  });
+  world->Step(7);
+  EXPECT_EQ(heard, 7);
+  EXPECT_EQ(heard_t_s, feed.time_s);
+  const rotors_sim::TappedMessage* tap = rotors_sim::MessageTaps::Of(*world).Find("/mav/air_pressure");
+  ASSERT_NE(tap, nullptr);
+  EXPECT_EQ(tap->count, 7u);
+  const auto* msg = tap->As<sensor_msgs::FluidPressure>();
+  ASSERT_NE(msg, nullptr);
+  EXPECT_EQ(msg->fluid_pressure, feed.latest.pressure_Pa);
+  EXPECT_EQ(msg->header.stamp.toNSec(), 7000000u);  // 7 steps of 1 ms, whole nanoseconds
+  EXPECT_EQ(msg->header.frame_id, "mav/base_link");
+  EXPECT_EQ(msg->variance, 0.0);
+  connection.reset();
+  world->Step(1);
+  EXPECT_EQ(heard, 7);
+  EXPECT_EQ(tap->count, 8u);
   world->Fini();
 }
 

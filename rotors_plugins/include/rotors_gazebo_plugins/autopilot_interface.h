@@ -77,7 +77,7 @@ class AutopilotInterface : public rotors_sim::ModelPlugin {
   bool channels_given_ = false;
   ControlChannels channels_;  ///< made at the first step (the default needs every motor registered)
   bool channels_ready_ = false;
-  const SensorFeed<ImuSample>* imu_ = nullptr;
+  const SensorFeed<ImuReading>* imu_ = nullptr;
   const SensorFeed<MagnetometerReading>* mag_ = nullptr;
   const SensorFeed<BarometerReading>* baro_ = nullptr;
   const SensorFeed<GpsReading>* gps_ = nullptr;

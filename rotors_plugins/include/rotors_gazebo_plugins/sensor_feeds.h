@@ -1,23 +1,35 @@
-// The sensors' readings on the vehicle bus, as plain values in SI units and our frames (no ROS, no
-// engine): each sensor plugin puts its reading here when it takes one, before it builds a ROS
-// message from the same reading; in-process readers (the autopilot interfaces' snapshot, the
-// Python module's accessors, a controller attached in the engine) read them here. A feed is keyed
-// by the sensor's resolved topic name ("/firefly/imu"), so a reader picks one of two IMUs as a ROS
-// node would.
+// The sensors' readings on the vehicle bus, as plain values in SI units and our frames (no ROS): each
+// sensor plugin puts its reading here when it takes one, and that is all it does with it. Every
+// reader takes it from here: ROS publishing (ros/feed_publisher.h builds each message from the
+// reading, and the message taps, bags and the ROS 2 front end see that message), the autopilot
+// interfaces' snapshot, the Python module's accessors, a controller attached in the engine. A feed
+// is keyed by the sensor's resolved topic name ("/firefly/imu"), so a reader picks one of two IMUs
+// as a ROS node would.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "rotors_core/event.h"
 
 #include "rotors_gazebo_plugins/models/imu_noise_model.h"
 #include "rotors_gazebo_plugins/models/navigation_sensor_models.h"
 #include "rotors_gazebo_plugins/models/odometry_model.h"
 
 namespace rotors_gazebo_plugins {
+
+/// An IMU's reading: the measured rates and specific force, and the IMU's true orientation (RotorS'
+/// sensor_msgs/Imu carries the ground-truth orientation beside the measurement).
+struct ImuReading {
+  ImuSample measured;
+  Eigen::Quaterniond q_WI = Eigen::Quaterniond::Identity();
+};
 
 /// A GPS fix: the model's sample and the fix's stated accuracy (1 sigma).
 struct GpsReading {
@@ -56,7 +68,7 @@ struct OpticalFlowReading {
   int quality = 0;                                                ///< 0: no valid flow .. 255
 };
 
-/// The latest reading of one sensor.
+/// The latest reading of one sensor, and whoever listens for each new one.
 template <class Reading>
 struct SensorFeed {
   Reading latest{};
@@ -64,12 +76,21 @@ struct SensorFeed {
   uint64_t count = 0;   ///< readings since load (a reset does not restart it)
   bool fresh = false;   ///< a reading since load or the last reset
 
+  /// The one way a reading enters: kept as the latest, then handed to every listener in turn.
   void Put(const Reading& reading, double t_s) {
     latest = reading;
     time_s = t_s;
     ++count;
     fresh = true;
+    if (put_.ConnectionCount() > 0) put_(latest, time_s);
   }
+  /// Calls `on_reading(reading, t_s)` for every reading put from now on, while the connection lives.
+  rotors_sim::event::ConnectionPtr Listen(std::function<void(const Reading&, double)> on_reading) {
+    return put_.Connect(std::move(on_reading));
+  }
+
+ private:
+  rotors_sim::event::EventT<const Reading&, double> put_;
 };
 
 /// The feeds of one kind of sensor, by resolved topic. A reader may hold a feed before its plugin
@@ -99,7 +120,7 @@ class SensorFeeds {
 
 /// Every sensor reading of one vehicle.
 struct SensorReadings {
-  SensorFeeds<ImuSample> imu;                 ///< [rad/s], specific force [m/s^2], IMU frame
+  SensorFeeds<ImuReading> imu;                ///< [rad/s], specific force [m/s^2], IMU frame
   SensorFeeds<OdometryMeasurement> odometry;  ///< the odometry sensor's pose and body-frame twist
   SensorFeeds<GpsReading> gps;
   SensorFeeds<GroundSpeedReading> ground_speed;

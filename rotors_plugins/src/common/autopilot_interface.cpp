@@ -157,8 +157,8 @@ VehicleSnapshot AutopilotInterface::Snapshot() {
 
   if (const auto* imu = Latest(imu_, &s.imu_count)) {
     s.has_imu = true;
-    s.gyro_B = imu->angular_velocity_I;
-    s.accel_B = imu->linear_acceleration_I;
+    s.gyro_B = imu->measured.angular_velocity_I;
+    s.accel_B = imu->measured.linear_acceleration_I;
   }
   if (const auto* mag = Latest(mag_, &s.mag_count)) {
     s.has_mag = true;

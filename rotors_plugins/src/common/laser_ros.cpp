@@ -165,15 +165,18 @@ void LaserPlugin::Reset() {
 
 bool RangePlugin::Advertise() {
   rotors_sim::physics::World& world = WorldOf(*sensor_);
-  pub_ = rotors_gazebo_plugins::Advertise<sensor_msgs::Range>(node_, robot_namespace_, topic_, world, 4);
   bus_ = VehicleBus::For(world, robot_namespace_);
   feed_ = &bus_->sensors.range.Of(ResolveTopic(robot_namespace_, topic_));
+  prototype_.header.frame_id = frame_;
+  publisher_.Start(*feed_, world, robot_namespace_, topic_, prototype_, 4);
   return true;  // the bus takes every range
 }
 
-void RangePlugin::PublishRange(const sensor_msgs::RangePtr& msg) {
-  feed_->Put({msg->range, msg->min_range, msg->max_range}, msg->header.stamp.toSec());
-  pub_.publish(msg);
+void RangePlugin::PutRange(float range_m, const ros::Time& stamp) {
+  // the limits as sensor_msgs/Range carries them (float32)
+  const float min_m = static_cast<float>(sensor_->Spec().range_min_m);
+  const float max_m = static_cast<float>(sensor_->Spec().range_max_m);
+  feed_->Put({range_m, min_m, max_m}, stamp.toSec());
 }
 
 }  // namespace rotors_gazebo_plugins

@@ -15,7 +15,7 @@
 
 namespace rotors_gazebo_plugins {
 
-class GazeboAirspeedPlugin : public LinkSensorPlugin<geometry_msgs::Vector3Stamped> {
+class GazeboAirspeedPlugin : public LinkSensorPlugin<AirspeedReading, geometry_msgs::Vector3Stamped> {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     LoadLink(model, "airspeedTopic", "air_speed");
@@ -27,9 +27,8 @@ class GazeboAirspeedPlugin : public LinkSensorPlugin<geometry_msgs::Vector3Stamp
     if (!(rate_hz >= 0.0)) throw rotors_sim::SimError("updateRate must be >= 0 Hz");
     ThrowIfInvalid(p.Validate());
     model_.Emplace(p, ReadSeed(Params()));
-    feed_ = Feed(Bus().sensors.airspeed);
     limiter_ = RateLimiter(rate_hz);
-    StartPublishing();
+    StartPublishing(Bus().sensors.airspeed);
   }
 
   void Reset() override { model_.Reset(); }
@@ -42,15 +41,10 @@ class GazeboAirspeedPlugin : public LinkSensorPlugin<geometry_msgs::Vector3Stamp
     const auto q = X_WB.Rot();
     const Eigen::Matrix3d R_WB = Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z()).toRotationMatrix();
     const auto v = link_->WorldLinearVel();
-    const AirspeedReading reading{model_->Measure(R_WB, Eigen::Vector3d(v.X(), v.Y(), v.Z()), Bus().wind_velocity_W)};
-    feed_->Put(reading, t);
-    msg_.header.stamp = ToRos(world_->SimTime());
-    msg_.vector = ToVector3Msg(reading.air_velocity_B_m_s);
-    Publish();
+    Put(AirspeedReading{model_->Measure(R_WB, Eigen::Vector3d(v.X(), v.Y(), v.Z()), Bus().wind_velocity_W)});
   }
 
   SeededModel<AirspeedModel> model_;
-  SensorFeed<AirspeedReading>* feed_ = nullptr;
   RateLimiter limiter_{0.0};
 };
 

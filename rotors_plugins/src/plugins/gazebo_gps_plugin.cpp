@@ -8,8 +8,6 @@
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/NavSatFix.h>
 
-#include "rotors_core/ros/publish_counts.h"
-#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/error.h"
 #include "rotors_core/physics/link.h"
 #include "rotors_core/physics/model.h"
@@ -19,6 +17,7 @@
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 #include "rotors_gazebo_plugins/seeded_model.h"
+#include "rotors_gazebo_plugins/ros/feed_publisher.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 
 namespace rotors_gazebo_plugins {
@@ -62,19 +61,21 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     const GeodeticOrigin origin{o.latitude_deg, o.longitude_deg, o.elevation_m, o.heading_deg};
     if (p.noise_model == GpsNoiseModel::kRandomWalk) random_walk_.Emplace(p, origin, ReadSeed(Params()));
     else model_.Emplace(p, origin, ReadSeed(Params()));
-    fix_.header.frame_id = sensor->ParentName();
-    fix_.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
-    fix_.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
-    fix_.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
-    fix_.position_covariance[0] = fix_.position_covariance[4] = p.hor_pos_std_dev_m * p.hor_pos_std_dev_m;
-    fix_.position_covariance[8] = p.ver_pos_std_dev_m * p.ver_pos_std_dev_m;
-    node_ = MakeNode(ns);
-    gps_pub_ = Advertise<sensor_msgs::NavSatFix>(node_, ns, gps_topic, world, 10);
-    ground_speed_pub_ = Advertise<geometry_msgs::TwistStamped>(node_, ns, ground_speed_topic, world, 10);
-    // the reading goes on the vehicle bus too, whether or not anyone listens
+    // the readings go on the vehicle bus, whether or not anyone listens, and from there on ROS
     bus_ = VehicleBus::For(world, ns);
     fix_feed_ = &bus_->sensors.gps.Of(ResolveTopic(ns, gps_topic));
     speed_feed_ = &bus_->sensors.ground_speed.Of(ResolveTopic(ns, ground_speed_topic));
+    sensor_msgs::NavSatFix fix;
+    fix.header.frame_id = sensor->ParentName();
+    fix.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
+    fix.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
+    fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
+    fix.position_covariance[0] = fix.position_covariance[4] = p.hor_pos_std_dev_m * p.hor_pos_std_dev_m;
+    fix.position_covariance[8] = p.ver_pos_std_dev_m * p.ver_pos_std_dev_m;
+    fix_publisher_.Start(*fix_feed_, world, ns, gps_topic, fix);
+    geometry_msgs::TwistStamped speed;
+    speed.header.frame_id = fix.header.frame_id;
+    speed_publisher_.Start(*speed_feed_, world, ns, ground_speed_topic, speed);
     accuracy_ = {p.hor_pos_std_dev_m, p.ver_pos_std_dev_m};
     connection_ = sensor->ConnectUpdated([this] { OnUpdate(); });
     if (random_walk_) {
@@ -117,15 +118,6 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
     const double t_s = sensor_->LastUpdateTime().Double();
     fix_feed_->Put({m, accuracy_.first, accuracy_.second}, t_s);
     speed_feed_->Put({m.ground_speed_W}, t_s);
-    fix_.header.stamp = ToRos(sensor_->LastUpdateTime());
-    fix_.latitude = m.latitude_longitude_altitude.x();
-    fix_.longitude = m.latitude_longitude_altitude.y();
-    fix_.altitude = m.latitude_longitude_altitude.z();
-    gps_pub_.publish(fix_);
-    geometry_msgs::TwistStamped speed;
-    speed.header = fix_.header;
-    speed.twist.linear = ToVector3Msg(m.ground_speed_W);
-    ground_speed_pub_.publish(speed);
   }
 
   rotors_sim::sensors::SensorPtr sensor_;
@@ -138,10 +130,8 @@ class GazeboGpsPlugin : public rotors_sim::SensorPlugin {
   rotors_sim::physics::World* world_ = nullptr;
   double last_step_s_ = -1.0;
   rotors_sim::event::ConnectionPtr step_connection_;
-  sensor_msgs::NavSatFix fix_;
-  std::shared_ptr<ros::NodeHandle> node_;
-  // ListenedPublisher: no search through every topic per step
-  rotors_sim::ListenedPublisher gps_pub_, ground_speed_pub_;
+  FeedPublisher<GpsReading, sensor_msgs::NavSatFix> fix_publisher_;
+  FeedPublisher<GroundSpeedReading, geometry_msgs::TwistStamped> speed_publisher_;
   rotors_sim::event::ConnectionPtr connection_;
 };
 

@@ -7,7 +7,6 @@
 // adds the rotors' vibration and samples as the ADIS16448 does (ImuVibrationModel): the rotors come
 // from the vehicle bus, the mass and inertia from the rigid body the IMU is welded to.
 #include <rotors_comm/ImuBias.h>
-#include <sensor_msgs/Imu.h>
 
 #include <Eigen/Geometry>
 
@@ -19,11 +18,11 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
-#include "rotors_core/ros/msg_conversions.h"
 #include "rotors_gazebo_plugins/models/imu_noise_model.h"
 #include "rotors_gazebo_plugins/models/imu_vibration_model.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
 #include "rotors_gazebo_plugins/seeded_model.h"
+#include "rotors_gazebo_plugins/ros/feed_publisher.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
@@ -55,16 +54,16 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     const ImuVibrationParams vibration = ReadImuVibration(Params());
     if (vibration.enabled) LoadVibration(model, vibration, seed);
     bus_->Register(this, ImuRecord{link_name, p, vibration.enabled, seed});
-    msg_.header.frame_id = link_name;
-    msg_.orientation_covariance.fill(-1.0);  // orientation is ground truth (as RotorS), not a measurement
+    sensor_msgs::Imu prototype;
+    prototype.header.frame_id = frame_id_ = link_name;
+    prototype.orientation_covariance.fill(-1.0);  // orientation is ground truth (as RotorS), not a measurement
     for (int i = 0; i < 3; ++i) {
-      msg_.angular_velocity_covariance[i * 4] = p.gyroscope_noise_density * p.gyroscope_noise_density;
-      msg_.linear_acceleration_covariance[i * 4] = p.accelerometer_noise_density * p.accelerometer_noise_density;
+      prototype.angular_velocity_covariance[i * 4] = p.gyroscope_noise_density * p.gyroscope_noise_density;
+      prototype.linear_acceleration_covariance[i * 4] = p.accelerometer_noise_density * p.accelerometer_noise_density;
     }
+    publisher_.Start(*feed_, *world_, ns, topic, prototype);
     node_ = MakeNode(ns);
-    pub_ = Advertise<sensor_msgs::Imu>(node_, ns, topic, *model->GetWorldRaw(), 10);
-    if (!bias_topic.empty())
-      bias_pub_ = Advertise<rotors_comm::ImuBias>(node_, ns, bias_topic, *model->GetWorldRaw(), 10);
+    if (!bias_topic.empty()) bias_pub_ = Advertise<rotors_comm::ImuBias>(node_, ns, bias_topic, *world_, 10);
     if (node_) {
       ROS_DEBUG("[imu] %s/%s seed %lu", ns.c_str(), topic.c_str(), static_cast<unsigned long>(seed));
     }
@@ -86,16 +85,12 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
     const auto w_I = link_->RelativeAngularVel();
     const ImuSample truth{{w_I.X(), w_I.Y(), w_I.Z()}, {f_I.X(), f_I.Y(), f_I.Z()}};
     const ImuSample m = noise_->Corrupt(vibration_ ? Vibrate(truth, dt) : truth, dt);
-    feed_->Put(m, world_->SimTime().Double());
-    if (!pub_) return;
-    msg_.header.stamp = ToRos(world_->SimTime());
-    msg_.orientation = rotors_sim::QuaternionMsg(X_WI.Rot());
-    msg_.angular_velocity = ToVector3Msg(m.angular_velocity_I);
-    msg_.linear_acceleration = ToVector3Msg(m.linear_acceleration_I);
-    pub_.publish(msg_);
+    const auto& q = X_WI.Rot();
+    feed_->Put({m, Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z())}, world_->SimTime().Double());
     if (bias_pub_ && bias_pub_.getNumSubscribers() > 0) {
       rotors_comm::ImuBias bias;
-      bias.header = msg_.header;
+      bias.header.stamp = StampOf(feed_->time_s);
+      bias.header.frame_id = frame_id_;
       bias.gyroscope_bias = ToVector3Msg(noise_->TotalGyroscopeBias());
       bias.accelerometer_bias = ToVector3Msg(noise_->TotalAccelerometerBias());
       bias_pub_.publish(bias);
@@ -151,16 +146,16 @@ class GazeboImuPlugin : public rotors_sim::ModelPlugin {
   SeededModel<ImuNoiseModel> noise_;
   SeededModel<ImuVibrationModel> vibration_;
   std::shared_ptr<VehicleBus> bus_;
-  SensorFeed<ImuSample>* feed_ = nullptr;  ///< on the bus
+  SensorFeed<ImuReading>* feed_ = nullptr;  ///< on the bus
   std::vector<VibratingRotor> rotors_;
   ImuSample last_truth_;
   bool have_truth_ = false;
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
-  sensor_msgs::Imu msg_;
+  FeedPublisher<ImuReading, sensor_msgs::Imu> publisher_;  ///< the feed's readings on <imuTopic>
+  std::string frame_id_;                                   ///< linkName
   std::shared_ptr<ros::NodeHandle> node_;
-  // ListenedPublisher: no search through every topic per step
-  rotors_sim::ListenedPublisher pub_, bias_pub_;
+  rotors_sim::ListenedPublisher bias_pub_;  // no search through every topic per step
   rotors_sim::event::ConnectionPtr connection_;
 };
 

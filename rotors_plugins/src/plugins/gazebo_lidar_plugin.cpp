@@ -13,17 +13,11 @@ namespace rotors_gazebo_plugins {
 class GazeboLidarPlugin : public RangePlugin {
  protected:
   std::string DefaultTopic() const override { return "lidar"; }
-  void Publish(const RayScan& scan, const ros::Time& stamp) override {
-    sensor_msgs::RangePtr msg(new sensor_msgs::Range);
-    msg->header.stamp = stamp;
-    msg->header.frame_id = frame_;
-    msg->radiation_type = sensor_msgs::Range::INFRARED;
-    msg->field_of_view = 0.0f;
-    msg->min_range = static_cast<float>(sensor_->Spec().range_min_m);
-    msg->max_range = static_cast<float>(sensor_->Spec().range_max_m);
-    msg->range = scan.ranges_m.at(0);
-    PublishRange(msg);
+  void Configure(rotors_sim::SdfParams& /*params*/) override {
+    prototype_.radiation_type = sensor_msgs::Range::INFRARED;
+    prototype_.field_of_view = 0.0f;
   }
+  void Publish(const RayScan& scan, const ros::Time& stamp) override { PutRange(scan.ranges_m.at(0), stamp); }
 };
 
 }  // namespace rotors_gazebo_plugins

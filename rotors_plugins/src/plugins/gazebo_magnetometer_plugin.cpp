@@ -16,7 +16,7 @@
 
 namespace rotors_gazebo_plugins {
 
-class GazeboMagnetometerPlugin : public LinkSensorPlugin<sensor_msgs::MagneticField> {
+class GazeboMagnetometerPlugin : public LinkSensorPlugin<MagnetometerReading, sensor_msgs::MagneticField> {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     LoadLink(model, "magnetometerTopic", "magnetic_field");
@@ -37,9 +37,8 @@ class GazeboMagnetometerPlugin : public LinkSensorPlugin<sensor_msgs::MagneticFi
     ReadVector(Params(), "noiseUniformInitialBias", &p.noise_uniform_initial_bias_T);
     ThrowIfInvalid(p.Validate());
     model_.Emplace(p, ReadSeed(Params()));
-    for (int i = 0; i < 3; ++i) msg_.magnetic_field_covariance[i * 4] = p.noise_normal_T[i] * p.noise_normal_T[i];
-    feed_ = Feed(Bus().sensors.magnetometer);
-    StartPublishing();
+    for (int i = 0; i < 3; ++i) prototype_.magnetic_field_covariance[i * 4] = p.noise_normal_T[i] * p.noise_normal_T[i];
+    StartPublishing(Bus().sensors.magnetometer);
   }
 
   void Reset() override { model_.Reset(); }
@@ -47,15 +46,10 @@ class GazeboMagnetometerPlugin : public LinkSensorPlugin<sensor_msgs::MagneticFi
  private:
   void OnUpdate() override {
     const auto q = link_->WorldPose().Rot();
-    const MagnetometerReading reading{model_->Measure(Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z()))};
-    feed_->Put(reading, world_->SimTime().Double());
-    msg_.header.stamp = ToRos(world_->SimTime());
-    msg_.magnetic_field = ToVector3Msg(reading.field_B_T);
-    Publish();
+    Put(MagnetometerReading{model_->Measure(Eigen::Quaterniond(q.W(), q.X(), q.Y(), q.Z()))});
   }
 
   SeededModel<MagnetometerModel> model_;
-  SensorFeed<MagnetometerReading>* feed_ = nullptr;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -43,13 +43,14 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     const std::string why = p.Validate();
     if (!why.empty()) throw rotors_sim::SimError("optical flow on sensor '" + sensor_->Name() + "': " + why);
     model_ = std::make_unique<OpticalFlowModel>(p);
-    msg_.header.frame_id = topic_.Namespace() + "/" + sensor_->Name();
-    msg_.temperature = 2000;  // centi-degC
     rotors_sim::physics::World& world = WorldOf(*sensor_);
-    topic_.Advertise(world);
-    // the sample goes on the vehicle bus too, whether or not anyone listens
+    // the sample goes on the vehicle bus, whether or not anyone listens, and from there on ROS
     bus_ = VehicleBus::For(world, topic_.Namespace());
     feed_ = &bus_->sensors.optical_flow.Of(topic_.Resolved());
+    mavros_msgs::OpticalFlowRad prototype;
+    prototype.header.frame_id = topic_.Namespace() + "/" + sensor_->Name();
+    prototype.temperature = 2000;  // centi-degC
+    publisher_.Start(*feed_, world, topic_.Namespace(), topic_.Topic(), prototype);
     connection_ = sensor_->ConnectUpdated([this] { OnFrame(); });
   }
 
@@ -74,20 +75,13 @@ class GazeboOpticalFlowPlugin : public rotors_sim::SensorPlugin {
     reading.integrated_xy_rad = {sample->integrated_x, sample->integrated_y};
     reading.quality = sample->quality;
     feed_->Put(reading, sensor_->LastUpdateTime().Double());
-    msg_.header.stamp = ToRos(sensor_->LastUpdateTime());
-    msg_.integration_time_us = reading.integration_time_us;
-    msg_.integrated_x = sample->integrated_x;
-    msg_.integrated_y = sample->integrated_y;
-    msg_.distance = static_cast<float>(reading.distance_m);
-    msg_.quality = sample->quality;
-    topic_.Publish(msg_);
   }
 
   rotors_sim::sensors::CameraSensorPtr sensor_;
   std::unique_ptr<OpticalFlowModel> model_;
   std::vector<uint8_t> grey_;
-  mavros_msgs::OpticalFlowRad msg_;
-  SensorTopic<mavros_msgs::OpticalFlowRad> topic_;
+  SensorTopic topic_;
+  FeedPublisher<OpticalFlowReading, mavros_msgs::OpticalFlowRad> publisher_;
   std::shared_ptr<VehicleBus> bus_;
   SensorFeed<OpticalFlowReading>* feed_ = nullptr;
   rotors_sim::event::ConnectionPtr connection_;

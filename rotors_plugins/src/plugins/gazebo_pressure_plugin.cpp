@@ -10,7 +10,7 @@
 
 namespace rotors_gazebo_plugins {
 
-class GazeboPressurePlugin : public LinkSensorPlugin<sensor_msgs::FluidPressure> {
+class GazeboPressurePlugin : public LinkSensorPlugin<BarometerReading, sensor_msgs::FluidPressure> {
  public:
   void Load(rotors_sim::physics::ModelPtr model, sdf::ElementPtr /*sdf*/) override {
     LoadLink(model, "pressureTopic", "air_pressure");
@@ -19,24 +19,16 @@ class GazeboPressurePlugin : public LinkSensorPlugin<sensor_msgs::FluidPressure>
     ReadParam(Params(), "pressureVariance", &p.pressure_variance_pa2);
     ThrowIfInvalid(p.Validate());
     model_.Emplace(p, ReadSeed(Params()));
-    msg_.variance = p.pressure_variance_pa2;
-    feed_ = Feed(Bus().sensors.barometer);
-    StartPublishing();
+    prototype_.variance = p.pressure_variance_pa2;
+    StartPublishing(Bus().sensors.barometer);
   }
 
   void Reset() override { model_.Reset(); }
 
  private:
-  void OnUpdate() override {
-    const BarometerReading reading{model_->Measure(link_->WorldPose().Pos().Z())};
-    feed_->Put(reading, world_->SimTime().Double());
-    msg_.header.stamp = ToRos(world_->SimTime());
-    msg_.fluid_pressure = reading.pressure_Pa;
-    Publish();
-  }
+  void OnUpdate() override { Put(BarometerReading{model_->Measure(link_->WorldPose().Pos().Z())}); }
 
   SeededModel<PressureModel> model_;
-  SensorFeed<BarometerReading>* feed_ = nullptr;
 };
 
 }  // namespace rotors_gazebo_plugins

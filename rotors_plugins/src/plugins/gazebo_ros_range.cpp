@@ -22,31 +22,27 @@ class GazeboRosRange : public RangePlugin {
     ReadParam(params, "radiation", &radiation);
     if (radiation != "ultrasound" && radiation != "infrared")
       throw rotors_sim::SimError("<radiation> '" + radiation + "' must be ultrasound or infrared");
-    msg_.radiation_type = radiation == "ultrasound" ? sensor_msgs::Range::ULTRASOUND : sensor_msgs::Range::INFRARED;
+    prototype_.radiation_type =
+        radiation == "ultrasound" ? sensor_msgs::Range::ULTRASOUND : sensor_msgs::Range::INFRARED;
     double fov_rad = 0.05;
     ReadParam(params, "fov", &fov_rad);
     if (!(fov_rad >= 0.0 && fov_rad < M_PI)) throw rotors_sim::SimError("<fov> must be in [0, pi) rad");
     ReadParam(params, "gaussianNoise", &noise_m_);
     if (!(noise_m_ >= 0.0)) throw rotors_sim::SimError("<gaussianNoise> must be >= 0 m");
-    msg_.field_of_view = static_cast<float>(fov_rad);
-    msg_.min_range = static_cast<float>(sensor_->Spec().range_min_m);
-    msg_.max_range = static_cast<float>(sensor_->Spec().range_max_m);
+    prototype_.field_of_view = static_cast<float>(fov_rad);
   }
   void Publish(const RayScan& scan, const ros::Time& stamp) override {
     float range = NearestReturn(scan);
     if (std::isfinite(range) && noise_m_ > 0.0) {
       std::normal_distribution<double> noise(0.0, noise_m_);
-      range = std::min(msg_.max_range, std::max(msg_.min_range, static_cast<float>(range + noise(rng_))));
+      const float min_m = static_cast<float>(sensor_->Spec().range_min_m);
+      const float max_m = static_cast<float>(sensor_->Spec().range_max_m);
+      range = std::min(max_m, std::max(min_m, static_cast<float>(range + noise(rng_))));
     }
-    sensor_msgs::RangePtr msg(new sensor_msgs::Range(msg_));
-    msg->range = range;
-    msg->header.stamp = stamp;
-    msg->header.frame_id = frame_;
-    PublishRange(msg);
+    PutRange(range, stamp);
   }
 
  private:
-  sensor_msgs::Range msg_;
   double noise_m_ = 0.0;
 };
 

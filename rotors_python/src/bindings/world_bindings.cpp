@@ -208,7 +208,7 @@ class PyWorld {
     auto bus = rotors_gazebo_plugins::VehicleBus::For(*world_, ns);
     const auto* feed = FeedNamed(bus->sensors.imu, ns, topic, "IMU", "IMUs");
     if (!feed->fresh) return py::none();
-    const auto& m = feed->latest;
+    const auto& m = feed->latest.measured;
     std::vector<double> values{feed->time_s,
                                m.angular_velocity_I.x(),
                                m.angular_velocity_I.y(),

@@ -18,6 +18,7 @@
 #include "rotors_core/plugin.h"
 #include "rotors_core/ros/listened_publisher.h"
 #include "rotors_core/sensors/ray_sensor.h"
+#include "rotors_gazebo_plugins/ros/feed_publisher.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
@@ -92,17 +93,20 @@ class LaserPlugin : public rotors_sim::SensorPlugin {
 };
 
 /// What the single-range plugins share (the lidar, gazebo_ros_range): each range on the vehicle bus
-/// (the autopilot interfaces read it there), whether or not anyone listens, and as sensor_msgs/Range.
+/// (the autopilot interfaces read it there), whether or not anyone listens, and from there as
+/// sensor_msgs/Range (prototype_ with the range, its limits and stamp).
 class RangePlugin : public LaserPlugin {
  protected:
   bool Advertise() final;
-  /// Puts msg's range and limits on the bus and publishes it.
-  void PublishRange(const sensor_msgs::RangePtr& msg);
+  /// The range [m] (REP 117's +-inf out of range) with the sensor's limits, taken at `stamp`, on the bus.
+  void PutRange(float range_m, const ros::Time& stamp);
+
+  sensor_msgs::Range prototype_;  ///< radiation_type and field_of_view, set in Configure(); frame: frame_
 
  private:
-  rotors_sim::ListenedPublisher pub_;
   std::shared_ptr<VehicleBus> bus_;
   SensorFeed<RangeReading>* feed_ = nullptr;
+  FeedPublisher<RangeReading, sensor_msgs::Range> publisher_;
 };
 
 }  // namespace rotors_gazebo_plugins

@@ -1,10 +1,10 @@
-// The Load() skeleton the small sensor plugins share. SensorTopic: robotNamespace, the topic
-// parameter and one advertised message type (ROS, or the in-process taps), for every one of them
-// (pressure, magnetometer, airspeed, optical flow). LinkSensorPlugin adds what the link-mounted
-// ones share (pressure, magnetometer, airspeed): linkName (required), the link, its world and the
-// vehicle bus, and OnUpdate() after every world step, or at <pubRate> [Hz] (ours, PX4's plugins'
-// parameter; 0 or absent: every step, as RotorS), which puts the reading on the bus and publishes
-// it. A plugin reads its own parameters between LoadLink() and StartPublishing().
+// The Load() skeleton the small sensor plugins share. SensorTopic: robotNamespace and the topic
+// parameter, for every one of them (pressure, magnetometer, airspeed, optical flow).
+// LinkSensorPlugin adds what the link-mounted ones share (pressure, magnetometer, airspeed):
+// linkName (required), the link, its world and the vehicle bus, and OnUpdate() after every world
+// step, or at <pubRate> [Hz] (ours, PX4's plugins' parameter; 0 or absent: every step, as RotorS),
+// which puts the reading on the bus; the reading's message is published from there
+// (FeedPublisher). A plugin reads its own parameters between LoadLink() and StartPublishing().
 #pragma once
 
 #include <cmath>
@@ -19,15 +19,14 @@
 #include "rotors_core/physics/model.h"
 #include "rotors_core/physics/world.h"
 #include "rotors_core/plugin.h"
-#include "rotors_core/ros/listened_publisher.h"
 #include "rotors_gazebo_plugins/plugin_params.h"
+#include "rotors_gazebo_plugins/ros/feed_publisher.h"
 #include "rotors_gazebo_plugins/ros/plugin_ros.h"
 #include "rotors_gazebo_plugins/vehicle_bus.h"
 
 namespace rotors_gazebo_plugins {
 
-/// A sensor plugin's topic: where it publishes and how.
-template <class Msg>
+/// A sensor plugin's topic: where its reading is published.
 class SensorTopic {
  public:
   /// The namespace (robotNamespace) and the topic (<topic_param>, default_topic when absent).
@@ -36,28 +35,21 @@ class SensorTopic {
     topic_ = default_topic;
     ReadParam(params, topic_param, &topic_);
   }
-  /// Advertises the topic; false when nobody can listen (neither ROS nor the world's taps).
-  bool Advertise(rotors_sim::physics::World& world) {
-    node_ = MakeNode(ns_);
-    pub_ = rotors_gazebo_plugins::Advertise<Msg>(node_, ns_, topic_, world, 10);
-    return static_cast<bool>(pub_);
-  }
-  void Publish(const Msg& msg) { pub_.publish(msg); }
   const std::string& Namespace() const { return ns_; }
+  const std::string& Topic() const { return topic_; }
   /// The resolved topic name ("/firefly/air_pressure"): the key of the sensor's feed on the bus.
   std::string Resolved() const { return ResolveTopic(ns_, topic_); }
 
  private:
   std::string ns_, topic_;
-  std::shared_ptr<ros::NodeHandle> node_;
-  rotors_sim::ListenedPublisher pub_;  // no search through every topic per step
 };
 
-template <class Msg>
+/// Reading: the bus' reading type (sensor_feeds.h); Msg: its ROS message (Fill in feed_publisher.h).
+template <class Reading, class Msg>
 class LinkSensorPlugin : public rotors_sim::ModelPlugin {
  protected:
   /// First in Load(): the namespace and topic (SensorTopic::Read), the link (linkName, required;
-  /// also the messages' frame_id).
+  /// also the messages' frame_id, in prototype_).
   void LoadLink(const rotors_sim::physics::ModelPtr& model, const std::string& topic_param,
                 const std::string& default_topic) {
     topic_.Read(Params(), topic_param, default_topic);
@@ -66,7 +58,7 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
     link_ = RequireLink(model, link_name);
     world_ = model->GetWorldRaw();
     bus_ = VehicleBus::For(*world_, topic_.Namespace());
-    msg_.header.frame_id = link_name;
+    prototype_.header.frame_id = link_name;
     double rate_hz = 0.0;
     ReadParam(Params(), "pubRate", &rate_hz);
     if (!std::isfinite(rate_hz) || rate_hz < 0.0)
@@ -75,31 +67,29 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
     period_s_ = rate_hz > 0.0 ? 1.0 / rate_hz : 0.0;
   }
 
-  /// Last in Load(): advertises the topic and calls OnUpdate() after each world step (the bus takes
-  /// the reading whether or not anyone listens).
-  void StartPublishing() {
+  /// Last in Load(): the sensor's feed among the bus' feeds of its kind (e.g. Bus().sensors.barometer),
+  /// its messages (prototype_ with each reading) on the topic, and OnUpdate() after each world step
+  /// (the bus takes the reading whether or not anyone listens).
+  void StartPublishing(SensorFeeds<Reading>& feeds) {
+    feed_ = &feeds.Of(topic_.Resolved());
     bus_->Register(this, MeasuringRecord{topic_.Resolved()});
-    topic_.Advertise(*world_);
+    publisher_.Start(*feed_, *world_, topic_.Namespace(), topic_.Topic(), prototype_);
     connection_ = rotors_sim::event::Events::ConnectWorldUpdateEnd([this] {
       if (Due()) OnUpdate();
     });
   }
 
-  /// Takes the reading, puts it on the bus (Feed), fills msg_ (its stamp too) and publishes it with Publish().
+  /// Takes the reading and puts it on the bus (Put).
   virtual void OnUpdate() = 0;
-  void Publish() { topic_.Publish(msg_); }
+  /// The reading, taken now, on the bus (and from there on the topic).
+  void Put(const Reading& reading) { feed_->Put(reading, world_->SimTime().Double()); }
   /// robotNamespace, as LoadLink() read it.
   const std::string& Namespace() const { return topic_.Namespace(); }
-  /// This sensor's feed among the bus' feeds of its kind (e.g. Bus().sensors.barometer).
-  template <class Reading>
-  SensorFeed<Reading>* Feed(SensorFeeds<Reading>& feeds) {
-    return &feeds.Of(topic_.Resolved());
-  }
   VehicleBus& Bus() { return *bus_; }
 
   rotors_sim::physics::LinkPtr link_;
   rotors_sim::physics::World* world_ = nullptr;
-  Msg msg_;
+  Msg prototype_;  ///< the message's fixed fields (frame, covariance), set in Load()
 
  private:
   /// Every step without pubRate; else sample k at the first step at or after k / pubRate, so the
@@ -118,8 +108,10 @@ class LinkSensorPlugin : public rotors_sim::ModelPlugin {
     return true;
   }
 
-  SensorTopic<Msg> topic_;
+  SensorTopic topic_;
   std::shared_ptr<VehicleBus> bus_;
+  SensorFeed<Reading>* feed_ = nullptr;
+  FeedPublisher<Reading, Msg> publisher_;
   rotors_sim::event::ConnectionPtr connection_;
   double period_s_ = 0.0, last_s_ = -1.0, next_s_ = -1.0;
 };
