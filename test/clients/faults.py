@@ -17,6 +17,7 @@ from std_srvs.srv import Empty
 from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
 
 from clients.nodes import alive, cpu_seconds, node_pid
+from clients.waits import wait_until
 
 
 class Watch:
@@ -102,8 +103,7 @@ def controller_killed_without_lockstep() -> dict:
     time.sleep(0.2)  # the controller interface holds the last command meanwhile
     controller = restart_controller()
     watch.send_set_point()
-    while state.get("command", 0.0) <= t_kill + 0.2:
-        time.sleep(0.01)
+    wait_until(lambda: state.get("command", 0.0) > t_kill + 0.2, 90, "a motor command from the restarted controller", 0.01)
     result["gap"] = state["command"] - t_kill
     worst, t_end = 0.0, state["clock"] + 8.0
     while state["clock"] < t_end:

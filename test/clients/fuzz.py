@@ -17,6 +17,7 @@ from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
 from clients.nodes import alive, node_pid
+from clients.waits import poll, wait_until
 
 NAN, INF = float("nan"), float("inf")
 INT_RANGES = {
@@ -107,8 +108,7 @@ def fuzz_every_input(log_path: str, watched: list) -> dict:
     def log_lines():
         return len(log.readlines())
 
-    while state["p"] is None:
-        time.sleep(0.05)
+    wait_until(lambda: state["p"] is not None, 90, "a ground-truth pose")
     hover = state["p"]
     nodes = {n: node_pid(n) for n in watched}
     _, subscribers, services = master.getSystemState()
@@ -121,9 +121,7 @@ def fuzz_every_input(log_path: str, watched: list) -> dict:
 
     def fuzz_topic(topic, cls, mode, period_s=1.0, rate_hz=100.0):
         pub = rospy.Publisher(topic, cls, queue_size=10)
-        deadline = time.monotonic() + 3.0
-        while pub.get_num_connections() == 0 and time.monotonic() < deadline:
-            time.sleep(0.02)
+        poll(lambda: pub.get_num_connections() > 0, 3.0, 0.02)
         log_lines()  # skip what came before
         sent, worst = 0, 0.0
         end = time.monotonic() + period_s

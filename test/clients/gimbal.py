@@ -7,17 +7,17 @@ import rospy
 from nav_msgs.msg import Odometry
 from std_msgs.msg import Float64
 
+from clients.waits import wait_for_subscriber
+
 
 def pitch_and_roll_beyond_the_joints() -> dict:
     """Latches 3.0 rad on the gimbal's pitch and roll commands (beyond both joints' limits); once the
     joints stand at their limits, the gimbal's yaw, roll and pitch status and the body's orientation q_WB."""
     pub = rospy.Publisher("/firefly/gimbal_pitch_cmd", Float64, queue_size=1, latch=True)
-    while pub.get_num_connections() == 0:
-        time.sleep(0.05)
+    wait_for_subscriber(pub)
     pub.publish(Float64(3.0))  # beyond the pitch joint's 90 deg: clamped
     roll = rospy.Publisher("/firefly/gimbal_roll_cmd", Float64, queue_size=1, latch=True)
-    while roll.get_num_connections() == 0:
-        time.sleep(0.05)
+    wait_for_subscriber(roll)
     roll.publish(Float64(3.0))  # beyond the roll joint's 45 deg: clamped
     result = {}
 

@@ -8,6 +8,8 @@ from nav_msgs.msg import Odometry
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import LaserScan, PointCloud2, Range
 
+from clients.waits import wait_until
+
 
 def rotation(q):  # unit quaternion -> R_WB
     w, x, y, z = q.w, q.x, q.y, q.z
@@ -66,8 +68,7 @@ def rangefinder_or_hokuyo() -> dict:
     if rospy.has_param("/firefly/robot_description") and "hokuyo" in rospy.get_param("/firefly/robot_description"):
         scans = []
         rospy.Subscriber("/firefly/scan", LaserScan, lambda m: scans.append(m))
-        while len(scans) < 5:
-            time.sleep(0.05)
+        wait_until(lambda: len(scans) >= 5, 90, "5 scans on /firefly/scan")
         s = scans[-1]
         result["scan"] = [s.angle_min, s.angle_max, s.angle_increment, len(s.ranges), s.range_min, s.range_max, s.header.frame_id]
         result["finite"] = sum(1 for r in s.ranges if r == r and abs(r) != float("inf"))
@@ -76,8 +77,7 @@ def rangefinder_or_hokuyo() -> dict:
     else:
         readings = []
         rospy.Subscriber("/firefly/lidar", Range, lambda m: readings.append(m))
-        while len(readings) < 20:
-            time.sleep(0.05)
+        wait_until(lambda: len(readings) >= 20, 90, "20 ranges on /firefly/lidar")
         z = rospy.wait_for_message("/firefly/ground_truth/odometry", Odometry).pose.pose.position.z
         r = readings[-20:]
         result["ranges"] = [m.range for m in r]

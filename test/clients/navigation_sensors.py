@@ -8,6 +8,8 @@ from geometry_msgs.msg import PoseStamped, TwistStamped
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import FluidPressure, MagneticField, NavSatFix
 
+from clients.waits import poll
+
 
 def fly_and_log() -> dict:
     """Logs GPS, ground speed, magnetometer, barometer and ground-truth odometry (stamp first in each
@@ -51,9 +53,7 @@ def fly_and_log() -> dict:
         ),
     )
     pub = rospy.Publisher("/firefly/command/pose", PoseStamped, queue_size=1, latch=True)
-    deadline = time.monotonic() + 30
-    while pub.get_num_connections() == 0 and time.monotonic() < deadline:
-        time.sleep(0.05)  # until the controller subscribes (latched: it would get the pose later too)
+    poll(lambda: pub.get_num_connections() > 0, 30)  # the controller subscribing (latched: it would get the pose later too)
     cmd = PoseStamped()
     cmd.pose.position.x, cmd.pose.position.y, cmd.pose.position.z = 6.0, -4.0, 3.0
     cmd.pose.orientation.z, cmd.pose.orientation.w = math.sin(0.4), math.cos(0.4)

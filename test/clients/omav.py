@@ -1,12 +1,13 @@
 """Client functions of test_omav.py."""
 
 import math
-import time
 
 import rospy
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry
 from std_msgs.msg import Float32
+
+from clients.waits import wait_for_subscriber
 
 
 def sample(seconds):
@@ -28,8 +29,7 @@ def hover_then_roll_20_degrees() -> dict:
     result = {}
     result["hover"] = sample(2.0)
     pub = rospy.Publisher("/omav/command/pose", PoseStamped, queue_size=1, latch=True)
-    while pub.get_num_connections() == 0:
-        time.sleep(0.05)
+    wait_for_subscriber(pub)
     cmd = PoseStamped()
     cmd.pose.position.z = 1.0
     cmd.pose.orientation.x, cmd.pose.orientation.w = math.sin(math.radians(10)), math.cos(math.radians(10))

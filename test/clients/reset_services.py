@@ -12,6 +12,8 @@ import rospy
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
+from clients.waits import wait_until
+
 
 def record_and_reset(flight_s: float) -> dict:
     """The published /firefly topics and their types; per topic, how many messages two flights both
@@ -30,8 +32,7 @@ def record_and_reset(flight_s: float) -> dict:
 
     subs = [rospy.Subscriber(t, rospy.AnyMsg, recorder(t), queue_size=100000) for t in types]
     rospy.Subscriber("/clock", Clock, lambda m: clock.__setitem__(0, m.clock.to_sec()), queue_size=10)
-    while any(s.get_num_connections() == 0 for s in subs):
-        time.sleep(0.05)
+    wait_until(lambda: all(s.get_num_connections() > 0 for s in subs), 90, f"a publisher of each of the {len(types)} /firefly topics")
     pause, unpause = rospy.ServiceProxy("/gazebo/pause_physics", Empty), rospy.ServiceProxy("/gazebo/unpause_physics", Empty)
 
     starts = {}

@@ -5,13 +5,14 @@ import time
 import rospy
 from mav_msgs.msg import Actuators
 
+from clients.waits import wait_for_subscriber
+
 
 def spin_motors(n: int) -> dict:
     """Commands n rotors of /mav at 300 rad/s until all turn at more than 299 rad/s (20 s at most);
     the rotor speeds last read."""
     pub = rospy.Publisher("/mav/command/motor_speed", Actuators, queue_size=1)
-    while pub.get_num_connections() == 0:
-        time.sleep(0.05)
+    wait_for_subscriber(pub)
     speeds = []
     deadline = time.monotonic() + 20
     while time.monotonic() < deadline:

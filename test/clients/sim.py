@@ -10,6 +10,7 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
 from clients import call
+from clients.waits import wait_for_subscriber
 
 
 def wait_sim_time(t_s: float, timeout_s: float) -> dict:
@@ -37,8 +38,7 @@ def send_hover_pose(then: str = "", then_kwargs: dict | None = None) -> dict:
     then calls the client function `then` ("clients.module:name") with then_kwargs while the
     latched message lives; what it returned ({} without one)."""
     pub = rospy.Publisher("/firefly/command/pose", PoseStamped, queue_size=1, latch=True)
-    while pub.get_num_connections() == 0:  # the controller is up and listens to poses
-        time.sleep(0.05)
+    wait_for_subscriber(pub)  # the controller is up and listens to poses
     cmd = PoseStamped()
     cmd.pose.position.z = 1.0
     cmd.pose.orientation.w = 1.0

@@ -1,18 +1,17 @@
 """Client functions of test_vehicles_flight.py (its ground_truth: clients.sim)."""
 
-import time
-
 import rospy
 from mav_msgs.msg import Actuators
 from nav_msgs.msg import Odometry
+
+from clients.waits import wait_for_subscriber
 
 
 def bad_motor_commands() -> dict:
     """A valid motor command (600 rad/s on each of the firefly's six rotors), then three bad ones
     (three speeds, a NaN, a negative speed): how far the MAV climbs in the 1 s after."""
     pub = rospy.Publisher("/firefly/command/motor_speed", Actuators, queue_size=10)
-    while pub.get_num_connections() == 0:
-        time.sleep(0.05)
+    wait_for_subscriber(pub)
 
     def z():
         return rospy.wait_for_message("/firefly/ground_truth/odometry", Odometry).pose.pose.position.z

@@ -8,14 +8,15 @@ import rospy
 from geometry_msgs.msg import Transform, Twist
 from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
 
+from clients.waits import wait_for_subscriber
+
 
 def send_trajectory(points_file: str, due_s: float) -> dict:
     """The path of points_file (JSON rows: p, v, a, yaw, rate, t) as one MultiDOFJointTrajectory
     stamped due_s, latched on /firefly/command/trajectory once the controller and the hovering
     example listen."""
     pub = rospy.Publisher("/firefly/command/trajectory", MultiDOFJointTrajectory, queue_size=1, latch=True)
-    while pub.get_num_connections() < 2:  # the controller and the hovering example's latch
-        time.sleep(0.05)
+    wait_for_subscriber(pub, count=2)  # the controller and the hovering example's latch
     msg = MultiDOFJointTrajectory()
     msg.header.stamp = rospy.Time.from_sec(due_s)
     for q in json.loads(open(points_file).read()):

@@ -6,13 +6,14 @@ import rospy
 from geometry_msgs.msg import Transform
 from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
 
+from clients.waits import wait_for_subscriber
+
 
 def bad_trajectories() -> dict:
     """Three bad messages on /firefly/command/trajectory: no points, a NaN position, a quaternion of
     norm 2."""
     pub = rospy.Publisher("/firefly/command/trajectory", MultiDOFJointTrajectory, queue_size=10)
-    while pub.get_num_connections() == 0:
-        time.sleep(0.05)
+    wait_for_subscriber(pub)
     pub.publish(MultiDOFJointTrajectory())  # no points
     time.sleep(0.3)  # the controller keeps only the latest command (queue 1)
     t = Transform()

@@ -14,6 +14,8 @@ from pathlib import Path
 from typing import Any
 
 import clients.sim
+from clients.waits import poll as poll
+from clients.waits import wait_until as wait_until
 from rotors_evaluation.processes import kill_graph_leftovers, stop_process_group
 from rotors_evaluation.ros_master import start_own_master
 
@@ -23,23 +25,6 @@ TESTS = Path(__file__).resolve().parents[1]  # holds the package clients/
 
 # make test-sanitize points ROTORS_WS at a sanitizer's workspace (scripts/test_sanitize.sh)
 WS = Path(os.environ.get("ROTORS_WS", REPO / "build" / "ws"))
-
-
-def poll(predicate: Callable[[], Any], timeout_s: float, period_s: float = 0.05) -> Any:
-    """Calls `predicate` every period_s until it returns a true value, at most timeout_s of wall
-    time; its last value (false when the time ran out)."""
-    deadline = time.monotonic() + timeout_s
-    while not (value := predicate()) and time.monotonic() < deadline:
-        time.sleep(period_s)
-    return value
-
-
-def wait_until(predicate: Callable[[], Any], timeout_s: float, what: str, period_s: float = 0.05) -> Any:
-    """`predicate`'s first true value (poll); after timeout_s of wall time an AssertionError says
-    what did not happen."""
-    value = poll(predicate, timeout_s, period_s)
-    assert value, f"{what}: not within {timeout_s:g} s"
-    return value
 
 
 def retry_until(make: Callable[[], Any], timeout_s: float, what: str, errors=(OSError,), period_s: float = 0.05) -> Any:
