@@ -1,6 +1,8 @@
 #include "rotors_flight_batch/flight_batch.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <deque>
@@ -91,15 +93,45 @@ struct FlightBatch::Sensors {
   int steps_to_odometry = 0;  ///< odometry_step % divisor counted down (no division per step)
 };
 
+namespace {
+/// A hint to the core that this thread is spinning (x86's pause, arm64's yield; nothing elsewhere).
+inline void CpuRelax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  __asm__ __volatile__("yield");
+#endif
+}
+
+/// Spins until done() or `budget` has passed; whether done().
+template <class Done>
+bool SpinUntil(const Done& done, std::chrono::nanoseconds budget) {
+  const auto deadline = std::chrono::steady_clock::now() + budget;
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (done()) return true;
+      CpuRelax();
+    }
+    if (std::chrono::steady_clock::now() >= deadline) return done();
+  }
+}
+}  // namespace
+
+/// The step's threads. A call wakes the workers and waits for them; both sides spin briefly before
+/// they block, because an RL loop calls the batch again within a fraction of a millisecond (its
+/// Python between two control periods) and a futex wake-up on each side costs about as much as
+/// a short call's work. A worker blocks after kWorkerSpin without a call, so an idle batch takes no CPU.
 class FlightBatch::Pool {
  public:
+  static constexpr std::chrono::microseconds kWorkerSpin{400}, kCallerSpin{2000};
+
   explicit Pool(int threads) {
     for (int t = 1; t < threads; ++t) workers_.emplace_back([this, t] { Loop(t); });
   }
   ~Pool() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
+      stop_.store(true, std::memory_order_release);
     }
     wake_.notify_all();
     for (auto& w : workers_) w.join();
@@ -109,9 +141,9 @@ class FlightBatch::Pool {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       task_ = &task;
-      pending_ = static_cast<int>(workers_.size());
       error_ = nullptr;
-      ++generation_;
+      pending_.store(static_cast<int>(workers_.size()), std::memory_order_relaxed);
+      generation_.fetch_add(1, std::memory_order_release);  // publishes task_ to spinning workers
     }
     wake_.notify_all();
     try {
@@ -120,8 +152,12 @@ class FlightBatch::Pool {
       std::lock_guard<std::mutex> lock(mutex_);
       if (!error_) error_ = std::current_exception();
     }
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [this] { return pending_ == 0; });
+    const auto finished = [this] { return pending_.load(std::memory_order_acquire) == 0; };
+    if (!SpinUntil(finished, kCallerSpin)) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      done_.wait(lock, finished);
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
     task_ = nullptr;
     if (error_) std::rethrow_exception(error_);
   }
@@ -130,33 +166,40 @@ class FlightBatch::Pool {
   void Loop(int t) {
     uint64_t seen = 0;
     for (;;) {
-      const std::function<void(int)>* task;
-      {
+      const auto called = [&] {
+        return stop_.load(std::memory_order_acquire) || generation_.load(std::memory_order_acquire) != seen;
+      };
+      if (!SpinUntil(called, kWorkerSpin)) {
         std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-        if (stop_) return;
-        seen = generation_;
-        task = task_;
+        wake_.wait(lock, called);
       }
+      if (stop_.load(std::memory_order_acquire)) return;
+      seen = generation_.load(std::memory_order_acquire);
+      const std::function<void(int)>* task = task_;
       std::exception_ptr error;
       try {
         (*task)(t);
       } catch (...) {
         error = std::current_exception();
       }
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (error && !error_) error_ = error;
-      if (--pending_ == 0) done_.notify_one();
+      if (error) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!error_) error_ = error;
+      }
+      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        std::lock_guard<std::mutex> lock(mutex_);  // the caller is spinning, or waiting under the mutex
+        done_.notify_one();
+      }
     }
   }
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_, done_;
-  const std::function<void(int)>* task_ = nullptr;
-  uint64_t generation_ = 0;
-  int pending_ = 0;
-  bool stop_ = false;
-  std::exception_ptr error_;
+  const std::function<void(int)>* task_ = nullptr;  ///< written before generation_'s release
+  std::atomic<uint64_t> generation_{0};
+  std::atomic<int> pending_{0};
+  std::atomic<bool> stop_{false};
+  std::exception_ptr error_;  ///< under mutex_
 };
 
 // ---------------------------------------------------------------------------------------------
