@@ -627,7 +627,7 @@ void FlightBatch::Step(long steps) {
   if (steps == 0) return;
   ParkPaddingLanes();
   // a short call (an environment's control period over few vehicles) is cheaper on this thread
-  // than the pool's wake-up: below kPoolMinVehicleSteps vehicle-steps the workers stay asleep
+  // than handing it to the pool: below kPoolMinVehicleSteps vehicle-steps the workers are not called
   if (!pool_ || static_cast<long>(n_) * steps < kPoolMinVehicleSteps) {
     StepRange(0, n_, steps);
     return;

@@ -212,9 +212,11 @@ class FlightBatch {
   void CheckCommands() const;
   uint64_t SeedFor(uint64_t plugin_seed, int i) const;
   static constexpr int kLanes = 4;  ///< vehicles stepped together by the kernel
-  /// Fewer vehicle-steps than this in one call run on the calling thread (about 60 ns each, so
-  /// 4,096 take about a quarter of a millisecond: more than waking the pool's threads costs).
-  static constexpr long kPoolMinVehicleSteps = 4096;
+  /// Fewer vehicle-steps than this in one call run on the calling thread. The pool's threads spin
+  /// between calls, so handing a call to them costs microseconds; 256 vehicle-steps (about 60 ns
+  /// each) is where sharing starts to pay on two cores (64 environments' 320 vehicle-steps per
+  /// FlightBatchEnv.step ran about a fifth faster on two threads than on one).
+  static constexpr long kPoolMinVehicleSteps = 256;
   void BuildKernelModel();
   /// `airframe` as vehicle i flies it (the description's turning directions), or SimError naming the bad value.
   Airframe CheckedAirframe(int i, const Airframe& airframe) const;
