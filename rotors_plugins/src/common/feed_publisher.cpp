@@ -2,15 +2,13 @@
 
 #include <algorithm>
 
+#include <mav_msgs/common.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 namespace rotors_gazebo_plugins {
 
 void Fill(const ImuReading& reading, sensor_msgs::Imu* msg) {
-  msg->orientation.w = reading.q_WI.w();  // ground truth, as RotorS (orientation_covariance[0] = -1)
-  msg->orientation.x = reading.q_WI.x();
-  msg->orientation.y = reading.q_WI.y();
-  msg->orientation.z = reading.q_WI.z();
+  mav_msgs::quaternionEigenToMsg(reading.q_WI, &msg->orientation);  // ground truth, as RotorS (covariance -1)
   msg->angular_velocity = ToVector3Msg(reading.measured.angular_velocity_I);
   msg->linear_acceleration = ToVector3Msg(reading.measured.linear_acceleration_I);
 }
@@ -80,13 +78,8 @@ void OdometryFeedPublisher::Start(SensorFeed<OdometryMeasurement>& feed, rotors_
 
 void OdometryFeedPublisher::Publish(const OdometryMeasurement& m, double t_s) {
   geometry_msgs::Pose pose;
-  pose.position.x = m.p_W.x();
-  pose.position.y = m.p_W.y();
-  pose.position.z = m.p_W.z();
-  pose.orientation.w = m.q_WS.w();
-  pose.orientation.x = m.q_WS.x();
-  pose.orientation.y = m.q_WS.y();
-  pose.orientation.z = m.q_WS.z();
+  mav_msgs::pointEigenToMsg(m.p_W, &pose.position);
+  mav_msgs::quaternionEigenToMsg(m.q_WS, &pose.orientation);
   std_msgs::Header header;
   header.stamp = StampOf(t_s);
   header.frame_id = parent_frame_;
@@ -107,9 +100,7 @@ void OdometryFeedPublisher::Publish(const OdometryMeasurement& m, double t_s) {
   geometry_msgs::TransformStamped tf;
   tf.header = header;
   tf.child_frame_id = child_frame_;
-  tf.transform.translation.x = pose.position.x;
-  tf.transform.translation.y = pose.position.y;
-  tf.transform.translation.z = pose.position.z;
+  mav_msgs::vectorEigenToMsg(m.p_W, &tf.transform.translation);
   tf.transform.rotation = pose.orientation;
   if (transform_pub_.getNumSubscribers() > 0) transform_pub_.publish(tf);
   if (tf_) tf_->sendTransform(tf);

@@ -168,15 +168,14 @@ bool RangePlugin::Advertise() {
   bus_ = VehicleBus::For(world, robot_namespace_);
   feed_ = &bus_->sensors.range.Of(ResolveTopic(robot_namespace_, topic_));
   prototype_.header.frame_id = frame_;
+  prototype_.min_range = static_cast<float>(sensor_->Spec().range_min_m);  // float32, as sensor_msgs/Range
+  prototype_.max_range = static_cast<float>(sensor_->Spec().range_max_m);
   publisher_.Start(*feed_, world, robot_namespace_, topic_, prototype_, 4);
   return true;  // the bus takes every range
 }
 
 void RangePlugin::PutRange(float range_m, const ros::Time& stamp) {
-  // the limits as sensor_msgs/Range carries them (float32)
-  const float min_m = static_cast<float>(sensor_->Spec().range_min_m);
-  const float max_m = static_cast<float>(sensor_->Spec().range_max_m);
-  feed_->Put({range_m, min_m, max_m}, stamp.toSec());
+  feed_->Put({range_m, prototype_.min_range, prototype_.max_range}, stamp.toSec());
 }
 
 }  // namespace rotors_gazebo_plugins

@@ -35,9 +35,7 @@ class GazeboRosRange : public RangePlugin {
     float range = NearestReturn(scan);
     if (std::isfinite(range) && noise_m_ > 0.0) {
       std::normal_distribution<double> noise(0.0, noise_m_);
-      const float min_m = static_cast<float>(sensor_->Spec().range_min_m);
-      const float max_m = static_cast<float>(sensor_->Spec().range_max_m);
-      range = std::min(max_m, std::max(min_m, static_cast<float>(range + noise(rng_))));
+      range = std::min(prototype_.max_range, std::max(prototype_.min_range, static_cast<float>(range + noise(rng_))));
     }
     PutRange(range, stamp);
   }

@@ -101,7 +101,8 @@ class RangePlugin : public LaserPlugin {
   /// The range [m] (REP 117's +-inf out of range) with the sensor's limits, taken at `stamp`, on the bus.
   void PutRange(float range_m, const ros::Time& stamp);
 
-  sensor_msgs::Range prototype_;  ///< radiation_type and field_of_view, set in Configure(); frame: frame_
+  /// radiation_type and field_of_view, set in Configure(); frame_ and the sensor's limits, set in Advertise()
+  sensor_msgs::Range prototype_;
 
  private:
   std::shared_ptr<VehicleBus> bus_;
