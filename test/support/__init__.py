@@ -23,6 +23,9 @@ REPO = Path(__file__).resolve().parents[2]
 TESTS = Path(__file__).resolve().parents[1]  # holds the package clients/
 
 
+# a rospy client's waits end this long before run_client's timeout: time to start up, report and exit
+CLIENT_REPORT_MARGIN_S = 10.0
+
 # make test-sanitize points ROTORS_WS at a sanitizer's workspace (scripts/test_sanitize.sh)
 WS = Path(os.environ.get("ROTORS_WS", REPO / "build" / "ws"))
 
@@ -92,11 +95,14 @@ class RosGraph:
     def run_client(self, function: Callable, timeout: float = 120, **kwargs) -> dict:
         """Runs `function` (a function of a module of test/clients/, e.g. clients.wind.speed_pairs) in a
         child process after rospy.init_node, called with `kwargs` (sent as JSON: str, numbers, bools,
-        lists, dicts); returns what it returned (a JSON-serialisable dict; none gives {})."""
+        lists, dicts); returns what it returned (a JSON-serialisable dict; none gives {}). The
+        client's waits share a budget of `timeout` less CLIENT_REPORT_MARGIN_S, so that a wait that
+        runs out says what did not happen before the timeout ends the process."""
+        budget_s = max(timeout - CLIENT_REPORT_MARGIN_S, 1.0)
         code = (
             f"sys.path.insert(0, {str(TESTS)!r})\n"
             "from clients import call\n"
-            f"result = call({client_name(function)!r}, json.loads({json.dumps(kwargs)!r}))\n"
+            f"result = call({client_name(function)!r}, json.loads({json.dumps(kwargs)!r}), budget_s={budget_s!r})\n"
         )
         return self.rospy(code, timeout=timeout)
 
