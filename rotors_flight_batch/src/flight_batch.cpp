@@ -632,7 +632,7 @@ void FlightBatch::Step(long steps) {
     StepRange(0, n_, steps);
     return;
   }
-  // whole groups of four lanes per thread
+  // whole groups of lanes per thread
   const int threads = threads_, groups = static_cast<int>(n_pad_ / kLanes);
   pool_->Run([&](int t) {
     StepRange(groups * t / threads * kLanes, std::min(n_, groups * (t + 1) / threads * kLanes), steps);
@@ -814,7 +814,7 @@ void FlightBatch::WriteAirframe(size_t i, const Airframe& a) {
 }
 
 void FlightBatch::ParkPaddingLanes() {
-  // lanes past the last vehicle fill the last group of four: at rest far above the ground, unpowered
+  // lanes past the last vehicle fill the last group: at rest far above the ground, unpowered
   const size_t n = n_pad_;
   for (size_t i = n_; i < n; ++i) {
     const double q[4] = {1.0, 0.0, 0.0, 0.0};
@@ -831,7 +831,7 @@ void FlightBatch::ParkPaddingLanes() {
 }
 
 void FlightBatch::StepRange(int begin, int end, long steps) {
-  // groups of four lanes; blocks of groups stay in cache for all the steps
+  // groups of kLanes vehicles; blocks of groups stay in cache for all the steps
   constexpr int kBlock = 4 * kLanes;
   for (int b = begin; b < end; b += kBlock) {
     const int e = std::min(end, b + kBlock);
@@ -877,10 +877,10 @@ void FlightBatch::StepGroup(int i0) {
   const KernelBefore before{v_before, w_before, R_before};
   unsigned touching = 0;
   if (lanes == kLanes) {
-    touching = kernels_.four_vehicles(kernel_model_, kernel_arrays_, i0, wind, before);
+    touching = kernels_.group(kernel_model_, kernel_arrays_, i0, wind, before);
   } else {  // a last group of fewer vehicles: each alone (the same step as a lane's, bit for bit)
     for (int l = 0; l < lanes; ++l)
-      touching |= StepOneOfFour(kernels_, kernel_model_, kernel_arrays_, i0 + l, l, wind, before);
+      touching |= StepOneOfGroup(kernels_, kernel_model_, kernel_arrays_, i0 + l, l, wind, before);
   }
   for (int l = 0; l < lanes; ++l) {
     const int i = i0 + l;

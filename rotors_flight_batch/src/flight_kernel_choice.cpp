@@ -27,30 +27,25 @@ void FillRotorColumns(KernelModel& m) {
   }
 }
 
-unsigned StepFourPairs(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                       const KernelBefore& before) {
-  // lanes 2 and 3 read their wind and write their state-before at offset 2 of each [3][4] row
-  const KernelWind w2{wind.force_W + 2, wind.moment_W + 2, wind.velocity_W + 2};
-  const KernelBefore b2{before.v_W + 2, before.omega_W + 2, before.R_WB + 2};
-  const unsigned low = StepLanesStrided<PairLanes, 4>(m, a, i0, wind, before);
-  const unsigned high = StepLanesStrided<PairLanes, 4>(m, a, i0 + 2, w2, b2);
-  return low | (high << 2);
+unsigned StepGroupPairs(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                        const KernelBefore& before) {
+  return StepGroupIn<PairLanes>(m, a, i0, wind, before);
 }
 
-void RotorLanesPairs(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out) {
-  RotorLanes<PairLanes>(m, a, i, b, out);
+unsigned StepOnePairs(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
+                      const KernelBefore& before) {
+  return StepOneWithRotorLanes<PairLanes>(m, a, i, wind, before);
 }
 
 namespace {
-unsigned StepFourScalar(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                        const KernelBefore& before) {
-  unsigned touching = 0;
-  for (size_t l = 0; l < 4; ++l) {
-    const KernelWind w{wind.force_W + l, wind.moment_W + l, wind.velocity_W + l};
-    const KernelBefore b{before.v_W + l, before.omega_W + l, before.R_WB + l};
-    touching |= StepLanesStrided<double, 4>(m, a, i0 + l, w, b) << l;
-  }
-  return touching;
+unsigned StepGroupScalar(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                         const KernelBefore& before) {
+  return StepGroupIn<double>(m, a, i0, wind, before);
+}
+
+unsigned StepOneScalar(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
+                       const KernelBefore& before) {
+  return StepLanesStrided<double, kGroupLanes>(m, a, i, wind, before);  // the rotors one at a time
 }
 
 std::string Names(const std::vector<TargetKernel>& kernels) {
@@ -61,16 +56,16 @@ std::string Names(const std::vector<TargetKernel>& kernels) {
 }
 }  // namespace
 
-unsigned StepOneOfFour(const Kernels& kernels, const KernelModel& m, const KernelArrays& a, size_t i, size_t lane,
-                       const KernelWind& wind, const KernelBefore& before) {
+unsigned StepOneOfGroup(const Kernels& kernels, const KernelModel& m, const KernelArrays& a, size_t i, size_t lane,
+                        const KernelWind& wind, const KernelBefore& before) {
   const KernelWind w{wind.force_W + lane, wind.moment_W + lane, wind.velocity_W + lane};
   const KernelBefore b{before.v_W + lane, before.omega_W + lane, before.R_WB + lane};
-  return StepLanesStrided<double, 4>(m, a, i, w, b, kernels.rotor_lanes) << lane;
+  return kernels.one_vehicle(m, a, i, w, b) << lane;
 }
 
 Kernels ChooseKernels(const std::string& instruction_set) {
   std::vector<TargetKernel> kernels = TargetKernels();  // fastest first
-  kernels.push_back({{"scalar", &StepFourScalar, nullptr}, true, ""});
+  kernels.push_back({{"scalar", &StepGroupScalar, &StepOneScalar}, true, ""});
   std::vector<TargetKernel> runnable;
   for (const TargetKernel& k : kernels)
     if (k.cpu_has_it) runnable.push_back(k);

@@ -113,7 +113,8 @@ struct Fleet {
   Fleet(const KernelModel& m, size_t count, unsigned seed, bool vary = true) : n(count), airframes(m, count, vary) {
     p.resize(3 * n), v.resize(3 * n), q.resize(4 * n), R.resize(9 * n), w.resize(3 * n);
     omega_rotor.resize(kMaxRotors * n), qdot.resize(kMaxRotors * n), command.resize(kMaxRotors * n);
-    wind_v.assign(3 * n, 0.0), before_v.resize(12), before_w.resize(12), before_R.resize(36);
+    wind_v.assign(3 * n, 0.0), before_v.resize(3 * kGroupLanes), before_w.resize(3 * kGroupLanes),
+        before_R.resize(9 * kGroupLanes);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     for (size_t i = 0; i < n; ++i) {
@@ -142,14 +143,14 @@ struct Fleet {
     return {n,           p.data(),       v.data(),      q.data(),        R.data(), w.data(), omega_rotor.data(),
             qdot.data(), command.data(), wind_v.data(), airframes.View()};
   }
-  /// steps every vehicle: groups of four in the kernel's lanes, the rest one by one with the rotors in lanes
+  /// steps every vehicle: groups of kGroupLanes in the kernel's lanes, the rest one by one with the rotors in lanes
   void Step(const Kernels& kernels, const KernelModel& m) {
     const KernelArrays a = Arrays();
     const KernelWind wind{nullptr, nullptr, nullptr};
     const KernelBefore before{before_v.data(), before_w.data(), before_R.data()};
     size_t i = 0;
-    for (; i + 4 <= n; i += 4) kernels.four_vehicles(m, a, i, wind, before);
-    for (size_t l = 0; i < n; ++i, ++l) StepOneOfFour(kernels, m, a, i, l, wind, before);
+    for (; i + kGroupLanes <= n; i += kGroupLanes) kernels.group(m, a, i, wind, before);
+    for (size_t l = 0; i < n; ++i, ++l) StepOneOfGroup(kernels, m, a, i, l, wind, before);
   }
   bool SameBits(const Fleet& o) const {
     auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
@@ -169,8 +170,8 @@ std::vector<std::string> KernelNames() {
 
 TEST(FlightKernel, EveryKernelOfThisTargetStepsTheScalarBits) {
   const KernelModel m = Hexacopter();
-  // 8 vehicles in two groups of four, 3 alone (a batch's last, incomplete group), each its own airframe
-  Fleet scalar(m, 11, 7);
+  // 16 vehicles in two groups of eight, 3 alone (a batch's last, incomplete group), each its own airframe
+  Fleet scalar(m, 2 * kGroupLanes + 3, 7);
   const Kernels none = ChooseKernels("scalar");
   for (int s = 0; s < 500; ++s) scalar.Step(none, m);
   for (double z : scalar.p) ASSERT_TRUE(std::isfinite(z));
@@ -178,7 +179,7 @@ TEST(FlightKernel, EveryKernelOfThisTargetStepsTheScalarBits) {
   ASSERT_FALSE(names.empty());
   std::string flown;
   for (const std::string& name : names) {
-    Fleet lanes(m, 11, 7);
+    Fleet lanes(m, 2 * kGroupLanes + 3, 7);
     const Kernels kernels = ChooseKernels(name);
     for (int s = 0; s < 500; ++s) lanes.Step(kernels, m);
     EXPECT_TRUE(lanes.SameBits(scalar)) << "kernel " << name << " differs from the scalar step";
@@ -207,7 +208,7 @@ TEST(FlightKernel, UnknownKernelIsOneLineNamingTheChoices) {
 TEST(FlightKernel, HoverSpeedHoldsTheBodyStill) {
   const KernelModel m = Hexacopter(true);
   for (const std::string& name : KernelNames()) {
-    Fleet f(m, 5, 3);
+    Fleet f(m, kGroupLanes + 3, 3);  // a group in lanes, three alone
     for (size_t i = 0; i < f.n; ++i) {
       const double omega_h = std::sqrt(f.airframes.mass[i] * kG / (6.0 * f.airframes.motor_constant[i]));
       const double level[4] = {1, 0, 0, 0}, I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
@@ -236,7 +237,7 @@ TEST(FlightKernel, HoverSpeedHoldsTheBodyStill) {
 TEST(FlightKernel, StoppedRotorsFallAsGravitySays) {
   const KernelModel m = Hexacopter();
   for (const std::string& name : KernelNames()) {
-    Fleet f(m, 5, 4);
+    Fleet f(m, kGroupLanes + 3, 4);
     for (size_t i = 0; i < f.n; ++i) {
       for (int c = 0; c < 3; ++c) f.v[c * f.n + i] = f.w[c * f.n + i] = 0.0;
       f.p[2 * f.n + i] = 100.0;

@@ -60,6 +60,9 @@ struct AccelerationLimits {
 /// a_des with its upward part clamped to [min_up, max] first, then its horizontal part shortened
 /// (direction kept) to what the tilt limit and the remaining thrust allow.
 Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits);
+/// The same with tan(limits.max_tilt_rad) given (a controller computes it once, not every step).
+Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits,
+                                      double tan_max_tilt);
 
 class LeeController {
  public:
@@ -82,11 +85,17 @@ class LeeController {
   void ComputeThrustAndAttitude(const VehicleState& state, double* thrust_N, Eigen::Matrix3d* R_WD) const;
 
  private:
+  /// The same, with R = the state's orientation as a matrix (computed once per step).
+  void ComputeThrustAndAttitude(const VehicleState& state, const Eigen::Matrix3d& R, double* thrust_N,
+                                Eigen::Matrix3d* R_WD) const;
+
   LeeControllerParameters params_;
   AttitudeControlLaw attitude_law_;
   MotorMixer mixer_;
   AccelerationLimits limits_;
+  double tan_max_tilt_ = 0.0;  ///< tan(limits_.max_tilt_rad)
   TrajectoryPoint reference_;
+  Eigen::Vector3d b1_reference_ = Eigen::Vector3d::UnitX();  ///< (cos, sin, 0) of the reference's yaw
   bool has_reference_ = false;
   std::vector<double> nominal_force_constants_;  ///< k_F of each rotor when healthy
   std::vector<double> speed_factors_;            ///< 1 healthy, 0 failed

@@ -26,10 +26,15 @@ bool TrajectoryPoint::IsFinite() const {
 }
 
 Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits) {
+  return SaturatedAcceleration(a_des_W, limits, std::tan(limits.max_tilt_rad));
+}
+
+Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits,
+                                      double tan_max_tilt) {
   const double a_up = std::clamp(a_des_W.z(), limits.min_up_m_s2, std::max(limits.max_m_s2, limits.min_up_m_s2));
   double a_h_max = std::numeric_limits<double>::infinity();
   // tilt: |a_h| <= a_up tan(theta_max);  thrust: |a_h|^2 + a_up^2 <= a_max^2
-  if (limits.max_tilt_rad > 0.0) a_h_max = a_up * std::tan(limits.max_tilt_rad);
+  if (limits.max_tilt_rad > 0.0) a_h_max = a_up * tan_max_tilt;
   if (std::isfinite(limits.max_m_s2))
     a_h_max = std::min(a_h_max, std::sqrt(std::max(limits.max_m_s2 * limits.max_m_s2 - a_up * a_up, 0.0)));
   const Eigen::Vector2d a_h = a_des_W.head<2>();
@@ -56,7 +61,8 @@ LeeController::LeeController(const LeeControllerParameters& params)
     : params_(Validated(params)),
       attitude_law_(params.attitude, params.vehicle.inertia_kg_m2),
       mixer_(params.vehicle),
-      limits_(LimitsOf(params_)) {
+      limits_(LimitsOf(params_)),
+      tan_max_tilt_(std::tan(limits_.max_tilt_rad)) {
   for (const RotorGeometry& r : params_.vehicle.rotors) nominal_force_constants_.push_back(r.rotor_force_constant);
   speed_factors_.assign(nominal_force_constants_.size(), 1.0);
 }
@@ -77,33 +83,43 @@ std::string LeeController::SetRotorSpeedFactor(size_t rotor, double speed_factor
   }
   params_ = p;
   limits_ = LimitsOf(params_);
+  tan_max_tilt_ = std::tan(limits_.max_tilt_rad);
   speed_factors_[rotor] = speed_factor;
   yaw_released_ = std::find(speed_factors_.begin(), speed_factors_.end(), 0.0) != speed_factors_.end();
   return {};
 }
 
 void LeeController::SetTrajectoryPoint(const TrajectoryPoint& point) {
+  if (!has_reference_ || point.yaw_rad != reference_.yaw_rad)
+    b1_reference_ = Eigen::Vector3d(std::cos(point.yaw_rad), std::sin(point.yaw_rad), 0.0);
   reference_ = point;
   has_reference_ = true;
 }
 
 void LeeController::ComputeThrustAndAttitude(const VehicleState& s, double* thrust_N, Eigen::Matrix3d* R_WD) const {
+  ComputeThrustAndAttitude(s, s.orientation_W_B.toRotationMatrix(), thrust_N, R_WD);
+}
+
+void LeeController::ComputeThrustAndAttitude(const VehicleState& s, const Eigen::Matrix3d& R, double* thrust_N,
+                                             Eigen::Matrix3d* R_WD) const {
   const double m = params_.vehicle.mass_kg, g = params_.vehicle.gravity_m_s2;
   const Eigen::Vector3d e3 = Eigen::Vector3d::UnitZ();
-  const Eigen::Matrix3d R = s.orientation_W_B.toRotationMatrix();
   // Lee2010 eq. (6)-(7): e_p = p - p_d,  e_v = v - v_d  (odometry velocity is body frame: v_W = R v_B)
   const Eigen::Vector3d e_p = s.position_W - reference_.position_W;
   const Eigen::Vector3d e_v = R * s.velocity_B - reference_.velocity_W;
   // a = (K_p e_p + K_v e_v) / m - g e3 - a_d : the negative of the desired acceleration
   Eigen::Vector3d a = (params_.position_gain.cwiseProduct(e_p) + params_.velocity_gain.cwiseProduct(e_v)) / m - g * e3 -
                       reference_.acceleration_W;
-  if (limits_.Active()) a = -SaturatedAcceleration(-a, limits_);
+  if (limits_.Active()) a = -SaturatedAcceleration(-a, limits_, tan_max_tilt_);
   // Lee2010 eq. (15): f = -m a . R e3
   *thrust_N = -m * a.dot(R * e3);
   // Desired attitude: b3_d = -a / |a|, b1_d from the yaw (the current one when yaw is given up),
   // b2_d = b3_d x b1_d normalised
-  const double yaw_d = yaw_released_ ? std::atan2(R(1, 0), R(0, 0)) : reference_.yaw_rad;
-  const Eigen::Vector3d b1_d(std::cos(yaw_d), std::sin(yaw_d), 0.0);
+  Eigen::Vector3d b1_d = b1_reference_;
+  if (yaw_released_) {
+    const double yaw = std::atan2(R(1, 0), R(0, 0));
+    b1_d = Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0.0);
+  }
   const Eigen::Vector3d b3_d = -a / a.norm();
   const Eigen::Vector3d b2_d = b3_d.cross(b1_d).normalized();
   R_WD->col(0) = b2_d.cross(b3_d);
@@ -115,10 +131,10 @@ RotorVector LeeController::RotorSpeeds(const VehicleState& s) const {
   if (!has_reference_) return RotorVector::Zero(params_.vehicle.rotors.size());
   double thrust_N = 0.0;
   Eigen::Matrix3d R_WD;
-  ComputeThrustAndAttitude(s, &thrust_N, &R_WD);
+  const Eigen::Matrix3d R = s.orientation_W_B.toRotationMatrix();
+  ComputeThrustAndAttitude(s, R, &thrust_N, &R_WD);
   const Eigen::Vector3d omega_d(0.0, 0.0, yaw_released_ ? 0.0 : reference_.yaw_rate_rad_s);
-  const Eigen::Vector3d alpha =
-      attitude_law_.AngularAcceleration(s.orientation_W_B.toRotationMatrix(), s.angular_velocity_B, R_WD, omega_d);
+  const Eigen::Vector3d alpha = attitude_law_.AngularAcceleration(R, s.angular_velocity_B, R_WD, omega_d);
   return mixer_.RotorSpeeds(alpha, thrust_N);
 }
 

@@ -211,7 +211,7 @@ class FlightBatch {
   class Pool;
   void CheckCommands() const;
   uint64_t SeedFor(uint64_t plugin_seed, int i) const;
-  static constexpr int kLanes = 4;  ///< vehicles stepped together by the kernel
+  static constexpr int kLanes = static_cast<int>(kGroupLanes);  ///< vehicles stepped together by the kernel
   /// Fewer vehicle-steps than this in one call run on the calling thread. The pool's threads spin
   /// between calls, so handing a call to them costs microseconds; 256 vehicle-steps (about 60 ns
   /// each) is where sharing starts to pay on two cores (64 environments' 320 vehicle-steps per

@@ -255,15 +255,14 @@ inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, co
   }
 }
 
-using RotorLanesFn = void (*)(const KernelModel&, const KernelArrays&, size_t, const OneBody&, RotorTerms&);
-
 /// One physics step of lanes i0 .. i0 + L - 1; returns a contact mask bit per lane. The wind and
-/// state-before buffers hold rows of Stride lanes (this call's first). With V = double and
-/// rotor_lanes set, the vehicle's rotors are stepped by rotor_lanes, a lane per rotor, and summed
-/// here in rotor order: the same step bit for bit.
-template <class V, size_t Stride>
+/// state-before buffers hold rows of Stride lanes (this call's first). With V = double and a lane
+/// type RotorV, the vehicle's rotors are stepped by RotorLanes<RotorV>, a lane per rotor, and summed
+/// here in rotor order: the same step bit for bit. (RotorV also keeps the instantiations of each
+/// instruction set's file apart: none of them stands in for a baseline one.)
+template <class V, size_t Stride, class RotorV = void>
 inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                                 const KernelBefore& before, RotorLanesFn rotor_lanes = nullptr) {
+                                 const KernelBefore& before) {
   using namespace kernel_detail;
   constexpr size_t L = LaneCount<V>::value;
   static_assert(Stride >= L, "a row holds at least the call's lanes");
@@ -304,16 +303,14 @@ inline unsigned StepLanesStrided(const KernelModel& m, const KernelArrays& a, si
   // rotors' spin moments (kinematic joints, SpinMoment)
   V axis_W[kMaxRotors][3], qdot[kMaxRotors];
   RotorTerms terms;
-  const bool in_lanes = std::is_same_v<V, double> && rotor_lanes != nullptr;  // a lone vehicle only
-  if constexpr (std::is_same_v<V, double>) {
-    if (in_lanes) {
-      rotor_lanes(m, a, i0, OneBody{s.R_WB, s.v_W, s.omega_W, wind_v}, terms);
-      for (int r = 0; r < m.rotors; ++r)
-        for (int c = 0; c < 3; ++c) {
-          F[c] += terms.force_W[c][r];
-          T[c] += terms.moment_W[c][r];
-        }
-    }
+  constexpr bool in_lanes = std::is_same_v<V, double> && !std::is_void_v<RotorV>;  // a lone vehicle only
+  if constexpr (in_lanes) {
+    RotorLanes<RotorV>(m, a, i0, OneBody{s.R_WB, s.v_W, s.omega_W, wind_v}, terms);
+    for (int r = 0; r < m.rotors; ++r)
+      for (int c = 0; c < 3; ++c) {
+        F[c] += terms.force_W[c][r];
+        T[c] += terms.moment_W[c][r];
+      }
   }
   for (int r = 0; r < m.rotors && !in_lanes; ++r) {
     const KernelModel::Rotor& p = m.rotor[r];
@@ -429,27 +426,57 @@ inline unsigned StepLanes(const KernelModel& m, const KernelArrays& a, size_t i0
   return StepLanesStrided<V, kernel_detail::LaneCount<V>::value>(m, a, i0, wind, before);
 }
 
-/// StepLanes over 4 vehicles as compiled for one instruction set.
-using StepFourLanes = unsigned (*)(const KernelModel&, const KernelArrays&, size_t, const KernelWind&,
-                                   const KernelBefore&);
+/// Vehicles a batch steps together (a group): AVX-512's eight lanes of doubles, or as many
+/// narrower lanes in turn. The wind and state-before buffers hold rows of this many lanes.
+constexpr size_t kGroupLanes = 8;
 
-/// The kernels a batch steps with: four vehicles at once, and one vehicle's rotors in lanes.
+/// The group of vehicles i0 .. i0 + kGroupLanes - 1 in lanes of V, one run of lanes after the other
+/// (each lane reads its row's column, so every lane's step is the same whatever V is).
+template <class V>
+inline unsigned StepGroupIn(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                            const KernelBefore& before) {
+  constexpr size_t L = kernel_detail::LaneCount<V>::value;
+  static_assert(kGroupLanes % L == 0, "a group is whole runs of lanes");
+  unsigned touching = 0;
+  for (size_t h = 0; h < kGroupLanes; h += L) {
+    const KernelWind w{wind.force_W + h, wind.moment_W + h, wind.velocity_W + h};
+    const KernelBefore b{before.v_W + h, before.omega_W + h, before.R_WB + h};
+    touching |= StepLanesStrided<V, kGroupLanes>(m, a, i0 + h, w, b) << h;
+  }
+  return touching;
+}
+
+/// StepGroupIn as compiled for one instruction set.
+using StepGroupFn = unsigned (*)(const KernelModel&, const KernelArrays&, size_t, const KernelWind&,
+                                 const KernelBefore&);
+
+/// One vehicle in column `lane` of rows of kGroupLanes (a batch's last, incomplete group).
+using StepOneFn = unsigned (*)(const KernelModel&, const KernelArrays&, size_t, const KernelWind&, const KernelBefore&);
+
+/// A lone vehicle with its rotors in lanes of V (compiled for V's instruction set, RotorLanes inlined).
+template <class V>
+inline unsigned StepOneWithRotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
+                                      const KernelBefore& before) {
+  return StepLanesStrided<double, kGroupLanes, V>(m, a, i, wind, before);
+}
+
+/// The kernels a batch steps with: a group of vehicles at once, and a vehicle alone (its rotors in lanes).
 struct Kernels {
   const char* instruction_set;  ///< "avx512", "avx2", "sse2" (x86-64), "neon" (arm64) or "scalar"
-  StepFourLanes four_vehicles;
-  RotorLanesFn rotor_lanes;  ///< nullptr: a vehicle alone steps its rotors one at a time
+  StepGroupFn group;
+  StepOneFn one_vehicle;
 };
 
-/// The kernels for `instruction_set`. On x86-64: "avx512" (a lone vehicle's rotors in eight AVX-512
-/// lanes, the groups of four vehicles as avx2; the CPU must have AVX-512F), "avx2" (four AVX2 lanes;
-/// the CPU must have them), "sse2" (x86-64's baseline: two pairs of lanes); on arm64 "neon" (two
-/// pairs of lanes); everywhere "scalar" (no lanes), or "" for the fastest this CPU runs. All give the
-/// same step bit for bit. SimError for another name, or for a set this CPU lacks.
+/// The kernels for `instruction_set`. On x86-64: "avx512" (eight vehicles, or a lone vehicle's
+/// rotors, in eight AVX-512 lanes; the CPU must have AVX-512F), "avx2" (four AVX2 lanes; the CPU must
+/// have them), "sse2" (x86-64's baseline: pairs of lanes); on arm64 "neon" (pairs of lanes);
+/// everywhere "scalar" (no lanes), or "" for the fastest this CPU runs. All give the same step bit
+/// for bit. SimError for another name, or for a set this CPU lacks.
 Kernels ChooseKernels(const std::string& instruction_set);
 
-/// One vehicle (a batch of fewer than four, or the last group's vehicles) with rows of 4 lanes:
-/// its rotors by kernels.rotor_lanes, the rest scalar.
-unsigned StepOneOfFour(const Kernels& kernels, const KernelModel& m, const KernelArrays& a, size_t i, size_t lane,
-                       const KernelWind& wind, const KernelBefore& before);
+/// One vehicle (a batch's last, incomplete group) in column `lane` of rows of kGroupLanes, by
+/// kernels.one_vehicle.
+unsigned StepOneOfGroup(const Kernels& kernels, const KernelModel& m, const KernelArrays& a, size_t i, size_t lane,
+                        const KernelWind& wind, const KernelBefore& before);
 
 }  // namespace rotors_flight_batch

@@ -14,11 +14,12 @@ namespace rotors_flight_batch {
 /// code on a target with neither).
 typedef double PairLanes __attribute__((vector_size(16)));
 
-/// StepLanes over 4 vehicles as two pairs of lanes, and one vehicle's rotors two at a time
+/// A group of vehicles as pairs of lanes, and one vehicle's rotors two at a time
 /// (flight_kernel_choice.cpp, compiled for the target's baseline).
-unsigned StepFourPairs(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                       const KernelBefore& before);
-void RotorLanesPairs(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out);
+unsigned StepGroupPairs(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
+                        const KernelBefore& before);
+unsigned StepOnePairs(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
+                      const KernelBefore& before);
 
 struct TargetKernel {
   Kernels kernels;

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <type_traits>
 
 namespace rotors_sim {
@@ -151,7 +152,12 @@ inline void StepFreeBody(double h, const FreeBodyInertiaT<S>& body, const T F_W[
       q[1] = q[2] = q[3] = 0;
     }
   } else {  // a unit quaternion advanced by a step: never 0
-    for (size_t k = 0; k < sizeof(T) / sizeof(double); ++k) l[k] = 1.0 / std::sqrt(l[k]);
+    // lane by lane through an array, which the compiler turns into one vector square root where the
+    // lanes' instruction set has one (and math errno is off, as in the batch's kernels)
+    double lanes[sizeof(T) / sizeof(double)];
+    std::memcpy(lanes, &l, sizeof(T));
+    for (double& x : lanes) x = 1.0 / std::sqrt(x);
+    std::memcpy(&l, lanes, sizeof(T));
     for (int j = 0; j < 4; ++j) q[j] *= l;
   }
   RotationFromQuaternion(q, s.R_WB);
