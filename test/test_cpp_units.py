@@ -20,7 +20,7 @@ GTESTS = {
     "rotors_gazebo_plugins/test_autopilot_codecs": 16,
     "rotors_gazebo_plugins/test_rotors_gazebo_plugins_models": 74,
     "rotors_planning/test_rotors_planning": 9,
-    "rotors_flight_batch/test_flight_kernel": 4,
+    "rotors_flight_batch/test_flight_kernel": 5,
 }
 
 

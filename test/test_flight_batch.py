@@ -136,17 +136,19 @@ def test_seeded_runs_and_resets_repeat_bit_for_bit():
 
 
 def test_batch_of_n_equals_n_single_runs_on_any_thread_count():
-    seeds = [21, 22, 23, 24, 25]
-    together = record(noisy_batch(5, seeds, threads=2))
+    """Eleven vehicles: a group of eight (the kernel's lanes, their Lee controllers in lanes) and
+    three alone, on two threads, each the same flight bit for bit as a batch of one."""
+    seeds = list(range(21, 32))
+    together = record(noisy_batch(len(seeds), seeds, threads=2))
     alone = np.vstack([record(noisy_batch(1, [s])) for s in seeds])
     assert np.array_equal(together, alone)
 
 
 def with_own_airframes(batch: rs.FlightBatch) -> rs.FlightBatch:
-    """`batch` with vehicles 1 (in lanes) and 4 (alone) given their own airframes: mass, CoG, speed
-    dynamics and a motor constant per rotor."""
+    """`batch` with vehicles 1 (in lanes) and the last (alone) given their own airframes: mass, CoG,
+    speed dynamics and a motor constant per rotor."""
     nominal = batch.nominal_airframe
-    for i, scale in ((1, 1.15), (4, 0.9)):
+    for i, scale in ((1, 1.15), (batch.count - 1, 0.9)):
         batch.set_airframe(
             i,
             mass=scale * nominal["mass"],
@@ -160,12 +162,12 @@ def with_own_airframes(batch: rs.FlightBatch) -> rs.FlightBatch:
 
 
 def test_every_kernel_flies_the_same_bits():
-    """Four vehicles in lanes and a fifth alone (its rotors in lanes), two of them with their own
-    airframes: AVX-512, AVX2, SSE2 and no lanes at all give the same flight bit for bit, so a CPU
-    without AVX-512 or AVX2 flies what this one flies."""
-    seeds = [31, 32, 33, 34, 35]
+    """Eight vehicles in a group (the kernel's lanes, their Lee controllers in lanes) and three alone
+    (their rotors in lanes), two of them with their own airframes: AVX-512, AVX2, SSE2 and no lanes at
+    all give the same flight bit for bit, so a CPU without AVX-512 or AVX2 flies what this one flies."""
+    seeds = list(range(31, 42))
 
-    fastest = with_own_airframes(noisy_batch(5, seeds))
+    fastest = with_own_airframes(noisy_batch(len(seeds), seeds))
     assert fastest.kernel in ("avx512", "avx2", "sse2", "neon")
     flights = {fastest.kernel: record(fastest)}
     narrower = {
@@ -175,7 +177,7 @@ def test_every_kernel_flies_the_same_bits():
         "neon": ("scalar",),
     }
     for kernel in narrower[fastest.kernel]:
-        flights[kernel] = record(with_own_airframes(noisy_batch(5, seeds, kernel=kernel)))
+        flights[kernel] = record(with_own_airframes(noisy_batch(len(seeds), seeds, kernel=kernel)))
     print(f"kernels flown: {list(flights)}")
     assert all(np.array_equal(flights["scalar"], f) for f in flights.values()), list(flights)
     assert np.isfinite(flights["scalar"]).all() and abs(flights["scalar"][:, 2].mean() - 1.2) < 0.05

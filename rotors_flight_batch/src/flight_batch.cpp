@@ -304,6 +304,14 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
       controllers_.push_back(std::move(c));
     }
   }
+  if (options_.mode == CommandMode::kLeePosition) {  // whole groups run their controllers in lanes
+    lee_groups_.resize(count / kLanes);
+    for (size_t g = 0; g < lee_groups_.size(); ++g) {
+      LeeConstantsT<double> each[kLanes];
+      for (int l = 0; l < kLanes; ++l) each[l] = controllers_[g * kLanes + l]->lee->Constants();
+      kernels_.pack_lee(each, &lee_groups_[g]);
+    }
+  }
   for (size_t i = 0; i < count; ++i) sensors_.push_back(std::make_unique<Sensors>());
   std::vector<int> all(count);
   std::vector<double> origin(3 * count, 0.0), yaw(count, 0.0);
@@ -845,9 +853,10 @@ void FlightBatch::StepGroup(int i0) {
   const int lanes = std::min(kLanes, n_ - i0);  // vehicles in this group (the rest are padding)
   double wind_force[3 * kLanes], wind_moment[3 * kLanes], wind_velocity[3 * kLanes];  // read only with a wind
   double v_before[3 * kLanes], w_before[3 * kLanes], R_before[9 * kLanes];
+  const unsigned answered = lanes == kLanes && !lee_groups_.empty() ? RunLeeGroup(i0) : 0u;
   for (int l = 0; l < lanes; ++l) {
     const int i = i0 + l;
-    ApplyCommand(i);
+    ApplyCommand(i, (answered >> l) & 1u);
     if (!d_.wind) continue;
     // the wind plugin: a force on its link and the wind speed the rotors see (this step's sample)
     const WindDescription& wd = *d_.wind;
@@ -884,7 +893,10 @@ void FlightBatch::StepGroup(int i0) {
   }
   for (int l = 0; l < lanes; ++l) {
     const int i = i0 + l;
-    in_contact_[i] = (touching >> l) & 1u;
+    // flags of eight vehicles share a cache line with other groups' (another thread's): written
+    // only when they change
+    const uint8_t touches = (touching >> l) & 1u;
+    if (in_contact_[i] != touches) in_contact_[i] = touches;
     ++steps_[i];
     Observe(i, before, l);
     if (obstacles_ && !collided_[i]) {
@@ -894,12 +906,12 @@ void FlightBatch::StepGroup(int i0) {
       const Eigen::Vector3d c_B = sphere_center_M_ - airframes_[i].p_M_cog;
       Rotate(R, c_B, r_c);
       const Eigen::Vector3d c_W(p_W_[i] + r_c[0], p_W_[n + i] + r_c[1], p_W_[2 * n + i] + r_c[2]);
-      collided_[i] = obstacles_->SphereTouches(i, c_W, sphere_radius_m_) ? 1 : 0;
+      if (obstacles_->SphereTouches(i, c_W, sphere_radius_m_)) collided_[i] = 1;
     }
   }
 }
 
-void FlightBatch::ApplyCommand(int i) {
+void FlightBatch::ApplyCommand(int i, bool answered) {
   const size_t n = n_pad_;
   const double* c = &commands_[i * command_columns_];
   bool new_target = true;
@@ -913,8 +925,8 @@ void FlightBatch::ApplyCommand(int i) {
       break;
     default:
       // a controller answers a new odometry message, as World.attach_controller (and the ROS node) does
-      new_target = odometry_count_[i] != controller_seen_[i];
-      if (new_target) RunController(i);
+      new_target = answered || odometry_count_[i] != controller_seen_[i];
+      if (new_target && !answered) RunController(i);
       break;
   }
   // the motors get the command of actuator_delay_steps steps ago (the ring holds the last ones)
@@ -932,10 +944,7 @@ void FlightBatch::ApplyCommand(int i) {
   delay_heads_[i] = (delay_heads_[i] + 1) % airframes_[i].actuator_delay_steps;
 }
 
-void FlightBatch::RunController(int i) {
-  const size_t n = n_pad_;
-  const double* c = &commands_[i * command_columns_];
-  controller_seen_[i] = odometry_count_[i];
+rotors_control::VehicleState FlightBatch::OdometryState(int i) const {
   const double* o = &odometry_out_[i * 14];
   rotors_control::VehicleState state;
   state.position_W = {o[0], o[1], o[2]};
@@ -943,19 +952,54 @@ void FlightBatch::RunController(int i) {
   state.orientation_W_B = q.norm() >= 1.e-6 ? q.normalized() : Eigen::Quaterniond::Identity();
   state.velocity_B = {o[7], o[8], o[9]};
   state.angular_velocity_B = {o[10], o[11], o[12]};
+  return state;
+}
+
+void FlightBatch::SetLeeReference(int i) {
+  const double* c = &commands_[i * command_columns_];
+  if (std::isnan(c[0])) return;  // a row of NaN: no set point yet, or the last one kept
+  rotors_control::TrajectoryPoint point;
+  point.position_W = {c[0], c[1], c[2]};
+  point.yaw_rad = c[3];
+  controllers_[i]->lee->SetTrajectoryPoint(point);
+}
+
+unsigned FlightBatch::RunLeeGroup(int i0) {
+  unsigned due = 0;
+  for (int l = 0; l < kLanes; ++l)
+    if (odometry_count_[i0 + l] != controller_seen_[i0 + l]) due |= 1u << l;
+  if (due == 0) return 0;
+  LeeInputsT<double> in[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const int i = i0 + l;
+    if ((due >> l) & 1u) SetLeeReference(i);
+    in[l] = controllers_[i]->lee->Inputs(OdometryState(i));  // every lane valid, the ones not due unused
+  }
+  LeeGroupSpeeds omega;
+  kernels_.lee_group(r_, lee_groups_[i0 / kLanes], in, omega);
+  const size_t n = n_pad_;
+  for (int l = 0; l < kLanes; ++l) {
+    if (!((due >> l) & 1u)) continue;
+    const int i = i0 + l;
+    controller_seen_[i] = odometry_count_[i];
+    const bool has_reference = controllers_[i]->lee->HasReference();  // none yet: the rotors stay stopped
+    for (int r = 0; r < r_; ++r) command_target_[r * n + i] = has_reference ? std::max(0.0, omega[r][l]) : 0.0;
+  }
+  return due;
+}
+
+void FlightBatch::RunController(int i) {
+  const size_t n = n_pad_;
+  const double* c = &commands_[i * command_columns_];
+  controller_seen_[i] = odometry_count_[i];
+  const rotors_control::VehicleState state = OdometryState(i);
   Controller& ctrl = *controllers_[i];
   rotors_control::RotorVector speeds;
   switch (options_.mode) {
-    case CommandMode::kLeePosition: {
-      if (!std::isnan(c[0])) {  // a row of NaN: no set point yet, or the last one kept
-        rotors_control::TrajectoryPoint point;
-        point.position_W = {c[0], c[1], c[2]};
-        point.yaw_rad = c[3];
-        ctrl.lee->SetTrajectoryPoint(point);
-      }
+    case CommandMode::kLeePosition:
+      SetLeeReference(i);
       speeds = ctrl.lee->RotorSpeeds(state);
       break;
-    }
     case CommandMode::kRollPitchYawrateThrust:
       ctrl.attitude->SetRollPitchYawrateThrust(c[0], c[1], c[2], c[3]);
       speeds = ctrl.attitude->RotorSpeeds(state);

@@ -5,6 +5,8 @@ namespace rotors_flight_batch {
 
 const char* const kTargetName = "arm64";
 
-std::vector<TargetKernel> TargetKernels() { return {{{"neon", &StepGroupPairs, &StepOnePairs}, true, "NEON"}}; }
+std::vector<TargetKernel> TargetKernels() {
+  return {{{"neon", &StepGroupPairs, &StepOnePairs, &PackLeePairs, &LeeGroupPairs}, true, "NEON"}};
+}
 
 }  // namespace rotors_flight_batch

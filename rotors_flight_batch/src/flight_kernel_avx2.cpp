@@ -18,4 +18,13 @@ unsigned StepOneAvx2(const KernelModel& m, const KernelArrays& a, size_t i, cons
   return StepOneWithRotorLanes<Avx2Lanes>(m, a, i, wind, before);
 }
 
+void PackLeeAvx2(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group) {
+  PackLeeGroupIn<Avx2Lanes>(each, group);
+}
+
+void LeeGroupAvx2(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
+                  LeeGroupSpeeds omega) {
+  LeeGroupIn<Avx2Lanes>(rotors, group, in, omega);
+}
+
 }  // namespace rotors_flight_batch

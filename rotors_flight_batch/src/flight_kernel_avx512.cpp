@@ -19,4 +19,13 @@ unsigned StepOneAvx512(const KernelModel& m, const KernelArrays& a, size_t i, co
   return StepOneWithRotorLanes<Avx512Lanes>(m, a, i, wind, before);
 }
 
+void PackLeeAvx512(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group) {
+  PackLeeGroupIn<Avx512Lanes>(each, group);
+}
+
+void LeeGroupAvx512(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
+                    LeeGroupSpeeds omega) {
+  LeeGroupIn<Avx512Lanes>(rotors, group, in, omega);
+}
+
 }  // namespace rotors_flight_batch

@@ -37,6 +37,15 @@ unsigned StepOnePairs(const KernelModel& m, const KernelArrays& a, size_t i, con
   return StepOneWithRotorLanes<PairLanes>(m, a, i, wind, before);
 }
 
+void PackLeePairs(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group) {
+  PackLeeGroupIn<PairLanes>(each, group);
+}
+
+void LeeGroupPairs(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
+                   LeeGroupSpeeds omega) {
+  LeeGroupIn<PairLanes>(rotors, group, in, omega);
+}
+
 namespace {
 unsigned StepGroupScalar(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
                          const KernelBefore& before) {
@@ -46,6 +55,15 @@ unsigned StepGroupScalar(const KernelModel& m, const KernelArrays& a, size_t i0,
 unsigned StepOneScalar(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
                        const KernelBefore& before) {
   return StepLanesStrided<double, kGroupLanes>(m, a, i, wind, before);  // the rotors one at a time
+}
+
+void PackLeeScalar(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group) {
+  PackLeeGroupIn<double>(each, group);
+}
+
+void LeeGroupScalar(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
+                    LeeGroupSpeeds omega) {
+  LeeGroupIn<double>(rotors, group, in, omega);
 }
 
 std::string Names(const std::vector<TargetKernel>& kernels) {
@@ -65,7 +83,7 @@ unsigned StepOneOfGroup(const Kernels& kernels, const KernelModel& m, const Kern
 
 Kernels ChooseKernels(const std::string& instruction_set) {
   std::vector<TargetKernel> kernels = TargetKernels();  // fastest first
-  kernels.push_back({{"scalar", &StepGroupScalar, &StepOneScalar}, true, ""});
+  kernels.push_back({{"scalar", &StepGroupScalar, &StepOneScalar, &PackLeeScalar, &LeeGroupScalar}, true, ""});
   std::vector<TargetKernel> runnable;
   for (const TargetKernel& k : kernels)
     if (k.cpu_has_it) runnable.push_back(k);

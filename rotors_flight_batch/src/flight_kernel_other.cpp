@@ -6,6 +6,8 @@ namespace rotors_flight_batch {
 
 const char* const kTargetName = "a target with no SIMD kernel of its own";
 
-std::vector<TargetKernel> TargetKernels() { return {{{"pairs", &StepGroupPairs, &StepOnePairs}, true, ""}}; }
+std::vector<TargetKernel> TargetKernels() {
+  return {{{"pairs", &StepGroupPairs, &StepOnePairs, &PackLeePairs, &LeeGroupPairs}, true, ""}};
+}
 
 }  // namespace rotors_flight_batch

@@ -13,15 +13,22 @@ unsigned StepGroupAvx2(const KernelModel& m, const KernelArrays& a, size_t i0, c
 unsigned StepOneAvx2(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
                      const KernelBefore& before);
 
+void PackLeeAvx512(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group);
+void LeeGroupAvx512(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
+                    LeeGroupSpeeds omega);
+void PackLeeAvx2(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group);
+void LeeGroupAvx2(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
+                  LeeGroupSpeeds omega);
+
 const char* const kTargetName = "x86-64";
 
 std::vector<TargetKernel> TargetKernels() {
   __builtin_cpu_init();
   const bool avx2 = __builtin_cpu_supports("avx2");
   const bool avx512 = avx2 && __builtin_cpu_supports("avx512f");
-  return {{{"avx512", &StepGroupAvx512, &StepOneAvx512}, avx512, "AVX-512F"},
-          {{"avx2", &StepGroupAvx2, &StepOneAvx2}, avx2, "AVX2"},
-          {{"sse2", &StepGroupPairs, &StepOnePairs}, true, "SSE2"}};
+  return {{{"avx512", &StepGroupAvx512, &StepOneAvx512, &PackLeeAvx512, &LeeGroupAvx512}, avx512, "AVX-512F"},
+          {{"avx2", &StepGroupAvx2, &StepOneAvx2, &PackLeeAvx2, &LeeGroupAvx2}, avx2, "AVX2"},
+          {{"sse2", &StepGroupPairs, &StepOnePairs, &PackLeePairs, &LeeGroupPairs}, true, "SSE2"}};
 }
 
 }  // namespace rotors_flight_batch

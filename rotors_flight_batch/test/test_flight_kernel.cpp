@@ -11,6 +11,7 @@
 
 #include "rotors_flight_batch/flight_kernel.h"
 #include "rotors_flight_batch/flight_kernel_target.h"
+#include "rotors_control/lee_controller.h"
 #include "rotors_core/error.h"
 
 namespace rotors_flight_batch {
@@ -252,6 +253,83 @@ TEST(FlightKernel, StoppedRotorsFallAsGravitySays) {
       EXPECT_NEAR(f.p[2 * f.n + i], 100.0 - kG * kDt * kDt * N * (N + 1) / 2.0, 1e-9) << name;
     }
   }
+}
+
+/// A hexacopter's Lee controller (the firefly's geometry, rotors limited to 838 rad/s), gains and
+/// mass scaled per vehicle; a tilt limit on some.
+rotors_control::LeeControllerParameters HexacopterLee(double scale, bool tilt_limit) {
+  rotors_control::LeeControllerParameters p;
+  p.vehicle.mass_kg = 1.56779 * scale;
+  p.vehicle.inertia_kg_m2 = Eigen::Vector3d(0.0347563, 0.0458929, 0.0977).asDiagonal();
+  const double angles[6] = {0.52359878, 1.57079633, 2.61799388, -2.61799388, -1.57079633, -0.52359878};
+  for (int r = 0; r < 6; ++r) {
+    rotors_control::RotorGeometry g;
+    g.angle_rad = angles[r];
+    g.direction = r % 2 == 0 ? 1 : -1;
+    g.max_rot_velocity_rad_s = 838.0;
+    p.vehicle.rotors.push_back(g);
+  }
+  p.position_gain *= scale;
+  p.max_tilt_angle_rad = tilt_limit ? 0.6 : 0.0;
+  return p;
+}
+
+/// Eight vehicles' Lee controllers in each kernel's lanes give each LeeController's rotor speeds bit
+/// for bit, over states that reach every branch of the laws: the tilt and thrust limits, a rotor
+/// that would need a negative omega^2 (yaw gives way), a failed rotor (yaw released), none.
+TEST(FlightKernel, LeeControllersInLanesAreEachVehiclesController) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<rotors_control::LeeController> lee;
+  for (size_t l = 0; l < kGroupLanes; ++l) lee.emplace_back(HexacopterLee(1.0 + 0.05 * l, l % 2 == 1));
+  ASSERT_TRUE(lee[3].SetRotorSpeedFactor(2, 0.0).empty());  // a failed rotor: yaw released
+  ASSERT_TRUE(lee[3].YawReleased());
+  LeeConstantsT<double> each[kGroupLanes];
+  for (size_t l = 0; l < kGroupLanes; ++l) each[l] = lee[l].Constants();
+  int compared = 0, at_zero = 0, at_max = 0;  // the yaw's and the thrust's limits reached
+  for (int trial = 0; trial < 200; ++trial) {
+    LeeInputsT<double> in[kGroupLanes];
+    std::vector<rotors_control::RotorVector> expected;
+    for (size_t l = 0; l < kGroupLanes; ++l) {
+      rotors_control::TrajectoryPoint point;
+      const double far = trial % 3 == 0 ? 20.0 : 1.0;  // far set points saturate tilt and thrust
+      point.position_W = {far * u(rng), far * u(rng), far * u(rng)};
+      point.yaw_rad = 3.0 * u(rng);
+      point.yaw_rate_rad_s = u(rng);
+      lee[l].SetTrajectoryPoint(point);
+      rotors_control::VehicleState state;
+      state.position_W = {u(rng), u(rng), u(rng)};
+      state.orientation_W_B = Eigen::Quaterniond(1.0, 0.4 * u(rng), 0.4 * u(rng), u(rng)).normalized();
+      state.velocity_B = {2.0 * u(rng), 2.0 * u(rng), u(rng)};
+      state.angular_velocity_B = {3.0 * u(rng), 3.0 * u(rng), 5.0 * u(rng)};  // fast yaw: yaw clamps
+      in[l] = lee[l].Inputs(state);
+      expected.push_back(lee[l].RotorSpeeds(state));
+      for (int r = 0; r < 6; ++r) {
+        at_zero += expected.back()[r] == 0.0;
+        at_max += std::abs(expected.back()[r] - 838.0) < 1e-6;
+      }
+    }
+    for (const std::string& name : KernelNames()) {
+      const Kernels kernels = ChooseKernels(name);
+      LeeGroupConstants group;
+      kernels.pack_lee(each, &group);
+      LeeGroupSpeeds omega;
+      kernels.lee_group(6, group, in, omega);
+      for (size_t l = 0; l < kGroupLanes; ++l)
+        for (int r = 0; r < 6; ++r) {
+          ASSERT_EQ(std::memcmp(&omega[r][l], &expected[l][r], sizeof(double)), 0)
+              << name << ", trial " << trial << ", vehicle " << l << ", rotor " << r << ": " << omega[r][l]
+              << " against " << expected[l][r];
+          ++compared;
+        }
+    }
+  }
+  std::printf(
+      "%d rotor speeds of eight Lee controllers in lanes, each equal to its controller's (%d at 0, %d at "
+      "omega_max)\n",
+      compared, at_zero, at_max);
+  EXPECT_GT(at_zero, 0);
+  EXPECT_GT(at_max, 0);
 }
 
 }  // namespace

@@ -27,10 +27,13 @@ class AttitudeControlLaw {
                                       const Eigen::Matrix3d& R_WD, const Eigen::Vector3d& omega_D) const;
   /// Rate-only law: alpha = -K~_w (w - w_d) + J^-1 (w x J w).
   Eigen::Vector3d RateAcceleration(const Eigen::Vector3d& omega_B, const Eigen::Vector3d& omega_des_B) const;
+  /// Its constants as the laws read them (lee_law.h): K~_R, K~_w, J and J^-1 (row-major).
+  void CopyLawConstants(double k_R[3], double k_omega[3], double J[9], double J_inv[9]) const;
 
  private:
   Eigen::Matrix3d J_, J_inv_;
   Eigen::Vector3d k_R_normalized_, k_omega_normalized_;
+  double J_rows_[9], J_inv_rows_[9];  ///< J_ and J_inv_ row-major, for law::AngularAcceleration
 };
 
 }  // namespace rotors_control

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "rotors_control/attitude_control_law.h"
+#include "rotors_control/lee_law.h"
 #include "rotors_control/motor_mixer.h"
 
 namespace rotors_control {
@@ -59,10 +60,8 @@ struct AccelerationLimits {
 
 /// a_des with its upward part clamped to [min_up, max] first, then its horizontal part shortened
 /// (direction kept) to what the tilt limit and the remaining thrust allow.
+/// (law::SaturatedAcceleration, lee_law.h.)
 Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits);
-/// The same with tan(limits.max_tilt_rad) given (a controller computes it once, not every step).
-Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits,
-                                      double tan_max_tilt);
 
 class LeeController {
  public:
@@ -80,20 +79,23 @@ class LeeController {
   bool YawReleased() const { return yaw_released_; }
   bool HasReference() const { return has_reference_; }
   /// Rotor speeds [rad/s]; zeros until the first reference (the rotors stay stopped).
+  /// (law::LeeRotorSpeeds with this controller's constants and Inputs(state).)
   RotorVector RotorSpeeds(const VehicleState& state) const;
   /// The thrust [N] and desired attitude of the last RotorSpeeds() call (diagnostics/tests).
   void ComputeThrustAndAttitude(const VehicleState& state, double* thrust_N, Eigen::Matrix3d* R_WD) const;
+  /// What the laws read (lee_law.h): the constants, and a step's inputs for `state` and the
+  /// reference (a batch of vehicles steps many controllers' laws at once in lanes).
+  const LeeConstantsT<double>& Constants() const { return constants_; }
+  LeeInputsT<double> Inputs(const VehicleState& state) const;
+  int Rotors() const { return mixer_.Rotors(); }
 
  private:
-  /// The same, with R = the state's orientation as a matrix (computed once per step).
-  void ComputeThrustAndAttitude(const VehicleState& state, const Eigen::Matrix3d& R, double* thrust_N,
-                                Eigen::Matrix3d* R_WD) const;
-
+  void UpdateConstants();
   LeeControllerParameters params_;
   AttitudeControlLaw attitude_law_;
   MotorMixer mixer_;
   AccelerationLimits limits_;
-  double tan_max_tilt_ = 0.0;  ///< tan(limits_.max_tilt_rad)
+  LeeConstantsT<double> constants_{};
   TrajectoryPoint reference_;
   Eigen::Vector3d b1_reference_ = Eigen::Vector3d::UnitX();  ///< (cos, sin, 0) of the reference's yaw
   bool has_reference_ = false;

@@ -6,12 +6,13 @@
 
 #include <Eigen/Core>
 
+#include "rotors_control/lee_law.h"
 #include "rotors_control/vehicle_parameters.h"
 
 namespace rotors_control {
 
 /// One value per rotor, kept on the stack (no allocation per control step) up to 16 rotors.
-using RotorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 16, 1>;
+using RotorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxMixerRotors, 1>;
 
 /// A (4 x N): [tau_x; tau_y; tau_z; T] = A * omega^2, with columns
 /// (sin(theta) l k_F, -cos(theta) l k_F, -d k_F k_M, k_F).
@@ -34,11 +35,18 @@ class MotorMixer {
   /// The yaw input nearest to `yaw` with without_yaw + per_yaw * yaw >= 0 everywhere (`yaw` itself
   /// when no value achieves that).
   static double FeasibleYaw(const RotorVector& without_yaw, const RotorVector& per_yaw, double yaw);
+  /// Its constants as the laws read them (lee_law.h): the rows of A^T (A A^T)^-1 blockdiag(J, 1),
+  /// omega_max^2 and whether every rotor has a limit.
+  void CopyLawConstants(double rows[kMaxMixerRotors][4], double omega_max_squared[kMaxMixerRotors],
+                        double* rotors_limited) const;
+  int Rotors() const { return rotors_; }
 
  private:
   Eigen::Matrix4Xd A_;
-  Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::ColMajor, 16, 4> A_pinv_J_;  ///< A^T (A A^T)^-1 blockdiag(J, 1)
-  RotorVector omega_max_squared_;  ///< empty when any rotor has no max_rot_velocity
+  int rotors_ = 0;
+  double rows_[kMaxMixerRotors][4] = {};  ///< A^T (A A^T)^-1 blockdiag(J, 1), row by rotor
+  double omega_max_squared_[kMaxMixerRotors] = {};
+  double rotors_limited_ = 0.0;  ///< 1 when every rotor has a max_rot_velocity
 };
 
 }  // namespace rotors_control

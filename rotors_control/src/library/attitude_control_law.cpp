@@ -1,6 +1,10 @@
 #include "rotors_control/attitude_control_law.h"
 
+#include <cstring>
+
 #include <Eigen/Dense>
+
+#include "rotors_control/lee_law.h"
 
 namespace rotors_control {
 
@@ -17,19 +21,38 @@ AttitudeControlLaw::AttitudeControlLaw(const AttitudeGains& gains, const Eigen::
   // K~ = K^T J^-1 (RotorS' normalisation, "to make the tuning independent of the inertia")
   k_R_normalized_ = gains.attitude_gain.transpose() * J_inv_;
   k_omega_normalized_ = gains.angular_rate_gain.transpose() * J_inv_;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      J_rows_[i * 3 + j] = J_(i, j);
+      J_inv_rows_[i * 3 + j] = J_inv_(i, j);
+    }
+}
+
+void AttitudeControlLaw::CopyLawConstants(double k_R[3], double k_omega[3], double J[9], double J_inv[9]) const {
+  for (int k = 0; k < 3; ++k) {
+    k_R[k] = k_R_normalized_[k];
+    k_omega[k] = k_omega_normalized_[k];
+  }
+  std::memcpy(J, J_rows_, sizeof(J_rows_));
+  std::memcpy(J_inv, J_inv_rows_, sizeof(J_inv_rows_));
 }
 
 Eigen::Vector3d AttitudeControlLaw::AngularAcceleration(const Eigen::Matrix3d& R, const Eigen::Vector3d& omega,
                                                         const Eigen::Matrix3d& R_d,
                                                         const Eigen::Vector3d& omega_d) const {
-  // Lee2010 eq. (10): e_R = 1/2 vee(R_d^T R - R^T R_d)
-  const Eigen::Vector3d e_R = 0.5 * Vee(R_d.transpose() * R - R.transpose() * R_d);
-  // Lee2010 eq. (11): e_w = w - R^T R_d w_d
-  const Eigen::Vector3d omega_d_B = R.transpose() * R_d * omega_d;
-  const Eigen::Vector3d e_omega = omega - omega_d_B;
-  // Lee2010 eq. (16) divided by J: -K~_R e_R - K~_w e_w + J^-1 (w x J w) - hat(w) R^T R_d w_d
-  return -k_R_normalized_.cwiseProduct(e_R) - k_omega_normalized_.cwiseProduct(e_omega) +
-         J_inv_ * omega.cross(J_ * omega) - Hat(omega) * omega_d_B;
+  double R_rows[9], R_d_rows[9], k_R[3], k_omega[3], alpha[3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      R_rows[i * 3 + j] = R(i, j);
+      R_d_rows[i * 3 + j] = R_d(i, j);
+    }
+  for (int k = 0; k < 3; ++k) {
+    k_R[k] = k_R_normalized_[k];
+    k_omega[k] = k_omega_normalized_[k];
+  }
+  const double w[3] = {omega.x(), omega.y(), omega.z()}, w_d[3] = {omega_d.x(), omega_d.y(), omega_d.z()};
+  law::AngularAcceleration(k_R, k_omega, J_rows_, J_inv_rows_, R_rows, w, R_d_rows, w_d, alpha);  // lee_law.h
+  return {alpha[0], alpha[1], alpha[2]};
 }
 
 Eigen::Vector3d AttitudeControlLaw::RateAcceleration(const Eigen::Vector3d& omega,

@@ -25,21 +25,25 @@ bool TrajectoryPoint::IsFinite() const {
          std::isfinite(yaw_rate_rad_s);
 }
 
-Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits) {
-  return SaturatedAcceleration(a_des_W, limits, std::tan(limits.max_tilt_rad));
+namespace {
+/// The limits' part of a law's constants.
+void SetLimits(const AccelerationLimits& limits, LeeConstantsT<double>* c) {
+  c->limits_active = limits.Active() ? 1.0 : 0.0;
+  c->tilt_limited = limits.max_tilt_rad > 0.0 ? 1.0 : 0.0;
+  c->tan_max_tilt = std::tan(limits.max_tilt_rad);
+  c->thrust_limited = std::isfinite(limits.max_m_s2) ? 1.0 : 0.0;
+  c->max_m_s2 = limits.max_m_s2;
+  c->min_up_m_s2 = limits.min_up_m_s2;
 }
+}  // namespace
 
-Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits,
-                                      double tan_max_tilt) {
-  const double a_up = std::clamp(a_des_W.z(), limits.min_up_m_s2, std::max(limits.max_m_s2, limits.min_up_m_s2));
-  double a_h_max = std::numeric_limits<double>::infinity();
-  // tilt: |a_h| <= a_up tan(theta_max);  thrust: |a_h|^2 + a_up^2 <= a_max^2
-  if (limits.max_tilt_rad > 0.0) a_h_max = a_up * tan_max_tilt;
-  if (std::isfinite(limits.max_m_s2))
-    a_h_max = std::min(a_h_max, std::sqrt(std::max(limits.max_m_s2 * limits.max_m_s2 - a_up * a_up, 0.0)));
-  const Eigen::Vector2d a_h = a_des_W.head<2>();
-  const double scale = a_h.norm() > a_h_max ? a_h_max / a_h.norm() : 1.0;
-  return Eigen::Vector3d(scale * a_h.x(), scale * a_h.y(), a_up);
+Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits) {
+  LeeConstantsT<double> c{};
+  SetLimits(limits, &c);
+  const double a[3] = {a_des_W.x(), a_des_W.y(), a_des_W.z()};
+  double out[3];
+  law::SaturatedAcceleration(c, a, out);
+  return {out[0], out[1], out[2]};
 }
 
 namespace {
@@ -61,10 +65,23 @@ LeeController::LeeController(const LeeControllerParameters& params)
     : params_(Validated(params)),
       attitude_law_(params.attitude, params.vehicle.inertia_kg_m2),
       mixer_(params.vehicle),
-      limits_(LimitsOf(params_)),
-      tan_max_tilt_(std::tan(limits_.max_tilt_rad)) {
+      limits_(LimitsOf(params_)) {
   for (const RotorGeometry& r : params_.vehicle.rotors) nominal_force_constants_.push_back(r.rotor_force_constant);
   speed_factors_.assign(nominal_force_constants_.size(), 1.0);
+  UpdateConstants();
+}
+
+void LeeController::UpdateConstants() {
+  LeeConstantsT<double>& c = constants_;
+  c.mass_kg = params_.vehicle.mass_kg;
+  c.gravity_m_s2 = params_.vehicle.gravity_m_s2;
+  for (int k = 0; k < 3; ++k) {
+    c.position_gain[k] = params_.position_gain[k];
+    c.velocity_gain[k] = params_.velocity_gain[k];
+  }
+  SetLimits(limits_, &c);
+  attitude_law_.CopyLawConstants(c.k_R, c.k_omega, c.J, c.J_inv);
+  mixer_.CopyLawConstants(c.mixer, c.omega_max_squared, &c.rotors_limited);
 }
 
 std::string LeeController::SetRotorSpeedFactor(size_t rotor, double speed_factor) {
@@ -83,9 +100,9 @@ std::string LeeController::SetRotorSpeedFactor(size_t rotor, double speed_factor
   }
   params_ = p;
   limits_ = LimitsOf(params_);
-  tan_max_tilt_ = std::tan(limits_.max_tilt_rad);
   speed_factors_[rotor] = speed_factor;
   yaw_released_ = std::find(speed_factors_.begin(), speed_factors_.end(), 0.0) != speed_factors_.end();
+  UpdateConstants();
   return {};
 }
 
@@ -96,46 +113,39 @@ void LeeController::SetTrajectoryPoint(const TrajectoryPoint& point) {
   has_reference_ = true;
 }
 
-void LeeController::ComputeThrustAndAttitude(const VehicleState& s, double* thrust_N, Eigen::Matrix3d* R_WD) const {
-  ComputeThrustAndAttitude(s, s.orientation_W_B.toRotationMatrix(), thrust_N, R_WD);
+LeeInputsT<double> LeeController::Inputs(const VehicleState& s) const {
+  LeeInputsT<double> in{};
+  const Eigen::Quaterniond& q = s.orientation_W_B;
+  in.q_WB[0] = q.w(), in.q_WB[1] = q.x(), in.q_WB[2] = q.y(), in.q_WB[3] = q.z();
+  for (int k = 0; k < 3; ++k) {
+    in.position_W[k] = s.position_W[k];
+    in.velocity_B[k] = s.velocity_B[k];
+    in.angular_velocity_B[k] = s.angular_velocity_B[k];
+    in.reference_position_W[k] = reference_.position_W[k];
+    in.reference_velocity_W[k] = reference_.velocity_W[k];
+    in.reference_acceleration_W[k] = reference_.acceleration_W[k];
+    in.b1_reference[k] = b1_reference_[k];
+  }
+  in.reference_yaw_rate_rad_s = reference_.yaw_rate_rad_s;
+  in.yaw_released = yaw_released_ ? 1.0 : 0.0;
+  return in;
 }
 
-void LeeController::ComputeThrustAndAttitude(const VehicleState& s, const Eigen::Matrix3d& R, double* thrust_N,
-                                             Eigen::Matrix3d* R_WD) const {
-  const double m = params_.vehicle.mass_kg, g = params_.vehicle.gravity_m_s2;
-  const Eigen::Vector3d e3 = Eigen::Vector3d::UnitZ();
-  // Lee2010 eq. (6)-(7): e_p = p - p_d,  e_v = v - v_d  (odometry velocity is body frame: v_W = R v_B)
-  const Eigen::Vector3d e_p = s.position_W - reference_.position_W;
-  const Eigen::Vector3d e_v = R * s.velocity_B - reference_.velocity_W;
-  // a = (K_p e_p + K_v e_v) / m - g e3 - a_d : the negative of the desired acceleration
-  Eigen::Vector3d a = (params_.position_gain.cwiseProduct(e_p) + params_.velocity_gain.cwiseProduct(e_v)) / m - g * e3 -
-                      reference_.acceleration_W;
-  if (limits_.Active()) a = -SaturatedAcceleration(-a, limits_, tan_max_tilt_);
-  // Lee2010 eq. (15): f = -m a . R e3
-  *thrust_N = -m * a.dot(R * e3);
-  // Desired attitude: b3_d = -a / |a|, b1_d from the yaw (the current one when yaw is given up),
-  // b2_d = b3_d x b1_d normalised
-  Eigen::Vector3d b1_d = b1_reference_;
-  if (yaw_released_) {
-    const double yaw = std::atan2(R(1, 0), R(0, 0));
-    b1_d = Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0.0);
-  }
-  const Eigen::Vector3d b3_d = -a / a.norm();
-  const Eigen::Vector3d b2_d = b3_d.cross(b1_d).normalized();
-  R_WD->col(0) = b2_d.cross(b3_d);
-  R_WD->col(1) = b2_d;
-  R_WD->col(2) = b3_d;
+void LeeController::ComputeThrustAndAttitude(const VehicleState& s, double* thrust_N, Eigen::Matrix3d* R_WD) const {
+  const LeeInputsT<double> in = Inputs(s);
+  double R[9], R_d[9];
+  law::RotationOf(in.q_WB, R);
+  law::ThrustAndAttitude(constants_, in, R, thrust_N, R_d);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) (*R_WD)(i, j) = R_d[i * 3 + j];
 }
 
 RotorVector LeeController::RotorSpeeds(const VehicleState& s) const {
-  if (!has_reference_) return RotorVector::Zero(params_.vehicle.rotors.size());
-  double thrust_N = 0.0;
-  Eigen::Matrix3d R_WD;
-  const Eigen::Matrix3d R = s.orientation_W_B.toRotationMatrix();
-  ComputeThrustAndAttitude(s, R, &thrust_N, &R_WD);
-  const Eigen::Vector3d omega_d(0.0, 0.0, yaw_released_ ? 0.0 : reference_.yaw_rate_rad_s);
-  const Eigen::Vector3d alpha = attitude_law_.AngularAcceleration(R, s.angular_velocity_B, R_WD, omega_d);
-  return mixer_.RotorSpeeds(alpha, thrust_N);
+  const int rotors = mixer_.Rotors();
+  if (!has_reference_) return RotorVector::Zero(rotors);
+  RotorVector omega(rotors);
+  law::LeeRotorSpeeds(rotors, constants_, Inputs(s), omega.data());
+  return omega;
 }
 
 }  // namespace rotors_control

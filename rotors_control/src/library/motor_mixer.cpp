@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -22,10 +23,11 @@ Eigen::Matrix4Xd AllocationMatrix(const MultirotorParameters& vehicle) {
   return A;
 }
 
-MotorMixer::MotorMixer(const MultirotorParameters& vehicle) : A_(AllocationMatrix(vehicle)) {
-  if (vehicle.rotors.size() > static_cast<size_t>(RotorVector::MaxRowsAtCompileTime))
+MotorMixer::MotorMixer(const MultirotorParameters& vehicle)
+    : A_(AllocationMatrix(vehicle)), rotors_(static_cast<int>(vehicle.rotors.size())) {
+  if (vehicle.rotors.size() > static_cast<size_t>(kMaxMixerRotors))
     throw std::invalid_argument("rotor_configuration has " + std::to_string(vehicle.rotors.size()) +
-                                " rotors; the mixer takes at most 16");
+                                " rotors; the mixer takes at most " + std::to_string(kMaxMixerRotors));
   Eigen::FullPivLU<Eigen::MatrixXd> lu(A_);
   lu.setThreshold(1e-9);
   if (lu.rank() < 4) {
@@ -35,51 +37,35 @@ MotorMixer::MotorMixer(const MultirotorParameters& vehicle) : A_(AllocationMatri
   }
   Eigen::Matrix4d J_block = Eigen::Matrix4d::Identity();
   J_block.topLeftCorner<3, 3>() = vehicle.inertia_kg_m2;
-  A_pinv_J_ = A_.transpose() * (A_ * A_.transpose()).inverse() * J_block;
-  if (vehicle.AllRotorsLimited()) {
-    omega_max_squared_.resize(vehicle.rotors.size());
-    for (size_t i = 0; i < vehicle.rotors.size(); ++i)
-      omega_max_squared_[i] = vehicle.rotors[i].max_rot_velocity_rad_s * vehicle.rotors[i].max_rot_velocity_rad_s;
-  }
+  const Eigen::MatrixX4d A_pinv_J = A_.transpose() * (A_ * A_.transpose()).inverse() * J_block;
+  for (int i = 0; i < rotors_; ++i)
+    for (int k = 0; k < 4; ++k) rows_[i][k] = A_pinv_J(i, k);
+  rotors_limited_ = vehicle.AllRotorsLimited() ? 1.0 : 0.0;
+  for (int i = 0; i < rotors_ && vehicle.AllRotorsLimited(); ++i)
+    omega_max_squared_[i] = vehicle.rotors[i].max_rot_velocity_rad_s * vehicle.rotors[i].max_rot_velocity_rad_s;
+}
+
+void MotorMixer::CopyLawConstants(double rows[kMaxMixerRotors][4], double omega_max_squared[kMaxMixerRotors],
+                                  double* rotors_limited) const {
+  std::memcpy(rows, rows_, sizeof(rows_));
+  std::memcpy(omega_max_squared, omega_max_squared_, sizeof(omega_max_squared_));
+  *rotors_limited = rotors_limited_;
 }
 
 double MotorMixer::FeasibleThrust(const Eigen::Vector3d& alpha_B, double thrust_N) const {
-  if (omega_max_squared_.size() == 0) return thrust_N;
-  // omega^2 = M_alpha alpha + c T, with c the thrust column of A^T (A A^T)^-1 blockdiag(J, 1)
-  const RotorVector torque_part = A_pinv_J_.leftCols<3>() * alpha_B;
-  const RotorVector c = A_pinv_J_.col(3);
-  double feasible = thrust_N;
-  for (Eigen::Index i = 0; i < c.size(); ++i)
-    if (c[i] > 0.0) feasible = std::min(feasible, (omega_max_squared_[i] - torque_part[i]) / c[i]);
-  return std::max(feasible, 0.0);
+  const double alpha[3] = {alpha_B.x(), alpha_B.y(), alpha_B.z()};
+  return law::FeasibleThrust(rotors_, rows_, omega_max_squared_, rotors_limited_, alpha, thrust_N);
 }
 
 double MotorMixer::FeasibleYaw(const RotorVector& without_yaw, const RotorVector& per_yaw, double yaw) {
-  // omega_i^2 = without_yaw_i + per_yaw_i y >= 0 for every i bounds y to [lo, hi]
-  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-  for (Eigen::Index i = 0; i < per_yaw.size(); ++i) {
-    if (per_yaw[i] > 0.0) lo = std::max(lo, -without_yaw[i] / per_yaw[i]);
-    if (per_yaw[i] < 0.0) hi = std::min(hi, without_yaw[i] / -per_yaw[i]);
-  }
-  return lo <= hi ? std::clamp(yaw, lo, hi) : yaw;  // empty: yaw cannot help, the rotors clip
+  return law::FeasibleYaw(static_cast<int>(per_yaw.size()), without_yaw.data(), per_yaw.data(), yaw);
 }
 
 RotorVector MotorMixer::RotorSpeeds(const Eigen::Vector3d& alpha_B, double thrust_N) const {
-  // omega^2 = A^T (A A^T)^-1 blockdiag(J, 1) [alpha; T] = without_yaw + per_yaw alpha_z
-  const RotorVector per_yaw = A_pinv_J_.col(2);
-  const auto without_yaw = [&](double thrust) {
-    return RotorVector(A_pinv_J_.leftCols<2>() * alpha_B.head<2>() + A_pinv_J_.col(3) * thrust);
-  };
-  // A rotor cannot push downwards: when one would have to, the yaw acceleration gives way (moves to
-  // the nearest feasible value), so roll, pitch and thrust stay exact. A hexacopter with a failed
-  // rotor gives up yaw this way and keeps its position. The thrust limit then uses that yaw.
-  const RotorVector first = without_yaw(thrust_N);
-  double alpha_z = FeasibleYaw(first, per_yaw, alpha_B.z());
-  const double thrust = FeasibleThrust({alpha_B.x(), alpha_B.y(), alpha_z}, thrust_N);
-  // with the thrust kept, the first pass stands: FeasibleYaw is a clamp, a second one changes nothing
-  const RotorVector base = thrust == thrust_N ? first : without_yaw(thrust);
-  if (thrust != thrust_N) alpha_z = FeasibleYaw(base, per_yaw, alpha_z);
-  return (base + per_yaw * alpha_z).cwiseMax(0.0).cwiseSqrt();
+  const double alpha[3] = {alpha_B.x(), alpha_B.y(), alpha_B.z()};
+  RotorVector omega(rotors_);
+  law::MixerRotorSpeeds(rotors_, rows_, omega_max_squared_, rotors_limited_, alpha, thrust_N, omega.data());
+  return omega;
 }
 
 }  // namespace rotors_control

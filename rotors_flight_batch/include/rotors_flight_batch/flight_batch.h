@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +29,29 @@
 #include "rotors_flight_batch/vehicle_description.h"
 
 namespace rotors_flight_batch {
+
+/// The allocator of a vector whose data starts on a cache line (64 bytes). The batch's per-vehicle
+/// arrays use it: a group's kGroupLanes values of a component, or their rows of doubles, then fill
+/// whole lines, so the pool's threads (which step whole groups) never write the same line.
+template <class T>
+struct CacheLineAllocator {
+  using value_type = T;
+  CacheLineAllocator() = default;
+  template <class U>
+  explicit CacheLineAllocator(const CacheLineAllocator<U>&) {}
+  T* allocate(size_t n) { return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{64})); }
+  void deallocate(T* p, size_t) { ::operator delete (p, std::align_val_t{64}); }
+  template <class U>
+  bool operator==(const CacheLineAllocator<U>&) const {
+    return true;
+  }
+  template <class U>
+  bool operator!=(const CacheLineAllocator<U>&) const {
+    return false;
+  }
+};
+template <class T>
+using LineVector = std::vector<T, CacheLineAllocator<T>>;
 
 /// What the `commands` array holds, one row per vehicle.
 enum class CommandMode {
@@ -224,8 +248,15 @@ class FlightBatch {
   void ParkPaddingLanes();
   void StepRange(int begin, int end, long steps);
   void StepGroup(int i0);
-  void ApplyCommand(int i);
+  /// The motors' command of vehicle i for this step; `answered`: its controller has just answered
+  /// new odometry in the group's lanes (RunLeeGroup).
+  void ApplyCommand(int i, bool answered);
   void RunController(int i);  ///< the controller of vehicle i on its latest odometry
+  /// The Lee controllers of the whole group i0 .. i0 + kLanes - 1 in lanes, for the vehicles with new
+  /// odometry (each lane equal to its vehicle's RunController); a bit per vehicle that got a new target.
+  unsigned RunLeeGroup(int i0);
+  rotors_control::VehicleState OdometryState(int i) const;  ///< the latest odometry message, as the node reads it
+  void SetLeeReference(int i);  ///< vehicle i's command row as its Lee controller's set point (a row of NaN: none)
   /// The sensors of vehicle i after its step; `before` holds the state before it in row `lane`.
   void Observe(int i, const KernelBefore& before, int lane);
   /// The odometry plugin's Publish: the noise drawn, the message written to the vehicle's row.
@@ -243,17 +274,17 @@ class FlightBatch {
   int64_t dt_ns_ = 0;
   Eigen::Matrix3d R_BI_ = Eigen::Matrix3d::Identity();
   // state, structure of arrays: component k of vehicle i at [k * n_pad_ + i]
-  std::vector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;           ///< the body (CoG), as the solver keeps it
-  std::vector<double> omega_rotor_, qdot_applied_, motor_command_;  ///< R per vehicle
-  std::vector<double> command_target_;            ///< R per vehicle: what the controller or the commands ask now
+  LineVector<double> p_W_, v_W_, q_WB_, R_WB_, omega_W_;           ///< the body (CoG), as the solver keeps it
+  LineVector<double> omega_rotor_, qdot_applied_, motor_command_;  ///< R per vehicle
+  LineVector<double> command_target_;             ///< R per vehicle: what the controller or the commands ask now
   std::vector<std::vector<double>> delay_rings_;  ///< per vehicle: the last actuator_delay_steps commands
   std::vector<int> delay_heads_;
-  std::vector<double> wind_velocity_W_;  ///< the wind speed the motors see
+  LineVector<double> wind_velocity_W_;  ///< the wind speed the motors see
   // each vehicle's airframe (KernelAirframes), and as set
-  std::vector<double> mass_, inv_mass_, I_B_, inv_I_B_, contact_k_, contact_c_;
-  std::vector<double> motor_constant_, rotor_drag_coefficient_, rolling_moment_coefficient_, reaction_factor_;
-  std::vector<double> max_rot_velocity_, a_up_, a_down_;
-  std::vector<double> p_origin_B_, p_cog_B_, corner_B_, contact_reach_m_;
+  LineVector<double> mass_, inv_mass_, I_B_, inv_I_B_, contact_k_, contact_c_;
+  LineVector<double> motor_constant_, rotor_drag_coefficient_, rolling_moment_coefficient_, reaction_factor_;
+  LineVector<double> max_rot_velocity_, a_up_, a_down_;
+  LineVector<double> p_origin_B_, p_cog_B_, corner_B_, contact_reach_m_;
   std::vector<RotorColumnsOfOne> rotor_columns_;  ///< the same, per vehicle, for the lone-vehicle kernel
   std::vector<Airframe> airframes_;
   /// Each vehicle's points in its body frame that the scalar code reads (the CoG's move applied).
@@ -261,18 +292,19 @@ class FlightBatch {
     Eigen::Vector3d imu, odometry, wind_link, wind_force;
   };
   std::vector<BodyPoints> points_;
-  double contact_w_ = 0.0;       ///< the ground contact's natural frequency [rad/s]
-  std::vector<uint64_t> steps_;  ///< steps since the vehicle's reset
-  std::vector<uint8_t> has_motor_command_, in_contact_;
+  double contact_w_ = 0.0;      ///< the ground contact's natural frequency [rad/s]
+  LineVector<uint64_t> steps_;  ///< steps since the vehicle's reset
+  LineVector<uint8_t> has_motor_command_, in_contact_;
   // shared with Python
-  std::vector<double> commands_, odometry_out_, imu_out_, truth_out_, rotor_speed_out_;
-  std::vector<uint64_t> odometry_count_, controller_seen_;
+  LineVector<double> commands_, odometry_out_, imu_out_, truth_out_, rotor_speed_out_;
+  LineVector<uint64_t> odometry_count_, controller_seen_;
   std::vector<std::unique_ptr<Controller>> controllers_;
+  std::vector<LeeGroupConstants> lee_groups_;  ///< per whole group, its controllers' constants in lanes
   std::vector<std::unique_ptr<Sensors>> sensors_;
   std::unique_ptr<Pool> pool_;
   // obstacles and the depth camera
   std::shared_ptr<const ObstacleField> obstacles_;
-  std::vector<uint8_t> collided_;
+  LineVector<uint8_t> collided_;
   Eigen::Vector3d sphere_center_M_ = Eigen::Vector3d::Zero();  ///< the collision sphere's centre, model frame
   double sphere_radius_m_ = 0.0;
   std::optional<DepthCameraParams> depth_camera_;

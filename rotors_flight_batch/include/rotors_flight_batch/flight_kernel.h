@@ -14,6 +14,8 @@
 
 #include "rotors_core/physics/free_body_step.h"
 #include "rotors_core/physics/spin_moment.h"
+#include "rotors_flight_batch/group.h"
+#include "rotors_flight_batch/lee_lanes.h"
 #include "rotors_gazebo_plugins/models/rotor_equations.h"
 
 namespace rotors_flight_batch {
@@ -426,10 +428,6 @@ inline unsigned StepLanes(const KernelModel& m, const KernelArrays& a, size_t i0
   return StepLanesStrided<V, kernel_detail::LaneCount<V>::value>(m, a, i0, wind, before);
 }
 
-/// Vehicles a batch steps together (a group): AVX-512's eight lanes of doubles, or as many
-/// narrower lanes in turn. The wind and state-before buffers hold rows of this many lanes.
-constexpr size_t kGroupLanes = 8;
-
 /// The group of vehicles i0 .. i0 + kGroupLanes - 1 in lanes of V, one run of lanes after the other
 /// (each lane reads its row's column, so every lane's step is the same whatever V is).
 template <class V>
@@ -446,7 +444,8 @@ inline unsigned StepGroupIn(const KernelModel& m, const KernelArrays& a, size_t 
   return touching;
 }
 
-/// StepGroupIn as compiled for one instruction set.
+/// StepGroupIn as compiled for one instruction set (the wind and state-before buffers hold rows of
+/// kGroupLanes lanes).
 using StepGroupFn = unsigned (*)(const KernelModel&, const KernelArrays&, size_t, const KernelWind&,
                                  const KernelBefore&);
 
@@ -460,11 +459,14 @@ inline unsigned StepOneWithRotorLanes(const KernelModel& m, const KernelArrays& 
   return StepLanesStrided<double, kGroupLanes, V>(m, a, i, wind, before);
 }
 
-/// The kernels a batch steps with: a group of vehicles at once, and a vehicle alone (its rotors in lanes).
+/// The kernels a batch steps with: a group of vehicles at once, a vehicle alone (its rotors in
+/// lanes), and a group's Lee controllers in lanes (their constants packed for them first).
 struct Kernels {
   const char* instruction_set;  ///< "avx512", "avx2", "sse2" (x86-64), "neon" (arm64) or "scalar"
   StepGroupFn group;
   StepOneFn one_vehicle;
+  PackLeeGroupFn pack_lee;
+  LeeGroupFn lee_group;
 };
 
 /// The kernels for `instruction_set`. On x86-64: "avx512" (eight vehicles, or a lone vehicle's

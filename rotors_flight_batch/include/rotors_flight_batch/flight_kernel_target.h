@@ -20,6 +20,9 @@ unsigned StepGroupPairs(const KernelModel& m, const KernelArrays& a, size_t i0, 
                         const KernelBefore& before);
 unsigned StepOnePairs(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
                       const KernelBefore& before);
+void PackLeePairs(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group);
+void LeeGroupPairs(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
+                   LeeGroupSpeeds omega);
 
 struct TargetKernel {
   Kernels kernels;
