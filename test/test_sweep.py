@@ -17,6 +17,10 @@ import pytest
 from rotors_evaluation.ros_master import unused_port
 from support import REPO
 
+# one worker runs them all (pytest-xdist --dist loadgroup): a Ray cluster that `ray start` leaves
+# registered would make a concurrent local sweep try to join it
+pytestmark = pytest.mark.xdist_group("ray")
+
 SWEEP = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts" / "sweep.py"
 # the book's deliberate controller mass/gravity mismatch leaves the hover 0.0398 m high (test_hovering_flight)
 Z_OFFSET_M = 0.0398

@@ -517,6 +517,22 @@ void BindFlightBatch(py::module_& m) {
           "on a bad value no vehicle changes.")
       .def("set_seed", &FlightBatch::SetSeed, py::arg("i"), py::arg("seed"),
            "Vehicle i's random_seed (sensor and wind noise) from its next reset on.")
+      .def(
+          "set_seeds",
+          [](FlightBatch& b, const std::vector<int>& indices, const std::vector<int64_t>& seeds) {
+            if (indices.size() != seeds.size())
+              throw rotors_sim::SimError("set_seeds: " + std::to_string(seeds.size()) + " seeds for " +
+                                         std::to_string(indices.size()) + " vehicles");
+            for (size_t k = 0; k < indices.size(); ++k) {
+              if (indices[k] < 0 || indices[k] >= b.Count())
+                throw rotors_sim::SimError("set_seeds: vehicle " + std::to_string(indices[k]) + " is not in 0.." +
+                                           std::to_string(b.Count() - 1));
+              if (seeds[k] < 0) throw rotors_sim::SimError("seed = " + std::to_string(seeds[k]) + " must be >= 0");
+            }
+            for (size_t k = 0; k < indices.size(); ++k) b.SetSeed(indices[k], static_cast<uint64_t>(seeds[k]));
+          },
+          py::arg("indices"), py::arg("seeds"),
+          "set_seed for each of `indices` in one call; on a bad one none changes.")
       .def_property_readonly("count", &FlightBatch::Count)
       .def_property_readonly("rotor_count", &FlightBatch::Rotors)
       .def_property_readonly("threads", &FlightBatch::Threads)

@@ -26,4 +26,11 @@ inline double Norm3(const T* v) {
   return std::sqrt(x * x + y * y + z * z);
 }
 
+/// The hover task's cost of one observation row (rotors_sim/envs/hover.py: position error 0:3,
+/// velocity 3:6, body rates 10:13): c = |e_p| + 0.1 |v| + 0.05 |omega|.
+template <class T>
+inline double HoverCost(const T* obs) {
+  return Norm3(obs) + 0.1 * Norm3(obs + 3) + 0.05 * Norm3(obs + 10);
+}
+
 }  // namespace rotors_python

@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,16 @@ void CheckShape(const Rows& a, const char* name, py::ssize_t columns) {
                                (a.ndim() == 2 ? " and " + std::to_string(a.shape(1)) + " columns" : std::string()));
   }
 }
+
+/// A shape as Python prints a tuple: (1024, 6), (6,), ().
+std::string ShapeText(const py::array& a) {
+  std::string text = "(";
+  for (py::ssize_t d = 0; d < a.ndim(); ++d) text += (d ? ", " : "") + std::to_string(a.shape(d));
+  return text + (a.ndim() == 1 ? ",)" : ")");
+}
+
+/// A value as numpy prints a float64 that is not finite.
+std::string NonFiniteText(double x) { return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf"); }
 
 }  // namespace
 
@@ -117,6 +128,73 @@ void BindRowMath(py::module_& m) {
       },
       py::arg("x"), py::arg("starts"),
       "N x len(starts): the Euclidean norm of the three columns starting at each of `starts`, for every row");
+  m.def(
+      "hover_costs",
+      [](const Rows& obs) {
+        CheckShape(obs, "obs", 13);
+        const py::ssize_t n = obs.shape(0);
+        py::array_t<double> out(n);
+        for (py::ssize_t i = 0; i < n; ++i) out.mutable_data()[i] = HoverCost(obs.data() + 13 * i);
+        return out;
+      },
+      py::arg("obs"), "The hover task's cost c = |e_p| + 0.1 |v| + 0.05 |omega| of each row of observations (N x 13)");
+  m.def(
+      "hover_rewards",
+      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& obs,
+         const py::array_t<bool, py::array::c_style | py::array::forcecast>& collided, double bound_m, double cost_max,
+         double termination_reward, double alive_bonus) {
+        if (obs.ndim() != 2 || obs.shape(1) != 13 || collided.ndim() != 1 || collided.shape(0) != obs.shape(0))
+          throw rotors_sim::SimError("hover_rewards: obs must be N x 13 and collided N values");
+        const py::ssize_t n = obs.shape(0);
+        py::array_t<double> reward(n);
+        py::array_t<bool> terminated(n);
+        for (py::ssize_t i = 0; i < n; ++i) {
+          const float* o = obs.data() + 13 * i;
+          // a contact, or the position error beyond the bound on an axis
+          const bool end =
+              collided.data()[i] || std::abs(o[0]) > bound_m || std::abs(o[1]) > bound_m || std::abs(o[2]) > bound_m;
+          terminated.mutable_data()[i] = end;
+          reward.mutable_data()[i] = end ? termination_reward : (1.0 - HoverCost(o) / cost_max) + alive_bonus;
+        }
+        return py::make_tuple(reward, terminated);
+      },
+      py::arg("obs"), py::arg("collided"), py::arg("bound_m"), py::arg("cost_max"), py::arg("termination_reward"),
+      py::arg("alive_bonus"),
+      "The hover task's step for rows of float32 observations: terminated (a contact, or |e_p| beyond bound_m on "
+      "an axis) and the reward (termination_reward, else 1 - c / cost_max + alive_bonus)");
+  m.def(
+      "motor_commands",
+      [](const Rows& actions, const Rows& half_max, py::array_t<double, py::array::c_style> out) {
+        // the vector environments' motor actions: checked (shape, finite) as envs.batched.checked_actions
+        // checks them, clipped to [-1, 1], then omega = (a + 1) (omega_max / 2); nothing written on an error
+        const py::ssize_t n = out.ndim() == 2 ? out.shape(0) : -1, r = out.ndim() == 2 ? out.shape(1) : -1;
+        if (half_max.ndim() != 2 || half_max.shape(0) != 1 || half_max.shape(1) != r)
+          throw rotors_sim::SimError("motor_commands: half_max must be 1 x " + std::to_string(r));
+        if (actions.ndim() != 2 || actions.shape(0) != n || actions.shape(1) != r) {
+          throw rotors_sim::SimError("actions have shape " + ShapeText(actions) + ", this vector environment needs (" +
+                                     std::to_string(n) + ", " + std::to_string(r) + ")");
+        }
+        const double* a = actions.data();
+        for (py::ssize_t k = 0; k < n * r; ++k) {
+          if (!std::isfinite(a[k])) {
+            throw rotors_sim::SimError("actions[" + std::to_string(k / r) + ", " + std::to_string(k % r) +
+                                       "] = " + NonFiniteText(a[k]) + " is not finite");
+          }
+        }
+        const double* h = half_max.data();
+        double* o = out.mutable_data();
+        for (py::ssize_t i = 0; i < n; ++i) {
+          for (py::ssize_t j = 0; j < r; ++j) {
+            double x = a[i * r + j];
+            x = (x < -1.0) ? -1.0 : x;  // np.maximum, then np.minimum
+            x = (1.0 < x) ? 1.0 : x;
+            o[i * r + j] = (x + 1.0) * h[j];
+          }
+        }
+      },
+      py::arg("actions"), py::arg("half_max"), py::arg("out"),
+      "Writes (clip(actions, -1, 1) + 1) * half_max into `out` (N x R), after checking that `actions` is N x R "
+      "and finite (SimError naming the first bad value, and nothing written)");
 }
 
 }  // namespace rotors_python

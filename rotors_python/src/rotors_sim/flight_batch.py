@@ -62,9 +62,9 @@ class FlightBatch:
     changes Lee's yaml values per vehicle, e.g. {"position_gain/x": 4.0}, for sweeps. `seeds` (one per vehicle) seed
     the sensor and wind noise as spawn_mav's random_seed does; `noise=False` turns it off,
     `imu=False` skips the IMU. `controller_params` replaces the controller's yaml files. `kernel`
-    picks the physics' instruction set (avx512, avx2, sse2, scalar; default the fastest this CPU
-    runs; avx512 steps a lone vehicle's rotors eight at a time, the groups of four vehicles stay
-    AVX2): each gives the same flight bit for bit.
+    picks the physics' and the Lee controllers' instruction set (avx512, avx2, sse2, scalar; default
+    the fastest this CPU runs; avx512 steps groups of eight vehicles, or a lone vehicle's rotors,
+    eight at a time): each gives the same flight bit for bit.
     Further keywords go to the xacro (enable_wind=True, ...).
     """
 
@@ -181,6 +181,10 @@ class FlightBatch:
         if int(seed) < 0:
             raise SimError(f"seed = {seed} must be >= 0")
         self._b.set_seed(int(i), int(seed))
+
+    def set_seeds(self, indices: Sequence[int], seeds: Sequence[int]) -> None:
+        """set_seed for each of `indices` in one call (SimError on a bad index or seed, and none changes)."""
+        self._b.set_seeds([int(i) for i in indices], [int(s) for s in seeds])
 
     # --- obstacles and the depth camera ---
     def set_obstacles(self, field: _engine.ObstacleField | None) -> None:

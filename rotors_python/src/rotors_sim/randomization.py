@@ -160,8 +160,9 @@ def _draws(spec: Mapping[str, tuple], sizes: list[tuple[str, int]], rngs: list[n
 
 def _first_bad(values: np.ndarray, ok: np.ndarray) -> np.ndarray | None:
     """The first row of `values` (one vehicle's draw) where `ok` is False anywhere, or None."""
-    bad = np.flatnonzero(~ok.all(axis=1))
-    return None if len(bad) == 0 else values[bad[0]]
+    if ok.all():  # the common case, in one reduction
+        return None
+    return values[np.flatnonzero(~ok.all(axis=1))[0]]
 
 
 def draw_airframe_rows(spec: Mapping[str, tuple], nominal: Mapping[str, Any], rngs: list[np.random.Generator]) -> dict[str, np.ndarray]:

@@ -174,6 +174,7 @@ class FlightBatchEnv(VectorEnv):
         )
         d = self.batch.description
         self.max_rot_velocity = np.array([r["max_rot_velocity"] for r in d.rotors])
+        self._half_max_rot_velocity = 0.5 * self.max_rot_velocity[None, :]
         self.hover_thrust_N = d.mass_kg * -d.gravity_W[2]
         self.max_tilt_rad, self.max_yaw_rate_rad_s = max_tilt_rad, max_yaw_rate_rad_s
         self.dt = self.substeps * step_size
@@ -216,15 +217,16 @@ class FlightBatchEnv(VectorEnv):
         return self._obs.copy(), {"time_s": self.batch.time.copy(), "_time_s": mask.copy()}
 
     def step(self, actions):
-        a = checked_actions(actions, self.action_space.shape)
         if self._ended.any() and not self.step_after_end:
             raise SimError(
                 f"environments {np.flatnonzero(self._ended).tolist()} have ended and autoreset is off; "
                 "reset them first: reset(options={'reset_mask': mask})"
             )
         if self.action_type == "motor":
-            np.multiply(a + 1.0, 0.5 * self.max_rot_velocity, out=self.batch.commands)  # = (a + 1) / 2 * max, exactly
+            # checked_actions' checks and clip in one C++ pass (nothing written on an error), then (a + 1) / 2 * max
+            _engine.motor_commands(actions, self._half_max_rot_velocity, self.batch.commands)
         else:
+            a = checked_actions(actions, self.action_space.shape)
             self.batch.commands[:] = np.column_stack(
                 [
                     a[:, 0] * self.max_tilt_rad,
@@ -238,9 +240,10 @@ class FlightBatchEnv(VectorEnv):
         collided = self.batch.in_contact  # a new array, as batch.time below
         if self.task == "hover":
             obs = self._observe()
-            e = np.abs(obs[:, 0:3]).T
-            terminated = collided | (e[0] > hover.BOUND_M) | (e[1] > hover.BOUND_M) | (e[2] > hover.BOUND_M)
-            reward = np.where(terminated, hover.TERMINATION_REWARD, hover.hover_reward(obs) + self.alive_bonus)
+            # a contact or |e_p| beyond the bound on an axis ends it; else 1 - c / c_max + alive_bonus
+            reward, terminated = _engine.hover_rewards(
+                obs, collided, hover.BOUND_M, hover.COST_MAX, hover.TERMINATION_REWARD, self.alive_bonus
+            )
             success = np.zeros(self.num_envs, dtype=bool)
         else:
             p = self.batch.odometry[:, 0:3]
@@ -298,8 +301,7 @@ class FlightBatchEnv(VectorEnv):
             yaws = np.zeros(len(rngs))
         if self.randomization is not None:
             self.batch.set_airframes(ended, **draw_airframe_rows(self.randomization, self._nominal, rngs))
-            for i, rng in zip(ended, rngs):
-                self.batch.set_seed(i, int(rng.integers(0, 2**31)))
+            self.batch.set_seeds(ended, [int(rng.integers(0, 2**31)) for rng in rngs])
             self._airframes_drawn = True
         elif self._airframes_drawn:
             for i in ended:

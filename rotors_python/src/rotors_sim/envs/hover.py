@@ -20,7 +20,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from rotors_sim._engine import block_norms
+from rotors_sim._engine import hover_costs
 from rotors_sim.envs.flight import Flight, FlightConfig, FlightEnv, odometry_observation
 
 OBSERVATION_HIGH = np.array([5.0] * 3 + [20.0] * 3 + [1.0] * 4 + [50.0] * 3, np.float32)
@@ -38,11 +38,10 @@ def hover_observation(odometry, target: np.ndarray) -> np.ndarray:
 
 
 def hover_cost(obs: np.ndarray) -> np.ndarray:
-    """c = |e_p| + 0.1 |v| + 0.05 |omega| of one observation or of rows of them."""
+    """c = |e_p| + 0.1 |v| + 0.05 |omega| of one observation or of rows of them (_engine.hover_costs,
+    the formula the vector environment's hover_rewards reads too)."""
     o = np.asarray(obs, dtype=np.float64)
-    norms = block_norms(o.reshape(-1, o.shape[-1]), [0, 3, 10]).T  # |e_p|, |v|, |omega| per row
-    c = norms[0] + 0.1 * norms[1] + 0.05 * norms[2]
-    return c.reshape(o.shape[:-1])
+    return hover_costs(o.reshape(-1, o.shape[-1])).reshape(o.shape[:-1])
 
 
 def hover_reward(obs: np.ndarray) -> np.ndarray:
