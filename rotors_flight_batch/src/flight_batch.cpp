@@ -73,21 +73,29 @@ int CommandColumns(CommandMode mode, int rotors) {
 }
 
 // ---------------------------------------------------------------------------------------------
-struct FlightBatch::Controller {
-  std::unique_ptr<rotors_control::LeeController> lee;
-  std::unique_ptr<rotors_control::AttitudeLevelController> attitude;
+/// A T on cache lines of its own (64-byte aligned, its size rounded up to whole lines): the
+/// per-vehicle objects a step writes (controllers, noise generators) are allocated one vehicle
+/// after the other, and two threads stepping neighbours must not write one line.
+template <class T>
+struct alignas(64) OwnLines : T {
+  using T::T;
+};
+
+struct alignas(64) FlightBatch::Controller {
+  std::unique_ptr<OwnLines<rotors_control::LeeController>> lee;
+  std::unique_ptr<OwnLines<rotors_control::AttitudeLevelController>> attitude;
 };
 
 /// A vehicle's seeded models (the plugins' classes) and its odometry sensor's queue.
-struct FlightBatch::Sensors {
+struct alignas(64) FlightBatch::Sensors {
   struct Pending {
     uint64_t publish_at_step;
     double stamp_s;
     rgp::OdometryMeasurement truth;
   };
-  std::unique_ptr<rgp::OdometryNoise> odometry_noise;  ///< none when every sigma and bound is 0
-  std::unique_ptr<rgp::ImuNoiseModel> imu_noise;
-  std::unique_ptr<rgp::WindModel> wind;
+  std::unique_ptr<OwnLines<rgp::OdometryNoise>> odometry_noise;  ///< none when every sigma and bound is 0
+  std::unique_ptr<OwnLines<rgp::ImuNoiseModel>> imu_noise;
+  std::unique_ptr<OwnLines<rgp::WindModel>> wind;
   std::deque<Pending> queue;
   uint64_t odometry_step = 0;
   int steps_to_odometry = 0;  ///< odometry_step % divisor counted down (no division per step)
@@ -293,10 +301,10 @@ FlightBatch::FlightBatch(VehicleDescription description, FlightBatchOptions opti
       auto c = std::make_unique<Controller>();
       try {
         if (options_.mode == CommandMode::kLeePosition) {
-          c->lee = std::make_unique<rotors_control::LeeController>(options_.lee_each.empty() ? options_.lee
-                                                                                             : options_.lee_each[i]);
+          c->lee = std::make_unique<OwnLines<rotors_control::LeeController>>(
+              options_.lee_each.empty() ? options_.lee : options_.lee_each[i]);
         } else {
-          c->attitude = std::make_unique<rotors_control::AttitudeLevelController>(options_.attitude);
+          c->attitude = std::make_unique<OwnLines<rotors_control::AttitudeLevelController>>(options_.attitude);
         }
       } catch (const std::exception& e) {
         throw SimError(std::string("FlightBatch: controller parameters: ") + e.what());
@@ -334,15 +342,17 @@ size_t FlightBatch::ControllerBytesPerVehicle() const {
   // the object and its heap: rotor parameters, the allocation matrix and its inverse (4 x R each)
   const size_t heap =
       vehicle.rotors.size() * (sizeof(rotors_control::RotorGeometry) + 2 * 4 * sizeof(double) + 2 * sizeof(double));
+  // a Lee controller's share of its group's constants in lanes besides
   return sizeof(Controller) + heap +
-         (options_.mode == CommandMode::kLeePosition ? sizeof(rotors_control::LeeController)
-                                                     : sizeof(rotors_control::AttitudeLevelController));
+         (options_.mode == CommandMode::kLeePosition
+              ? sizeof(OwnLines<rotors_control::LeeController>) + sizeof(LeeGroupConstants) / kLanes
+              : sizeof(OwnLines<rotors_control::AttitudeLevelController>));
 }
 
 size_t FlightBatch::NoiseBytesPerVehicle() const {
   const Sensors& s = *sensors_.front();
-  return sizeof(Sensors) + (s.odometry_noise ? sizeof(rgp::OdometryNoise) : 0) +
-         (s.imu_noise ? sizeof(rgp::ImuNoiseModel) : 0) + (s.wind ? sizeof(rgp::WindModel) : 0);
+  return sizeof(Sensors) + (s.odometry_noise ? sizeof(OwnLines<rgp::OdometryNoise>) : 0) +
+         (s.imu_noise ? sizeof(OwnLines<rgp::ImuNoiseModel>) : 0) + (s.wind ? sizeof(OwnLines<rgp::WindModel>) : 0);
 }
 
 rgp::DepthNoiseParams DepthCameraParams::D435Noise() {
@@ -574,13 +584,13 @@ void FlightBatch::Reset(const std::vector<int>& indices, const double* positions
         (on.normal_position_m.any() || on.normal_quaternion_rad.any() || on.normal_linear_velocity_m_s.any() ||
          on.normal_angular_velocity_rad_s.any() || on.uniform_position_m.any() || on.uniform_quaternion_rad.any() ||
          on.uniform_linear_velocity_m_s.any() || on.uniform_angular_velocity_rad_s.any());
-    s.odometry_noise = odometry_noisy ? std::make_unique<rgp::OdometryNoise>(on, seed_odometry) : nullptr;
+    s.odometry_noise = odometry_noisy ? std::make_unique<OwnLines<rgp::OdometryNoise>>(on, seed_odometry) : nullptr;
     if (d_.imu && options_.imu && options_.noise)
-      s.imu_noise = std::make_unique<rgp::ImuNoiseModel>(airframes_[i].imu_noise, SeedFor(d_.imu->seed, i));
+      s.imu_noise = std::make_unique<OwnLines<rgp::ImuNoiseModel>>(airframes_[i].imu_noise, SeedFor(d_.imu->seed, i));
     if (d_.wind) {
       rgp::WindParams wp = airframes_[i].wind;
       if (!options_.noise) wp.wind_speed_variance = wp.wind_force_variance = wp.wind_gust_force_variance = 0.0;
-      s.wind = std::make_unique<rgp::WindModel>(wp, SeedFor(d_.wind->seed, i));
+      s.wind = std::make_unique<OwnLines<rgp::WindModel>>(wp, SeedFor(d_.wind->seed, i));
     }
     // until the sensor's first message the odometry row holds the reset state, noise-free
     double* o = &odometry_out_[i * 14];
@@ -635,13 +645,14 @@ void FlightBatch::Step(long steps) {
   if (steps == 0) return;
   ParkPaddingLanes();
   // a short call (an environment's control period over few vehicles) is cheaper on this thread
-  // than handing it to the pool: below kPoolMinVehicleSteps vehicle-steps the workers are not called
-  if (!pool_ || static_cast<long>(n_) * steps < kPoolMinVehicleSteps) {
+  // than handing it to the pool: below kPoolMinVehicleSteps vehicle-steps the workers are not
+  // called, nor for one group (a thread steps whole groups: the others would only wait)
+  const int threads = threads_, groups = static_cast<int>(n_pad_ / kLanes);
+  if (!pool_ || groups < 2 || static_cast<long>(n_) * steps < kPoolMinVehicleSteps) {
     StepRange(0, n_, steps);
     return;
   }
   // whole groups of lanes per thread
-  const int threads = threads_, groups = static_cast<int>(n_pad_ / kLanes);
   pool_->Run([&](int t) {
     StepRange(groups * t / threads * kLanes, std::min(n_, groups * (t + 1) / threads * kLanes), steps);
   });
@@ -848,6 +859,17 @@ void FlightBatch::StepRange(int begin, int end, long steps) {
   }
 }
 
+// the early return of most steps inlined into the group's loop; the measurements are Measure
+inline void FlightBatch::Observe(int i, const KernelBefore& before, int lane) {
+  Sensors& sensors = *sensors_[i];
+  const uint64_t step = sensors.odometry_step++;
+  const bool odometry_due = sensors.steps_to_odometry == 0;  // step % divisor == 0
+  sensors.steps_to_odometry = (odometry_due ? d_.odometry->divisor : sensors.steps_to_odometry) - 1;
+  const bool imu = d_.imu && options_.imu;
+  if (!imu && !odometry_due && sensors.queue.empty()) return;  // most steps: nothing to measure
+  Measure(i, before, lane, step, odometry_due);
+}
+
 void FlightBatch::StepGroup(int i0) {
   const size_t n = n_pad_;
   const int lanes = std::min(kLanes, n_ - i0);  // vehicles in this group (the rest are padding)
@@ -1017,15 +1039,11 @@ void FlightBatch::RunController(int i) {
   for (int r = 0; r < r_; ++r) command_target_[r * n + i] = std::max(0.0, speeds[r]);
 }
 
-void FlightBatch::Observe(int i, const KernelBefore& before, int lane) {
+void FlightBatch::Measure(int i, const KernelBefore& before, int lane, uint64_t step, bool odometry_due) {
   const size_t n = n_pad_;
   Sensors& sensors = *sensors_[i];
   const OdometryDescription& od = *d_.odometry;
-  const uint64_t step = sensors.odometry_step++;
-  const bool odometry_due = sensors.steps_to_odometry == 0;  // step % divisor == 0
-  sensors.steps_to_odometry = (odometry_due ? od.divisor : sensors.steps_to_odometry) - 1;
   const bool imu = d_.imu && options_.imu;
-  if (!imu && !odometry_due && sensors.queue.empty()) return;  // most steps: nothing to measure
   double p[3], v[3], w[3], R[9];
   for (int c = 0; c < 3; ++c) {
     p[c] = p_W_[c * n + i];

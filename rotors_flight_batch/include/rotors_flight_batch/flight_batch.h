@@ -259,6 +259,8 @@ class FlightBatch {
   void SetLeeReference(int i);  ///< vehicle i's command row as its Lee controller's set point (a row of NaN: none)
   /// The sensors of vehicle i after its step; `before` holds the state before it in row `lane`.
   void Observe(int i, const KernelBefore& before, int lane);
+  /// Observe's measurements at odometry step `step` (the IMU, the odometry when due, the queue).
+  void Measure(int i, const KernelBefore& before, int lane, uint64_t step, bool odometry_due);
   /// The odometry plugin's Publish: the noise drawn, the message written to the vehicle's row.
   void Publish(int i, double stamp_s, const rotors_gazebo_plugins::OdometryMeasurement& truth);
 

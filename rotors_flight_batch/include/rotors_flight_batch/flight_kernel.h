@@ -189,7 +189,8 @@ struct OneBody {
 /// rotor as StepLanesStrided's per vehicle, so the sums of the terms in rotor order are its F and T
 /// bit for bit.
 template <class V>
-inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i, const OneBody& b, RotorTerms& out) {
+__attribute__((always_inline)) inline void RotorLanes(const KernelModel& m, const KernelArrays& a, size_t i,
+                                                      const OneBody& b, RotorTerms& out) {
   using namespace kernel_detail;
   constexpr int L = static_cast<int>(LaneCount<V>::value);
   const KernelModel::RotorColumns& k = m.columns;
