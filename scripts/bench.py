@@ -932,8 +932,9 @@ def batched_flight_rows(b: dict) -> list:
             "free-body step in scalar code, its force-free half beside the rotors) - what is left is one chain of "
             "dependent operations from the rotor forces to the next state (the sums in plugin order, then a square "
             "root and a division in turn), which lanes cannot shorten and fused multiply-add would change (ending "
-            "the bit-for-bit equality with the full world); many: the controllers (rotors_control's library, one "
-            "vehicle at a time) and the lane width (AVX2's four vehicles)",
+            "the bit-for-bit equality with the full world); many: the kernel's eight AVX-512 lanes (about half of "
+            "a step), the Lee controllers in lanes with the gathering of their inputs (about a quarter), and the "
+            "per-vehicle passes for commands and sensors",
             "",
         )
     ]

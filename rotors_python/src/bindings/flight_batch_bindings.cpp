@@ -265,23 +265,28 @@ Airframe AirframeFrom(const Airframe& base, const py::dict& values, int vehicle,
 std::vector<Airframe> AirframesFrom(const Airframe& base, const std::vector<int>& indices, const py::dict& values,
                                     const VehicleDescription& d) {
   const py::ssize_t k = static_cast<py::ssize_t>(indices.size());
-  std::vector<std::pair<std::string, Doubles>> columns;
+  struct Column {
+    std::string name;
+    Doubles values;
+    std::vector<py::ssize_t> row_shape;  ///< one vehicle's value's shape
+    py::ssize_t row_size;
+  };
+  std::vector<Column> columns;
   for (const auto& [key, value] : values) {
     const std::string name = py::str(key);
     Doubles v = AirframeValues(value, name, "FlightBatch.set_airframes");
     if (v.ndim() < 1 || v.shape(0) != k)
       throw SimError("FlightBatch.set_airframes: " + name + " must have one row per vehicle (" + std::to_string(k) +
                      ")");
-    columns.emplace_back(name, std::move(v));
+    std::vector<py::ssize_t> row_shape(v.shape() + 1, v.shape() + v.ndim());
+    const py::ssize_t row_size = v.ndim() == 1 ? 1 : v.size() / k;
+    columns.push_back({name, std::move(v), std::move(row_shape), row_size});
   }
   std::vector<Airframe> out(indices.size(), base);
   for (py::ssize_t j = 0; j < k; ++j) {
     const std::string who = "FlightBatch.set_airframes: vehicle " + std::to_string(indices[j]);
-    for (const auto& [name, v] : columns) {
-      const std::vector<py::ssize_t> shape(v.shape() + 1, v.shape() + v.ndim());
-      const py::ssize_t row = v.ndim() == 1 ? 1 : v.size() / k;
-      ApplyAirframeValue(out[j], name, v.data() + j * row, shape, who, d);
-    }
+    for (const Column& c : columns)
+      ApplyAirframeValue(out[j], c.name, c.values.data() + j * c.row_size, c.row_shape, who, d);
   }
   return out;
 }

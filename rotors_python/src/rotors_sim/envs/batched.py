@@ -311,8 +311,9 @@ class FlightBatchEnv(VectorEnv):
         # the sensor's first message is the end of the first step; until then, the reset state
         self.batch.commands[ended] = 0.0
         self.steps[ended] = 0
-        self.index[ended] = 0
-        self.distance[ended] = np.linalg.norm(self.batch.odometry[ended, 0:3] - self.waypoints[0], axis=1)
+        if self.task == "waypoints":
+            self.index[ended] = 0
+            self.distance[ended] = np.linalg.norm(self.batch.odometry[ended, 0:3] - self.waypoints[0], axis=1)
 
     def _observe(self, rows: np.ndarray | None = None) -> np.ndarray:
         """The observations of every vehicle, or of `rows` only: the position relative to the target
