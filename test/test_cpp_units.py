@@ -43,3 +43,19 @@ def test_gtest(name: str):
     assert res.returncode == 0, "\n".join(failed) + "\n" + res.stdout[-4000:] + res.stderr[-2000:]
     passed = re.search(r"\[  PASSED  \] (\d+) tests?", res.stdout)
     assert passed and int(passed.group(1)) == GTESTS[name], f"{name}: {passed and passed.group(0)}, pinned {GTESTS[name]}"
+
+
+def test_no_function_compiled_for_avx_stands_in_for_a_baseline_one():
+    """The kernels' AVX-512 and AVX2 files are compiled for those sets. A function they emit with
+    vague linkage (an inline function or a template instantiation not inlined) could be the copy the
+    linker keeps for every caller, and a CPU without the set would then fault in baseline code. Each
+    such symbol of theirs must therefore be an instantiation on their own lane type (`__vector`)."""
+    objects = sorted((WS / "build" / "rotors_flight_batch").rglob("flight_kernel_avx*.cpp.o"))
+    if not objects:
+        pytest.skip("no AVX kernel objects (not an x86-64 build)")
+    for obj in objects:
+        res = subprocess.run(["nm", "-C", str(obj)], capture_output=True, text=True, timeout=60, check=True)
+        weak = [line for line in res.stdout.splitlines() if re.match(r"^[0-9a-f]+ [WV] ", line)]
+        shared = [line for line in weak if "__vector" not in line]
+        assert not shared, f"{obj.name} emits functions any caller may get: {shared}"
+        print(f"{obj.name}: {len(weak)} vague-linkage functions, each on its lane type")

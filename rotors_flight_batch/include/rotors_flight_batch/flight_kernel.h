@@ -138,13 +138,7 @@ template <class V, class S>
 inline void Rotate(const V R[9], const S v[3], V out[3]) {
   for (int k = 0; k < 3; ++k) out[k] = R[k * 3 + 0] * v[0] + R[k * 3 + 1] * v[1] + R[k * 3 + 2] * v[2];
 }
-inline bool Any(bool m) { return m; }
-template <class M>
-inline bool Any(const M& m) {
-  for (size_t k = 0; k < sizeof(M) / sizeof(m[0]); ++k)
-    if (m[k]) return true;
-  return false;
-}
+using rotors_control::law::Any;  // whether any lane of a mask is set (a bool: itself)
 inline bool Lane(bool m, size_t) { return m; }
 inline bool Lane(int m, size_t) { return m != 0; }
 template <class M>
