@@ -50,7 +50,8 @@ class AutopilotStandIn:
 def test_fixed_wing_hil_launch_exchanges_hil_with_autopilot(ros):
     port = free_udp_port()
     autopilot = AutopilotStandIn(port)
-    launch(ros, "rotors_gazebo", "fixed_wing_hil.launch", f"mavlink_url:=udpout:127.0.0.1:{port}")
+    # seeded, so that the IMU's turn-on bias is the same draw in every run
+    launch(ros, "rotors_gazebo", "fixed_wing_hil.launch", f"mavlink_url:=udpout:127.0.0.1:{port}", "random_seed:=11")
     autopilot.wait_for("HIL_SENSOR", 1, timeout=90)
     autopilot.link.mav.heartbeat_send(1, 3, 0, 0, 0)  # the node answers to the first heartbeat's system
     # 2 s once the techpod has come to rest: it is spawned 0.1 m up and the world runs from launch
@@ -65,10 +66,11 @@ def test_fixed_wing_hil_launch_exchanges_hil_with_autopilot(ros):
     )
     assert 90 < rate < 110
     # FRD: the specific force at rest is g up, -z; the mean of 2 s keeps the ADIS16448's turn-on bias
-    # (0.196 m/s^2 a axis, drawn from the clock) and the techpod rests a little pitched on its belly:
-    # its length is g within 0.5 m/s^2 and it points within 10 deg of -z
+    # (sigma 0.196 m/s^2 an axis) and the techpod rests a little pitched on its belly: its length is g
+    # within 1.0 m/s^2 (5 sigma of the bias along g: no seed's draw fails it) and it points within
+    # 10 deg of -z
     mean = np.mean([[m.xacc, m.yacc, m.zacc] for m in sensors], axis=0)
-    assert abs(np.linalg.norm(mean) - 9.81) < 0.5 and -mean[2] > np.cos(np.radians(10.0)) * np.linalg.norm(mean), mean
+    assert abs(np.linalg.norm(mean) - 9.81) < 1.0 and -mean[2] > np.cos(np.radians(10.0)) * np.linalg.norm(mean), mean
     assert s.zmag > 0.3 and all(m.fields_updated & 0x3F == 0x3F for m in sensors)  # accel and gyro each time
     # magnetometer and barometer bits when their plugins published since the last HIL_SENSOR
     assert sum(m.fields_updated & 0x1FC0 == 0x1BC0 for m in sensors) > len(sensors) / 2
