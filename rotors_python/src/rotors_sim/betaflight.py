@@ -148,16 +148,33 @@ class BetaflightSitl:
         raise SimError(f"Betaflight's SITL did not answer after {starts} starts (log: {self.log_path})")
 
     def _launch(self, timeout_s: float) -> None:
-        log = open(self.log_path, "ab")
-        self.process = subprocess.Popen([str(self.firmware)], cwd=self.workdir, stdout=log, stderr=subprocess.STDOUT)
-        log.close()
+        """Starts the firmware and waits for its CLI port. The firmware reports a port it could not bind
+        ("bind port 5761 for UART1 failed!!", the port not yet free after the last firmware) and runs on
+        without it: it is stopped and started again, until the port opens or `timeout_s` has passed."""
         deadline = time.monotonic() + timeout_s
-        while not _port_open(CLI_PORT):
-            if self.process.poll() is not None:
-                raise SimError(f"Betaflight's SITL exited with {self.process.returncode} at start (log: {self.log_path})")
-            if time.monotonic() > deadline:
-                raise SimError(f"Betaflight's SITL did not open its CLI port {CLI_PORT} in {timeout_s} s " f"(log: {self.log_path})")
-            time.sleep(0.05)
+        while True:
+            log_start = self.log_path.stat().st_size if self.log_path.exists() else 0
+            log = open(self.log_path, "ab")
+            self.process = subprocess.Popen([str(self.firmware)], cwd=self.workdir, stdout=log, stderr=subprocess.STDOUT)
+            log.close()
+            while not _port_open(CLI_PORT):
+                if self.process.poll() is not None:
+                    raise SimError(f"Betaflight's SITL exited with {self.process.returncode} at start (log: {self.log_path})")
+                if time.monotonic() > deadline:
+                    raise SimError(f"Betaflight's SITL did not open its CLI port {CLI_PORT} in {timeout_s} s " f"(log: {self.log_path})")
+                if self._bind_failed(log_start):
+                    break
+                time.sleep(0.05)
+            else:
+                return
+            self.stop()  # it could not bind its CLI port: once the port is free, again
+            time.sleep(0.5)
+
+    def _bind_failed(self, log_start: int) -> bool:
+        """Whether this start's log (from byte log_start) reports that the CLI port could not be bound."""
+        with open(self.log_path, "rb") as f:
+            f.seek(log_start)
+            return f"bind port {CLI_PORT} for UART1 failed".encode() in f.read()
 
     def cli(self, lines: list[str], timeout_s: float = 5.0) -> str:
         """Enters the CLI ('#'), sends each line, returns what the firmware answered. A line the
