@@ -161,6 +161,7 @@ class BetaflightSitl:
                 if self.process.poll() is not None:
                     raise SimError(f"Betaflight's SITL exited with {self.process.returncode} at start (log: {self.log_path})")
                 if time.monotonic() > deadline:
+                    self.stop()  # no firmware left running behind the error
                     raise SimError(f"Betaflight's SITL did not open its CLI port {CLI_PORT} in {timeout_s} s " f"(log: {self.log_path})")
                 if self._bind_failed(log_start):
                     break
