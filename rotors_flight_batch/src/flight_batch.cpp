@@ -992,11 +992,15 @@ unsigned FlightBatch::RunLeeGroup(int i0) {
     if (odometry_count_[i0 + l] != controller_seen_[i0 + l]) due |= 1u << l;
   if (due == 0) return 0;
   LeeInputsT<double> in[kLanes];
+  const int first = __builtin_ctz(due);
   for (int l = 0; l < kLanes; ++l) {
     const int i = i0 + l;
-    if ((due >> l) & 1u) SetLeeReference(i);
-    in[l] = controllers_[i]->lee->Inputs(OdometryState(i));  // every lane valid, the ones not due unused
+    if (!((due >> l) & 1u)) continue;
+    SetLeeReference(i);
+    in[l] = controllers_[i]->lee->Inputs(OdometryState(i));
   }
+  for (int l = 0; l < kLanes; ++l)  // a lane not due computes on the first due lane's inputs, unused
+    if (!((due >> l) & 1u)) in[l] = in[first];
   LeeGroupSpeeds omega;
   kernels_.lee_group(r_, lee_groups_[i0 / kLanes], in, omega);
   const size_t n = n_pad_;

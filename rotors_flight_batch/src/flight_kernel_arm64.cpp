@@ -5,8 +5,6 @@ namespace rotors_flight_batch {
 
 const char* const kTargetName = "arm64";
 
-std::vector<TargetKernel> TargetKernels() {
-  return {{{"neon", &StepGroupPairs, &StepOnePairs, &PackLeePairs, &LeeGroupPairs}, true, "NEON"}};
-}
+std::vector<TargetKernel> TargetKernels() { return {{KernelsIn<PairLanes>("neon"), true, "NEON"}}; }
 
 }  // namespace rotors_flight_batch

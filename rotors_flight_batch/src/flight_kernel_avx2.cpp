@@ -8,23 +8,6 @@ namespace rotors_flight_batch {
 
 typedef double Avx2Lanes __attribute__((vector_size(32)));
 
-unsigned StepGroupAvx2(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                       const KernelBefore& before) {
-  return StepGroupIn<Avx2Lanes>(m, a, i0, wind, before);
-}
-
-unsigned StepOneAvx2(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
-                     const KernelBefore& before) {
-  return StepOneWithRotorLanes<Avx2Lanes>(m, a, i, wind, before);
-}
-
-void PackLeeAvx2(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group) {
-  PackLeeGroupIn<Avx2Lanes>(each, group);
-}
-
-void LeeGroupAvx2(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
-                  LeeGroupSpeeds omega) {
-  LeeGroupIn<Avx2Lanes>(rotors, group, in, omega);
-}
+extern const Kernels kAvx2Kernels = KernelsIn<Avx2Lanes>("avx2");
 
 }  // namespace rotors_flight_batch

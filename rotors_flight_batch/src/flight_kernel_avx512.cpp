@@ -9,23 +9,6 @@ namespace rotors_flight_batch {
 
 typedef double Avx512Lanes __attribute__((vector_size(64)));
 
-unsigned StepGroupAvx512(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                         const KernelBefore& before) {
-  return StepGroupIn<Avx512Lanes>(m, a, i0, wind, before);
-}
-
-unsigned StepOneAvx512(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
-                       const KernelBefore& before) {
-  return StepOneWithRotorLanes<Avx512Lanes>(m, a, i, wind, before);
-}
-
-void PackLeeAvx512(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group) {
-  PackLeeGroupIn<Avx512Lanes>(each, group);
-}
-
-void LeeGroupAvx512(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
-                    LeeGroupSpeeds omega) {
-  LeeGroupIn<Avx512Lanes>(rotors, group, in, omega);
-}
+extern const Kernels kAvx512Kernels = KernelsIn<Avx512Lanes>("avx512");
 
 }  // namespace rotors_flight_batch

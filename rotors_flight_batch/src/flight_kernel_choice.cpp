@@ -27,25 +27,6 @@ void FillRotorColumns(KernelModel& m) {
   }
 }
 
-unsigned StepGroupPairs(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                        const KernelBefore& before) {
-  return StepGroupIn<PairLanes>(m, a, i0, wind, before);
-}
-
-unsigned StepOnePairs(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
-                      const KernelBefore& before) {
-  return StepOneWithRotorLanes<PairLanes>(m, a, i, wind, before);
-}
-
-void PackLeePairs(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group) {
-  PackLeeGroupIn<PairLanes>(each, group);
-}
-
-void LeeGroupPairs(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
-                   LeeGroupSpeeds omega) {
-  LeeGroupIn<PairLanes>(rotors, group, in, omega);
-}
-
 namespace {
 unsigned StepGroupScalar(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
                          const KernelBefore& before) {

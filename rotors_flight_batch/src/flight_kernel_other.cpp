@@ -6,8 +6,6 @@ namespace rotors_flight_batch {
 
 const char* const kTargetName = "a target with no SIMD kernel of its own";
 
-std::vector<TargetKernel> TargetKernels() {
-  return {{{"pairs", &StepGroupPairs, &StepOnePairs, &PackLeePairs, &LeeGroupPairs}, true, ""}};
-}
+std::vector<TargetKernel> TargetKernels() { return {{KernelsIn<PairLanes>("pairs"), true, ""}}; }
 
 }  // namespace rotors_flight_batch

@@ -4,21 +4,7 @@
 
 namespace rotors_flight_batch {
 
-unsigned StepGroupAvx512(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                         const KernelBefore& before);
-unsigned StepOneAvx512(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
-                       const KernelBefore& before);
-unsigned StepGroupAvx2(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                       const KernelBefore& before);
-unsigned StepOneAvx2(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
-                     const KernelBefore& before);
-
-void PackLeeAvx512(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group);
-void LeeGroupAvx512(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
-                    LeeGroupSpeeds omega);
-void PackLeeAvx2(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group);
-void LeeGroupAvx2(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
-                  LeeGroupSpeeds omega);
+extern const Kernels kAvx512Kernels, kAvx2Kernels;  // flight_kernel_avx512.cpp, flight_kernel_avx2.cpp
 
 const char* const kTargetName = "x86-64";
 
@@ -26,9 +12,8 @@ std::vector<TargetKernel> TargetKernels() {
   __builtin_cpu_init();
   const bool avx2 = __builtin_cpu_supports("avx2");
   const bool avx512 = avx2 && __builtin_cpu_supports("avx512f");
-  return {{{"avx512", &StepGroupAvx512, &StepOneAvx512, &PackLeeAvx512, &LeeGroupAvx512}, avx512, "AVX-512F"},
-          {{"avx2", &StepGroupAvx2, &StepOneAvx2, &PackLeeAvx2, &LeeGroupAvx2}, avx2, "AVX2"},
-          {{"sse2", &StepGroupPairs, &StepOnePairs, &PackLeePairs, &LeeGroupPairs}, true, "SSE2"}};
+  return {
+      {kAvx512Kernels, avx512, "AVX-512F"}, {kAvx2Kernels, avx2, "AVX2"}, {KernelsIn<PairLanes>("sse2"), true, "SSE2"}};
 }
 
 }  // namespace rotors_flight_batch

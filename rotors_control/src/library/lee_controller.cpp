@@ -35,18 +35,7 @@ void SetLimits(const AccelerationLimits& limits, LeeConstantsT<double>* c) {
   c->max_m_s2 = limits.max_m_s2;
   c->min_up_m_s2 = limits.min_up_m_s2;
 }
-}  // namespace
 
-Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits) {
-  LeeConstantsT<double> c{};
-  SetLimits(limits, &c);
-  const double a[3] = {a_des_W.x(), a_des_W.y(), a_des_W.z()};
-  double out[3];
-  law::SaturatedAcceleration(c, a, out);
-  return {out[0], out[1], out[2]};
-}
-
-namespace {
 AccelerationLimits LimitsOf(const LeeControllerParameters& p) {
   AccelerationLimits limits;
   limits.max_tilt_rad = p.max_tilt_angle_rad;
@@ -60,6 +49,15 @@ AccelerationLimits LimitsOf(const LeeControllerParameters& p) {
   return limits;
 }
 }  // namespace
+
+Eigen::Vector3d SaturatedAcceleration(const Eigen::Vector3d& a_des_W, const AccelerationLimits& limits) {
+  LeeConstantsT<double> c{};
+  SetLimits(limits, &c);
+  const double a[3] = {a_des_W.x(), a_des_W.y(), a_des_W.z()};
+  double out[3];
+  law::SaturatedAcceleration(c, a, out);
+  return {out[0], out[1], out[2]};
+}
 
 LeeController::LeeController(const LeeControllerParameters& params)
     : params_(Validated(params)),

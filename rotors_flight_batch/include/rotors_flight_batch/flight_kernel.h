@@ -464,6 +464,13 @@ struct Kernels {
   LeeGroupFn lee_group;
 };
 
+/// The kernels with lanes of V (each instruction set's file instantiates them for its own lane type,
+/// as a constant: no code compiled for that set runs before ChooseKernels has checked the CPU).
+template <class V>
+constexpr Kernels KernelsIn(const char* instruction_set) {
+  return {instruction_set, &StepGroupIn<V>, &StepOneWithRotorLanes<V>, &PackLeeGroupIn<V>, &LeeGroupIn<V>};
+}
+
 /// The kernels for `instruction_set`. On x86-64: "avx512" (eight vehicles, or a lone vehicle's
 /// rotors, in eight AVX-512 lanes; the CPU must have AVX-512F), "avx2" (four AVX2 lanes; the CPU must
 /// have them), "sse2" (x86-64's baseline: pairs of lanes); on arm64 "neon" (pairs of lanes);

@@ -14,16 +14,6 @@ namespace rotors_flight_batch {
 /// code on a target with neither).
 typedef double PairLanes __attribute__((vector_size(16)));
 
-/// A group of vehicles as pairs of lanes, and one vehicle's rotors two at a time
-/// (flight_kernel_choice.cpp, compiled for the target's baseline).
-unsigned StepGroupPairs(const KernelModel& m, const KernelArrays& a, size_t i0, const KernelWind& wind,
-                        const KernelBefore& before);
-unsigned StepOnePairs(const KernelModel& m, const KernelArrays& a, size_t i, const KernelWind& wind,
-                      const KernelBefore& before);
-void PackLeePairs(const LeeConstantsT<double> each[kGroupLanes], LeeGroupConstants* group);
-void LeeGroupPairs(int rotors, const LeeGroupConstants& group, const LeeInputsT<double> in[kGroupLanes],
-                   LeeGroupSpeeds omega);
-
 struct TargetKernel {
   Kernels kernels;
   bool cpu_has_it;    ///< this CPU runs it
