@@ -14,7 +14,7 @@ import numpy as np
 import clients.clean_runs
 import clients.sim
 from rotors_evaluation.bag_data import FlightBag
-from support import REPO, RosGraph, launch, send_hover_pose, stop_launch, wait_sim_time
+from support import REPO, RosGraph, launch, stop_launch, wait_sim_time
 
 EVAL = REPO / "rotors_gazebo_compat" / "rotors_evaluation" / "scripts" / "hovering_eval.py"
 STEP_S = 0.01  # basic.world's step = the controller's period in lockstep
@@ -107,7 +107,7 @@ def test_controller_starting_5_s_late_gives_same_trajectory(ros: RosGraph):
 
 def test_killed_controller_pauses_lockstep_restart_resumes(ros: RosGraph):
     proc = launch(ros, "rotors_gazebo", "mav_hovering_example.launch", "enable_logging:=true", "lockstep:=true", "real_time_factor:=0")
-    restarted = None
+    restarted = setpoint = None
     try:
         wait_sim_time(ros, 12.0)
         pid = int(ros.run(["pgrep", "-f", f"lee_position_controller_node.*{ros.env['ROS_LOG_DIR']}"]).stdout.split()[0])
@@ -118,7 +118,23 @@ def test_killed_controller_pauses_lockstep_restart_resumes(ros: RosGraph):
         assert sim_time(ros) == t_paused, "the simulation ran on without its controller"
         log = Path(proc.log_path).read_text()
         assert "/firefly/command/motor_speed went away at t = " in log, log[-3000:]
-        # the user restarts it (its parameters are still on the server); the hover set point is resent
+        # the user restarts it (its parameters are still on the server). The hover set point is
+        # latched first, so that the new controller has it from its start: the simulation resumes
+        # 0.5 s after the controller answers, and a Lee controller without a set point sends zeros
+        setpoint = ros.start(
+            [
+                "rostopic",
+                "pub",
+                "-l",
+                "/firefly/command/pose",
+                "geometry_msgs/PoseStamped",
+                "{pose: {position: {z: 1.0}, orientation: {w: 1.0}}}",
+            ],
+            "setpoint",
+        )
+        assert ros.wait_for(
+            lambda: "/rostopic_" in ros.run(["rostopic", "info", "/firefly/command/pose"], check=False).stdout, 30
+        ), "the latched set point was not advertised in 30 s"
         restarted = ros.start(
             [
                 "rosrun",
@@ -130,12 +146,12 @@ def test_killed_controller_pauses_lockstep_restart_resumes(ros: RosGraph):
             ],
             "controller_again",
         )
-        send_hover_pose(ros)
         wait_sim_time(ros, t_paused + 10.0, timeout_s=120)
         assert "/firefly/command/motor_speed is back; resuming at t = " in Path(proc.log_path).read_text()
     finally:
-        if restarted is not None:
-            os.killpg(restarted.pid, signal.SIGINT)
+        for p in (restarted, setpoint):
+            if p is not None:
+                os.killpg(p.pid, signal.SIGINT)
         stop_launch(proc)
     bag = next(Path(ros.env["ROS_HOME"]).glob("firefly_*.bag"))
     b = FlightBag(bag)

@@ -64,7 +64,7 @@ def test_firefly_hovers_on_estimate_and_filter_is_consistent(ros: RosGraph, tmp_
     # hovers on the estimate: within 0.05 m RMS of the set point plus the controller's static offset
     data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
     wp = data.waypoints[0]  # the PoseStamped on command/pose
-    assert np.allclose(wp.position, [0, 0, 1]) and 10.0 <= wp.t < 10.5
+    assert np.allclose(wp.position, [0, 0, 1]) and 10.0 <= wp.t < 11.0  # sent at 10 s of sim time (10x: 0.1 s of wall time late at most)
     in_flight = (data.collision_times > wp.t + 3) & (data.collision_times < 46.0)  # not while shutting down
     assert not in_flight.any(), data.collision_times
     rms = rms_error(data.position.window(35.0, 45.0), wp.position + STATIC_OFFSET)
@@ -158,7 +158,7 @@ def test_estimator_and_controller_in_the_simulators_process(ros: RosGraph):
     assert "/firefly/msf_core/odometry" in topics and "Initialized scale" in log
     data = load_flight(bag, "firefly", "/ground_truth/pose", "/ground_truth/twist", "/command/trajectory", "/wrench")
     wp = data.waypoints[0]
-    assert np.allclose(wp.position, [0, 0, 1]) and 10.0 <= wp.t < 10.5
+    assert np.allclose(wp.position, [0, 0, 1]) and 10.0 <= wp.t < 11.0  # sent at 10 s of sim time (10x: 0.1 s of wall time late at most)
     rms = rms_error(data.position.window(35.0, 45.0), wp.position + STATIC_OFFSET)
     r = evaluate_estimator(bag, "firefly", begin=INIT_TIME + 5.0, end=INIT_TIME + 30.0)
     print(f"in process: hover RMS beyond the static offset {rms:.3f} m; {r}")
@@ -180,7 +180,8 @@ def test_estimator_survives_a_pose_outage_and_reconverges(ros: RosGraph, tmp_pat
         return ros.run_client(clients.msf_flight.fly_through_band, timeout=300)
 
     bag, _, _, log, sent = fly_msf(ros, 47.0, f"pose_sensor_map:={pgm}", during=fly_through_band)
-    assert 30.0 <= sent["sent"][0] < 30.5 and 32.5 <= sent["sent"][1] < 33.0, sent  # on time in sim time
+    first, second = sent["sent"]
+    assert 30.0 <= first < 31.0 and 2.5 <= second - first < 3.5, sent  # on time in sim time (10x: 0.1 s of wall time late at most)
     r = evaluate_estimator(bag, "firefly", begin=12.0, end=47.0)
     print(r)
     gaps = [g for g in r.pose_gaps if g[0] > 25.0]

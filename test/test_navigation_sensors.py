@@ -41,7 +41,7 @@ def test_gps_magnetometer_barometer_on_the_firefly(ros: RosGraph, tmp_path: Path
     flight = tmp_path / "flight.launch"
     flight.write_text("""<launch><include file="$(find rotors_gazebo)/launch/mav_hovering_example.launch">
       <arg name="gui" value="false"/><arg name="lockstep" value="true"/><arg name="real_time_factor" value="2"/>
-      <arg name="enable_navigation_sensors" value="true"/>
+      <arg name="enable_navigation_sensors" value="true"/><arg name="random_seed" value="5"/>
       <arg name="xacro_args" value="gps_hor_pos_std_dev:=0 gps_ver_pos_std_dev:=0"/>
     </include></launch>""")
     proc = ros.start(["roslaunch", "-p", str(ros.port), str(flight)], "launch")
@@ -95,11 +95,13 @@ def test_gps_magnetometer_barometer_on_the_firefly(ros: RosGraph, tmp_path: Path
     # barometer (no noise by default): the standard atmosphere at 500 m + z
     worst = max(abs(p - isa_pressure(500.0 + truth_at(t)[3])) for t, p in got["baro"])
     assert worst < 1e-6, worst
-    # magnetometer: the ENU reference field rotated into the body, within bias + 4 sigma
+    # magnetometer: the ENU reference field rotated into the body, within the turn-on bias (uniform in
+    # +-4e-7 T an axis) and 6 sigma of the white noise (8e-8 T): the largest of ~2,400 samples passes
+    # 6 sigma with probability 1 - 5e-6
     m_w = np.array([8.15e-7, 2.1493e-5, -4.2795e-5])
     worst = max(np.max(np.abs(np.array(b) - rotate(truth_at(t)[4:8], m_w, inverse=True))) for t, *b in got["mag"])
     print(f"magnetometer: largest difference from R^T m_W {worst:.3g} T (bias within 4e-7, sigma 8e-8)")
-    assert worst < 4e-7 + 4 * 8e-8
+    assert worst < 4e-7 + 6 * 8e-8
 
 
 def rotate(q_xyzw, v, inverse=False):

@@ -11,7 +11,7 @@ from sensor_msgs.msg import Imu
 
 def fly_through_band() -> dict:
     """After hovering at the origin: set points on command/pose into the band (x 1.0 at 30 s of sim
-    time) and out again (x 2.2 at 32.5 s); the stamps they were sent at."""
+    time) and out again (x 2.2 2.5 s after the first was sent); the stamps they were sent at."""
     pub = rospy.Publisher("/firefly/command/pose", PoseStamped, queue_size=1, latch=True)
 
     def go(x, at):
@@ -23,7 +23,8 @@ def fly_through_band() -> dict:
         pub.publish(m)
         return m.header.stamp.to_sec()
 
-    return {"sent": [go(1.0, 30.0), go(2.2, 32.5)]}
+    first = go(1.0, 30.0)
+    return {"sent": [first, go(2.2, first + 2.5)]}
 
 
 def refusals_and_nan_input() -> dict:
