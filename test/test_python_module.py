@@ -150,6 +150,27 @@ def test_reset_repeats_flight_bit_for_bit_with_wind_and_nav():
     assert first["/firefly/external_force"] != [first["/firefly/external_force"][0]] * counts["/firefly/external_force"]
 
 
+def test_quick_solver_flight_repeats_whatever_other_worlds_drew_and_after_reset():
+    """ODE's quick stepper (the warehouse's solver) reorders constraint rows with ODE's one
+    process-wide random generator; each world keeps its own state of it. A flight that starts with
+    0.5 s on its legs (ground contacts: rows to reorder) is byte for byte the same in a new world
+    after another world drew from the generator, and in the first world after its reset."""
+    first_world = rs.World("warehouse")
+    first_world.spawn_mav("firefly", random_seed=3)
+    first = fly_recording_everything(first_world)
+    other = rs.World("warehouse")
+    other.spawn_mav("firefly", random_seed=5)
+    other.step(777)  # resting on its legs: the quick stepper draws
+    second_world = rs.World("warehouse")
+    second_world.spawn_mav("firefly", random_seed=3)
+    second = fly_recording_everything(second_world)
+    first_world.reset()
+    third = fly_recording_everything(first_world)
+    assert first["/firefly/odometry_sensor1/odometry"][-1] != first["/firefly/odometry_sensor1/odometry"][0]  # it flew
+    assert first_differences(first, second) == {}
+    assert first_differences(first, third) == {}
+
+
 def test_reset_world_repeats_the_flight_with_the_time_running_on():
     """World.reset_world() (Gazebo's reset_world, also the server's /gazebo/reset_world): the time runs
     on, so the messages are compared with their stamps set to 0; the gust, due at 40 s, stays out."""
@@ -297,6 +318,30 @@ def test_bad_input_is_one_exception_and_world_keeps_working(bad, match):
     world.step(10)
     assert abs(world.time - t - 0.1) < 1e-9 and world.odometry("firefly").count >= 20
     assert world.rotor_speeds("firefly")[0] > 50.0  # the last valid command stays in force
+
+
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (
+            lambda c: c.set_point([0.3, 0.2, 1.0, 0.5]),
+            r"set_point: position: 4 values in shape \(4,\); give 3 \(x, y, z \[m\]; the yaw is its own argument\)",
+        ),
+        (lambda c: c.set_point([0, 0, 1], velocity=[1, 2]), r"set_point: velocity: 2 values in shape \(2,\); give 3"),
+        (lambda c: c.set_point("up"), "set_point: position: 'up' is not numbers; give 3 values"),
+    ],
+)
+def test_a_set_point_of_the_wrong_length_is_one_error_and_the_last_stays(call, match):
+    world = rs.World("basic")
+    world.spawn_mav("firefly", random_seed=4)
+    lee = rs.LeePositionController.for_mav("firefly")
+    world.attach_controller("firefly", lee)
+    lee.set_point([0.0, 0.0, 1.0])
+    world.step(300)
+    with pytest.raises(rs.SimError, match=match):
+        call(lee)
+    world.step(300)
+    assert world.odometry("firefly").position_W[2] > 0.5  # still climbing to the last valid set point
 
 
 def test_engine_controller_flies_python_loop_flight_bit_for_bit():

@@ -1,5 +1,6 @@
 #include "rotors_core/physics/world.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdarg>
@@ -45,6 +46,13 @@ void InitOdeOnce() {
     dInitODE2(0);
     dSetMessageHandler(&OdeMessage);
   });
+}
+
+/// Guards ODE's process-wide random generator (dRandSetSeed, dRandInt, dRandGetSeed) across worlds
+/// stepped on several threads.
+std::mutex& OdeRandomGeneratorMutex() {
+  static std::mutex mutex;
+  return mutex;
 }
 }  // namespace
 
@@ -182,7 +190,13 @@ void World::Step(unsigned int steps) {
     }
     Collide();
     if (params_.quick_solver) {
+      // ODE's quick stepper reorders the constraint rows with its process-wide random generator:
+      // each world steps with its own state of it (one world at a time), so that its flight does
+      // not depend on what other worlds or earlier flights drew, and a reset repeats it bit for bit
+      std::lock_guard<std::mutex> lock(OdeRandomGeneratorMutex());
+      dRandSetSeed(quick_step_random_state_);
       dWorldQuickStep(Ode(solver_world_), dt);
+      quick_step_random_state_ = dRandGetSeed();
     } else {
       dWorldStep(Ode(solver_world_), dt);
     }
@@ -202,6 +216,7 @@ void World::Step(unsigned int steps) {
 
 void World::ResetWorld() {
   event::ScopedCurrentEvents scope(&events_);
+  quick_step_random_state_ = 0;
   for (const auto& model : models_) {
     model->SetWorldPose(model->InitialPose());
     model->ResetPlugins();
@@ -223,12 +238,14 @@ struct World::PendingContacts {
     Contact contact;
     dJointFeedback feedback;  // filled by the solver during the step
   };
+  std::vector<std::pair<dGeomID, dGeomID>> pairs;  ///< the broad phase's pairs that may touch
   std::deque<Entry> entries;
 };
 
-/// The solver's near callback: contact joints between two geoms that may touch.
+/// The solver's near callback (the pairs that may touch) and the contact joints of one pair.
 struct WorldCollision {
   static void Near(void* data, dGeomID g1, dGeomID g2);
+  static void Contacts(World* world, dGeomID g1, dGeomID g2);
 };
 
 void WorldCollision::Near(void* data, dGeomID g1, dGeomID g2) {
@@ -242,7 +259,13 @@ void WorldCollision::Near(void* data, dGeomID g1, dGeomID g2) {
   // Links of one model do not collide with each other (Gazebo's default self_collide = false).
   if (info1->link->GetModel() == info2->link->GetModel()) return;
   if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
+  world->pending_->pairs.emplace_back(g1, g2);
+}
 
+void WorldCollision::Contacts(World* world, dGeomID g1, dGeomID g2) {
+  auto* info1 = static_cast<Model::GeomInfo*>(dGeomGetData(g1));
+  auto* info2 = static_cast<Model::GeomInfo*>(dGeomGetData(g2));
+  dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
   dContact contacts[kMaxContactsPerPair];
   const int n = dCollide(g1, g2, kMaxContactsPerPair, &contacts[0].geom, sizeof(dContact));
   if (n == 0) return;
@@ -273,7 +296,26 @@ void WorldCollision::Near(void* data, dGeomID g1, dGeomID g2) {
 
 void World::Collide() {
   pending_->entries.clear();
+  pending_->pairs.clear();
   dSpaceCollide(Ode(space_), this, &WorldCollision::Near);
+  // ODE's broad phase reports the pairs in its space's list order, which changes as geoms move. The
+  // contacts are made in the order of the collisions' names instead, so the solver gets the same
+  // rows in the same order whatever the world's history: a reset repeats the flight bit for bit
+  // with either stepper (the quick one's result depends on the order). In a pair, a body's geom
+  // comes first (ODE's contact feedback f1 is on the joint's first body), else the smaller name.
+  auto& pairs = pending_->pairs;
+  auto name = [](dGeomID g) -> const std::string& {
+    return static_cast<Model::GeomInfo*>(dGeomGetData(g))->scoped_name;
+  };
+  for (auto& [g1, g2] : pairs) {
+    const bool body1 = dGeomGetBody(g1) != nullptr, body2 = dGeomGetBody(g2) != nullptr;
+    if (body1 != body2 ? !body1 : name(g2) < name(g1)) std::swap(g1, g2);
+  }
+  std::stable_sort(pairs.begin(), pairs.end(), [&name](const auto& a, const auto& b) {
+    const int first = name(a.first).compare(name(b.first));
+    return first != 0 ? first < 0 : name(a.second) < name(b.second);
+  });
+  for (const auto& [g1, g2] : pairs) WorldCollision::Contacts(this, g1, g2);
 }
 
 void World::CollectContacts() {

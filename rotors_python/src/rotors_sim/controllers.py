@@ -18,6 +18,17 @@ from rotors_sim.paths import resource
 from rotors_sim.world import Odometry
 
 
+def _values(who: str, value: Any, n: int, meaning: str) -> np.ndarray:
+    """`value` as n floats, or SimError naming the argument, what it got and what it takes."""
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise SimError(f"{who}: {value!r} is not numbers; give {n} values ({meaning})") from None
+    if a.shape != (n,):
+        raise SimError(f"{who}: {a.size} values in shape {a.shape}; give {n} ({meaning})")
+    return a
+
+
 def flatten(tree: dict, prefix: str = "") -> tuple[dict[str, float], list[str]]:
     """{"a": {"b": 1}} -> ({"a/b": 1.0}, []); values that are not numbers go to the second list
     (the reader then says "must be a number" if a loader asks for them)."""
@@ -109,9 +120,9 @@ class LeePositionController(_YamlController):
         """A reference point; with `due` [s of sim time] it is released with the first odometry stamped
         at or after it (as the ROS node releases a stamped trajectory), else with the next odometry."""
         self._c.set_trajectory_point(
-            np.asarray(position, float),
-            np.asarray(velocity, float),
-            np.asarray(acceleration, float),
+            _values("set_point: position", position, 3, "x, y, z [m]; the yaw is its own argument"),
+            _values("set_point: velocity", velocity, 3, "vx, vy, vz [m/s]"),
+            _values("set_point: acceleration", acceleration, 3, "ax, ay, az [m/s^2]"),
             float(yaw),
             float(yaw_rate),
             -1e300 if due is None else float(due),
@@ -132,7 +143,9 @@ class AttitudeLevelController(_YamlController):
         self._c.set_roll_pitch_yawrate_thrust(float(roll), float(pitch), float(yaw_rate), float(thrust_N))
 
     def set_attitude_thrust(self, orientation_xyzw: Sequence[float], thrust_N: float) -> None:
-        self._c.set_attitude_thrust(np.asarray(orientation_xyzw, float), float(thrust_N))
+        self._c.set_attitude_thrust(_values("set_attitude_thrust: orientation", orientation_xyzw, 4, "x, y, z, w"), float(thrust_N))
 
     def set_rate_thrust(self, angular_velocity_B: Sequence[float], thrust_N: float) -> None:
-        self._c.set_rate_thrust(np.asarray(angular_velocity_B, float), float(thrust_N))
+        self._c.set_rate_thrust(
+            _values("set_rate_thrust: angular velocity", angular_velocity_B, 3, "p, q, r [rad/s] in the body frame"), float(thrust_N)
+        )

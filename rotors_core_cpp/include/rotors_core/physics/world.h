@@ -137,6 +137,9 @@ class World : public std::enable_shared_from_this<World> {
   SphericalCoordinates origin_;
   geometry::Lighting lighting_;
   SolverWorldHandle* solver_world_ = nullptr;
+  /// This world's state of ODE's one process-wide random generator, which the quick stepper draws
+  /// from to reorder constraint rows (dRandInt); 0, ODE's own start, at creation and at a reset
+  unsigned long quick_step_random_state_ = 0;
   dxThreadingImplementation* threading_ = nullptr;  ///< this world's own ODE stepping threading
   SpaceHandle* space_ = nullptr;
   ContactGroupHandle* contact_group_ = nullptr;
