@@ -133,7 +133,7 @@ def test_killed_controller_pauses_lockstep_restart_resumes(ros: RosGraph):
             "setpoint",
         )
         assert ros.wait_for(
-            lambda: "/rostopic_" in ros.run(["rostopic", "info", "/firefly/command/pose"], check=False).stdout, 30
+            lambda: "/rostopic_" in ros.run(["rostopic", "info", "/firefly/command/pose"], check=False, timeout=10).stdout, 30
         ), "the latched set point was not advertised in 30 s"
         restarted = ros.start(
             [

@@ -13,6 +13,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 import clients.sim
 from clients.waits import poll as poll
 from clients.waits import wait_until as wait_until
@@ -151,6 +153,14 @@ def send_hover_pose(ros: RosGraph, then: Callable | None = None, **kwargs) -> di
     then calls the client function `then` (a function of test/clients/) with `kwargs` in the same
     client (the latched message lives as long as it); returns what that function returned ({} without one)."""
     return ros.run_client(clients.sim.send_hover_pose, then=client_name(then) if then else "", then_kwargs=kwargs)
+
+
+def rate_from_stamps(stamps) -> float:
+    """Messages per second from consecutive stamps [s]: the mean interval, leaving out an interval
+    that holds a message the receiver dropped (one of 1.5 x the median interval or more; a 30 Hz
+    camera on 10 ms steps has intervals of 30 and 40 ms, which a plain median reads as 33.3 Hz)."""
+    gaps = np.diff(np.asarray(stamps, dtype=float))
+    return float(1.0 / np.mean(gaps[gaps < 1.5 * np.median(gaps)]))
 
 
 def stop_launch(proc: subprocess.Popen, timeout: float = 30.0) -> None:

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <mutex>
 #include <sstream>
+#include <tuple>
 
 #include "rotors_core/error.h"
 #include "rotors_core/raycast/ray_scene.h"
@@ -311,9 +312,8 @@ void World::Collide() {
     const bool body1 = dGeomGetBody(g1) != nullptr, body2 = dGeomGetBody(g2) != nullptr;
     if (body1 != body2 ? !body1 : name(g2) < name(g1)) std::swap(g1, g2);
   }
-  std::stable_sort(pairs.begin(), pairs.end(), [&name](const auto& a, const auto& b) {
-    const int first = name(a.first).compare(name(b.first));
-    return first != 0 ? first < 0 : name(a.second) < name(b.second);
+  std::sort(pairs.begin(), pairs.end(), [&name](const auto& a, const auto& b) {
+    return std::tie(name(a.first), name(a.second)) < std::tie(name(b.first), name(b.second));
   });
   for (const auto& [g1, g2] : pairs) WorldCollision::Contacts(this, g1, g2);
 }
